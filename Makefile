@@ -1,0 +1,78 @@
+# Virtual Hexaglide for LinuxCNC - top-level build.
+#   make          build the realtime modules and the host tool build/hexaglide
+#   make install  put the modules in LinuxCNC's module directory (root)
+#   make test     all tests; ends with "N passed, N failed"
+#   make demo     the virtual machine: home, run G-code, plots in out/
+#   make run      the same machine in AXIS
+#   make bench    speed of kinematics and dynamics
+# Every entry point first installs the Debian packages it needs.
+
+CC      ?= gcc
+BUILD   := build
+CFLAGS_HOST := -std=gnu99 -O2 -g -Wall -Wextra -Werror -Isrc -Isrc/generated
+LDLIBS_HOST := -lm
+
+# pure math, no LinuxCNC dependency: every src/hg_*.c and src/generated/*.c
+CORE_SRCS := $(sort $(wildcard src/hg_*.c) $(wildcard src/generated/*.c))
+CORE_OBJS := $(patsubst src/%.c,$(BUILD)/host/%.o,$(CORE_SRCS))
+CLI_SRCS  := $(sort $(wildcard src/cli/*.c))
+CLI_OBJS  := $(patsubst src/%.c,$(BUILD)/host/%.o,$(CLI_SRCS))
+UNIT_SRCS := $(sort $(wildcard tests/unit/test_*.c))
+UNIT_BINS := $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(UNIT_SRCS))
+BENCH_SRCS := $(sort $(wildcard bench/bench_*.c))
+BENCH_BINS := $(patsubst bench/%.c,$(BUILD)/bench/%,$(BENCH_SRCS))
+
+.PHONY: all deps modules host install test check fuzz soak demo run bench clean unit-tests
+
+all: deps host modules
+
+deps:
+	@tools/install-deps.sh build
+
+host: $(BUILD)/hexaglide $(UNIT_BINS)
+
+$(BUILD)/host/%.o: src/%.c $(wildcard src/*.h src/generated/*.h src/cli/*.h)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_HOST) -c -o $@ $<
+
+$(BUILD)/hexaglide: $(CLI_OBJS) $(CORE_OBJS)
+	$(CC) -o $@ $^ $(LDLIBS_HOST)
+
+$(BUILD)/tests/%: tests/unit/%.c tests/unit/hg_test.h $(CORE_OBJS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_HOST) -Itests/unit -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST)
+
+unit-tests: $(UNIT_BINS)
+
+# Realtime modules, built by LinuxCNC's Makefile.modinc in build/rt.
+modules: deps
+	@mkdir -p $(BUILD)/rt
+	$(MAKE) -s -C $(BUILD)/rt -f $(CURDIR)/src/Makefile.modules SRC=$(CURDIR)/src modules
+
+install: modules
+	$(MAKE) -s -C $(BUILD)/rt -f $(CURDIR)/src/Makefile.modules SRC=$(CURDIR)/src install
+
+test:
+	@tools/install-deps.sh test
+	@$(MAKE) -s all
+	@tests/run_all.sh
+
+bench: all
+	@tools/install-deps.sh bench
+	@$(MAKE) -s $(BENCH_BINS)
+	@bench/run_bench.sh
+
+$(BUILD)/bench/%: bench/%.c $(CORE_OBJS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_HOST) -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST)
+
+demo: all
+	@tools/install-deps.sh demo
+	@tools/demo.sh
+
+run: all
+	@tools/install-deps.sh run
+	@tools/run.sh
+
+clean:
+	rm -rf $(BUILD)

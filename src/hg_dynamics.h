@@ -1,0 +1,83 @@
+/* hg_dynamics.h - forward dynamics of the whole Hexaglide (head, six bars,
+ * six carriages, six drives), one integration step per call, after
+ * Ros et al., Multibody Dynamics 2011 (shared/paper).
+ *
+ * MuJoCo-style split: hg_model is constant after hg_model_init (parameters
+ * and the parameter-only subexpressions of the generated code); hg_data is
+ * the mutable state and workspace. Both are plain structs without pointers,
+ * so the HAL driver can place them in hal_malloc'd memory.
+ *
+ * Units: SI and radians. z = carriage heights relative to HOME (m, up),
+ * pose = X Y Z (m) A B C (rad) of the head reference point, as in
+ * hg_kinematics.h. Volts are the DAC commands of joints 0..5.
+ *
+ * Pure C and libm: no LinuxCNC dependency; hg_step has no malloc, no stdio
+ * and bounded loops, and never leaves a non-finite number in hg_data. */
+#ifndef HG_DYNAMICS_H
+#define HG_DYNAMICS_H
+
+#include "hg_params.h"
+#include "hg_kinematics.h"
+
+/* The parametrizations of the paper's section 7, plus the fused one. */
+typedef enum {
+    HG_MODEL_STANDARD = 0,          /* q = [z, 12 bar angles, c], z independent */
+    HG_MODEL_REDUCED_JOINTS = 1,    /* bars lumped, q = [z, c], z independent */
+    HG_MODEL_REDUCED_CARTESIAN = 2, /* bars lumped, q = [z, c], c independent */
+    HG_MODEL_FUSED_CARTESIAN = 3,   /* reduced Cartesian, whole step generated as one function */
+    HG_MODEL_COUNT = 4
+} hg_model_kind;
+
+/* Name used on the command line and in HAL ("standard", "reduced-joints",
+ * "reduced-cartesian", "fused-cartesian"); 0 for an invalid kind. */
+const char *hg_model_name(hg_model_kind kind);
+
+/* Kind for a name, or -1 when the name is unknown. */
+int hg_model_from_name(const char *name);
+
+#define HG_MAX_CONSTS 256   /* room for hoisted parameter-only subexpressions */
+
+typedef struct {
+    hg_params p;                 /* the parameter set this model was built from */
+    hg_model_kind kind;
+    double force_per_volt_n;     /* ka kt 2 pi / lead */
+    double force_max_n;          /* i_max kt 2 pi / lead */
+    double rotor_mass_kg;        /* j_rotor (2 pi / lead)^2, inertia without weight */
+    double k[HG_MAX_CONSTS];     /* generated init: parameter-only subexpressions */
+} hg_model;
+
+typedef struct {
+    double t_s;                  /* simulated time since reset */
+    double z_m[6];               /* carriage heights relative to HOME */
+    double zd_mps[6];            /* carriage velocities */
+    double zdd_mps2[6];          /* carriage accelerations of the last step */
+    double pose[6];              /* head pose: X Y Z (m) A B C (rad) */
+    double posed[6];             /* its time derivative */
+    double bar_rad[12];          /* bar angles (standard model only) */
+    double bar_radps[12];        /* their rates (standard model only) */
+    double current_a[6];         /* motor currents after the amplifier clamp */
+    double force_n[6];           /* net non-inertial force on each carriage (drive+friction+stop) */
+    double residual_m;           /* max bar-length error after the last stabilization */
+    int last_error;              /* code of the last failed step, 0 if none */
+} hg_data;
+
+/* Check p and build the model: 0, or HG_ERR_BAD_PARAM with *bad_field and
+ * *why naming the cause (static strings), or another negative code. */
+int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
+                  const char **bad_field, const char **why);
+
+/* Put the machine at HOME at rest (z = 0, z' = 0), solving the dependent
+ * coordinates and velocities with full Newton-Raphson. 0 or a negative code. */
+int hg_data_reset(const hg_model *m, hg_data *d);
+
+/* Integrate one step of dt_s seconds with the given DAC volts (clamped to
+ * +-10 V; non-finite volts count as 0). 0, or a negative code (BAD_DT,
+ * STATE_NONFINITE, STABILIZATION, SINGULAR_MASS, ...) in which case d is
+ * left exactly as it was before the call except last_error. */
+int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s);
+
+/* Kinetic energy (J, rotor included) and potential energy (J, gravity,
+ * zero at HOME) of the state in d. */
+void hg_energy(const hg_model *m, const hg_data *d, double *kinetic_j, double *potential_j);
+
+#endif

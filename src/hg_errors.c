@@ -1,0 +1,22 @@
+/* hg_errors.c - names of the project's return codes. */
+#include "hg_errors.h"
+
+const char *hg_strerror(int code)
+{
+    switch (code) {
+    case HG_OK: return "ok";
+    case HG_ERR_NONFINITE_INPUT: return "input is NaN or infinite";
+    case HG_ERR_UNREACHABLE: return "pose unreachable: a bar cannot reach its guide";
+    case HG_ERR_EULER_SINGULAR: return "tilt B too close to +-90 degrees (Euler singularity)";
+    case HG_ERR_NO_CONVERGENCE: return "Newton-Raphson did not converge within its iteration limit";
+    case HG_ERR_WRONG_BRANCH: return "solution on another assembly branch (a carriage below its head joint)";
+    case HG_ERR_SINGULAR_JACOBIAN: return "constraint Jacobian singular";
+    case HG_ERR_BAD_PARAM: return "invalid parameter";
+    case HG_ERR_STATE_NONFINITE: return "simulated state became NaN or infinite";
+    case HG_ERR_STABILIZATION: return "constraint stabilization diverged";
+    case HG_ERR_BAD_DT: return "time step not positive, not finite or too large";
+    case HG_ERR_SINGULAR_MASS: return "reduced mass matrix not positive definite";
+    case HG_ERR_DIVERGED: return "Newton-Raphson diverged";
+    default: return "unknown error";
+    }
+}

@@ -1,0 +1,73 @@
+/* hg_kinematics.h - Hexaglide geometry, inverse and forward kinematics.
+ *
+ * Conventions (shared/hexaglide-model.md): SI units and radians inside.
+ *   joints z[6]  = z11 z12 z21 z22 z31 z32, carriage heights relative to
+ *                  HOME, metres, positive up (LinuxCNC joints 0..5).
+ *   pose c[6]    = X Y Z (m) of the head reference point Op and
+ *                  A B C (rad), R = Rz(C) Ry(B) Rx(A).
+ *   bar k = 2*(i-1) + (j-1) for post i = 1..3, guide j = 1..2.
+ *   B_k = Rz(alpha_i) (lb, s_j e, 0) + (0, 0, h + z_k)   carriage joint
+ *   A_k = P + R Rz(alpha_i) (lp, s_j e, 0)               head joint
+ *   Phi_k = |B_k - A_k|^2 - l^2 = 0                       bar constraint
+ *
+ * Pure C and libm: no LinuxCNC dependency, no malloc, no stdio, bounded
+ * loops. Shared by hexaglidekins, the virtual driver and build/hexaglide. */
+#ifndef HG_KINEMATICS_H
+#define HG_KINEMATICS_H
+
+#include "hg_params.h"
+
+#define HG_NBARS 6
+/* poses with |B| above this are refused (3-2-1 Euler singularity at 90 deg) */
+#define HG_MAX_ABS_B_RAD 1.4835298641951802 /* 85 degrees */
+
+/* Newton-Raphson settings and report for the forward kinematics. */
+typedef struct {
+    int max_iterations;        /* hard bound on iterations, >= 1 */
+    double tolerance_m;        /* stop when max |B-A|-l residual is below (metres) */
+} hg_fk_options;
+
+typedef struct {
+    int iterations;            /* iterations used by the last call */
+    double residual_m;         /* max over bars of ||B-A| - l| at the answer */
+} hg_fk_report;
+
+/* Default FK options: 30 iterations, 1e-12 m. */
+void hg_fk_options_default(hg_fk_options *o);
+
+/* Base point of guide k at height 0: Rz(alpha_i)(lb, s_j e, 0). */
+void hg_guide_point(const hg_geometry *g, int k, double out[3]);
+
+/* Head joint k in head coordinates: Rz(alpha_i)(lp, s_j e, 0). */
+void hg_head_point(const hg_geometry *g, int k, double out[3]);
+
+/* Rotation matrix R = Rz(c) Ry(b) Rx(a), row-major R[3*row+col]. */
+void hg_rotation(double a, double b, double c, double R[9]);
+
+/* World positions of the carriage joints B[k] and head joints A[k]. */
+void hg_joint_points(const hg_geometry *g, const double z[6], const double pose[6],
+                     double B[6][3], double A[6][3]);
+
+/* Bar constraints Phi_k = |B_k - A_k|^2 - l^2 (m^2). */
+void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6],
+                    double phi[6]);
+
+/* Analytic Jacobian dPhi/dpose (6x6 row-major, phi row k, pose column) and,
+ * if dphi_dz is not 0, the diagonal dPhi_k/dz_k. */
+void hg_constraint_jacobian(const hg_geometry *g, const double z[6], const double pose[6],
+                            double jac_pose[36], double dphi_dz[6]);
+
+/* Closed-form inverse kinematics: pose -> joints. 0, or
+ * HG_ERR_NONFINITE_INPUT, HG_ERR_EULER_SINGULAR, HG_ERR_UNREACHABLE (joints
+ * untouched on failure). */
+int hg_inverse_kinematics(const hg_geometry *g, const double pose[6], double z[6]);
+
+/* Forward kinematics by Newton-Raphson on the six bar equations with the
+ * analytic Jacobian, starting from pose (the guess) and overwriting it with
+ * the answer on success only. 0, or HG_ERR_NONFINITE_INPUT,
+ * HG_ERR_NO_CONVERGENCE, HG_ERR_SINGULAR_JACOBIAN, HG_ERR_WRONG_BRANCH,
+ * HG_ERR_DIVERGED, HG_ERR_EULER_SINGULAR. report may be 0. */
+int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6],
+                          const hg_fk_options *opt, hg_fk_report *report);
+
+#endif

@@ -1,0 +1,28 @@
+/* hg_linalg.h - small dense linear algebra for realtime use: fixed upper
+ * bound on size, no allocation, loops bounded by n, row-major storage.
+ * Pure C and libm. */
+#ifndef HG_LINALG_H
+#define HG_LINALG_H
+
+#define HG_LINALG_MAX_N 18
+
+/* LU factorization with partial pivoting in place: a (n x n) becomes L\U,
+ * piv[n] the row order. 0, or HG_ERR_SINGULAR_JACOBIAN when a pivot is
+ * below tiny (relative to the largest entry) or not finite. */
+int hg_lu_factor(int n, double *a, int *piv);
+
+/* Solve (L U) x = P b for nrhs right-hand sides stored as columns of
+ * b (n x nrhs, row-major), in place. */
+void hg_lu_solve(int n, const double *lu, const int *piv, int nrhs, double *b);
+
+/* Cholesky factorization in place (lower triangle: a = L L^T).
+ * 0, or HG_ERR_SINGULAR_MASS when a is not positive definite. */
+int hg_cholesky_factor(int n, double *a);
+
+/* Solve L L^T x = b in place for one right-hand side. */
+void hg_cholesky_solve(int n, const double *l, double *b);
+
+/* 1 when every one of the n values is finite. */
+int hg_all_finite(int n, const double *v);
+
+#endif

@@ -1,0 +1,86 @@
+/* hg_params.h - the Hexaglide parameter set: geometry, masses, drives,
+ * friction and strokes, all in SI units (the unit is in each field name).
+ * Defaults are the numbers of shared/hexaglide-model.md. Every field can be
+ * read and set by its spec name ("l", "m_head", "c_visc", ...), so the CLI
+ * (--set name=value) and the HAL driver share one table.
+ * Pure C, no LinuxCNC dependency, no malloc, no stdio. */
+#ifndef HG_PARAMS_H
+#define HG_PARAMS_H
+
+/* Geometry: everything the kinematics needs. */
+typedef struct {
+    double l_m;      /* bar length, joint centre to joint centre */
+    double lb_m;     /* machine axis to a post's guide plane */
+    double e_m;      /* half spacing of a post's two guides (and head joints) */
+    double lp_m;     /* head joint radius along the post direction */
+    double h_m;      /* carriage height above the head joints at HOME */
+} hg_geometry;
+
+/* The whole machine. */
+typedef struct {
+    hg_geometry geo;
+    double tool_d_m;           /* tool tip below Op along the head axis */
+    double g_mps2;             /* gravity, along -z */
+    /* mass properties */
+    double m_head_kg;          /* head with spindle */
+    double head_com_m;         /* head COM below Op on the head axis */
+    double i_head_xx_kgm2;     /* head inertia about its COM, head axes */
+    double i_head_yy_kgm2;
+    double i_head_zz_kgm2;
+    double m_bar_kg;           /* one bar, COM at mid-length */
+    double i_bar_kgm2;         /* bar transverse inertia about the carriage joint */
+    double m_carriage_kg;      /* one carriage */
+    /* drives */
+    double lead_m;             /* ball-screw lead per revolution */
+    double j_rotor_kgm2;       /* rotor + screw inertia */
+    double ka_a_per_v;         /* amplifier gain (current mode) */
+    double kt_nm_per_a;        /* motor torque constant */
+    double i_max_a;            /* amplifier current limit */
+    /* friction, per carriage */
+    double c_visc_ns_per_m;    /* viscous, drive included */
+    double f_coulomb_n;        /* Coulomb, 0 = off */
+    double v_coulomb_mps;      /* speed over which Coulomb friction is smoothed (tanh) */
+    /* strokes, relative to HOME */
+    double stop_min_m;         /* mechanical hard stop, bottom */
+    double stop_max_m;         /* mechanical hard stop, top */
+    double k_stop_n_per_m;     /* hard-stop spring */
+    double c_stop_ns_per_m;    /* hard-stop damper (acts only while in contact) */
+    double limit_min_m;        /* limit switch, bottom (trips at or below) */
+    double limit_max_m;        /* limit switch, top (trips at or above) */
+    double home_switch_m;      /* home switch: on for z >= this (see docs/homing) */
+    /* sensors */
+    double counts_per_rev;     /* encoder counts per motor revolution */
+} hg_params;
+
+/* One entry of the by-name table. */
+typedef struct {
+    const char *name;      /* spec name, e.g. "m_head" */
+    const char *unit;      /* SI unit, e.g. "kg" */
+    const char *what;      /* one-line description */
+    unsigned long offset;  /* offsetof(hg_params, field) */
+} hg_param_info;
+
+/* Fill p with the spec's defaults (h computed from l, lb, lp). */
+void hg_params_default(hg_params *p);
+
+/* The by-name table and its length. */
+const hg_param_info *hg_params_table(int *count);
+
+/* Pointer to the field called name, or 0 if there is none. */
+double *hg_params_field(hg_params *p, const char *name);
+
+/* Set field name to value: 0, or HG_ERR_BAD_PARAM for an unknown name or a
+ * non-finite value. Does not validate the whole set: call hg_params_check. */
+int hg_params_set(hg_params *p, const char *name, double value);
+
+/* Check the geometry alone: 0 or HG_ERR_BAD_PARAM with *bad_field naming
+ * the offending field and *why saying what is wrong (static strings). */
+int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char **why);
+
+/* Check the whole set (geometry, positive masses, ordered strokes, ...). */
+int hg_params_check(const hg_params *p, const char **bad_field, const char **why);
+
+/* h that puts the head at pose 0 when all carriages are at 0: sqrt(l^2-(lb-lp)^2). */
+double hg_home_height(const hg_geometry *g);
+
+#endif

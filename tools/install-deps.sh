@@ -1,0 +1,22 @@
+#!/bin/sh
+# install-deps.sh - install the Debian 12 packages this project needs, once.
+# Usage: tools/install-deps.sh [build|test|demo|bench]
+# Installs only what is missing; uses sudo when not root.
+set -e
+need="linuxcnc-uspace linuxcnc-uspace-dev build-essential"
+case "$1" in
+  test)  need="$need python3-sympy python3-numpy python3-matplotlib cppcheck clang clang-tidy xvfb imagemagick" ;;
+  demo)  need="$need python3-matplotlib python3-numpy xvfb" ;;
+  bench) need="$need libmujoco-dev valgrind" ;;
+  run)   need="$need xvfb" ;;
+esac
+missing=""
+for p in $need; do
+  dpkg-query -W -f='${Status}\n' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+[ -z "$missing" ] && exit 0
+echo "install-deps: installing$missing" >&2
+SUDO=""
+[ "$(id -u)" = 0 ] || SUDO=sudo
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $missing >/dev/null
