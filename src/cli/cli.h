@@ -1,0 +1,14 @@
+/* cli.h - subcommands of the host tool build/hexaglide. Each returns the
+ * process exit code: 0 on success, 1 on a refused or failed computation,
+ * 2 on a usage error. Messages go to stderr, results to stdout. */
+#ifndef HG_CLI_H
+#define HG_CLI_H
+
+int cmd_ik(int argc, char **argv);   /* ik X Y Z A B C */
+int cmd_fk(int argc, char **argv);   /* fk J0..J5 [--guess X Y Z A B C] */
+int cmd_sim(int argc, char **argv);  /* sim --model ... (offline simulator) */
+
+/* Parse a finite double; 0 on success, -1 (and a message naming what) otherwise. */
+int cli_parse_double(const char *text, const char *what, double *out);
+
+#endif
