@@ -55,6 +55,7 @@ install: modules
 test:
 	@tools/install-deps.sh test
 	@$(MAKE) -s all
+	@$(MAKE) -s install
 	@tests/run_all.sh
 
 bench: all
@@ -62,9 +63,10 @@ bench: all
 	@$(MAKE) -s $(BENCH_BINS)
 	@bench/run_bench.sh
 
+# each bench/bench_*.c is one program; bench_mujoco* also links MuJoCo
 $(BUILD)/bench/%: bench/%.c $(CORE_OBJS)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_HOST) -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST)
+	$(CC) $(CFLAGS_HOST) -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST) $(if $(findstring mujoco,$*),-lmujoco)
 
 demo: all
 	@tools/install-deps.sh demo

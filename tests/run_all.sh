@@ -2,7 +2,8 @@
 # run_all.sh - run every test tier and end with "N passed, N failed".
 # Each test prints TAP-style lines "ok - what" / "not ok - what"; a test
 # that exits non-zero without printing "not ok" counts as one failure.
-#   tiers: unit (host C), generator (freshness, SymPy), cli, hal (halrun),
+#   tiers: unit (host C), generator (freshness, SymPy), engine (MuJoCo
+#          cross-check), cli, hal (halrun),
 #          linuxcnc (full stack), check (sanitizers, static analysis)
 # TESTS_ONLY=tier[,tier] runs a subset.
 cd "$(dirname "$0")/.." || exit 1
@@ -33,7 +34,7 @@ want() { [ -z "$TESTS_ONLY" ] || echo ",$TESTS_ONLY," | grep -q ",$1,"; }
 if want unit; then
     for t in build/tests/test_*; do [ -x "$t" ] && run_one "unit/$(basename "$t")" "$t"; done
 fi
-for tier in generator cli hal linuxcnc check; do
+for tier in generator engine cli hal linuxcnc check; do
     want $tier || continue
     for t in tests/$tier/test_*; do
         [ -x "$t" ] || continue
