@@ -1,0 +1,419 @@
+/* bench_mujoco_crosscheck.c - the MuJoCo model of the machine against
+ * closed-form physics, and the project's dynamics against MuJoCo.
+ *
+ *   bench_mujoco_crosscheck facts     MuJoCo vs the closed-form facts of
+ *                                     shared/hexaglide-model.md and the
+ *                                     project's kinematics conventions
+ *   bench_mujoco_crosscheck project   hg_step (every model kind that
+ *                                     initializes) vs MuJoCo on three runs
+ *   bench_mujoco_crosscheck           both (what make bench runs)
+ *
+ * Prints TAP lines "ok - ..." / "not ok - ..."; exit status 1 on a failure.
+ * Used by tests/engine/test_mujoco_facts and test_mujoco_crosscheck.
+ * Every expected number is worked out here from the parameter set; none is
+ * copied from either engine's output. */
+#define _GNU_SOURCE
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "hg_dynamics.h"
+#include "hg_kinematics.h"
+#include "hg_mujoco_model.c"
+
+/* The project's dynamics (and kinematics) may not be built yet: link them
+ * weakly and skip what is missing. */
+#pragma weak hg_model_init
+#pragma weak hg_data_reset
+#pragma weak hg_step
+#pragma weak hg_model_name
+#pragma weak hg_inverse_kinematics
+#pragma weak hg_joint_points
+
+#define DT_S 1e-3
+
+static int failures;
+
+/* One TAP line. */
+static void check(int ok, const char *fmt, ...)
+{
+    va_list ap;
+    printf("%s - ", ok ? "ok" : "not ok");
+    va_start(ap, fmt);
+    vprintf(fmt, ap);
+    va_end(ap);
+    printf("\n");
+    if (!ok)
+        failures++;
+}
+
+/* ---- closed-form quantities of the parameter set ---- */
+
+/* Weight of everything that moves (N). */
+static double weight_n(const hg_params *p)
+{
+    return p->g_mps2 * (p->m_head_kg + 6.0 * (p->m_bar_kg + p->m_carriage_kg));
+}
+
+/* Mass in pure vertical motion (kg): head, bars (they translate),
+ * carriages and the six reflected rotor inertias. */
+static double vertical_mass_kg(const hg_params *p)
+{
+    double rotor = p->j_rotor_kgm2 * (2.0 * M_PI / p->lead_m) * (2.0 * M_PI / p->lead_m);
+    return p->m_head_kg + 6.0 * (p->m_bar_kg + p->m_carriage_kg + rotor);
+}
+
+/* Volts per carriage that hold the weight: W/6 over ka kt 2 pi / lead. */
+static double holding_volts(const hg_params *p)
+{
+    return weight_n(p) / 6.0 / (p->ka_a_per_v * p->kt_nm_per_a * 2.0 * M_PI / p->lead_m);
+}
+
+/* ---- MuJoCo runs ---- */
+
+typedef struct {
+    double z[6], zd[6], pose[6];
+    double max_violation_m;   /* worst loop-closure error along the run */
+} run_result;
+
+/* Run MuJoCo from HOME at rest with constant volts for t_s seconds. */
+static int mujoco_run(const hg_params *p, const double volts[6], double t_s, run_result *r)
+{
+    hgmj_options o;
+    hgmj_index ix;
+    char err[1000];
+    mjModel *m;
+    mjData *d;
+    int i, k, n = (int)lround(t_s / DT_S);
+
+    hgmj_options_default(&o);
+    o.timestep_s = DT_S;
+    o.eq_timeconst_s = 2.0 * DT_S;
+    m = hgmj_load(p, &o, err, sizeof err);
+    if (!m) {
+        printf("# MuJoCo model does not load: %s\n", err);
+        return -1;
+    }
+    if (hgmj_index_build(m, &ix) != 0) {
+        printf("# MuJoCo model lacks a joint or site name\n");
+        mj_deleteModel(m);
+        return -1;
+    }
+    d = mj_makeData(m);
+    r->max_violation_m = 0.0;
+    for (i = 0; i < n; i++) {
+        for (k = 0; k < 6; k++)
+            d->ctrl[k] = volts[k];
+        mj_step(m, d);
+        mj_kinematics(m, d);
+        r->max_violation_m = fmax(r->max_violation_m, hgmj_connect_violation(d, &ix));
+    }
+    hgmj_joints(d, &ix, r->z);
+    hgmj_head_pose(d, &ix, r->pose);
+    for (k = 0; k < 6; k++)
+        r->zd[k] = d->qvel[ix.slide_dof[k]];
+    mj_deleteData(d);
+    mj_deleteModel(m);
+    return 0;
+}
+
+static double max_abs_diff(const double *a, const double *b, int n)
+{
+    double w = 0.0;
+    int k;
+    for (k = 0; k < n; k++)
+        w = fmax(w, fabs(a[k] - b[k]));
+    return w;
+}
+
+static void fill(double v[6], double x)
+{
+    int k;
+    for (k = 0; k < 6; k++)
+        v[k] = x;
+}
+
+/* ---- the scenarios shared by both modes ---- */
+
+/* Asymmetric drive increments (V) on top of the holding voltage: the head
+ * translates and tilts by about 7 degrees in (b), 11 degrees in (c). */
+static const double asym_dv[6] = {0.5, -0.25, 0.125, 0.375, -0.5, 0.0};
+#define FRICTIONLESS_SCALE 0.2  /* (c) uses asym_dv times this */
+#define T_SINK_S 0.5
+#define T_ASYM_S 0.5
+#define T_FREE_S 0.3
+
+/* ---- facts: MuJoCo against closed-form physics ---- */
+
+static void facts(void)
+{
+    hg_params p;
+    hgmj_options o;
+    char err[1000];
+    mjModel *m;
+    mjData *d;
+    hgmj_index ix;
+    run_result r;
+    double v[6], w, c, vt, mass, a, zexp;
+    int k;
+
+    hg_params_default(&p);
+    w = weight_n(&p);
+    c = p.c_visc_ns_per_m;
+
+    /* assembly at HOME: MuJoCo's bar ends meet the head joints A_k written
+     * independently (Rz(alpha) (lp, s e, 0) as sites), bars are l long */
+    hgmj_options_default(&o);
+    m = hgmj_load(&p, &o, err, sizeof err);
+    if (!m || hgmj_index_build(m, &ix) != 0) {
+        check(0, "MuJoCo model of the default parameter set loads (%s)", m ? "names" : err);
+        return;
+    }
+    check(1, "MuJoCo model loads: nq=%d nv=%d, %d connect constraints, %d motors",
+          m->nq, m->nv, m->neq, m->nu);
+    d = mj_makeData(m);
+    mj_forward(m, d);
+    check(hgmj_connect_violation(d, &ix) < 1e-12,
+          "HOME is assembled in MuJoCo: bar ends meet head joints within %.2g m (bound 1e-12)",
+          hgmj_connect_violation(d, &ix));
+    if (hg_joint_points) {
+        /* the project's kinematics places B_k and A_k where MuJoCo has them:
+         * same bar order, same post angles, same signs */
+        double z0[6] = {0}, pose0[6] = {0}, B[6][3], A[6][3], eb = 0.0, ea = 0.0;
+        hg_joint_points(&p.geo, z0, pose0, B, A);
+        for (k = 0; k < 6; k++) {
+            int bar = m->site_bodyid[ix.bar_end_site[k]];
+            int carriage = m->body_parentid[bar];
+            eb = fmax(eb, max_abs_diff(B[k], d->xpos + 3 * carriage, 3));
+            ea = fmax(ea, max_abs_diff(A[k], d->site_xpos + 3 * ix.head_joint_site[k], 3));
+        }
+        check(eb < 1e-12 && ea < 1e-12,
+              "MuJoCo carriage joints and head joints at HOME = hg_joint_points (B %.2g m, A %.2g m)", eb, ea);
+    } else {
+        check(1, "# SKIP project kinematics not linked: HOME joint points not compared");
+    }
+    mj_deleteData(d);
+    mj_deleteModel(m);
+
+    /* (1) drives off: sinks at W / (6 c). After 0.5 s = 48 time constants
+     * M/(6c) the transient is gone (e^-48). The bound 1e-6 relative is far
+     * below a 1% error in any mass or in c, and far above MuJoCo's
+     * constraint softness under the steady load (impedance 0.9999 with
+     * Baumgarte feedback: nanometres, i.e. 1e-7 of the 6 mm sunk). */
+    fill(v, 0.0);
+    if (mujoco_run(&p, v, T_SINK_S, &r) == 0) {
+        double worst = 0.0, lateral;
+        vt = -w / (6.0 * c);
+        for (k = 0; k < 6; k++)
+            worst = fmax(worst, fabs(r.zd[k] - vt));
+        check(worst < 1e-6 * fabs(vt),
+              "drives off: carriages sink at W/(6 c_visc) = %.9f m/s, MuJoCo off by %.2g m/s (bound 1e-6 relative)",
+              vt, worst);
+        check(fabs(r.pose[2] - r.z[0]) < 1e-6,
+              "drives off: head sinks with the carriages (bars translate): Z - z11 = %.2g m (bound 1e-6 m)",
+              r.pose[2] - r.z[0]);
+        lateral = fmax(max_abs_diff(r.pose, (const double[2]){0, 0}, 2),
+                       max_abs_diff(r.pose + 3, (const double[3]){0, 0, 0}, 3));
+        check(lateral < 1e-9, "drives off: head stays on the axis, level: max |X Y A B C| = %.2g (bound 1e-9)",
+              lateral);
+        check(r.max_violation_m < 1e-7, "drives off: MuJoCo keeps the loops closed within %.2g m (bound 1e-7 m)",
+              r.max_violation_m);
+    } else {
+        check(0, "drives off run");
+    }
+
+    /* (2) holding voltage: W/6 per carriage balances the weight. A 1%
+     * voltage error would drift by 1e-2 W/6 / c * 0.5 s = 60 um; bound 1 um. */
+    fill(v, holding_volts(&p));
+    if (mujoco_run(&p, v, T_SINK_S, &r) == 0) {
+        double zmax = max_abs_diff(r.z, (const double[6]){0}, 6);
+        check(zmax < 1e-6, "holding voltage W/6 / (ka kt 2pi/lead) = %.6f V holds HOME: max |z| %.2g m after %.1f s (bound 1e-6 m)",
+              v[0], zmax, T_SINK_S);
+    } else {
+        check(0, "holding voltage run");
+    }
+
+    /* (3) frictionless free fall: z(t) = -(W/M) t^2 / 2 with M counting the
+     * reflected rotor inertias. Forgetting them would be a factor 8, making
+     * them weigh 15%: bound 1e-6 relative (measured about 1e-9). */
+    p.c_visc_ns_per_m = 0.0;
+    fill(v, 0.0);
+    if (mujoco_run(&p, v, T_FREE_S, &r) == 0) {
+        double worst = 0.0;
+        mass = vertical_mass_kg(&p);
+        a = w / mass;
+        zexp = -0.5 * a * T_FREE_S * T_FREE_S;
+        for (k = 0; k < 6; k++)
+            worst = fmax(worst, fabs(r.z[k] - zexp));
+        check(worst < 1e-6 * fabs(zexp),
+              "free fall: z(%.1f s) = -(W/M) t^2/2 = %.9f m (a = %.6f m/s^2, M = %.3f kg), MuJoCo off by %.2g m (bound 1e-6 relative)",
+              T_FREE_S, zexp, a, mass, worst);
+    } else {
+        check(0, "free fall run");
+    }
+
+    /* (4) conventions under motion: MuJoCo's carriage heights equal the
+     * project's closed-form inverse kinematics of MuJoCo's head pose. The
+     * loops stay closed to nanometres here and dz/dpose is of order 1, so
+     * 1e-6 m separates that from any convention slip (bar order, post sign,
+     * Euler order costs millimetres; even a 0.1% error in the extracted A
+     * angle costs 1.2e-5 m). */
+    hg_params_default(&p);
+    for (k = 0; k < 6; k++)
+        v[k] = holding_volts(&p) + asym_dv[k];
+    if (!hg_inverse_kinematics) {
+        check(1, "# SKIP project kinematics not linked: conventions not compared");
+    } else if (mujoco_run(&p, v, T_ASYM_S, &r) == 0) {
+        double zik[6];
+        int rc = hg_inverse_kinematics(&p.geo, r.pose, zik);
+        double e = rc == 0 ? max_abs_diff(zik, r.z, 6) : INFINITY;
+        check(rc == 0 && e < 1e-6,
+              "conventions: after asymmetric drive (A = %.1f deg, B = %.1f deg) MuJoCo's z = IK(MuJoCo's pose) within %.2g m "
+              "(bound 1e-6 m; loops closed within %.2g m)",
+              r.pose[3] * 180 / M_PI, r.pose[4] * 180 / M_PI, e, r.max_violation_m);
+    } else {
+        check(0, "asymmetric run");
+    }
+}
+
+/* ---- project: hg_step against MuJoCo ---- */
+
+/* Run the project's model kind from HOME at rest; 0, or the error code. */
+static int project_run(const hg_params *p, hg_model_kind kind, const double volts[6], double t_s,
+                       run_result *r, const char **why)
+{
+    static hg_model m; /* large: keep off the stack */
+    static hg_data d;
+    const char *bad = 0;
+    int i, rc, n = (int)lround(t_s / DT_S);
+
+    *why = "";
+    if ((rc = hg_model_init(&m, p, kind, &bad, why)) != 0)
+        return rc;
+    if ((rc = hg_data_reset(&m, &d)) != 0)
+        return rc;
+    for (i = 0; i < n; i++)
+        if ((rc = hg_step(&m, &d, volts, DT_S)) != 0)
+            return rc;
+    memcpy(r->z, d.z_m, sizeof r->z);
+    memcpy(r->zd, d.zd_mps, sizeof r->zd);
+    memcpy(r->pose, d.pose, sizeof r->pose);
+    r->max_violation_m = d.residual_m;
+    return 0;
+}
+
+/* Bounds of the comparison (see docs/benchmarks.md, "MuJoCo peer"). */
+#define TOL_SINK_Z_M     1e-6   /* (a) joint positions after 0.5 s sinking */
+#define TOL_SINK_V_MPS   1e-6   /* (a) terminal speed */
+#define TOL_ASYM_Z_M     1e-5   /* (b) joint positions, asymmetric volts */
+#define TOL_ASYM_POS_M   1e-5   /* (b) head position */
+#define TOL_ASYM_ANG_RAD 1e-4   /* (b) head angles */
+#define TOL_FREE_Z_M     2e-5   /* (c) frictionless: joint positions */
+#define TOL_FREE_ANG_RAD 2e-4   /* (c) frictionless: head angles */
+
+static void compare(const char *kn, const char *what, const run_result *pr, const run_result *mr,
+                    double tol_z, double tol_pos, double tol_ang)
+{
+    double dz = max_abs_diff(pr->z, mr->z, 6);
+    double dp = max_abs_diff(pr->pose, mr->pose, 3);
+    double da = max_abs_diff(pr->pose + 3, mr->pose + 3, 3);
+    check(dz < tol_z, "%s vs MuJoCo, %s: max |dz| %.3g m (bound %.0e m)", kn, what, dz, tol_z);
+    check(dp < tol_pos && da < tol_ang, "%s vs MuJoCo, %s: head max |dXYZ| %.3g m (bound %.0e m), max |dABC| %.3g rad (bound %.0e rad)",
+          kn, what, dp, tol_pos, da, tol_ang);
+}
+
+static void project(void)
+{
+    hg_params p, pf;
+    run_result mj_sink, mj_asym, mj_free, mj_asym_heavy, mj_free_ibar, pr;
+    double v0[6], va[6], vf[6];
+    int kind, k, have_mj;
+
+    if (!hg_step || !hg_model_init || !hg_data_reset) {
+        printf("ok - # SKIP project dynamics not built (src/hg_dynamics.c missing): nothing to compare with MuJoCo\n");
+        return;
+    }
+    hg_params_default(&p);
+    pf = p;
+    pf.c_visc_ns_per_m = 0.0;
+    fill(v0, 0.0);
+    for (k = 0; k < 6; k++) {
+        va[k] = holding_volts(&p) + asym_dv[k];
+        vf[k] = holding_volts(&p) + FRICTIONLESS_SCALE * asym_dv[k];
+    }
+    have_mj = mujoco_run(&p, v0, T_SINK_S, &mj_sink) == 0 &&
+              mujoco_run(&p, va, T_ASYM_S, &mj_asym) == 0 &&
+              mujoco_run(&pf, vf, T_FREE_S, &mj_free) == 0;
+    if (!have_mj) {
+        check(0, "MuJoCo runs for the cross-check");
+        return;
+    }
+    {
+        /* what the bounds can see: the same MuJoCo runs with a 10% error in
+         * one mass property, for the sensitivity lines below */
+        hg_params q = p;
+        q.m_head_kg *= 1.1;
+        mujoco_run(&q, va, T_ASYM_S, &mj_asym_heavy);
+        q = pf;
+        q.i_bar_kgm2 *= 1.1;
+        mujoco_run(&q, vf, T_FREE_S, &mj_free_ibar);
+    }
+
+    for (kind = 0; kind < HG_MODEL_COUNT; kind++) {
+        const char *kn = hg_model_name((hg_model_kind)kind);
+        const char *why;
+        int rc = project_run(&p, (hg_model_kind)kind, v0, T_SINK_S, &pr, &why);
+        if (rc != 0) {
+            /* the reduced Cartesian model is the one the driver uses: required */
+            if (kind == HG_MODEL_REDUCED_CARTESIAN)
+                check(0, "%s: hg_model_init/hg_data_reset/hg_step failed: code %d %s", kn, rc, why ? why : "");
+            else
+                printf("ok - # SKIP %s not available (code %d %s)\n", kn, rc, why ? why : "");
+            continue;
+        }
+        /* (a) drives off */
+        {
+            double dv = max_abs_diff(pr.zd, mj_sink.zd, 6);
+            check(max_abs_diff(pr.z, mj_sink.z, 6) < TOL_SINK_Z_M,
+                  "%s vs MuJoCo, drives off %.1f s: max |dz| %.3g m (bound %.0e m)", kn, T_SINK_S,
+                  max_abs_diff(pr.z, mj_sink.z, 6), TOL_SINK_Z_M);
+            check(dv < TOL_SINK_V_MPS, "%s vs MuJoCo, drives off: terminal speed %.9f vs %.9f m/s, max |dv| %.3g m/s (bound %.0e)",
+                  kn, pr.zd[0], mj_sink.zd[0], dv, TOL_SINK_V_MPS);
+        }
+        /* (b) asymmetric constant volts, damped */
+        if ((rc = project_run(&p, (hg_model_kind)kind, va, T_ASYM_S, &pr, &why)) != 0) {
+            check(0, "%s: asymmetric run failed: code %d", kn, rc);
+            continue;
+        }
+        compare(kn, "asymmetric volts 0.5 s", &pr, &mj_asym, TOL_ASYM_Z_M, TOL_ASYM_POS_M, TOL_ASYM_ANG_RAD);
+        if (kind == HG_MODEL_REDUCED_CARTESIAN)
+            check(max_abs_diff(pr.z, mj_asym_heavy.z, 6) > TOL_ASYM_Z_M,
+                  "%s: the (b) bound would catch a 10%% error in m_head (|dz| %.3g m > %.0e m)", kn,
+                  max_abs_diff(pr.z, mj_asym_heavy.z, 6), TOL_ASYM_Z_M);
+        /* (c) asymmetric constant volts, frictionless: inertia dominates */
+        if ((rc = project_run(&pf, (hg_model_kind)kind, vf, T_FREE_S, &pr, &why)) != 0) {
+            check(0, "%s: frictionless run failed: code %d", kn, rc);
+            continue;
+        }
+        compare(kn, "frictionless asymmetric volts 0.3 s", &pr, &mj_free, TOL_FREE_Z_M, TOL_FREE_Z_M,
+                TOL_FREE_ANG_RAD);
+        if (kind == HG_MODEL_REDUCED_CARTESIAN)
+            check(max_abs_diff(pr.z, mj_free_ibar.z, 6) > TOL_FREE_Z_M,
+                  "%s: the (c) bound would catch a 10%% error in i_bar (|dz| %.3g m > %.0e m)", kn,
+                  max_abs_diff(pr.z, mj_free_ibar.z, 6), TOL_FREE_Z_M);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    const char *mode = argc > 1 ? argv[1] : "all";
+    if (strcmp(mode, "facts") && strcmp(mode, "project") && strcmp(mode, "all")) {
+        fprintf(stderr, "usage: %s [facts|project]\n", argv[0]);
+        return 2;
+    }
+    if (strcmp(mode, "project"))
+        facts();
+    if (strcmp(mode, "facts"))
+        project();
+    return failures ? 1 : 0;
+}
