@@ -1,0 +1,619 @@
+#!/usr/bin/python3
+"""gen_dynamics.py - derive the Hexaglide dynamics with SymPy and write C.
+
+For each parametrization of the paper's section 7 (Ros et al. 2011) this
+derives the constraint equations Phi(q), their Jacobians, the term
+gamma = d/dt(Phi_q) q', the mass matrix M(q) and the generalized forces
+(gravity minus the velocity terms) by the virtual-power route, then writes C
+into src/generated/:
+
+  hg_gen_reduced.[ch]   q = [z(6), c(6)]: bars lumped into exact point masses
+                        (Reduced Joints, Reduced Cartesian) and the fused
+                        Reduced Cartesian accelerations (the paper's future work)
+  hg_gen_standard.[ch]  q = [z(6), a(12), c(6)]: bars as rigid bodies
+
+Code generation: parameter-only subexpressions are hoisted into an init
+function that fills k[] once from hg_params; the state-dependent rest is
+common-subexpression eliminated (sympy.cse, the paper's atomization) and
+printed as straight-line C without pow().
+
+Usage: /usr/bin/python3 tools/gen_dynamics.py [--out DIR] [--check-only]
+Needs SymPy 1.11.1 exactly (Debian 12 python3-sympy): the output must not
+depend on the SymPy version, so other versions are refused.
+"""
+import os
+import sys
+
+REQUIRED_SYMPY = "1.11.1"
+GENERATOR = "tools/gen_dynamics.py"
+
+# deterministic output: set iteration order must not depend on the hash seed
+if os.environ.get("PYTHONHASHSEED") != "0":
+    os.environ["PYTHONHASHSEED"] = "0"
+    os.execv(sys.executable, [sys.executable] + sys.argv)
+
+import sympy as sp  # noqa: E402
+from sympy.printing.c import C99CodePrinter  # noqa: E402
+
+# ---------------------------------------------------------------------------
+# parameters: sympy symbol -> C expression reading hg_params *p
+PARAM_FIELDS = [
+    ("l", "p->geo.l_m"), ("lb", "p->geo.lb_m"), ("e", "p->geo.e_m"),
+    ("lp", "p->geo.lp_m"), ("h", "p->geo.h_m"), ("g", "p->g_mps2"),
+    ("m_head", "p->m_head_kg"), ("head_com", "p->head_com_m"),
+    ("i_head_xx", "p->i_head_xx_kgm2"), ("i_head_yy", "p->i_head_yy_kgm2"),
+    ("i_head_zz", "p->i_head_zz_kgm2"), ("m_bar", "p->m_bar_kg"),
+    ("i_bar", "p->i_bar_kgm2"), ("m_carriage", "p->m_carriage_kg"),
+    ("lead", "p->lead_m"), ("j_rotor", "p->j_rotor_kgm2"),
+]
+P = {name: sp.Symbol("p_" + name, positive=True) for name, _ in PARAM_FIELDS}
+PARAM_C = {P[name]: c for name, c in PARAM_FIELDS}
+PARAMS = set(P.values())
+
+POST_ANGLES = [0, 2 * sp.pi / 3, -2 * sp.pi / 3]
+SIGNS = [1, -1]
+
+
+def Rz(a):
+    return sp.Matrix([[sp.cos(a), -sp.sin(a), 0], [sp.sin(a), sp.cos(a), 0], [0, 0, 1]])
+
+
+def Ry(a):
+    return sp.Matrix([[sp.cos(a), 0, sp.sin(a)], [0, 1, 0], [-sp.sin(a), 0, sp.cos(a)]])
+
+
+def Rx(a):
+    return sp.Matrix([[1, 0, 0], [0, sp.cos(a), -sp.sin(a)], [0, sp.sin(a), sp.cos(a)]])
+
+
+def post_point(k, radial):
+    """Rz(alpha_i) (radial, s_j e, 0) for bar k = 2(i-1)+(j-1)."""
+    i, j = divmod(k, 2)
+    return sp.simplify(Rz(POST_ANGLES[i]) * sp.Matrix([radial, SIGNS[j] * P["e"], 0]))
+
+
+def derived_masses():
+    """Exact lumping of a bar: 2 m_end + m_mid = m_bar, m_end l^2 + m_mid l^2/4 = i_bar."""
+    me, mm = sp.symbols("me mm")
+    sol = sp.solve([2 * me + mm - P["m_bar"],
+                    me * P["l"] ** 2 + mm * P["l"] ** 2 / 4 - P["i_bar"]], [me, mm], dict=True)[0]
+    return sp.simplify(sol[me]), sp.simplify(sol[mm])
+
+
+# ---------------------------------------------------------------------------
+# mechanics helpers (Kane / Jourdain route)
+class System:
+    """Accumulates M(q) and Q(q, q') = forces - velocity terms."""
+
+    def __init__(self, q, qd):
+        self.q, self.qd = q, qd
+        n = len(q)
+        self.M = sp.zeros(n, n)
+        self.Q = sp.zeros(n, 1)
+        self.V = sp.Integer(0)
+
+    def jac(self, pos):
+        return pos.jacobian(self.q)
+
+    def bias(self, J):
+        """J' q' = d(J q')/dq q'."""
+        return (J * self.qd).jacobian(self.q) * self.qd
+
+    def pair(self, coef, pos_a, pos_b):
+        """Kinetic term coef * pos_a' . pos_b' (both orders when a != b)."""
+        Ja, Jb = self.jac(pos_a), self.jac(pos_b)
+        self.M += coef * Ja.T * Jb
+        self.Q -= coef * Ja.T * self.bias(Jb)
+        if pos_a != pos_b:
+            self.M += coef * Jb.T * Ja
+            self.Q -= coef * Jb.T * self.bias(Ja)
+
+    def point(self, coef, pos):
+        self.pair(coef, pos, pos)
+
+    def rigid_body(self, mass, pos_com, R, angles, angle_rates, inertia):
+        """Head: translation of the COM plus rotation with body angular velocity."""
+        self.point(mass, pos_com)
+        Rd = sp.zeros(3, 3)
+        for a, ad in zip(angles, angle_rates):
+            Rd += R.diff(a) * ad
+        W = sp.simplify(R.T * Rd)
+        wb = sp.Matrix([W[2, 1], W[0, 2], W[1, 0]])
+        Jw = wb.jacobian(self.qd)
+        wbias = self.bias(Jw)
+        self.M += Jw.T * inertia * Jw
+        self.Q -= Jw.T * (inertia * wbias + wb.cross(inertia * wb))
+
+    def weight(self, mass, pos):
+        self.V += mass * P["g"] * pos[2]
+
+    def finish(self):
+        self.Q -= sp.Matrix([self.V]).jacobian(self.q).T
+
+
+def constraint_terms(phi, q, qd):
+    Jq = phi.jacobian(q)
+    gamma = (Jq * qd).jacobian(q) * qd
+    return Jq, gamma
+
+
+def head_rotation(c):
+    return Rz(c[5]) * Ry(c[4]) * Rx(c[3])
+
+
+# ---------------------------------------------------------------------------
+# the two coordinate sets
+def reduced_model():
+    z = sp.symbols("z0:6")
+    c = sp.symbols("X Y Z A B C")
+    zd = sp.symbols("zd0:6")
+    cd = sp.symbols("Xd Yd Zd Ad Bd Cd")
+    q, qd = sp.Matrix(z + c), sp.Matrix(zd + cd)
+    me, mm = derived_masses()
+    m_rot = P["j_rotor"] * (2 * sp.pi / P["lead"]) ** 2
+    R = head_rotation(c)
+    Pp = sp.Matrix(c[:3])
+    # head plus the lumped bar ends at its joints: one rigid body, its
+    # mass, COM and inertia about the COM are parameter-only (init)
+    m_pt = me + mm / 4
+    pts = [post_point(k, P["lp"]) for k in range(6)]
+    s_head = sp.Matrix([0, 0, -P["head_com"]])
+    mH = P["m_head"] + 6 * m_pt
+    sG = sp.simplify((P["m_head"] * s_head + m_pt * sum(pts, sp.zeros(3, 1))) / mH)
+
+    def about(r, m):
+        d = r - sG
+        return m * ((d.T * d)[0] * sp.eye(3) - d * d.T)
+    IG = sp.diag(P["i_head_xx"], P["i_head_yy"], P["i_head_zz"]) + about(s_head, P["m_head"])
+    for r in pts:
+        IG += about(r, m_pt)
+    IG = IG.applyfunc(lambda x: sp.simplify(sp.expand(x)))
+    sysm = System(q, qd)
+    sysm.rigid_body(mH, Pp + R * sG, R, c[3:], cd[3:], IG)
+    phi = []
+    for k in range(6):
+        B = post_point(k, P["lb"]) + sp.Matrix([0, 0, P["h"] + z[k]])
+        A = Pp + R * pts[k]
+        # carriage, rotor and the lumped bar mass that moves with it
+        sysm.point(P["m_carriage"] + m_rot + me + mm / 4, B)
+        sysm.pair(mm / 4, A, B)            # cross term of the mid mass
+        sysm.weight(P["m_carriage"] + me, B)
+        sysm.weight(mm, (A + B) / 2)
+        sysm.weight(me, A)
+        d = B - A
+        phi.append((d.T * d)[0] - P["l"] ** 2)
+    sysm.weight(P["m_head"], Pp + R * s_head)
+    sysm.finish()
+    phi = sp.Matrix(phi)
+    Jq, gamma = constraint_terms(phi, q, qd)
+    return dict(q=q, qd=qd, M=sysm.M, Q=sysm.Q, V=sysm.V, phi=phi, Jq=Jq, gamma=gamma)
+
+
+def standard_model():
+    z = sp.symbols("z0:6")
+    a = sp.symbols("a0:12")
+    c = sp.symbols("X Y Z A B C")
+    zd = sp.symbols("zd0:6")
+    ad = sp.symbols("ad0:12")
+    cd = sp.symbols("Xd Yd Zd Ad Bd Cd")
+    q, qd = sp.Matrix(z + a + c), sp.Matrix(zd + ad + cd)
+    m_rot = P["j_rotor"] * (2 * sp.pi / P["lead"]) ** 2
+    R = head_rotation(c)
+    Pp = sp.Matrix(c[:3])
+    s_head = sp.Matrix([0, 0, -P["head_com"]])
+    sysm = System(q, qd)
+    sysm.rigid_body(P["m_head"], Pp + R * s_head, R, c[3:], cd[3:],
+                    sp.diag(P["i_head_xx"], P["i_head_yy"], P["i_head_zz"]))
+    sysm.weight(P["m_head"], Pp + R * s_head)
+    phi = []
+    for k in range(6):
+        B = post_point(k, P["lb"]) + sp.Matrix([0, 0, P["h"] + z[k]])
+        ph, th = a[2 * k], a[2 * k + 1]
+        # u = Rx(ph) Ry(th) (0,0,-1): pole along x, never reached by a bar
+        u = sp.Matrix([-sp.sin(th), sp.sin(ph) * sp.cos(th), -sp.cos(ph) * sp.cos(th)])
+        A = Pp + R * post_point(k, P["lp"])
+        # T_bar = 1/2 m |B'|^2 + m l/2 B'.u' + 1/2 i_bar |u'|^2
+        sysm.point(P["m_carriage"] + m_rot + P["m_bar"], B)
+        sysm.pair(P["m_bar"] * P["l"] / 2, B, u)
+        sysm.point(P["i_bar"], u)
+        sysm.weight(P["m_carriage"], B)
+        sysm.weight(P["m_bar"], B + P["l"] / 2 * u)
+        phi.extend(list(B + P["l"] * u - A))
+    sysm.finish()
+    phi = sp.Matrix(phi)
+    Jq, gamma = constraint_terms(phi, q, qd)
+    return dict(q=q, qd=qd, M=sysm.M, Q=sysm.Q, V=sysm.V, phi=phi, Jq=Jq, gamma=gamma)
+
+
+# ---------------------------------------------------------------------------
+# code generation
+class Printer(C99CodePrinter):
+    """C printer: constants as k[i], states as q[i]/qd[i], no pow()."""
+
+    def __init__(self, names):
+        super().__init__()
+        self.names = names
+
+    def _print_Symbol(self, s):
+        return self.names.get(s, s.name)
+
+    def _print_Pow(self, e):
+        b, x = e.base, e.exp
+        if x == sp.Rational(1, 2):
+            return "sqrt(%s)" % self._print(b)
+        if x.is_Integer and 1 < x <= 4:
+            pb = self.parenthesize(b, 60)
+            return "(%s)" % "*".join([pb] * int(x))
+        if x.is_Integer and -4 <= x < 0:
+            return "1.0/(%s)" % self._print(b ** (-x))
+        raise ValueError("unsupported power %s" % e)
+
+    def _print_Rational(self, e):
+        return "%d.0/%d.0" % (e.p, e.q)
+
+
+class Hoister:
+    """Replace parameter-only subexpressions by constants k[i]."""
+
+    def __init__(self):
+        self.consts = {}     # expr -> symbol
+        self.order = []      # (symbol, expr)
+
+    def const(self, e):
+        if e not in self.consts:
+            s = sp.Symbol("K%d" % len(self.order))
+            self.consts[e] = s
+            self.order.append((s, e))
+        return self.consts[e]
+
+    def is_const(self, e):
+        return e.free_symbols <= PARAMS
+
+    def __call__(self, e):
+        if e.is_Number:
+            return e
+        if self.is_const(e):
+            return self.const(e)
+        if e.is_Atom:
+            return e
+        if e.is_Add or e.is_Mul:
+            cargs = [x for x in e.args if self.is_const(x) and not x.is_Number]
+            nums = [x for x in e.args if x.is_Number]
+            rest = [self(x) for x in e.args if not self.is_const(x)]
+            parts = nums + rest
+            if cargs:
+                parts.insert(0, self.const(e.func(*cargs)))
+            return e.func(*parts)
+        return e.func(*[self(x) for x in e.args])
+
+
+def count_flops(exprs):
+    return int(sum(sp.count_ops(x) for x in exprs))
+
+
+def emit_block(assigns, printer, prefix, indent="    "):
+    """assigns: list of (lhs C string, expr). CSE and print; returns (lines, flops)."""
+    exprs = [x for _, x in assigns]
+    reps, red = sp.cse(exprs, symbols=sp.numbered_symbols(prefix), optimizations="basic")
+    lines = []
+    flops = 0
+    for s, x in reps:
+        lines.append("%sconst double %s = %s;" % (indent, s.name, printer.doprint(x)))
+        flops += count_flops([x])
+    for (lhs, _), x in zip(assigns, red):
+        lines.append("%s%s = %s;" % (indent, lhs, printer.doprint(x)))
+        flops += count_flops([x])
+    return lines, flops
+
+
+def state_names(q, qd):
+    names = {}
+    for i, s in enumerate(q):
+        names[s] = "q[%d]" % i
+    for i, s in enumerate(qd):
+        names[s] = "qd[%d]" % i
+    return names
+
+
+def matrix_assigns(name, Mx, rows=None, cols=None, skip_zero=True):
+    rows = range(Mx.shape[0]) if rows is None else rows
+    cols = range(Mx.shape[1]) if cols is None else cols
+    out = []
+    ncol = len(cols)
+    for ii, i in enumerate(rows):
+        for jj, j in enumerate(cols):
+            out.append(("%s[%d]" % (name, ii * ncol + jj), Mx[i, j]))
+    return out
+
+
+class Unit:
+    """One generated .c/.h pair sharing a constant table k[]."""
+
+    def __init__(self, name, doc):
+        self.name, self.doc = name, doc
+        self.hoist = Hoister()
+        self.funcs = []      # (prototype, doc, body lines)
+        self.macros = []
+
+    def function(self, proto, doc, assigns, names, extra_pre=(), extra_post=(), prefix="x"):
+        hoisted = [(lhs, self.hoist(x)) for lhs, x in assigns]
+        pr = Printer({**names, **self.kmap()})
+        lines, flops = emit_block(hoisted, pr, prefix)
+        self.funcs.append((proto, doc + " (%d flops)" % flops,
+                           list(extra_pre) + lines + list(extra_post)))
+        return flops
+
+    def kmap(self):
+        return {s: "k[%d]" % i for i, (s, _) in enumerate(self.hoist.order)}
+
+    def init_lines(self):
+        pr = Printer(dict(PARAM_C))
+        assigns = [("k[%d]" % i, e) for i, (s, e) in enumerate(self.hoist.order)]
+        lines, flops = emit_block(assigns, pr, "c")
+        return lines, flops
+
+
+def stamp(sympy_version):
+    return ("/* Generated by %s with SymPy %s - DO NOT EDIT.\n"
+            " * Change the generator and run `make generate` (or the generator) instead. */\n"
+            % (GENERATOR, sympy_version))
+
+
+def write_unit(unit, outdir):
+    init_lines, init_flops = unit.init_lines()
+    nk = len(unit.hoist.order)
+    up = unit.name.upper()
+    h = [stamp(sp.__version__), "/* %s */" % unit.doc,
+         "#ifndef %s_H" % up, "#define %s_H" % up, "", '#include "hg_params.h"', "",
+         "#define %s_NCONST %d  /* length of the constant table k[] */" % (up, nk)]
+    h += unit.macros
+    h.append("")
+    h.append("/* Fill k[%s_NCONST] with the parameter-only subexpressions (%d flops). */"
+             % (up, init_flops))
+    h.append("void %s_init(const hg_params *p, double *k);" % unit.name)
+    for proto, doc, _ in unit.funcs:
+        h.append("")
+        h.append("/* %s */" % doc)
+        h.append(proto + ";")
+    h += ["", "#endif", ""]
+    c = [stamp(sp.__version__), '#include <math.h>', '#include "hg_errors.h"',
+         '#include "%s.h"' % unit.name, ""]
+    c.append("void %s_init(const hg_params *p, double *k)" % unit.name)
+    c.append("{")
+    c += init_lines
+    c.append("}")
+    for proto, doc, body in unit.funcs:
+        c.append("")
+        c.append("/* %s */" % doc)
+        c.append(proto)
+        c.append("{")
+        c += body
+        c.append("}")
+    c.append("")
+    for ext, text in (("h", h), ("c", c)):
+        with open(os.path.join(outdir, "%s.%s" % (unit.name, ext)), "w") as f:
+            f.write("\n".join(text))
+
+
+def gen_reduced(outdir):
+    m = reduced_model()
+    q, qd, M, Q, phi, Jq, gamma = m["q"], m["qd"], m["M"], m["Q"], m["phi"], m["Jq"], m["gamma"]
+    u = Unit("hg_gen_reduced", "Bars lumped into exact point masses: q = [z(6), c(6)], "
+             "c = X Y Z A B C.")
+    names = state_names(q, qd)
+    Z, C = range(0, 6), range(6, 12)
+    # M_zz is diagonal and constant; M_zc row k couples z_k with the head
+    assigns = [("Mzz[%d]" % i, M[i, i]) for i in Z]
+    assigns += matrix_assigns("Mzc", M, Z, C) + matrix_assigns("Mcc", M, C, C)
+    assigns += [("Q[%d]" % i, Q[i]) for i in range(12)]
+    assigns += [("Phi_z[%d]" % i, Jq[i, i]) for i in Z]
+    assigns += matrix_assigns("Phi_c", Jq, range(6), C)
+    assigns += [("gamma[%d]" % i, gamma[i]) for i in range(6)]
+    for i in Z:
+        for j in Z:
+            assert i == j or M[i, j] == 0 and Jq[i, j] == 0
+    fl_terms = u.function(
+        "void hg_gen_reduced_terms(const double *k, const double q[12], const double qd[12],\n"
+        "                          double Mzz[6], double Mzc[36], double Mcc[36], double Q[12],\n"
+        "                          double Phi_z[6], double Phi_c[36], double gamma[6])",
+        "Mass matrix blocks (M_zz diagonal), Q = gravity - velocity terms, constraint "
+        "Jacobian (Phi_z diagonal) and gamma = (Phi_q q')_q q'", assigns, names, prefix="x")
+    assigns = [("phi[%d]" % i, phi[i]) for i in range(6)]
+    assigns += [("Phi_z[%d]" % i, Jq[i, i]) for i in Z]
+    assigns += matrix_assigns("Phi_c", Jq, range(6), C)
+    fl_con = u.function(
+        "void hg_gen_reduced_constraints(const double *k, const double q[12], double phi[6],\n"
+        "                                double Phi_z[6], double Phi_c[36])",
+        "Bar constraints |B-A|^2 - l^2 (m^2) and their Jacobian", assigns, names, prefix="x")
+    fl_pot = u.function(
+        "void hg_gen_reduced_potential(const double *k, const double q[12], double *v)",
+        "Gravity potential (J, up to a constant)", [("*v", m["V"])], names, prefix="x")
+    fl_fused = gen_fused(u, m, names)
+    u.macros += ["#define HG_GEN_REDUCED_TERMS_FLOPS %d" % fl_terms,
+                 "#define HG_GEN_REDUCED_CONSTRAINTS_FLOPS %d" % fl_con,
+                 "#define HG_GEN_REDUCED_POTENTIAL_FLOPS %d" % fl_pot,
+                 "#define HG_GEN_FUSED_ACCEL_FLOPS %d" % fl_fused]
+    write_unit(u, outdir)
+    return m
+
+
+def gen_fused(u, m, names):
+    """Reduced Cartesian accelerations in one function: terms, A = -Phi_z^-1 Phi_c,
+    the reduced 6x6 mass matrix and right-hand side (Eq. 13), an unrolled
+    Cholesky solve and z'' = A c'' + b."""
+    q, M, Q, Jq, gamma = m["q"], m["M"], m["Q"], m["Jq"], m["gamma"]
+    hoist = u.hoist
+    prim = []
+    sym = {}
+
+    def S(name, expr):
+        s = sp.Symbol(name)
+        prim.append((s, expr))
+        sym[name] = s
+        return s
+    mzz = [S("mzz%d" % i, M[i, i]) for i in range(6)]
+    mzc = [[S("mzc%d_%d" % (i, j), M[i, 6 + j]) for j in range(6)] for i in range(6)]
+    mcc = [[S("mcc%d_%d" % (i, j), M[6 + i, 6 + j]) if j <= i else None for j in range(6)]
+           for i in range(6)]
+    for i in range(6):
+        for j in range(i + 1, 6):
+            mcc[i][j] = mcc[j][i]
+    qz = [S("qz%d" % i, Q[i]) for i in range(6)]
+    qc = [S("qc%d" % i, Q[6 + i]) for i in range(6)]
+    pz = [S("pz%d" % i, Jq[i, i]) for i in range(6)]
+    pc = [[S("pc%d_%d" % (i, j), Jq[i, 6 + j]) for j in range(6)] for i in range(6)]
+    gm = [S("gm%d" % i, gamma[i]) for i in range(6)]
+    # primitives: hoisted + CSE'd; then the algebra on their symbols
+    hp = [(s, hoist(x)) for s, x in prim]
+    reps, red = sp.cse([x for _, x in hp], symbols=sp.numbered_symbols("x"),
+                       optimizations="basic")
+    seq = list(reps) + [(s, x) for (s, _), x in zip(hp, red)]
+    fz = sp.symbols("fz0:6")
+
+    def T(name, expr):
+        s = sp.Symbol(name)
+        seq.append((s, expr))
+        return s
+    ipz = [T("ipz%d" % i, 1 / pz[i]) for i in range(6)]
+    A = [[T("A%d_%d" % (i, j), -pc[i][j] * ipz[i]) for j in range(6)] for i in range(6)]
+    b = [T("b%d" % i, -gm[i] * ipz[i]) for i in range(6)]
+    fq = [T("fq%d" % i, qz[i] + fz[i]) for i in range(6)]
+    # T1 = M_cz + A^T M_zz  (6 c-rows x 6 z-cols)
+    T1 = [[T("t%d_%d" % (i, kk), mzc[kk][i] + A[kk][i] * mzz[kk]) for kk in range(6)]
+          for i in range(6)]
+    Mh = [[None] * 6 for _ in range(6)]
+    for i in range(6):
+        for j in range(i + 1):
+            e = mcc[i][j] + sum(T1[i][kk] * A[kk][j] + mzc[kk][j] * A[kk][i] for kk in range(6))
+            Mh[i][j] = T("mh%d_%d" % (i, j), e)
+    rhs = [T("r%d" % i, qc[i] + sum(A[kk][i] * fq[kk] - T1[i][kk] * b[kk] for kk in range(6)))
+           for i in range(6)]
+    # unrolled Cholesky M = L L^T, pivot checks inserted by the printer
+    L = [[None] * 6 for _ in range(6)]
+    iL = [None] * 6
+    checks = []
+    for j in range(6):
+        dj = T("d%d" % j, Mh[j][j] - sum(L[j][kk] ** 2 for kk in range(j)))
+        checks.append(dj)
+        L[j][j] = T("l%d_%d" % (j, j), sp.sqrt(dj))
+        iL[j] = T("il%d" % j, 1 / L[j][j])
+        for i in range(j + 1, 6):
+            L[i][j] = T("l%d_%d" % (i, j),
+                        (Mh[i][j] - sum(L[i][kk] * L[j][kk] for kk in range(j))) * iL[j])
+    y = [None] * 6
+    for i in range(6):
+        y[i] = T("y%d" % i, (rhs[i] - sum(L[i][kk] * y[kk] for kk in range(i))) * iL[i])
+    x = [None] * 6
+    for i in reversed(range(6)):
+        x[i] = T("cdd%d" % i, (y[i] - sum(L[kk][i] * x[kk] for kk in range(i + 1, 6))) * iL[i])
+    outs = [("qdd[%d]" % (6 + i), x[i]) for i in range(6)]
+    outs += [("qdd[%d]" % i, b[i] + sum(A[i][j] * x[j] for j in range(6))) for i in range(6)]
+    pr = Printer({**names, **u.kmap(), **{s: "fz[%d]" % i for i, s in enumerate(fz)}})
+    lines = []
+    flops = 0
+    for s, e in seq:
+        lines.append("    const double %s = %s;" % (s.name, pr.doprint(e)))
+        flops += count_flops([e])
+        if s in checks:
+            lines.append("    if (!(%s > 0.0)) return HG_ERR_SINGULAR_MASS;" % s.name)
+    for lhs, e in outs:
+        lines.append("    %s = %s;" % (lhs, pr.doprint(e)))
+        flops += count_flops([e])
+    lines.append("    return 0;")
+    u.funcs.append((
+        "int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],\n"
+        "                       const double fz[6], double qdd[12])",
+        "Fused Reduced Cartesian dynamics: with carriage forces fz, the accelerations "
+        "qdd = [z'', c''] (c independent); 0 or HG_ERR_SINGULAR_MASS (%d flops)" % flops,
+        lines))
+    return flops
+
+
+def gen_standard(outdir):
+    m = standard_model()
+    q, qd, M, Q, phi, Jq, gamma = m["q"], m["qd"], m["M"], m["Q"], m["phi"], m["Jq"], m["gamma"]
+    u = Unit("hg_gen_standard", "Bars as rigid bodies: q = [z(6), a(12), c(6)], "
+             "a = (phi_k, theta_k) per bar, u_k = Rx(phi) Ry(theta) (0,0,-1).")
+    names = state_names(q, qd)
+    Z, Aa, C = range(0, 6), range(6, 18), range(18, 24)
+    # structure: z_k couples only with its own bar angles; bars do not couple
+    for i in Z:
+        for j in range(24):
+            if j != i and j not in (6 + 2 * i, 7 + 2 * i):
+                assert M[i, j] == 0
+    for i in Aa:
+        own = (6 + 2 * ((i - 6) // 2), 7 + 2 * ((i - 6) // 2))
+        for j in list(Aa) + list(C):
+            if j not in own:
+                assert M[i, j] == 0, (i, j)
+    for r in range(18):
+        for j in Z:
+            assert Jq[r, j] == (1 if (r % 3 == 2 and r // 3 == j) else 0)
+        for j in Aa:
+            if (j - 6) // 2 != r // 3:
+                assert Jq[r, j] == 0
+    assigns = [("Mzz[%d]" % i, M[i, i]) for i in Z]
+    assigns += [("Mza[%d]" % (2 * i + s), M[i, 6 + 2 * i + s]) for i in Z for s in range(2)]
+    assigns += [("Maa[%d]" % (4 * kk + 2 * r + s), M[6 + 2 * kk + r, 6 + 2 * kk + s])
+                for kk in range(6) for r in range(2) for s in range(2)]
+    assigns += matrix_assigns("Mcc", M, C, C)
+    assigns += [("Q[%d]" % i, Q[i]) for i in range(24)]
+    assigns += [("Phi_a[%d]" % (6 * kk + 2 * r + s), Jq[3 * kk + r, 6 + 2 * kk + s])
+                for kk in range(6) for r in range(3) for s in range(2)]
+    assigns += matrix_assigns("Phi_c", Jq, range(18), C)
+    assigns += [("gamma[%d]" % i, gamma[i]) for i in range(18)]
+    fl_terms = u.function(
+        "void hg_gen_standard_terms(const double *k, const double q[24], const double qd[24],\n"
+        "                           double Mzz[6], double Mza[12], double Maa[24], double Mcc[36],\n"
+        "                           double Q[24], double Phi_a[36], double Phi_c[108],\n"
+        "                           double gamma[18])",
+        "Mass matrix blocks (M_zz diagonal, Mza[2k+s] = M(z_k, a_2k+s), Maa 2x2 per bar), "
+        "Q = gravity - velocity terms, constraint Jacobian blocks (Phi_a 3x2 per bar, "
+        "Phi_c 18x6; Phi_z is constant: row 3k+2 has 1 at z_k) and gamma", assigns, names)
+    assigns = [("phi[%d]" % i, phi[i]) for i in range(18)]
+    assigns += [("Phi_a[%d]" % (6 * kk + 2 * r + s), Jq[3 * kk + r, 6 + 2 * kk + s])
+                for kk in range(6) for r in range(3) for s in range(2)]
+    assigns += matrix_assigns("Phi_c", Jq, range(18), C)
+    fl_con = u.function(
+        "void hg_gen_standard_constraints(const double *k, const double q[24], double phi[18],\n"
+        "                                 double Phi_a[36], double Phi_c[108])",
+        "Bar-end constraints B + l u - A (m) and their Jacobian blocks", assigns, names)
+    fl_pot = u.function(
+        "void hg_gen_standard_potential(const double *k, const double q[24], double *v)",
+        "Gravity potential (J, up to a constant)",
+        [("*v", m["V"])], names)
+    u.macros += ["#define HG_GEN_STANDARD_TERMS_FLOPS %d" % fl_terms,
+                 "#define HG_GEN_STANDARD_CONSTRAINTS_FLOPS %d" % fl_con,
+                 "#define HG_GEN_STANDARD_POTENTIAL_FLOPS %d" % fl_pot]
+    write_unit(u, outdir)
+    return m
+
+
+def main(argv):
+    if sp.__version__ != REQUIRED_SYMPY:
+        sys.stderr.write("gen_dynamics.py: SymPy %s found, %s required (Debian 12 "
+                         "python3-sympy); refusing to generate.\n"
+                         % (sp.__version__, REQUIRED_SYMPY))
+        return 2
+    outdir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src", "generated")
+    args = list(argv)
+    which = ["reduced", "standard"]
+    while args:
+        a = args.pop(0)
+        if a == "--out" and args:
+            outdir = args.pop(0)
+        elif a == "--only" and args:
+            which = args.pop(0).split(",")
+        else:
+            sys.stderr.write("usage: gen_dynamics.py [--out DIR] [--only reduced,standard]\n")
+            return 2
+    os.makedirs(outdir, exist_ok=True)
+    if "reduced" in which:
+        gen_reduced(outdir)
+    if "standard" in which:
+        gen_standard(outdir)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
