@@ -60,27 +60,22 @@ int hg_lu_factor(int n, double *a, int *piv)
 
 void hg_lu_solve(int n, const double *lu, const int *piv, int nrhs, double *b)
 {
-    double tmp[HG_LINALG_MAX_N * HG_LINALG_MAX_N];
+    double x[HG_LINALG_MAX_N];
     int i, j, r;
-    for (i = 0; i < n; i++)
-        for (r = 0; r < nrhs; r++)
-            tmp[i * nrhs + r] = b[piv[i] * nrhs + r];
-    for (r = 0; r < nrhs; r++) {
-        for (i = 1; i < n; i++) {
-            double s = tmp[i * nrhs + r];
+    for (r = 0; r < nrhs; r++) { /* one column at a time: only column r is read and written */
+        for (i = 0; i < n; i++)
+            x[i] = b[piv[i] * nrhs + r];
+        for (i = 1; i < n; i++)
             for (j = 0; j < i; j++)
-                s -= lu[i * n + j] * tmp[j * nrhs + r];
-            tmp[i * nrhs + r] = s;
-        }
+                x[i] -= lu[i * n + j] * x[j];
         for (i = n - 1; i >= 0; i--) {
-            double s = tmp[i * nrhs + r];
             for (j = i + 1; j < n; j++)
-                s -= lu[i * n + j] * tmp[j * nrhs + r];
-            tmp[i * nrhs + r] = s / lu[i * n + i];
+                x[i] -= lu[i * n + j] * x[j];
+            x[i] /= lu[i * n + i];
         }
+        for (i = 0; i < n; i++)
+            b[i * nrhs + r] = x[i];
     }
-    for (i = 0; i < n * nrhs; i++)
-        b[i] = tmp[i];
 }
 
 int hg_cholesky_factor(int n, double *a)

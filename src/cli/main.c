@@ -1,0 +1,59 @@
+/* main.c - build/hexaglide: the project's math on the command line.
+ *   hexaglide ik X Y Z A B C            pose (mm, deg) -> joints (mm)
+ *   hexaglide fk J0..J5 [--guess ...]   joints (mm) -> pose (mm, deg)
+ *   hexaglide sim [options]             offline dynamics simulation (CSV) */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "cli.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: hexaglide ik X Y Z A B C\n"
+            "       hexaglide fk J0 J1 J2 J3 J4 J5 [--guess X Y Z A B C]\n"
+            "       hexaglide sim [--model standard|reduced-joints|reduced-cartesian]\n"
+            "                     [--time S] [--dt S] [--volts V0,..,V5] [--set name=value]... [--csv FILE]\n"
+            "units: X Y Z and joints in mm, A B C in degrees (see README.md)\n");
+}
+
+int cli_parse_double(const char *text, const char *what, double *out)
+{
+    char *end = 0;
+    double v;
+    errno = 0;
+    v = strtod(text, &end);
+    if (end == text || *end != '\0') {
+        fprintf(stderr, "hexaglide: %s: '%s' is not a number\n", what, text);
+        return -1;
+    }
+    if (!isfinite(v) || errno == ERANGE) {
+        fprintf(stderr, "hexaglide: %s: '%s' is not a finite number\n", what, text);
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (strcmp(argv[1], "ik") == 0)
+        return cmd_ik(argc - 2, argv + 2);
+    if (strcmp(argv[1], "fk") == 0)
+        return cmd_fk(argc - 2, argv + 2);
+    if (strcmp(argv[1], "sim") == 0)
+        return cmd_sim(argc - 2, argv + 2);
+    if (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    fprintf(stderr, "hexaglide: unknown command '%s'\n", argv[1]);
+    usage(stderr);
+    return 2;
+}

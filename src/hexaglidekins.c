@@ -1,0 +1,200 @@
+/* hexaglidekins.c - LinuxCNC kinematics module for the UPNa Hexaglide.
+ *
+ * Thin HAL glue around src/hg_kinematics.c: joints 0..5 are the carriage
+ * heights z11 z12 z21 z22 z31 z32 (machine units, mm, relative to HOME),
+ * world is X Y Z A B C of the head reference point (mm, degrees).
+ * Inverse: closed form. Forward: Newton-Raphson from the previous pose.
+ *
+ * HAL parameters (rw, mm): hexaglidekins.l .lb .e .lp .h  (geometry)
+ * HAL pins:
+ *   hexaglidekins.fk-iterations      s32 out  iterations of the last forward call
+ *   hexaglidekins.fk-max-iterations  s32 in   iteration bound (default 30)
+ *   hexaglidekins.fk-tolerance       float in convergence tolerance, mm (default 1e-9)
+ *   hexaglidekins.fk-residual        float out bar-length error of the last answer, mm
+ *   hexaglidekins.fk-error           s32 out  0 or the hg_error code of the last forward call
+ *   hexaglidekins.fk-fault           bit out  the last forward call failed
+ *   hexaglidekins.fk-fail-count      u32 out  forward failures since load
+ *   hexaglidekins.ik-error           s32 out  0 or the hg_error code of the last inverse call */
+#include "rtapi.h"
+#include "rtapi_app.h"
+#include "rtapi_math.h"
+#include "hal.h"
+#include "kinematics.h"
+
+#include "hg_errors.h"
+#include "hg_kinematics.h"
+#include "hg_units.h"
+
+MODULE_LICENSE("GPL");
+MODULE_AUTHOR("virtual Hexaglide project");
+MODULE_DESCRIPTION("Kinematics of the UPNa Hexaglide parallel machine");
+
+typedef struct {
+    hal_float_t l_mm, lb_mm, e_mm, lp_mm, h_mm;   /* geometry parameters */
+    hal_s32_t *fk_iterations;
+    hal_s32_t *fk_max_iterations;
+    hal_float_t *fk_tolerance_mm;
+    hal_float_t *fk_residual_mm;
+    hal_s32_t *fk_error;
+    hal_bit_t *fk_fault;
+    hal_u32_t *fk_fail_count;
+    hal_s32_t *ik_error;
+    int geometry_reported_bad;                     /* message already printed */
+} hexaglidekins_hal;
+
+static hexaglidekins_hal *hd; /* the module's one instance, in HAL shared memory */
+static int comp_id;
+
+/* Geometry from the HAL parameters (mm -> m); HG_ERR_BAD_PARAM, reported
+ * once on the RTAPI log, when the user set an impossible one. */
+static int current_geometry(hg_geometry *g)
+{
+    const char *field = "", *why = "";
+    int rc;
+    g->l_m = hd->l_mm / HG_MM_PER_M;
+    g->lb_m = hd->lb_mm / HG_MM_PER_M;
+    g->e_m = hd->e_mm / HG_MM_PER_M;
+    g->lp_m = hd->lp_mm / HG_MM_PER_M;
+    g->h_m = hd->h_mm / HG_MM_PER_M;
+    rc = hg_geometry_check(g, &field, &why);
+    if (rc && !hd->geometry_reported_bad)
+        rtapi_print_msg(RTAPI_MSG_ERR,
+                        "hexaglidekins: parameter hexaglidekins.%s %s; kinematics refused "
+                        "until it is fixed with setp\n", field, why);
+    hd->geometry_reported_bad = (rc != 0);
+    return rc;
+}
+
+int kinematicsForward(const double *joints, EmcPose *pos,
+                      const KINEMATICS_FORWARD_FLAGS *fflags,
+                      KINEMATICS_INVERSE_FLAGS *iflags)
+{
+    hg_geometry g;
+    hg_fk_options opt;
+    hg_fk_report rep = {0, 0.0};
+    double z[6], user[6], pose[6];
+    int k, rc;
+    (void)fflags;
+    (void)iflags;
+    user[0] = pos->tran.x; user[1] = pos->tran.y; user[2] = pos->tran.z;
+    user[3] = pos->a; user[4] = pos->b; user[5] = pos->c;
+    hg_pose_from_user(user, pose);
+    for (k = 0; k < 6; k++)
+        z[k] = joints[k] / HG_MM_PER_M;
+    opt.max_iterations = *hd->fk_max_iterations;
+    opt.tolerance_m = *hd->fk_tolerance_mm / HG_MM_PER_M;
+    rc = current_geometry(&g);
+    if (rc == 0)
+        rc = hg_forward_kinematics(&g, z, pose, &opt, &rep);
+    *hd->fk_iterations = rep.iterations;
+    *hd->fk_residual_mm = rep.residual_m * HG_MM_PER_M;
+    *hd->fk_error = rc;
+    *hd->fk_fault = (rc != 0);
+    if (rc) {
+        *hd->fk_fail_count += 1;
+        return rc;
+    }
+    hg_pose_to_user(pose, user);
+    pos->tran.x = user[0]; pos->tran.y = user[1]; pos->tran.z = user[2];
+    pos->a = user[3]; pos->b = user[4]; pos->c = user[5];
+    pos->u = pos->v = pos->w = 0.0;
+    return 0;
+}
+
+int kinematicsInverse(const EmcPose *pos, double *joints,
+                      const KINEMATICS_INVERSE_FLAGS *iflags,
+                      KINEMATICS_FORWARD_FLAGS *fflags)
+{
+    hg_geometry g;
+    double user[6], pose[6], z[6];
+    int k, rc;
+    (void)iflags;
+    (void)fflags;
+    user[0] = pos->tran.x; user[1] = pos->tran.y; user[2] = pos->tran.z;
+    user[3] = pos->a; user[4] = pos->b; user[5] = pos->c;
+    hg_pose_from_user(user, pose);
+    rc = current_geometry(&g);
+    if (rc == 0)
+        rc = hg_inverse_kinematics(&g, pose, z);
+    *hd->ik_error = rc;
+    if (rc)
+        return rc;
+    for (k = 0; k < 6; k++)
+        joints[k] = z[k] * HG_MM_PER_M;
+    return 0;
+}
+
+KINEMATICS_TYPE kinematicsType(void)
+{
+    return KINEMATICS_BOTH;
+}
+
+/* Export the pins and parameters with the spec's defaults. */
+static int export_hal(void)
+{
+    hg_params p;
+    hg_fk_options o;
+    int r = 0;
+    hg_params_default(&p);
+    hg_fk_options_default(&o);
+    r |= hal_param_float_newf(HAL_RW, &hd->l_mm, comp_id, "hexaglidekins.l");
+    r |= hal_param_float_newf(HAL_RW, &hd->lb_mm, comp_id, "hexaglidekins.lb");
+    r |= hal_param_float_newf(HAL_RW, &hd->e_mm, comp_id, "hexaglidekins.e");
+    r |= hal_param_float_newf(HAL_RW, &hd->lp_mm, comp_id, "hexaglidekins.lp");
+    r |= hal_param_float_newf(HAL_RW, &hd->h_mm, comp_id, "hexaglidekins.h");
+    r |= hal_pin_s32_newf(HAL_OUT, &hd->fk_iterations, comp_id, "hexaglidekins.fk-iterations");
+    r |= hal_pin_s32_newf(HAL_IN, &hd->fk_max_iterations, comp_id, "hexaglidekins.fk-max-iterations");
+    r |= hal_pin_float_newf(HAL_IN, &hd->fk_tolerance_mm, comp_id, "hexaglidekins.fk-tolerance");
+    r |= hal_pin_float_newf(HAL_OUT, &hd->fk_residual_mm, comp_id, "hexaglidekins.fk-residual");
+    r |= hal_pin_s32_newf(HAL_OUT, &hd->fk_error, comp_id, "hexaglidekins.fk-error");
+    r |= hal_pin_bit_newf(HAL_OUT, &hd->fk_fault, comp_id, "hexaglidekins.fk-fault");
+    r |= hal_pin_u32_newf(HAL_OUT, &hd->fk_fail_count, comp_id, "hexaglidekins.fk-fail-count");
+    r |= hal_pin_s32_newf(HAL_OUT, &hd->ik_error, comp_id, "hexaglidekins.ik-error");
+    if (r)
+        return r;
+    hd->l_mm = p.geo.l_m * HG_MM_PER_M;
+    hd->lb_mm = p.geo.lb_m * HG_MM_PER_M;
+    hd->e_mm = p.geo.e_m * HG_MM_PER_M;
+    hd->lp_mm = p.geo.lp_m * HG_MM_PER_M;
+    hd->h_mm = p.geo.h_m * HG_MM_PER_M;
+    *hd->fk_max_iterations = o.max_iterations;
+    *hd->fk_tolerance_mm = o.tolerance_m * HG_MM_PER_M;
+    *hd->fk_iterations = 0;
+    *hd->fk_residual_mm = 0.0;
+    *hd->fk_error = 0;
+    *hd->fk_fault = 0;
+    *hd->fk_fail_count = 0;
+    *hd->ik_error = 0;
+    hd->geometry_reported_bad = 0;
+    return 0;
+}
+
+int rtapi_app_main(void)
+{
+    comp_id = hal_init("hexaglidekins");
+    if (comp_id < 0)
+        return comp_id;
+    hd = hal_malloc(sizeof *hd);
+    if (!hd) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: out of HAL shared memory\n");
+        hal_exit(comp_id);
+        return -1;
+    }
+    if (export_hal()) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: could not export pins/parameters\n");
+        hal_exit(comp_id);
+        return -1;
+    }
+    hal_ready(comp_id);
+    return 0;
+}
+
+void rtapi_app_exit(void)
+{
+    hal_exit(comp_id);
+}
+
+KINS_NOT_SWITCHABLE
+EXPORT_SYMBOL(kinematicsType);
+EXPORT_SYMBOL(kinematicsForward);
+EXPORT_SYMBOL(kinematicsInverse);

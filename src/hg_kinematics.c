@@ -1,0 +1,238 @@
+/* hg_kinematics.c - Hexaglide frames, closed-form inverse kinematics and
+ * Newton-Raphson forward kinematics with the analytic Jacobian. */
+#include <math.h>
+#include "hg_kinematics.h"
+#include "hg_linalg.h"
+#include "hg_errors.h"
+
+/* cos and sin of the post angles alpha = 0, +120, -120 degrees */
+static const double post_cos[3] = {1.0, -0.5, -0.5};
+static const double post_sin[3] = {0.0, 0.86602540378443864676, -0.86602540378443864676};
+
+/* Newton steps larger than this (m or rad) mean the iteration ran away */
+#define HG_FK_MAX_STEP 1.0
+#define HG_FK_ITERATION_CAP 100
+
+void hg_fk_options_default(hg_fk_options *o)
+{
+    o->max_iterations = 30;
+    o->tolerance_m = 1e-12;
+}
+
+/* Rz(alpha_i) (radial, s_j e, 0) for bar k. */
+static void post_point(int k, double radial, double e, double out[3])
+{
+    int i = k / 2;
+    double s = (k % 2 == 0) ? 1.0 : -1.0;
+    out[0] = post_cos[i] * radial - post_sin[i] * s * e;
+    out[1] = post_sin[i] * radial + post_cos[i] * s * e;
+    out[2] = 0.0;
+}
+
+void hg_guide_point(const hg_geometry *g, int k, double out[3])
+{
+    post_point(k, g->lb_m, g->e_m, out);
+}
+
+void hg_head_point(const hg_geometry *g, int k, double out[3])
+{
+    post_point(k, g->lp_m, g->e_m, out);
+}
+
+void hg_rotation(double a, double b, double c, double R[9])
+{
+    double ca = cos(a), sa = sin(a), cb = cos(b), sb = sin(b), cc = cos(c), sc = sin(c);
+    R[0] = cc * cb; R[1] = cc * sb * sa - sc * ca; R[2] = cc * sb * ca + sc * sa;
+    R[3] = sc * cb; R[4] = sc * sb * sa + cc * ca; R[5] = sc * sb * ca - cc * sa;
+    R[6] = -sb;     R[7] = cb * sa;                R[8] = cb * ca;
+}
+
+/* World offsets w[k] = R r_k of the head joints from Op. */
+static void head_offsets(const hg_geometry *g, const double R[9], double w[6][3])
+{
+    int k, r;
+    for (k = 0; k < HG_NBARS; k++) {
+        double p[3];
+        hg_head_point(g, k, p);
+        for (r = 0; r < 3; r++)
+            w[k][r] = R[3 * r] * p[0] + R[3 * r + 1] * p[1] + R[3 * r + 2] * p[2];
+    }
+}
+
+void hg_joint_points(const hg_geometry *g, const double z[6], const double pose[6],
+                     double B[6][3], double A[6][3])
+{
+    double R[9], w[6][3];
+    int k, r;
+    hg_rotation(pose[3], pose[4], pose[5], R);
+    head_offsets(g, R, w);
+    for (k = 0; k < HG_NBARS; k++) {
+        hg_guide_point(g, k, B[k]);
+        B[k][2] = g->h_m + z[k];
+        for (r = 0; r < 3; r++)
+            A[k][r] = pose[r] + w[k][r];
+    }
+}
+
+void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6],
+                    double phi[6])
+{
+    double B[6][3], A[6][3];
+    int k;
+    hg_joint_points(g, z, pose, B, A);
+    for (k = 0; k < HG_NBARS; k++) {
+        double dx = B[k][0] - A[k][0], dy = B[k][1] - A[k][1], dz = B[k][2] - A[k][2];
+        phi[k] = dx * dx + dy * dy + dz * dz - g->l_m * g->l_m;
+    }
+}
+
+void hg_constraint_jacobian(const hg_geometry *g, const double z[6], const double pose[6],
+                            double jac_pose[36], double dphi_dz[6])
+{
+    double R[9], w[6][3];
+    double axis[3][3]; /* d(R r)/d(A,B,C) = axis_m x (R r) */
+    int k, m;
+    hg_rotation(pose[3], pose[4], pose[5], R);
+    head_offsets(g, R, w);
+    axis[0][0] = R[0]; axis[0][1] = R[3]; axis[0][2] = R[6];          /* Rz Ry e_x */
+    axis[1][0] = -sin(pose[5]); axis[1][1] = cos(pose[5]); axis[1][2] = 0; /* Rz e_y */
+    axis[2][0] = 0; axis[2][1] = 0; axis[2][2] = 1;                   /* e_z */
+    for (k = 0; k < HG_NBARS; k++) {
+        double d[3], wxd[3], b[3];
+        hg_guide_point(g, k, b);
+        d[0] = b[0] - pose[0] - w[k][0];
+        d[1] = b[1] - pose[1] - w[k][1];
+        d[2] = g->h_m + z[k] - pose[2] - w[k][2];
+        /* dPhi/dP = -2 d ; dPhi/dangle_m = -2 d . (axis_m x w) = -2 axis_m . (w x d) */
+        wxd[0] = w[k][1] * d[2] - w[k][2] * d[1];
+        wxd[1] = w[k][2] * d[0] - w[k][0] * d[2];
+        wxd[2] = w[k][0] * d[1] - w[k][1] * d[0];
+        for (m = 0; m < 3; m++)
+            jac_pose[6 * k + m] = -2.0 * d[m];
+        for (m = 0; m < 3; m++)
+            jac_pose[6 * k + 3 + m] = -2.0 * (axis[m][0] * wxd[0] + axis[m][1] * wxd[1] +
+                                              axis[m][2] * wxd[2]);
+        if (dphi_dz)
+            dphi_dz[k] = 2.0 * d[2];
+    }
+}
+
+int hg_inverse_kinematics(const hg_geometry *g, const double pose[6], double z[6])
+{
+    double R[9], w[6][3], out[6];
+    int k;
+    if (!hg_all_finite(6, pose))
+        return HG_ERR_NONFINITE_INPUT;
+    if (fabs(pose[4]) > HG_MAX_ABS_B_RAD)
+        return HG_ERR_EULER_SINGULAR;
+    hg_rotation(pose[3], pose[4], pose[5], R);
+    head_offsets(g, R, w);
+    for (k = 0; k < HG_NBARS; k++) {
+        double b[3], dx, dy, rad;
+        hg_guide_point(g, k, b);
+        dx = b[0] - pose[0] - w[k][0];
+        dy = b[1] - pose[1] - w[k][1];
+        rad = g->l_m * g->l_m - dx * dx - dy * dy;
+        if (!(rad > 0.0))
+            return HG_ERR_UNREACHABLE;
+        out[k] = pose[2] + w[k][2] - g->h_m + sqrt(rad);
+    }
+    if (!hg_all_finite(6, out))
+        return HG_ERR_NONFINITE_INPUT;
+    for (k = 0; k < HG_NBARS; k++)
+        z[k] = out[k];
+    return HG_OK;
+}
+
+/* Largest bar-length error | |B-A| - l | over the six bars (metres). */
+static double bar_length_error(const hg_geometry *g, const double z[6], const double pose[6])
+{
+    double phi[6], worst = 0.0;
+    int k;
+    hg_constraints(g, z, pose, phi);
+    for (k = 0; k < HG_NBARS; k++) {
+        /* |d| - l = phi / (|d| + l) */
+        double len = sqrt(phi[k] + g->l_m * g->l_m);
+        double err = fabs(phi[k]) / (len + g->l_m);
+        if (!(err <= worst))
+            worst = err; /* also catches NaN */
+    }
+    return worst;
+}
+
+/* 1 when every carriage joint is above its head joint (the machine's branch). */
+static int on_machine_branch(const hg_geometry *g, const double z[6], const double pose[6])
+{
+    double B[6][3], A[6][3];
+    int k;
+    hg_joint_points(g, z, pose, B, A);
+    for (k = 0; k < HG_NBARS; k++)
+        if (!(B[k][2] > A[k][2]))
+            return 0;
+    return 1;
+}
+
+int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6],
+                          const hg_fk_options *opt, hg_fk_report *report)
+{
+    hg_fk_options o;
+    double c[6], phi[6], jac[36], residual;
+    int piv[6], it, k, rc = HG_ERR_NO_CONVERGENCE;
+    if (opt)
+        o = *opt;
+    else
+        hg_fk_options_default(&o);
+    if (o.max_iterations < 1)
+        o.max_iterations = 1;
+    if (o.max_iterations > HG_FK_ITERATION_CAP)
+        o.max_iterations = HG_FK_ITERATION_CAP;
+    if (report) {
+        report->iterations = 0;
+        report->residual_m = 0.0;
+    }
+    if (!hg_all_finite(6, z) || !hg_all_finite(6, pose) || !isfinite(o.tolerance_m))
+        return HG_ERR_NONFINITE_INPUT;
+    for (k = 0; k < 6; k++)
+        c[k] = pose[k];
+    for (it = 1; it <= o.max_iterations; it++) {
+        double step = 0.0;
+        hg_constraints(g, z, c, phi);
+        hg_constraint_jacobian(g, z, c, jac, 0);
+        if (hg_lu_factor(6, jac, piv)) {
+            rc = HG_ERR_SINGULAR_JACOBIAN;
+            break;
+        }
+        hg_lu_solve(6, jac, piv, 1, phi); /* phi <- J^-1 phi */
+        for (k = 0; k < 6; k++) {
+            double sk = fabs(phi[k]) * (k < 3 ? 1.0 : g->l_m); /* angles as arc length */
+            c[k] -= phi[k];
+            if (!(sk <= step))
+                step = sk;
+        }
+        if (report)
+            report->iterations = it;
+        if (!(step <= HG_FK_MAX_STEP * g->l_m) || !hg_all_finite(6, c)) {
+            rc = HG_ERR_DIVERGED;
+            break;
+        }
+        if (step <= o.tolerance_m) {
+            rc = HG_OK;
+            break;
+        }
+    }
+    residual = bar_length_error(g, z, c);
+    if (report)
+        report->residual_m = residual;
+    /* the last step was below tolerance, so the residual is far below it;
+     * the margin only guards against a Jacobian that lied */
+    if (rc == HG_OK && !(residual <= 1e3 * o.tolerance_m + 1e-12))
+        rc = HG_ERR_NO_CONVERGENCE;
+    if (rc == HG_OK && fabs(c[4]) > HG_MAX_ABS_B_RAD)
+        rc = HG_ERR_EULER_SINGULAR;
+    if (rc == HG_OK && !on_machine_branch(g, z, c))
+        rc = HG_ERR_WRONG_BRANCH;
+    if (rc == HG_OK)
+        for (k = 0; k < 6; k++)
+            pose[k] = c[k];
+    return rc;
+}
