@@ -131,7 +131,8 @@ static int bench_mujoco(const hg_params *p, const char *integrator, const char *
 
 /* Time hg_step of one model kind with the same motion; 0, or -1 when the
  * kind is not available. */
-static int bench_project(const hg_params *p, hg_model_kind kind, double *us, double *median_out)
+static int bench_project(const hg_params *p, hg_model_kind kind, double *us, double *median_out,
+                         double *p99_out)
 {
     static hg_model m; /* large: keep off the stack */
     static hg_data d;
@@ -157,6 +158,7 @@ static int bench_project(const hg_params *p, hg_model_kind kind, double *us, dou
     }
     percentiles(us, STEPS, &median, &p99);
     *median_out = median;
+    *p99_out = p99;
     return 0;
 }
 
@@ -196,13 +198,13 @@ int main(int argc, char **argv)
         printf("project dynamics not linked (src/hg_dynamics.c missing): no ratios\n");
     } else {
         for (kind = 0; kind < HG_MODEL_COUNT; kind++) {
-            double median;
-            if (bench_project(&p, (hg_model_kind)kind, us, &median) != 0) {
+            double median, p99;
+            if (bench_project(&p, (hg_model_kind)kind, us, &median, &p99) != 0) {
                 printf("project %-18s not available\n", hg_model_name((hg_model_kind)kind));
                 continue;
             }
-            printf("project %-18s median %.2f us per hg_step: MuJoCo RK4 takes %.1fx, Euler %.1fx as long\n",
-                   hg_model_name((hg_model_kind)kind), median, mj_rk4 / median, mj_euler / median);
+            printf("project %-18s median %.2f us, p99 %.2f us per hg_step: MuJoCo RK4 takes %.1fx, Euler %.1fx as long\n",
+                   hg_model_name((hg_model_kind)kind), median, p99, mj_rk4 / median, mj_euler / median);
         }
     }
     free(us);
