@@ -43,8 +43,12 @@ typedef struct {
     double force_per_volt_n;     /* ka kt 2 pi / lead */
     double force_max_n;          /* i_max kt 2 pi / lead */
     double rotor_mass_kg;        /* j_rotor (2 pi / lead)^2, inertia without weight */
+    double potential_home_j;     /* gravity potential at HOME (energies are relative to it) */
     double k[HG_MAX_CONSTS];     /* generated init: parameter-only subexpressions */
 } hg_model;
+
+#define HG_DT_MAX_S 0.01              /* hg_step refuses longer steps (HG_ERR_BAD_DT) */
+#define HG_STAB_MAX_RESIDUAL_M 1e-6   /* bar-length error after stabilization that counts as diverged */
 
 typedef struct {
     double t_s;                  /* simulated time since reset */

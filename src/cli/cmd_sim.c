@@ -1,10 +1,221 @@
-/* cmd_sim.c - placeholder until the offline simulator lands. */
+/* cmd_sim.c - the sim subcommand: offline forward-dynamics simulation
+ * with constant DAC volts, one CSV row per step (mm, mm/s, degrees). */
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 #include "cli.h"
+#include "hg_dynamics.h"
+#include "hg_errors.h"
+#include "hg_units.h"
+
+#define SIM_MAX_STEPS 100000000L   /* refuse runs longer than this many steps */
+
+static void sim_usage(void)
+{
+    fprintf(stderr,
+            "usage: hexaglide sim [--model standard|reduced-joints|reduced-cartesian|fused-cartesian]\n"
+            "                     [--time S] [--dt S] [--volts V0,V1,V2,V3,V4,V5]\n"
+            "                     [--set name=value]... [--csv FILE] [--list-params]\n"
+            "defaults: reduced-cartesian, 1 s, dt 0.001 s, 0 V, CSV to stdout;\n"
+            "--set takes the parameter's SI unit (see --list-params)\n");
+}
+
+/* Parse "v0,...,v5" into volts; 0 or -1 with a message. */
+static int parse_volts(const char *text, double volts[6])
+{
+    char buf[512], *tok, *save = 0;
+    int n = 0;
+    if (strlen(text) >= sizeof buf) {
+        fprintf(stderr, "hexaglide sim: --volts: argument too long\n");
+        return -1;
+    }
+    strcpy(buf, text);
+    for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(0, ",", &save)) {
+        char what[32];
+        if (n == 6) {
+            fprintf(stderr, "hexaglide sim: --volts: need exactly 6 comma-separated values, got more\n");
+            return -1;
+        }
+        snprintf(what, sizeof what, "--volts V%d", n);
+        if (cli_parse_double(tok, what, &volts[n]))
+            return -1;
+        n++;
+    }
+    if (n != 6) {
+        fprintf(stderr, "hexaglide sim: --volts: need exactly 6 comma-separated values, got %d\n", n);
+        return -1;
+    }
+    return 0;
+}
+
+/* Apply "name=value" to p; 0 or -1 with a message. */
+static int parse_set(const char *text, hg_params *p)
+{
+    char name[64];
+    const char *eq = strchr(text, '=');
+    double v;
+    if (!eq || eq == text || (size_t)(eq - text) >= sizeof name) {
+        fprintf(stderr, "hexaglide sim: --set: expected name=value, got '%s'\n", text);
+        return -1;
+    }
+    memcpy(name, text, (size_t)(eq - text));
+    name[eq - text] = '\0';
+    if (!hg_params_field(p, name)) {
+        fprintf(stderr, "hexaglide sim: --set: unknown parameter '%s' (see --list-params)\n", name);
+        return -1;
+    }
+    if (cli_parse_double(eq + 1, name, &v))
+        return -1;
+    if (hg_params_set(p, name, v)) {
+        fprintf(stderr, "hexaglide sim: --set: cannot set '%s' to '%s'\n", name, eq + 1);
+        return -1;
+    }
+    /* h follows the geometry unless the user sets it */
+    return 0;
+}
+
+static void list_params(void)
+{
+    int i, n;
+    const hg_param_info *t = hg_params_table(&n);
+    hg_params p;
+    hg_params_default(&p);
+    for (i = 0; i < n; i++)
+        printf("%-16s %-8s %-14.9g %s\n", t[i].name, t[i].unit,
+               *(double *)((char *)&p + t[i].offset), t[i].what);
+}
+
+static void write_row(FILE *f, const hg_data *d)
+{
+    int k;
+    fprintf(f, "%.9g", d->t_s);
+    for (k = 0; k < 6; k++)
+        fprintf(f, ",%.9g", d->z_m[k] * HG_MM_PER_M);
+    for (k = 0; k < 6; k++)
+        fprintf(f, ",%.9g", d->zd_mps[k] * HG_MM_PER_M);
+    for (k = 0; k < 3; k++)
+        fprintf(f, ",%.9g", d->pose[k] * HG_MM_PER_M);
+    for (k = 3; k < 6; k++)
+        fprintf(f, ",%.9g", d->pose[k] * HG_DEG_PER_RAD);
+    fputc('\n', f);
+}
 
 int cmd_sim(int argc, char **argv)
 {
-    (void)argc; (void)argv;
-    fprintf(stderr, "hexaglide sim: not implemented yet\n");
-    return 2;
+    hg_params p;
+    hg_model *m;
+    hg_data d;
+    double t_end = 1.0, dt = 0.001, volts[6] = {0, 0, 0, 0, 0, 0};
+    const char *csv = 0, *bad = 0, *why = 0;
+    int kind = HG_MODEL_REDUCED_CARTESIAN, h_set = 0, i, rc;
+    long n, s;
+    FILE *out = stdout;
+    hg_params_default(&p);
+    for (i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        int has = i + 1 < argc;
+        if (strcmp(a, "--list-params") == 0) {
+            list_params();
+            return 0;
+        }
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            sim_usage();
+            return 0;
+        }
+        if (!has || strncmp(a, "--", 2) != 0) {
+            fprintf(stderr, "hexaglide sim: %s '%s'\n",
+                    strncmp(a, "--", 2) == 0 ? "missing value after" : "unexpected argument", a);
+            sim_usage();
+            return 2;
+        }
+        if (strcmp(a, "--model") == 0) {
+            kind = hg_model_from_name(argv[++i]);
+            if (kind < 0) {
+                fprintf(stderr, "hexaglide sim: unknown model '%s' (standard, reduced-joints, "
+                                "reduced-cartesian, fused-cartesian)\n", argv[i]);
+                return 2;
+            }
+        } else if (strcmp(a, "--time") == 0) {
+            if (cli_parse_double(argv[++i], "--time", &t_end))
+                return 2;
+        } else if (strcmp(a, "--dt") == 0) {
+            if (cli_parse_double(argv[++i], "--dt", &dt))
+                return 2;
+        } else if (strcmp(a, "--volts") == 0) {
+            if (parse_volts(argv[++i], volts))
+                return 2;
+        } else if (strcmp(a, "--set") == 0) {
+            if (parse_set(argv[++i], &p))
+                return 2;
+            if (strncmp(argv[i], "h=", 2) == 0)
+                h_set = 1;
+        } else if (strcmp(a, "--csv") == 0) {
+            csv = argv[++i];
+        } else {
+            fprintf(stderr, "hexaglide sim: unknown option '%s'\n", a);
+            sim_usage();
+            return 2;
+        }
+    }
+    if (!h_set)
+        p.geo.h_m = hg_home_height(&p.geo);   /* keep HOME at pose 0 */
+    if (!(t_end >= 0.0)) {
+        fprintf(stderr, "hexaglide sim: --time must be >= 0 s, got %g\n", t_end);
+        return 2;
+    }
+    if (!(dt > 0.0 && dt <= HG_DT_MAX_S)) {
+        fprintf(stderr, "hexaglide sim: --dt must be positive and at most %g s, got %g\n",
+                HG_DT_MAX_S, dt);
+        return 2;
+    }
+    n = (long)floor(t_end / dt + 0.5);
+    if (n > SIM_MAX_STEPS) {
+        fprintf(stderr, "hexaglide sim: %ld steps is more than the %ld allowed; use a larger --dt "
+                        "or a shorter --time\n", n, SIM_MAX_STEPS);
+        return 2;
+    }
+    m = malloc(sizeof *m);
+    if (!m) {
+        fprintf(stderr, "hexaglide sim: out of memory\n");
+        return 1;
+    }
+    rc = hg_model_init(m, &p, (hg_model_kind)kind, &bad, &why);
+    if (rc) {
+        fprintf(stderr, "hexaglide sim: bad parameter '%s': %s\n", bad ? bad : "?", why ? why : hg_strerror(rc));
+        free(m);
+        return 2;
+    }
+    rc = hg_data_reset(m, &d);
+    if (rc) {
+        fprintf(stderr, "hexaglide sim: cannot assemble HOME: %s\n", hg_strerror(rc));
+        free(m);
+        return 1;
+    }
+    if (csv) {
+        out = fopen(csv, "w");
+        if (!out) {
+            perror(csv);
+            free(m);
+            return 1;
+        }
+    }
+    fprintf(out, "t,j0,j1,j2,j3,j4,j5,v0,v1,v2,v3,v4,v5,x,y,z,a,b,c\n");
+    write_row(out, &d);
+    for (s = 0; s < n; s++) {
+        rc = hg_step(m, &d, volts, dt);
+        if (rc) {
+            fprintf(stderr, "hexaglide sim: step failed at t = %.6f s: %s (code %d)\n",
+                    d.t_s, hg_strerror(rc), rc);
+            break;
+        }
+        d.t_s = (double)(s + 1) * dt;   /* no drift from summing dt */
+        write_row(out, &d);
+    }
+    if (out != stdout && fclose(out) != 0) {
+        perror(csv);
+        rc = rc ? rc : -1;
+    }
+    free(m);
+    return rc ? 1 : 0;
 }

@@ -1,0 +1,235 @@
+/* hg_dynamics.c - the public dynamics API: model names, model
+ * construction, reset at HOME and one checked integration step that
+ * dispatches to the parametrization's step (hg_step_*.c). */
+#include <math.h>
+#include <string.h>
+#include "hg_dynamics.h"
+#include "hg_step.h"
+#include "hg_forces.h"
+#include "hg_linalg.h"
+#include "hg_errors.h"
+#include "hg_units.h"
+#include "hg_gen_reduced.h"
+#include "hg_gen_standard.h"
+
+typedef char hg_consts_fit[(HG_GEN_REDUCED_NCONST <= HG_MAX_CONSTS &&
+                            HG_GEN_STANDARD_NCONST <= HG_MAX_CONSTS) ? 1 : -1];
+
+static const char *const model_names[HG_MODEL_COUNT] = {
+    "standard", "reduced-joints", "reduced-cartesian", "fused-cartesian",
+};
+
+const char *hg_model_name(hg_model_kind kind)
+{
+    if ((int)kind < 0 || kind >= HG_MODEL_COUNT)
+        return 0;
+    return model_names[kind];
+}
+
+int hg_model_from_name(const char *name)
+{
+    int i;
+    if (!name)
+        return -1;
+    for (i = 0; i < HG_MODEL_COUNT; i++)
+        if (strcmp(name, model_names[i]) == 0)
+            return i;
+    return -1;
+}
+
+/* hg_data -> state vectors of m's parametrization. */
+static void pack(const hg_model *m, const hg_data *d, double *q, double *qd)
+{
+    int i, off = 6;
+    for (i = 0; i < 6; i++) {
+        q[i] = d->z_m[i];
+        qd[i] = d->zd_mps[i];
+    }
+    if (m->kind == HG_MODEL_STANDARD) {
+        for (i = 0; i < 12; i++) {
+            q[6 + i] = d->bar_rad[i];
+            qd[6 + i] = d->bar_radps[i];
+        }
+        off = 18;
+    }
+    for (i = 0; i < 6; i++) {
+        q[off + i] = d->pose[i];
+        qd[off + i] = d->posed[i];
+    }
+}
+
+/* State vectors -> hg_data (positions, velocities, carriage accelerations). */
+static void unpack(const hg_model *m, const double *q, const double *qd, const double *qdd,
+                   hg_data *d)
+{
+    int i, off = 6;
+    for (i = 0; i < 6; i++) {
+        d->z_m[i] = q[i];
+        d->zd_mps[i] = qd[i];
+        d->zdd_mps2[i] = qdd ? qdd[i] : 0.0;
+    }
+    if (m->kind == HG_MODEL_STANDARD) {
+        for (i = 0; i < 12; i++) {
+            d->bar_rad[i] = q[6 + i];
+            d->bar_radps[i] = qd[6 + i];
+        }
+        off = 18;
+    }
+    for (i = 0; i < 6; i++) {
+        d->pose[i] = q[off + i];
+        d->posed[i] = qd[off + i];
+    }
+}
+
+/* Max bar-length error (m) of joints z and pose c, from Phi = |B-A|^2 - l^2. */
+static double bar_length_error(const hg_params *p, const double *z, const double *c)
+{
+    double phi[6], worst = 0.0;
+    int k;
+    hg_constraints(&p->geo, z, c, phi);
+    for (k = 0; k < 6; k++) {
+        double e = fabs(phi[k]) / (sqrt(phi[k] + p->geo.l_m * p->geo.l_m) + p->geo.l_m);
+        if (!(e <= worst))
+            worst = e;
+    }
+    return worst;
+}
+
+/* Bar angles (phi, theta) of u = (A - B)/l = Rx(phi) Ry(theta) (0,0,-1). */
+static void bar_angles(const hg_params *p, const double *z, const double *c, double *a)
+{
+    double B[6][3], A[6][3];
+    int k;
+    hg_joint_points(&p->geo, z, c, B, A);
+    for (k = 0; k < 6; k++) {
+        double u[3], n;
+        int r;
+        for (r = 0; r < 3; r++)
+            u[r] = A[k][r] - B[k][r];
+        n = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        a[2 * k] = atan2(u[1], -u[2]);
+        a[2 * k + 1] = asin(-u[0] / n);
+    }
+}
+
+int hg_data_reset(const hg_model *m, hg_data *d)
+{
+    double q[HG_NQ_MAX], qd[HG_NQ_MAX];
+    hg_data nd;
+    int rc;
+    memset(&nd, 0, sizeof nd);
+    memset(q, 0, sizeof q);
+    memset(qd, 0, sizeof qd);
+    if (m->kind == HG_MODEL_STANDARD)
+        bar_angles(&m->p, q, q + 18, q + 6);   /* guess at z = 0, c = 0 */
+    rc = hg_solve_positions(m, q);
+    if (rc)
+        return rc;
+    /* z' = 0, so the velocity problem d' = A z' gives d' = 0 */
+    unpack(m, q, qd, 0, &nd);
+    nd.residual_m = bar_length_error(&m->p, nd.z_m, nd.pose);
+    if (!(nd.residual_m <= HG_STAB_MAX_RESIDUAL_M))
+        return HG_ERR_NO_CONVERGENCE;
+    *d = nd;
+    return 0;
+}
+
+int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
+                  const char **bad_field, const char **why)
+{
+    const double screw = 2.0 * HG_PI / p->lead_m;
+    hg_data d;
+    double q[HG_NQ_MAX], qd[HG_NQ_MAX], t;
+    int rc;
+    if ((int)kind < 0 || kind >= HG_MODEL_COUNT) {
+        if (bad_field)
+            *bad_field = "model";
+        if (why)
+            *why = "unknown parametrization";
+        return HG_ERR_BAD_PARAM;
+    }
+    rc = hg_params_check(p, bad_field, why);
+    if (rc)
+        return rc;
+    memset(m, 0, sizeof *m);
+    m->p = *p;
+    m->kind = kind;
+    m->force_per_volt_n = p->ka_a_per_v * p->kt_nm_per_a * screw;
+    m->force_max_n = p->i_max_a * p->kt_nm_per_a * screw;
+    m->rotor_mass_kg = p->j_rotor_kgm2 * screw * screw;
+    if (kind == HG_MODEL_STANDARD)
+        hg_gen_standard_init(p, m->k);
+    else
+        hg_gen_reduced_init(p, m->k);
+    if (!hg_all_finite(HG_MAX_CONSTS, m->k)) {
+        if (bad_field)
+            *bad_field = "params";
+        if (why)
+            *why = "the model's constants are not finite";
+        return HG_ERR_BAD_PARAM;
+    }
+    rc = hg_data_reset(m, &d);
+    if (rc) {
+        if (bad_field)
+            *bad_field = "h";
+        if (why)
+            *why = "HOME (all carriages at 0) cannot be assembled with this geometry";
+        return rc;
+    }
+    pack(m, &d, q, qd);
+    hg_model_energy(m, q, qd, &t, &m->potential_home_j);
+    return 0;
+}
+
+int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
+{
+    double q0[HG_NQ_MAX], qd0[HG_NQ_MAX], q1[HG_NQ_MAX], qd1[HG_NQ_MAX], qdd[HG_NQ_MAX];
+    double fz[6], cur[6], res;
+    int n = hg_system_nq(m), rc;
+    if (!(isfinite(dt_s) && dt_s > 0.0 && dt_s <= HG_DT_MAX_S)) {
+        d->last_error = HG_ERR_BAD_DT;
+        return HG_ERR_BAD_DT;
+    }
+    pack(m, d, q0, qd0);
+    hg_carriage_forces(&m->p, d->z_m, d->zd_mps, volts, fz, cur);
+    switch (m->kind) {
+    case HG_MODEL_STANDARD:
+    case HG_MODEL_REDUCED_JOINTS:
+        rc = hg_step_joints(m, q0, qd0, fz, dt_s, q1, qd1, qdd);
+        break;
+    case HG_MODEL_REDUCED_CARTESIAN:
+        rc = hg_step_cartesian(m, q0, qd0, fz, dt_s, q1, qd1, qdd);
+        break;
+    case HG_MODEL_FUSED_CARTESIAN:
+        rc = hg_step_fused(m, q0, qd0, fz, dt_s, q1, qd1, qdd);
+        break;
+    default:
+        rc = HG_ERR_BAD_PARAM;
+    }
+    if (rc == 0 && !(hg_all_finite(n, q1) && hg_all_finite(n, qd1) && hg_all_finite(n, qdd)))
+        rc = HG_ERR_STATE_NONFINITE;
+    if (rc == 0) {
+        res = bar_length_error(&m->p, q1, q1 + n - 6);
+        if (!(res <= HG_STAB_MAX_RESIDUAL_M))
+            rc = HG_ERR_STABILIZATION;
+    }
+    if (rc) {
+        d->last_error = rc;
+        return rc;
+    }
+    unpack(m, q1, qd1, qdd, d);
+    memcpy(d->current_a, cur, sizeof cur);
+    memcpy(d->force_n, fz, sizeof fz);
+    d->residual_m = res;
+    d->t_s += dt_s;
+    d->last_error = 0;
+    return 0;
+}
+
+void hg_energy(const hg_model *m, const hg_data *d, double *kinetic_j, double *potential_j)
+{
+    double q[HG_NQ_MAX], qd[HG_NQ_MAX], v;
+    pack(m, d, q, qd);
+    hg_model_energy(m, q, qd, kinetic_j, &v);
+    *potential_j = v - m->potential_home_j;
+}

@@ -1,0 +1,67 @@
+/* hg_step.h - internal contract between hg_dynamics.c and the per-model
+ * integration steps. State vectors: reduced models q = [z(6), c(6)],
+ * standard q = [z(6), a(12), c(6)] (a = phi_k, theta_k per bar), all SI.
+ * Each step reads (q0, qd0) and the carriage forces fz (N) and writes the
+ * new state (q1, qd1) and the accelerations of the step (qdd); it never
+ * touches its inputs, so a failed step leaves the caller's state intact. */
+#ifndef HG_STEP_H
+#define HG_STEP_H
+
+#include "hg_dynamics.h"
+
+#define HG_NQ_REDUCED 12
+#define HG_NQ_STANDARD 24
+#define HG_NQ_MAX 24
+
+/* One parametrization as dense blocks, q = [z(6), d(nd)]: nd = 18
+ * (standard: 12 bar angles then c) or 6 (reduced: c). */
+typedef struct {
+    int nd;
+    double mzz[6];               /* M_zz, diagonal */
+    double Mzd[6 * 18];          /* M_zd, 6 x nd */
+    double Mdd[18 * 18];         /* M_dd, nd x nd */
+    double Q[24];                /* gravity - velocity terms, [z, d] (no carriage forces) */
+    double Phi_d[18 * 18];       /* dPhi/dd, nd x nd */
+    double Phi_z[18 * 6];        /* dPhi/dz, nd x 6 */
+    double gamma[18];            /* (Phi_q q')_q q' */
+} hg_system;
+
+/* Fill s from the generated terms of m's parametrization at (q, qd). */
+void hg_system_terms(const hg_model *m, const double *q, const double *qd, hg_system *s);
+
+/* Constraints phi (nd) and their Jacobian blocks Phi_d, Phi_z at q. */
+void hg_system_constraints(const hg_model *m, const double *q, double *phi,
+                           double *Phi_d, double *Phi_z);
+
+/* Number of coordinates of m's parametrization (12 or 24). */
+int hg_system_nq(const hg_model *m);
+
+/* Improved Euler: qd1 = qd0 + qdd dt, q1 = q0 + qd0 dt + qdd dt^2/2. */
+void hg_improved_euler(int n, const double *q0, const double *qd0, const double *qdd,
+                       double dt, double *q1, double *qd1);
+
+/* Standard and Reduced Joints: z independent (Eq. 13 with A = -Phi_d^-1 Phi_z),
+ * one Newton-Raphson position iteration and the velocity projection. */
+int hg_step_joints(const hg_model *m, const double *q0, const double *qd0,
+                   const double fz[6], double dt, double *q1, double *qd1, double *qdd);
+
+/* Reduced Cartesian: c independent, Phi_z diagonal (A = -Phi_z^-1 Phi_c). */
+int hg_step_cartesian(const hg_model *m, const double *q0, const double *qd0,
+                      const double fz[6], double dt, double *q1, double *qd1, double *qdd);
+
+/* Fused Reduced Cartesian: the generated hg_gen_fused_accel, then the same
+ * integration and stabilization as hg_step_cartesian. */
+int hg_step_fused(const hg_model *m, const double *q0, const double *qd0,
+                  const double fz[6], double dt, double *q1, double *qd1, double *qdd);
+
+/* Full Newton-Raphson on the dependent positions of q (z fixed; for the
+ * reduced models the head pose c, for the standard model the bar angles
+ * and c) from the guess in q. 0, HG_ERR_NO_CONVERGENCE or HG_ERR_SINGULAR_JACOBIAN. */
+int hg_solve_positions(const hg_model *m, double *q);
+
+/* Kinetic energy 1/2 q'^T M q' (J, rotor inertia included) and gravity
+ * potential (J, up to a constant) of the state (q, qd). */
+void hg_model_energy(const hg_model *m, const double *q, const double *qd,
+                     double *kinetic_j, double *potential_j);
+
+#endif
