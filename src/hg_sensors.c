@@ -100,6 +100,15 @@ int hg_encoder_update(hg_encoder *e, double z_m, double lead_m, double counts_pe
     return e->index_pulse;
 }
 
+void hg_encoder_rescale(hg_encoder *e, double z_m, double lead_m, double counts_per_rev)
+{
+    long long raw = hg_encoder_raw_counts(z_m, lead_m, counts_per_rev);
+    e->offset_counts += raw - e->raw_counts;
+    e->raw_counts = raw;
+    e->revolution = hg_encoder_revolution(z_m, lead_m);
+    e->index_pulse = 0;
+}
+
 void hg_encoder_arm(hg_encoder *e, int armed)
 {
     e->latch_armed = armed ? 1 : 0;

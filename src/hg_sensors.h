@@ -90,6 +90,10 @@ void hg_encoder_init(hg_encoder *e, double z_m, double lead_m, double counts_per
 int hg_encoder_update(hg_encoder *e, double z_m, double lead_m, double counts_per_rev,
                       int index_lost);
 
+/* New lead or counts_per_rev at position z: the counter keeps its reading
+ * and no index pulse is produced. */
+void hg_encoder_rescale(hg_encoder *e, double z_m, double lead_m, double counts_per_rev);
+
 /* Arm (1) or disarm (0) the index latch; disarming clears latch_hit. */
 void hg_encoder_arm(hg_encoder *e, int armed);
 

@@ -68,6 +68,10 @@ static void test_encoder_counts(void)
     CHECK(hg_encoder_count(&e) == -1000, "then 1 mm down reads -1000");
     hg_encoder_glitch(&e, 7);
     CHECK(hg_encoder_count(&e) == -993, "a glitch of +7 counts adds 7");
+    hg_encoder_rescale(&e, 0.0113005, 0.005, cpr);
+    CHECK(hg_encoder_count(&e) == -993, "a new lead keeps the counter's reading");
+    hg_encoder_update(&e, 0.0123005, 0.005, cpr, 0);
+    CHECK(hg_encoder_count(&e) == -993 + 2000, "and counts 2000 per mm with a 5 mm lead (%d)", hg_encoder_count(&e));
     e.offset_counts = e.raw_counts - 2147483647LL - 5;
     CHECK(hg_encoder_count(&e) == -2147483644, "the 32-bit counter wraps like an s32");
 }
