@@ -77,7 +77,7 @@ void hg_params_default(hg_params *p)
     p->v_coulomb_mps = 1e-3;
     p->stop_min_m = -0.260;
     p->stop_max_m = 0.260;
-    p->k_stop_n_per_m = 2e6;
+    p->k_stop_n_per_m = 5e6;      /* static penetration at the 8 A clamp ~0.5 mm; k dt^2 / m ~ 0.09 at 1 ms */
     p->c_stop_ns_per_m = 2e4;
     p->limit_min_m = -0.250;
     p->limit_max_m = 0.250;
