@@ -67,6 +67,8 @@ bench: all
 $(BUILD)/bench/%: bench/%.c $(CORE_OBJS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_HOST) -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST) $(if $(findstring mujoco,$*),-lmujoco)
+# ... and includes the MuJoCo model generator
+$(filter $(BUILD)/bench/bench_mujoco%,$(BENCH_BINS)): bench/hg_mujoco_model.c bench/hg_mujoco_model.h
 
 demo: all
 	@tools/install-deps.sh demo
