@@ -1,0 +1,313 @@
+/* test_kinematics.c - inverse/forward kinematics against independent facts:
+ * bar lengths from a second formulation, round trips, finite-difference
+ * Jacobian, spec facts (HOME, pure vertical motion), refusals. */
+#include <math.h>
+#include <string.h>
+#include "hg_test.h"
+#include "hg_errors.h"
+#include "hg_kinematics.h"
+
+#define DEG (3.14159265358979323846 / 180.0)
+
+/* Second formulation of the head joint: elementary rotations applied one
+ * after another (x first, then y, then z), post angle by atan2-free
+ * rotation of (r, s e) with cos/sin of the literal angle. */
+static void head_joint_world(const hg_geometry *g, const double pose[6], int k, double out[3])
+{
+    double alpha = (k / 2 == 0) ? 0.0 : (k / 2 == 1 ? 120.0 * DEG : -120.0 * DEG);
+    double s = (k % 2 == 0) ? 1.0 : -1.0;
+    double p[3] = {cos(alpha) * g->lp_m - sin(alpha) * s * g->e_m,
+                   sin(alpha) * g->lp_m + cos(alpha) * s * g->e_m, 0.0};
+    double t;
+    /* Rx(A) */
+    t = cos(pose[3]) * p[1] - sin(pose[3]) * p[2];
+    p[2] = sin(pose[3]) * p[1] + cos(pose[3]) * p[2];
+    p[1] = t;
+    /* Ry(B) */
+    t = cos(pose[4]) * p[0] + sin(pose[4]) * p[2];
+    p[2] = -sin(pose[4]) * p[0] + cos(pose[4]) * p[2];
+    p[0] = t;
+    /* Rz(C) */
+    t = cos(pose[5]) * p[0] - sin(pose[5]) * p[1];
+    p[1] = sin(pose[5]) * p[0] + cos(pose[5]) * p[1];
+    p[0] = t;
+    out[0] = pose[0] + p[0];
+    out[1] = pose[1] + p[1];
+    out[2] = pose[2] + p[2];
+}
+
+/* Largest | |B-A| - l | computed with the second formulation (metres). */
+static double bar_error_independent(const hg_geometry *g, const double z[6], const double pose[6])
+{
+    double worst = 0.0;
+    int k;
+    for (k = 0; k < 6; k++) {
+        double alpha = (k / 2 == 0) ? 0.0 : (k / 2 == 1 ? 120.0 * DEG : -120.0 * DEG);
+        double s = (k % 2 == 0) ? 1.0 : -1.0;
+        double b[3] = {cos(alpha) * g->lb_m - sin(alpha) * s * g->e_m,
+                       sin(alpha) * g->lb_m + cos(alpha) * s * g->e_m, g->h_m + z[k]};
+        double a[3], len;
+        head_joint_world(g, pose, k, a);
+        len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+                   (b[2] - a[2]) * (b[2] - a[2]));
+        if (fabs(len - g->l_m) > worst)
+            worst = fabs(len - g->l_m);
+    }
+    return worst;
+}
+
+/* A random pose in the working volume (joints inside the +-240 mm soft limits). */
+static int random_pose(const hg_geometry *g, double pose[6], double z[6])
+{
+    int tries;
+    for (tries = 0; tries < 1000; tries++) {
+        pose[0] = hg_test_uniform(-0.12, 0.12);
+        pose[1] = hg_test_uniform(-0.12, 0.12);
+        pose[2] = hg_test_uniform(-0.20, 0.20);
+        pose[3] = hg_test_uniform(-20, 20) * DEG;
+        pose[4] = hg_test_uniform(-20, 20) * DEG;
+        pose[5] = hg_test_uniform(-25, 25) * DEG;
+        if (hg_inverse_kinematics(g, pose, z) == HG_OK) {
+            int k, inside = 1;
+            for (k = 0; k < 6; k++)
+                if (fabs(z[k]) > 0.240)
+                    inside = 0;
+            if (inside)
+                return 1;
+        }
+    }
+    return 0;
+}
+
+static void test_home(const hg_params *p)
+{
+    double pose[6] = {0, 0, 0, 0, 0, 0}, z[6], worst = 0, up[6];
+    int k;
+    double h = sqrt(1.0 - (0.484 - 0.073085) * (0.484 - 0.073085)); /* spec: sqrt(l^2-(lb-lp)^2) */
+    CHECK(fabs(p->geo.h_m - h) < 1e-15 && fabs(h - 0.9116736602) < 1e-10,
+          "h = sqrt(l^2-(lb-lp)^2) = %.10f m as in the spec", p->geo.h_m);
+    CHECK(hg_inverse_kinematics(&p->geo, pose, z) == HG_OK, "IK of HOME succeeds");
+    for (k = 0; k < 6; k++)
+        if (fabs(z[k]) > worst)
+            worst = fabs(z[k]);
+    CHECK(worst < 1e-14, "HOME pose gives all joints 0 (max |z| = %.2e m)", worst);
+    /* pure vertical motion moves all six carriages equally (spec fact) */
+    pose[2] = 0.0731;
+    CHECK(hg_inverse_kinematics(&p->geo, pose, up) == HG_OK, "IK of HOME + 73.1 mm in Z");
+    worst = 0;
+    for (k = 0; k < 6; k++)
+        if (fabs(up[k] - 0.0731) > worst)
+            worst = fabs(up[k] - 0.0731);
+    CHECK(worst < 1e-15, "pure vertical motion moves every carriage by dZ (err %.2e m)", worst);
+}
+
+static void test_rotation_convention(void)
+{
+    double R[9], x[3];
+    /* C = 90 deg maps x to y; B = 90 deg maps x to -z; A = 90 deg maps y to z */
+    hg_rotation(0, 0, 90 * DEG, R);
+    x[0] = R[0]; x[1] = R[3]; x[2] = R[6];
+    CHECK(fabs(x[0]) < 1e-15 && fabs(x[1] - 1) < 1e-15, "Rz(C=90) maps x to y");
+    hg_rotation(0, 90 * DEG, 0, R);
+    CHECK(fabs(R[6] + 1) < 1e-15, "Ry(B=90) maps x to -z");
+    hg_rotation(90 * DEG, 0, 0, R);
+    CHECK(fabs(R[7] - 1) < 1e-15, "Rx(A=90) maps y to z");
+    /* 3-2-1 order: R = Rz(C) Ry(B) Rx(A): R[6] = -sin B regardless of A, C */
+    hg_rotation(0.3, 0.2, 0.1, R);
+    CHECK(fabs(R[6] + sin(0.2)) < 1e-15 && fabs(R[2] - (cos(0.1) * sin(0.2) * cos(0.3) + sin(0.1) * sin(0.3))) < 1e-15,
+          "R = Rz(C) Ry(B) Rx(A) (3-2-1 Euler)");
+}
+
+static void test_ik_bar_lengths(const hg_params *p)
+{
+    double pose[6], z[6], worst = 0;
+    int n;
+    for (n = 0; n < 2000; n++) {
+        double e;
+        if (!random_pose(&p->geo, pose, z))
+            continue;
+        e = bar_error_independent(&p->geo, z, pose);
+        if (e > worst)
+            worst = e;
+    }
+    CHECK(worst < 1e-13, "IK joints give bar length l by a second formulation (max err %.2e m, 2000 poses)", worst);
+}
+
+static void test_round_trip(const hg_params *p)
+{
+    int n, done = 0, fails = 0, hist[31] = {0}, maxit = 0;
+    double worst_lin = 0, worst_ang = 0;
+    for (n = 0; n < 10000; n++) {
+        double pose[6], z[6], fk[6] = {0, 0, 0, 0, 0, 0};
+        hg_fk_report rep;
+        int k, rc;
+        if (!random_pose(&p->geo, pose, z))
+            continue;
+        rc = hg_forward_kinematics(&p->geo, z, fk, 0, &rep); /* from HOME */
+        done++;
+        if (rc) {
+            fails++;
+            continue;
+        }
+        if (rep.iterations <= 30)
+            hist[rep.iterations]++;
+        if (rep.iterations > maxit)
+            maxit = rep.iterations;
+        for (k = 0; k < 3; k++) {
+            if (fabs(fk[k] - pose[k]) * 1e3 > worst_lin)
+                worst_lin = fabs(fk[k] - pose[k]) * 1e3;
+            if (fabs(fk[k + 3] - pose[k + 3]) / DEG > worst_ang)
+                worst_ang = fabs(fk[k + 3] - pose[k + 3]) / DEG;
+        }
+    }
+    CHECK(done == 10000, "10000 random reachable poses in the working volume (%d)", done);
+    CHECK(fails == 0, "forward kinematics from HOME converged for every pose (%d failures)", fails);
+    CHECK(worst_lin < 1e-9, "round trip position error %.2e mm < 1e-9 mm", worst_lin);
+    CHECK(worst_ang < 1e-9, "round trip angle error %.2e deg < 1e-9 deg", worst_ang);
+    printf("# FK from HOME iterations: max %d; histogram:", maxit);
+    for (n = 1; n <= maxit && n <= 30; n++)
+        printf(" %d:%d", n, hist[n]);
+    printf("\n");
+    CHECK(maxit <= 10, "FK from HOME needs at most 10 iterations (max %d)", maxit);
+}
+
+static void test_far_poses_from_home(const hg_params *p)
+{
+    /* corners of the working volume, from HOME as the guess */
+    static const double corners[][6] = {
+        {0.12, 0.12, 0.2, 20, 20, 25}, {-0.12, 0.1, -0.2, -20, 15, -25},
+        {0.1, -0.12, 0.15, 15, -20, 10}, {0, 0, 0.22, 0, 0, 0}, {0, 0, -0.22, 0, 0, 0},
+        {0, 0, 0, 0, 0, 45}, {0.05, 0.05, 0, 25, 25, 0},
+    };
+    unsigned n;
+    for (n = 0; n < sizeof corners / sizeof corners[0]; n++) {
+        double pose[6], z[6], fk[6] = {0, 0, 0, 0, 0, 0}, err = 0;
+        hg_fk_report rep;
+        int k, rc;
+        for (k = 0; k < 6; k++)
+            pose[k] = corners[n][k] * (k < 3 ? 1.0 : DEG);
+        rc = hg_inverse_kinematics(&p->geo, pose, z);
+        CHECK(rc == HG_OK, "IK of far pose %u", n);
+        if (rc)
+            continue;
+        rc = hg_forward_kinematics(&p->geo, z, fk, 0, &rep);
+        for (k = 0; k < 6; k++)
+            if (fabs(fk[k] - pose[k]) > err)
+                err = fabs(fk[k] - pose[k]);
+        CHECK(rc == HG_OK && err < 1e-12,
+              "FK from HOME to far pose %u (%.2f %.2f %.2f m, %.0f %.0f %.0f deg): %d iterations, err %.1e",
+              n, corners[n][0], corners[n][1], corners[n][2], corners[n][3], corners[n][4],
+              corners[n][5], rep.iterations, err);
+    }
+}
+
+static void test_jacobian_fd(const hg_params *p)
+{
+    double worst = 0, worst_z = 0;
+    int n;
+    for (n = 0; n < 200; n++) {
+        double pose[6], z[6], J[36], dz[6];
+        int k, m;
+        if (!random_pose(&p->geo, pose, z))
+            continue;
+        hg_constraint_jacobian(&p->geo, z, pose, J, dz);
+        for (m = 0; m < 6; m++) {
+            double hstep = 1e-6, pp[6], pm[6], fp[6], fm[6];
+            memcpy(pp, pose, sizeof pp);
+            memcpy(pm, pose, sizeof pm);
+            pp[m] += hstep;
+            pm[m] -= hstep;
+            hg_constraints(&p->geo, z, pp, fp);
+            hg_constraints(&p->geo, z, pm, fm);
+            for (k = 0; k < 6; k++) {
+                double fd = (fp[k] - fm[k]) / (2 * hstep);
+                if (fabs(fd - J[6 * k + m]) > worst)
+                    worst = fabs(fd - J[6 * k + m]);
+            }
+        }
+        for (k = 0; k < 6; k++) {
+            double zp[6], zm[6], fp[6], fm[6], fd;
+            memcpy(zp, z, sizeof zp);
+            memcpy(zm, z, sizeof zm);
+            zp[k] += 1e-6;
+            zm[k] -= 1e-6;
+            hg_constraints(&p->geo, zp, pose, fp);
+            hg_constraints(&p->geo, zm, pose, fm);
+            fd = (fp[k] - fm[k]) / 2e-6;
+            if (fabs(fd - dz[k]) > worst_z)
+                worst_z = fabs(fd - dz[k]);
+        }
+    }
+    CHECK(worst < 1e-8, "analytic dPhi/dpose matches central differences (max diff %.2e)", worst);
+    CHECK(worst_z < 1e-8, "analytic dPhi/dz matches central differences (max diff %.2e)", worst_z);
+}
+
+static void test_refusals(const hg_params *p)
+{
+    double z[6] = {0, 0, 0, 0, 0, 0}, guess[6] = {0, 0, 0, 0, 0, 0};
+    double far[6] = {0.9, 0, 0, 0, 0, 0}, tilt[6] = {0, 0, 0, 0, 89 * DEG, 0};
+    double nan_pose[6] = {NAN, 0, 0, 0, 0, 0}, inf_pose[6] = {0, 0, INFINITY, 0, 0, 0};
+    double zbad[6] = {0.9, -0.9, 0.9, -0.9, 0.9, -0.9}, znan[6] = {0, 0, NAN, 0, 0, 0};
+    double zsave[6] = {1, 2, 3, 4, 5, 6}, out[6];
+    double above[6] = {0, 0, 1.8, 0, 0, 0};
+    hg_geometry shortbars = p->geo;
+    const char *field = 0, *why = 0;
+    int rc;
+    memcpy(out, zsave, sizeof out);
+    CHECK(hg_inverse_kinematics(&p->geo, far, out) == HG_ERR_UNREACHABLE &&
+              memcmp(out, zsave, sizeof out) == 0,
+          "IK refuses X = 900 mm as unreachable and leaves joints untouched");
+    CHECK(hg_inverse_kinematics(&p->geo, tilt, out) == HG_ERR_EULER_SINGULAR,
+          "IK refuses B = 89 deg (Euler singularity)");
+    CHECK(hg_inverse_kinematics(&p->geo, nan_pose, out) == HG_ERR_NONFINITE_INPUT &&
+              hg_inverse_kinematics(&p->geo, inf_pose, out) == HG_ERR_NONFINITE_INPUT,
+          "IK refuses NaN and inf");
+    rc = hg_forward_kinematics(&p->geo, zbad, guess, 0, 0);
+    CHECK(rc < 0 && guess[0] == 0.0, "FK refuses joints +-900 mm (code %d: %s), guess untouched", rc,
+          hg_strerror(rc));
+    CHECK(hg_forward_kinematics(&p->geo, znan, guess, 0, 0) == HG_ERR_NONFINITE_INPUT,
+          "FK refuses NaN joints");
+    rc = hg_forward_kinematics(&p->geo, z, above, 0, 0);
+    CHECK(rc == HG_ERR_WRONG_BRANCH, "FK started with the head above the carriages lands on the "
+          "other branch and says so (code %d)", rc);
+    {
+        hg_fk_options o;
+        double zfar[6], pose[6] = {0.12, 0.1, 0.2, 20 * DEG, 20 * DEG, 25 * DEG}, g0[6] = {0};
+        hg_fk_report rep;
+        hg_fk_options_default(&o);
+        o.max_iterations = 1;
+        hg_inverse_kinematics(&p->geo, pose, zfar);
+        rc = hg_forward_kinematics(&p->geo, zfar, g0, &o, &rep);
+        CHECK(rc == HG_ERR_NO_CONVERGENCE && rep.iterations == 1,
+              "FK limited to 1 iteration reports no convergence (code %d)", rc);
+    }
+    shortbars.l_m = 0.3;
+    CHECK(hg_geometry_check(&shortbars, &field, &why) == HG_ERR_BAD_PARAM && strcmp(field, "l") == 0,
+          "geometry with bars too short is refused naming 'l' (%s)", why ? why : "");
+    CHECK(hg_geometry_check(&p->geo, &field, &why) == HG_OK, "spec geometry passes the check");
+    /* singular Jacobian: all head joints on the machine axis (lp = e = 0)
+     * leaves the rotation about z undetermined */
+    {
+        hg_geometry sing = p->geo;
+        double g1[6] = {0, 0, 0, 0, 0, 0};
+        sing.lp_m = 1e-300;
+        sing.e_m = 0.0;
+        rc = hg_forward_kinematics(&sing, z, g1, 0, 0);
+        CHECK(rc == HG_ERR_SINGULAR_JACOBIAN, "FK with a degenerate head (all joints at Op) reports a "
+              "singular Jacobian (code %d)", rc);
+    }
+}
+
+int main(void)
+{
+    hg_params p;
+    hg_params_default(&p);
+    test_home(&p);
+    test_rotation_convention();
+    test_ik_bar_lengths(&p);
+    test_round_trip(&p);
+    test_far_poses_from_home(&p);
+    test_jacobian_fd(&p);
+    test_refusals(&p);
+    return hg_test_exit();
+}
