@@ -8,9 +8,14 @@
 # Every entry point first installs the Debian packages it needs.
 
 CC      ?= gcc
-BUILD   := build
-CFLAGS_HOST := -std=gnu99 -O2 -g -Wall -Wextra -Werror -Isrc -Isrc/generated
-LDLIBS_HOST := -lm
+BUILD   ?= build
+# SANITIZE=1 builds the host code into build/asan with ASan + UBSan (make check)
+ifeq ($(SANITIZE),1)
+BUILD   := build/asan
+SANFLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+endif
+CFLAGS_HOST := -std=gnu99 -O2 -g -Wall -Wextra -Werror -Isrc -Isrc/generated $(SANFLAGS)
+LDLIBS_HOST := -lm $(SANFLAGS)
 
 # pure math, no LinuxCNC dependency: every src/hg_*.c and src/generated/*.c
 CORE_SRCS := $(sort $(wildcard src/hg_*.c) $(wildcard src/generated/*.c))
@@ -57,6 +62,11 @@ test:
 	@$(MAKE) -s all
 	@$(MAKE) -s install
 	@tests/run_all.sh
+
+# sanitizers and static analysis (also part of make test)
+check:
+	@tools/install-deps.sh test
+	@TESTS_ONLY=check tests/run_all.sh
 
 bench: all
 	@tools/install-deps.sh bench
