@@ -1,0 +1,124 @@
+/* bench_dynamics.c - wall time of one hg_step per parametrization at the
+ * 1 ms servo period under a smooth servo motion (a P controller on a
+ * 20 mm, 0.5 Hz sine per carriage about the holding voltage), each step
+ * timed alone with clock_gettime(CLOCK_MONOTONIC) over BENCH_STEPS steps
+ * after a warm-up; median and 99th percentile. Also prints the paper's
+ * Table 1 (2011 PC) with the ratios, and the flop counts of the
+ * generated functions each step calls (SymPy count_ops, from the
+ * generator). Machine lines:
+ *   BENCH dyn_<model> median_us=<x> p99_us=<y> flops=<n> iters=<n> */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+#include "hg_dynamics.h"
+#include "hg_errors.h"
+#include "hg_gen_reduced.h"
+#include "hg_gen_standard.h"
+
+#define BENCH_STEPS 200000
+#define WARMUP 2000
+#define DT_S 1e-3
+#define PI 3.14159265358979323846
+
+static double now_ns(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e9 + t.tv_nsec;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* DAC volts of the servo motion at time t. */
+static void servo(const hg_model *m, double t, const double z[6], double v[6])
+{
+    const hg_params *p = &m->p;
+    double hold = p->g_mps2 * (p->m_head_kg + 6 * (p->m_bar_kg + p->m_carriage_kg)) / 6 /
+                  m->force_per_volt_n;
+    int k;
+    for (k = 0; k < 6; k++) {
+        double ref = 0.02 * sin(2 * PI * 0.5 * t + k * PI / 3);
+        v[k] = fmax(-10.0, fmin(10.0, hold + 300.0 * (ref - z[k])));
+    }
+}
+
+/* Median and p99 (us) of BENCH_STEPS timed steps of one parametrization. */
+static int bench(hg_model_kind kind, double *ns, double *median, double *p99)
+{
+    hg_params p;
+    static hg_model m;
+    hg_data d;
+    int s, rc;
+    hg_params_default(&p);
+    if ((rc = hg_model_init(&m, &p, kind, 0, 0)) || (rc = hg_data_reset(&m, &d)))
+        return rc;
+    for (s = 0; s < WARMUP + BENCH_STEPS; s++) {
+        double v[6], t0, t1;
+        servo(&m, d.t_s, d.z_m, v);
+        t0 = now_ns();
+        rc = hg_step(&m, &d, v, DT_S);
+        t1 = now_ns();
+        if (rc)
+            return rc;
+        if (s >= WARMUP)
+            ns[s - WARMUP] = t1 - t0;
+    }
+    qsort(ns, BENCH_STEPS, sizeof *ns, cmp_double);
+    *median = ns[BENCH_STEPS / 2] / 1e3;
+    *p99 = ns[(int)(0.99 * (BENCH_STEPS - 1))] / 1e3;
+    return 0;
+}
+
+int main(void)
+{
+    static double ns[BENCH_STEPS];
+    static const double paper_us[HG_MODEL_COUNT] = {144.6, 76.8, 40.6, 40.6};
+    static const char *const paper_name[HG_MODEL_COUNT] = {
+        "Standard", "Reduced Joints", "Reduced Cartesian", "(future work)"};
+    const int flops[HG_MODEL_COUNT] = {
+        HG_GEN_STANDARD_TERMS_FLOPS + HG_GEN_STANDARD_CONSTRAINTS_FLOPS,
+        HG_GEN_REDUCED_TERMS_FLOPS + HG_GEN_REDUCED_CONSTRAINTS_FLOPS,
+        HG_GEN_REDUCED_TERMS_FLOPS + HG_GEN_REDUCED_CONSTRAINTS_FLOPS,
+        HG_GEN_FUSED_ACCEL_FLOPS + HG_GEN_REDUCED_CONSTRAINTS_FLOPS};
+    double timer, med[HG_MODEL_COUNT], p99[HG_MODEL_COUNT];
+    int kind, i, failed = 0;
+    {   /* the cost of the two clock reads around each step */
+        double t0 = now_ns(), t1;
+        for (i = 0; i < 1000000; i++)
+            t1 = now_ns();
+        timer = (t1 - t0) / 1e6 / 1e3;
+    }
+    printf("one hg_step at dt = 1 ms, %d timed steps per model after %d warm-up steps\n"
+           "(each step timed alone; one clock_gettime costs %.3f us and is included)\n\n",
+           BENCH_STEPS, WARMUP, timer);
+    printf("%-18s %10s %10s %14s %12s %12s\n", "model", "median us", "p99 us",
+           "paper 2011 us", "paper/ours", "gen. flops");
+    for (kind = 0; kind < HG_MODEL_COUNT; kind++) {
+        int rc = bench((hg_model_kind)kind, ns, &med[kind], &p99[kind]);
+        if (rc) {
+            printf("%-18s failed: %s\n", hg_model_name((hg_model_kind)kind), hg_strerror(rc));
+            failed = 1;
+            continue;
+        }
+        printf("%-18s %10.3f %10.3f %8.1f %-5s %12.0f %12d\n", hg_model_name((hg_model_kind)kind),
+               med[kind], p99[kind], paper_us[kind], kind == 3 ? "(RC)" : "", paper_us[kind] / med[kind],
+               flops[kind]);
+    }
+    if (!failed) {
+        printf("\nratios between parametrizations (paper: Standard/RJ %.2f, RJ/RC %.2f)\n",
+               144.6 / 76.8, 76.8 / 40.6);
+        printf("ours: Standard/RJ %.2f, RJ/RC %.2f, RC/fused %.2f\n", med[0] / med[1], med[1] / med[2],
+               med[2] / med[3]);
+        printf("paper names: %s, %s, %s; fused = the paper's future work\n", paper_name[0],
+               paper_name[1], paper_name[2]);
+    }
+    for (kind = 0; kind < HG_MODEL_COUNT && !failed; kind++)
+        printf("BENCH dyn_%s median_us=%.3f p99_us=%.3f flops=%d iters=%d\n",
+               hg_model_name((hg_model_kind)kind), med[kind], p99[kind], flops[kind], BENCH_STEPS);
+    return failed;
+}
