@@ -194,6 +194,8 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
     hg_carriage_forces(&m->p, d->z_m, d->zd_mps, volts, fz, cur);
     switch (m->kind) {
     case HG_MODEL_STANDARD:
+        rc = hg_step_standard(m, q0, qd0, fz, dt_s, q1, qd1, qdd);
+        break;
     case HG_MODEL_REDUCED_JOINTS:
         rc = hg_step_joints(m, q0, qd0, fz, dt_s, q1, qd1, qdd);
         break;

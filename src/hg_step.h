@@ -45,6 +45,11 @@ void hg_improved_euler(int n, const double *q0, const double *qd0, const double 
 int hg_step_joints(const hg_model *m, const double *q0, const double *qd0,
                    const double fz[6], double dt, double *q1, double *qd1, double *qdd);
 
+/* Standard with the bar structure of Phi_d and M_dd exploited (same
+ * algorithm and results as hg_step_joints on the standard model). */
+int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
+                     const double fz[6], double dt, double *q1, double *qd1, double *qdd);
+
 /* Reduced Cartesian: c independent, Phi_z diagonal (A = -Phi_z^-1 Phi_c). */
 int hg_step_cartesian(const hg_model *m, const double *q0, const double *qd0,
                       const double fz[6], double dt, double *q1, double *qd1, double *qdd);

@@ -1,0 +1,155 @@
+/* hg_step_standard.c - one step of the Standard parametrization
+ * (q = [z, a, c], z independent) exploiting the structure of the bar
+ * constraints B_k + l u_k - A_k = 0: Phi_d = [blockdiag(P_k) | C] with P_k
+ * the 3x2 Jacobian of bar k's end in its two angles. Projecting bar k's
+ * three rows on n_k = P_k(:,0) x P_k(:,1) removes its angles, so
+ * Phi_d x = y is a 6x6 solve for x_c plus a 2x2 least-squares solve per
+ * bar; the mass matrix is block diagonal in d. Same algorithm and results
+ * as the dense hg_step_joints (Eq. 13), a fraction of the work. */
+#include <string.h>
+#include "hg_step.h"
+#include "hg_linalg.h"
+#include "hg_errors.h"
+#include "hg_gen_standard.h"
+
+/* Phi_d factored by bars. */
+typedef struct {
+    double n[6][3];      /* normal of bar k's angle columns */
+    double G[6][6];      /* (P^T P)^-1 P^T, 2x3 per bar */
+    double S[36];        /* S[k][j] = n_k . C_k(:, j), LU-factored */
+    int piv[6];
+    const double *Pc;    /* Phi_c, 18 x 6 */
+} std_factor;
+
+static int factor(const double *Pa, const double *Pc, std_factor *f)
+{
+    int k, j, r;
+    for (k = 0; k < 6; k++) {
+        const double *P = Pa + 6 * k;   /* P[2r+s] */
+        double *n = f->n[k], a, b, c, det, ia;
+        n[0] = P[2] * P[5] - P[4] * P[3];
+        n[1] = P[4] * P[1] - P[0] * P[5];
+        n[2] = P[0] * P[3] - P[2] * P[1];
+        a = P[0] * P[0] + P[2] * P[2] + P[4] * P[4];
+        b = P[0] * P[1] + P[2] * P[3] + P[4] * P[5];
+        c = P[1] * P[1] + P[3] * P[3] + P[5] * P[5];
+        det = a * c - b * b;
+        if (!(det > 1e-12 * a * c))
+            return HG_ERR_SINGULAR_JACOBIAN;
+        ia = 1.0 / det;
+        for (r = 0; r < 3; r++) {       /* rows of (P^T P)^-1 P^T */
+            f->G[k][r] = (c * P[2 * r] - b * P[2 * r + 1]) * ia;
+            f->G[k][3 + r] = (a * P[2 * r + 1] - b * P[2 * r]) * ia;
+        }
+        for (j = 0; j < 6; j++)
+            f->S[6 * k + j] = n[0] * Pc[(3 * k) * 6 + j] + n[1] * Pc[(3 * k + 1) * 6 + j] +
+                              n[2] * Pc[(3 * k + 2) * 6 + j];
+    }
+    f->Pc = Pc;
+    return hg_lu_factor(6, f->S, f->piv);
+}
+
+/* x = Phi_d^-1 y for one right-hand side y (18): x = [a(12), c(6)]. */
+static void solve(const std_factor *f, const double *y, double *x)
+{
+    double *xc = x + 12;
+    int k, j, r;
+    for (k = 0; k < 6; k++)
+        xc[k] = f->n[k][0] * y[3 * k] + f->n[k][1] * y[3 * k + 1] + f->n[k][2] * y[3 * k + 2];
+    hg_lu_solve(6, f->S, f->piv, 1, xc);
+    for (k = 0; k < 6; k++) {
+        double t[3];
+        for (r = 0; r < 3; r++) {
+            double v = y[3 * k + r];
+            const double *row = f->Pc + (3 * k + r) * 6;
+            for (j = 0; j < 6; j++)
+                v -= row[j] * xc[j];
+            t[r] = v;
+        }
+        x[2 * k] = f->G[k][0] * t[0] + f->G[k][1] * t[1] + f->G[k][2] * t[2];
+        x[2 * k + 1] = f->G[k][3] * t[0] + f->G[k][4] * t[1] + f->G[k][5] * t[2];
+    }
+}
+
+/* A = -Phi_d^-1 Phi_z (18 x 6, column j from the unit load on bar j's z row). */
+static void matrix_a(const std_factor *f, double A[18 * 6])
+{
+    double y[18], x[18];
+    int j, r;
+    memset(y, 0, sizeof y);
+    for (j = 0; j < 6; j++) {
+        y[3 * j + 2] = 1.0;
+        solve(f, y, x);
+        y[3 * j + 2] = 0.0;
+        for (r = 0; r < 18; r++)
+            A[r * 6 + j] = -x[r];
+    }
+}
+
+int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
+                     const double fz[6], double dt, double *q1, double *qd1, double *qdd)
+{
+    double mzz[6], Mza[12], Maa[24], Mcc[36], Q[24], Pa[36], Pc[108], gm[18];
+    double A[18 * 6], b[18], T1[6 * 18], Mh[36], rhs[6], phi[18], x[18];
+    std_factor f;
+    int i, j, k, r, s, rc;
+    hg_gen_standard_terms(m->k, q0, qd0, mzz, Mza, Maa, Mcc, Q, Pa, Pc, gm);
+    if ((rc = factor(Pa, Pc, &f)))
+        return rc;
+    matrix_a(&f, A);
+    solve(&f, gm, b);
+    for (r = 0; r < 18; r++)
+        b[r] = -b[r];
+    for (i = 0; i < 6; i++) {          /* T1 = M_zd + A^T M_dd, M_dd block diagonal */
+        for (k = 0; k < 6; k++)
+            for (s = 0; s < 2; s++)
+                T1[i * 18 + 2 * k + s] = (k == i ? Mza[2 * k + s] : 0.0) +
+                                         A[(2 * k) * 6 + i] * Maa[4 * k + s] +
+                                         A[(2 * k + 1) * 6 + i] * Maa[4 * k + 2 + s];
+        for (j = 0; j < 6; j++) {
+            double v = 0.0;
+            for (r = 0; r < 6; r++)
+                v += A[(12 + r) * 6 + i] * Mcc[6 * r + j];
+            T1[i * 18 + 12 + j] = v;
+        }
+    }
+    for (i = 0; i < 6; i++) {
+        double acc = Q[i] + fz[i];
+        for (r = 0; r < 18; r++)
+            acc += A[r * 6 + i] * Q[6 + r] - T1[i * 18 + r] * b[r];
+        rhs[i] = acc;
+        for (j = 0; j <= i; j++) {     /* M_zz + T1 A + (M_zd A)^T */
+            double v = (i == j ? mzz[i] : 0.0) + Mza[2 * j] * A[(2 * j) * 6 + i] +
+                       Mza[2 * j + 1] * A[(2 * j + 1) * 6 + i];
+            for (r = 0; r < 18; r++)
+                v += T1[i * 18 + r] * A[r * 6 + j];
+            Mh[6 * i + j] = v;
+        }
+    }
+    if ((rc = hg_cholesky_factor(6, Mh)))
+        return rc;
+    hg_cholesky_solve(6, Mh, rhs);
+    for (i = 0; i < 6; i++)
+        qdd[i] = rhs[i];
+    for (r = 0; r < 18; r++) {         /* d'' = A z'' + b */
+        double v = b[r];
+        for (j = 0; j < 6; j++)
+            v += A[r * 6 + j] * rhs[j];
+        qdd[6 + r] = v;
+    }
+    hg_improved_euler(HG_NQ_STANDARD, q0, qd0, qdd, dt, q1, qd1);
+    /* stabilization at the predicted state: one NR iteration, d' = A z' */
+    hg_gen_standard_constraints(m->k, q1, phi, Pa, Pc);
+    if ((rc = factor(Pa, Pc, &f)))
+        return rc;
+    solve(&f, phi, x);
+    matrix_a(&f, A);
+    for (r = 0; r < 18; r++) {
+        double v = 0.0;
+        q1[6 + r] -= x[r];
+        for (j = 0; j < 6; j++)
+            v += A[r * 6 + j] * qd1[j];
+        qd1[6 + r] = v;
+    }
+    return 0;
+}
