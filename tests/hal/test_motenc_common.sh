@@ -52,9 +52,9 @@ lt() { awk -v a="$1" -v b="$2" 'BEGIN{exit !(a+0<b+0)}'; }
 # calc EXPR: awk arithmetic
 calc() { awk "BEGIN{printf \"%.10g\", $1}"; }
 
-# no_nonfinite PREFIX: no pin or parameter under PREFIX shows nan or inf
+# no_nonfinite PREFIX: no output (OUT or I/O) pin under PREFIX shows nan or inf
 no_nonfinite() {
-    ! { h show pin "$1"; h show param "$1"; } | awk 'NR>2{print $4}' | grep -qiE 'nan|inf'
+    ! h show pin "$1" | awk 'NR>2 && ($3 == "OUT" || $3 == "I/O") {print $4}' | grep -qiE 'nan|inf'
 }
 
 # set_dacs VOLTS: the first six DAC values
