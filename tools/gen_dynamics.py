@@ -189,6 +189,165 @@ def reduced_model():
     return dict(q=q, qd=qd, M=sysm.M, Q=sysm.Q, V=sysm.V, phi=phi, Jq=Jq, gamma=gamma)
 
 
+class Atoms:
+    """Intermediate quantities of the generated code (the paper's
+    atomization, in levels): each level only uses the state and earlier
+    levels, so it can be CSE'd and printed before the next."""
+
+    def __init__(self):
+        self.levels = []
+
+    def level(self):
+        self.levels.append([])
+
+    def vec(self, name, exprs):
+        out = []
+        for i, x in enumerate(exprs):
+            x = sp.sympify(x)
+            if x.is_Number or x.free_symbols <= PARAMS:
+                out.append(x)      # zeros and constants stay literal
+            else:
+                s = sp.Symbol("%s%d" % (name, i))
+                self.levels[-1].append((s, x))
+                out.append(s)
+        return sp.Matrix(out)
+
+
+def reduced_kinematics(q, qd, atoms, with_velocity=True):
+    """Level-1 atoms of the head: offsets r_k = R a_k of its joints and,
+    with velocities, the world angular-velocity Jacobian E (w = E c_ang'),
+    w and the velocity-product angular acceleration E' c_ang'. All derived
+    by SymPy from R(A, B, C)."""
+    c = q[6:, 0]
+    R = head_rotation(c)
+    pts = [post_point(k, P["lp"]) for k in range(6)]
+    atoms.level()
+    r = [atoms.vec("r%d_" % k, R * pts[k]) for k in range(6)]
+    kin = dict(R=R, r=r, pts=pts)
+    if with_velocity:
+        cd = qd[6:, 0]
+        Rd = sp.zeros(3, 3)
+        for a, ad in zip(c[3:], cd[3:]):
+            Rd += R.diff(a) * ad
+        W = sp.simplify(Rd * R.T)
+        w_flat = sp.Matrix([W[2, 1], W[0, 2], W[1, 0]])
+        E_flat = w_flat.jacobian(cd[3:])
+        ab_flat = (E_flat * sp.Matrix(cd[3:])).jacobian(c[3:]) * sp.Matrix(cd[3:])
+        E = [atoms.vec("e%d_" % j, E_flat[:, j]) for j in range(3)]
+        kin.update(E=E, w=atoms.vec("w", w_flat), alpha=atoms.vec("al", ab_flat))
+    return kin
+
+
+def reduced_atomized(q, qd):
+    """The reduced model in atomized form: the same M, Q, Phi, Phi_q, gamma
+    and V as reduced_model() (the flat reference), written with rigid-body
+    kinematics of the head so that the generated code stays short."""
+    z, zd = q[:6, 0], qd[:6, 0]
+    Pp, Pd = sp.Matrix(q[6:9, 0]), sp.Matrix(qd[6:9, 0])
+    me, mm = derived_masses()
+    m_rot = P["j_rotor"] * (2 * sp.pi / P["lead"]) ** 2
+    m_pt = me + mm / 4
+    mq = mm / 4
+    atoms = Atoms()
+    kin = reduced_kinematics(q, qd, atoms)
+    R, r, pts, E, w, alpha = kin["R"], kin["r"], kin["pts"], kin["E"], kin["w"], kin["alpha"]
+    # composite head: inertial body (lumped m_end + m_mid/4 at each joint)
+    # and weight body (m_end + m_mid/2 at each joint), parameter-only
+    s_head = sp.Matrix([0, 0, -P["head_com"]])
+    mH = P["m_head"] + 6 * m_pt
+    sG = sp.simplify((P["m_head"] * s_head + m_pt * sum(pts, sp.zeros(3, 1))) / mH)
+    WH = P["g"] * (P["m_head"] + 6 * (me + mm / 2))
+    sW = sp.simplify(P["g"] * (P["m_head"] * s_head + (me + mm / 2) * sum(pts, sp.zeros(3, 1))) / WH)
+
+    def about(rr, m):
+        d = rr - sG
+        return m * ((d.T * d)[0] * sp.eye(3) - d * d.T)
+    IG = sp.diag(P["i_head_xx"], P["i_head_yy"], P["i_head_zz"]) + about(s_head, P["m_head"])
+    for rr in pts:
+        IG += about(rr, m_pt)
+    IG = IG.applyfunc(lambda x: sp.simplify(sp.expand(x)))
+    s = atoms.vec("sg", R * sG)
+    sw = atoms.vec("sw", R * sW)
+    Iw_flat = R * IG * R.T
+    Iw_s = {}
+    for i in range(3):
+        for j in range(i, 3):
+            Iw_s[(i, j)] = atoms.vec("iw%d%d_" % (i, j), [Iw_flat[i, j]])[0]
+            Iw_s[(j, i)] = Iw_s[(i, j)]
+    Iw = sp.Matrix(3, 3, lambda i, j: Iw_s[(i, j)])
+    # level 2: per joint and head vectors
+    atoms.level()
+    ez = sp.Matrix([0, 0, 1])
+    d, dd, ab, n = [], [], [], []
+    for k in range(6):
+        B = post_point(k, P["lb"]) + sp.Matrix([0, 0, P["h"] + z[k]])
+        d.append(atoms.vec("d%d_" % k, B - Pp - r[k]))
+        v = atoms.vec("v%d_" % k, w.cross(r[k]))
+        dd.append(atoms.vec("dd%d_" % k, zd[k] * ez - Pd - v))
+        ab.append(atoms.vec("ab%d_" % k, alpha.cross(r[k]) + w.cross(v)))
+        n.append(atoms.vec("n%d_" % k, r[k].cross(d[k])))
+    vs = atoms.vec("vs", w.cross(s))
+    agb = atoms.vec("ag", alpha.cross(s) + w.cross(vs))
+    f = [atoms.vec("f%d_" % j, s.cross(E[j])) for j in range(3)]
+    Iww = atoms.vec("iww", Iw * w)
+    gyro = atoms.vec("gy", Iw * alpha + w.cross(Iww))
+    IE = [atoms.vec("ie%d_" % j, Iw * E[j]) for j in range(3)]
+    # outputs
+    M = sp.zeros(12, 12)
+    Q = sp.zeros(12, 1)
+    phi = sp.zeros(6, 1)
+    Jq = sp.zeros(6, 12)
+    gamma = sp.zeros(6, 1)
+    V = sp.Integer(0)
+    for k in range(6):
+        M[k, k] = P["m_carriage"] + m_rot + me + mq
+        M[k, 8] = M[8, k] = mq
+        for j in range(3):
+            M[k, 9 + j] = M[9 + j, k] = -mq * (r[k][0] * E[j][1] - r[k][1] * E[j][0])
+        Q[k] = -mq * ab[k][2] - P["g"] * (P["m_carriage"] + me + mm / 2)
+        V += P["g"] * (P["m_carriage"] + me + mm / 2) * z[k]
+        phi[k] = (d[k].T * d[k])[0] - P["l"] ** 2
+        Jq[k, k] = 2 * d[k][2]
+        for j in range(3):
+            Jq[k, 6 + j] = -2 * d[k][j]
+            Jq[k, 9 + j] = -2 * (n[k].T * E[j])[0]
+        gamma[k] = 2 * (dd[k].T * dd[k])[0] - 2 * (d[k].T * ab[k])[0]
+    for i in range(3):
+        M[6 + i, 6 + i] = mH
+        for j in range(3):
+            M[6 + i, 9 + j] = M[9 + j, 6 + i] = -mH * f[j][i]
+            M[9 + i, 9 + j] = mH * (f[i].T * f[j])[0] + (E[i].T * IE[j])[0]
+        Q[6 + i] = -mH * agb[i]
+        Q[9 + i] = mH * (f[i].T * agb)[0] - (E[i].T * gyro)[0] \
+            - WH * (E[i][0] * sw[1] - E[i][1] * sw[0])
+    Q[8] -= WH
+    V += WH * (Pp[2] + sw[2])
+    return dict(levels=atoms.levels, M=M, Q=Q, phi=phi, Jq=Jq, gamma=gamma, V=V)
+
+
+def reduced_constraints_atomized(q):
+    """phi and Phi_q of the reduced model with the head offsets as atoms."""
+    z, Pp = q[:6, 0], sp.Matrix(q[6:9, 0])
+    atoms = Atoms()
+    kin = reduced_kinematics(q, None, atoms, with_velocity=False)
+    r = kin["r"]
+    c = q[6:, 0]
+    R = kin["R"]
+    Rd = [R.diff(a) for a in c[3:]]
+    atoms.level()
+    phi = sp.zeros(6, 1)
+    Jq = sp.zeros(6, 12)
+    for k in range(6):
+        B = post_point(k, P["lb"]) + sp.Matrix([0, 0, P["h"] + z[k]])
+        d = atoms.vec("d%d_" % k, B - Pp - r[k])
+        phi[k] = (d.T * d)[0] - P["l"] ** 2
+        Jq[k, k] = 2 * d[2]
+        for j in range(3):
+            Jq[k, 6 + j] = -2 * d[j]
+            Jq[k, 9 + j] = -2 * (d.T * (Rd[j] * kin["pts"][k]))[0]
+    return dict(levels=atoms.levels, phi=phi, Jq=Jq)
+
+
 def standard_model():
     z = sp.symbols("z0:6")
     a = sp.symbols("a0:12")
@@ -306,6 +465,39 @@ def emit_block(assigns, printer, prefix, indent="    "):
     return lines, flops
 
 
+def prune(levels, exprs):
+    """Drop atoms that no output (and no kept atom) uses."""
+    used = set()
+    for x in exprs:
+        used |= x.free_symbols
+    kept = []
+    for lev in reversed(levels):
+        keep = []
+        for sy, x in reversed(lev):     # atoms may use earlier atoms of their level
+            if sy in used:
+                keep.insert(0, (sy, x))
+                used |= x.free_symbols
+        kept.insert(0, keep)
+    return kept
+
+
+def emit_levels(levels, printer, indent="    "):
+    """Hoisted atoms level by level: CSE, print; returns (lines, flops)."""
+    lines, flops = [], 0
+    for li, lev in enumerate(levels):
+        if not lev:
+            continue
+        hx = [x for _, x in lev]
+        reps, red = sp.cse(hx, symbols=sp.numbered_symbols("u%d_" % li), optimizations="basic")
+        for sy, x in reps:
+            lines.append("%sconst double %s = %s;" % (indent, sy.name, printer.doprint(x)))
+            flops += count_flops([x])
+        for (sy, _), x in zip(lev, red):
+            lines.append("%sconst double %s = %s;" % (indent, sy.name, printer.doprint(x)))
+            flops += count_flops([x])
+    return lines, flops
+
+
 def state_names(q, qd):
     names = {}
     for i, s in enumerate(q):
@@ -335,12 +527,15 @@ class Unit:
         self.funcs = []      # (prototype, doc, body lines)
         self.macros = []
 
-    def function(self, proto, doc, assigns, names, extra_pre=(), extra_post=(), prefix="x"):
+    def function(self, proto, doc, assigns, names, levels=(), prefix="x"):
+        levels = prune(levels, [x for _, x in assigns])
+        hl = [[(sy, self.hoist(x)) for sy, x in lev] for lev in levels]
         hoisted = [(lhs, self.hoist(x)) for lhs, x in assigns]
         pr = Printer({**names, **self.kmap()})
+        lines0, flops0 = emit_levels(hl, pr)
         lines, flops = emit_block(hoisted, pr, prefix)
-        self.funcs.append((proto, doc + " (%d flops)" % flops,
-                           list(extra_pre) + lines + list(extra_post)))
+        flops += flops0
+        self.funcs.append((proto, doc + " (%d flops)" % flops, lines0 + lines))
         return flops
 
     def kmap(self):
@@ -395,9 +590,18 @@ def write_unit(unit, outdir):
             f.write("\n".join(text))
 
 
+def reduced_coordinates():
+    z = sp.symbols("z0:6")
+    c = sp.symbols("X Y Z A B C")
+    zd = sp.symbols("zd0:6")
+    cd = sp.symbols("Xd Yd Zd Ad Bd Cd")
+    return sp.Matrix(z + c), sp.Matrix(zd + cd)
+
+
 def gen_reduced(outdir):
-    m = reduced_model()
-    q, qd, M, Q, phi, Jq, gamma = m["q"], m["qd"], m["M"], m["Q"], m["phi"], m["Jq"], m["gamma"]
+    q, qd = reduced_coordinates()
+    m = reduced_atomized(q, qd)
+    M, Q, Jq, gamma = m["M"], m["Q"], m["Jq"], m["gamma"]
     u = Unit("hg_gen_reduced", "Bars lumped into exact point masses: q = [z(6), c(6)], "
              "c = X Y Z A B C.")
     names = state_names(q, qd)
@@ -417,17 +621,21 @@ def gen_reduced(outdir):
         "                          double Mzz[6], double Mzc[36], double Mcc[36], double Q[12],\n"
         "                          double Phi_z[6], double Phi_c[36], double gamma[6])",
         "Mass matrix blocks (M_zz diagonal), Q = gravity - velocity terms, constraint "
-        "Jacobian (Phi_z diagonal) and gamma = (Phi_q q')_q q'", assigns, names, prefix="x")
-    assigns = [("phi[%d]" % i, phi[i]) for i in range(6)]
-    assigns += [("Phi_z[%d]" % i, Jq[i, i]) for i in Z]
-    assigns += matrix_assigns("Phi_c", Jq, range(6), C)
+        "Jacobian (Phi_z diagonal) and gamma = (Phi_q q')_q q'", assigns, names,
+        levels=m["levels"])
+    mc = reduced_constraints_atomized(q)
+    assigns = [("phi[%d]" % i, mc["phi"][i]) for i in range(6)]
+    assigns += [("Phi_z[%d]" % i, mc["Jq"][i, i]) for i in Z]
+    assigns += matrix_assigns("Phi_c", mc["Jq"], range(6), C)
     fl_con = u.function(
         "void hg_gen_reduced_constraints(const double *k, const double q[12], double phi[6],\n"
         "                                double Phi_z[6], double Phi_c[36])",
-        "Bar constraints |B-A|^2 - l^2 (m^2) and their Jacobian", assigns, names, prefix="x")
+        "Bar constraints |B-A|^2 - l^2 (m^2) and their Jacobian", assigns, names,
+        levels=mc["levels"])
     fl_pot = u.function(
         "void hg_gen_reduced_potential(const double *k, const double q[12], double *v)",
-        "Gravity potential (J, up to a constant)", [("*v", m["V"])], names, prefix="x")
+        "Gravity potential (J, up to a constant)", [("*v", m["V"])], names,
+        levels=[[(sy, x) for sy, x in m["levels"][0] if str(sy).startswith("sw")]])
     fl_fused = gen_fused(u, m, names)
     u.macros += ["#define HG_GEN_REDUCED_TERMS_FLOPS %d" % fl_terms,
                  "#define HG_GEN_REDUCED_CONSTRAINTS_FLOPS %d" % fl_con,
@@ -441,7 +649,7 @@ def gen_fused(u, m, names):
     """Reduced Cartesian accelerations in one function: terms, A = -Phi_z^-1 Phi_c,
     the reduced 6x6 mass matrix and right-hand side (Eq. 13), an unrolled
     Cholesky solve and z'' = A c'' + b."""
-    q, M, Q, Jq, gamma = m["q"], m["M"], m["Q"], m["Jq"], m["gamma"]
+    M, Q, Jq, gamma = m["M"], m["Q"], m["Jq"], m["gamma"]
     hoist = u.hoist
     prim = []
     sym = {}
@@ -463,11 +671,18 @@ def gen_fused(u, m, names):
     pz = [S("pz%d" % i, Jq[i, i]) for i in range(6)]
     pc = [[S("pc%d_%d" % (i, j), Jq[i, 6 + j]) for j in range(6)] for i in range(6)]
     gm = [S("gm%d" % i, gamma[i]) for i in range(6)]
+    levels = prune(m["levels"], [x for _, x in prim])
+    hl = [[(sy, hoist(x)) for sy, x in lev] for lev in levels]
     # primitives: hoisted + CSE'd; then the algebra on their symbols
     hp = [(s, hoist(x)) for s, x in prim]
     reps, red = sp.cse([x for _, x in hp], symbols=sp.numbered_symbols("x"),
                        optimizations="basic")
-    seq = list(reps) + [(s, x) for (s, _), x in zip(hp, red)]
+    seq = []
+    for li, lev in enumerate(hl):
+        lreps, lred = sp.cse([x for _, x in lev], symbols=sp.numbered_symbols("u%d_" % li),
+                             optimizations="basic")
+        seq += list(lreps) + [(sy, x) for (sy, _), x in zip(lev, lred)]
+    seq += list(reps) + [(s, x) for (s, _), x in zip(hp, red)]
     fz = sp.symbols("fz0:6")
 
     def T(name, expr):

@@ -7,28 +7,28 @@
 
 #include "hg_params.h"
 
-#define HG_GEN_REDUCED_NCONST 65  /* length of the constant table k[] */
-#define HG_GEN_REDUCED_TERMS_FLOPS 1540
-#define HG_GEN_REDUCED_CONSTRAINTS_FLOPS 375
-#define HG_GEN_REDUCED_POTENTIAL_FLOPS 85
-#define HG_GEN_FUSED_ACCEL_FLOPS 2603
+#define HG_GEN_REDUCED_NCONST 32  /* length of the constant table k[] */
+#define HG_GEN_REDUCED_TERMS_FLOPS 948
+#define HG_GEN_REDUCED_CONSTRAINTS_FLOPS 391
+#define HG_GEN_REDUCED_POTENTIAL_FLOPS 19
+#define HG_GEN_FUSED_ACCEL_FLOPS 1995
 
-/* Fill k[HG_GEN_REDUCED_NCONST] with the parameter-only subexpressions (146 flops). */
+/* Fill k[HG_GEN_REDUCED_NCONST] with the parameter-only subexpressions (108 flops). */
 void hg_gen_reduced_init(const hg_params *p, double *k);
 
-/* Mass matrix blocks (M_zz diagonal), Q = gravity - velocity terms, constraint Jacobian (Phi_z diagonal) and gamma = (Phi_q q')_q q' (1540 flops) */
+/* Mass matrix blocks (M_zz diagonal), Q = gravity - velocity terms, constraint Jacobian (Phi_z diagonal) and gamma = (Phi_q q')_q q' (948 flops) */
 void hg_gen_reduced_terms(const double *k, const double q[12], const double qd[12],
                           double Mzz[6], double Mzc[36], double Mcc[36], double Q[12],
                           double Phi_z[6], double Phi_c[36], double gamma[6]);
 
-/* Bar constraints |B-A|^2 - l^2 (m^2) and their Jacobian (375 flops) */
+/* Bar constraints |B-A|^2 - l^2 (m^2) and their Jacobian (391 flops) */
 void hg_gen_reduced_constraints(const double *k, const double q[12], double phi[6],
                                 double Phi_z[6], double Phi_c[36]);
 
-/* Gravity potential (J, up to a constant) (85 flops) */
+/* Gravity potential (J, up to a constant) (19 flops) */
 void hg_gen_reduced_potential(const double *k, const double q[12], double *v);
 
-/* Fused Reduced Cartesian dynamics: with carriage forces fz, the accelerations qdd = [z'', c''] (c independent); 0 or HG_ERR_SINGULAR_MASS (2603 flops) */
+/* Fused Reduced Cartesian dynamics: with carriage forces fz, the accelerations qdd = [z'', c''] (c independent); 0 or HG_ERR_SINGULAR_MASS (1995 flops) */
 int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],
                        const double fz[6], double qdd[12]);
 
