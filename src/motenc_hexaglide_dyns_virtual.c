@@ -37,7 +37,7 @@ RTAPI_MP_INT(board, "board id 0..3, the <board> in motenc.<board>. names");
 
 #define MODNAME "motenc_hexaglide_dyns_virtual"
 #define XP "motenc-hexaglide"          /* prefix of the pins the real board lacks */
-#define MAX_PERIOD_NS 100000000L       /* refuse thread periods above 100 ms */
+#define MAX_PERIOD_NS ((long)(HG_DT_MAX_S * 1e9)) /* longest step hg_step takes */
 
 /* --- hal_motenc's pins and parameters, same names, types, directions --- */
 typedef struct {
@@ -324,11 +324,15 @@ static void dynamics(void *arg, long period)
     b->prev_reset = *b->reset;
     if (memcmp(&b->hal_p, &b->m.p, sizeof b->hal_p) != 0)
         apply_params(b);
+    else if (b->have_refused) {       /* put back to the values in force */
+        b->have_refused = 0;
+        *b->param_error = 0;
+    }
     if (period <= 0 || period > MAX_PERIOD_NS) {
         if (!*b->fault)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: thread period %ld ns outside "
-                            "(0, %ld]: not integrating; use a servo thread of about 1 ms\n",
-                            b->id, period, MAX_PERIOD_NS);
+                            "(0, %ld]: not integrating; put motenc.%d.dynamics in a servo thread of about 1 ms\n",
+                            b->id, period, MAX_PERIOD_NS, b->id);
         latch_fault(b, HG_ERR_BAD_DT, "bad thread period");
         dt = 0;
     }
