@@ -9,6 +9,16 @@
 static const double post_cos[3] = {1.0, -0.5, -0.5};
 static const double post_sin[3] = {0.0, 0.86602540378443864676, -0.86602540378443864676};
 
+/* 1 when every one of the n positions is within HG_MAX_ABS_POSITION_BARS bar lengths. */
+static int within_reach(const hg_geometry *g, int n, const double *x)
+{
+    int k;
+    for (k = 0; k < n; k++)
+        if (!(fabs(x[k]) <= HG_MAX_ABS_POSITION_BARS * g->l_m))
+            return 0;
+    return 1;
+}
+
 /* Newton steps larger than this (m or rad) mean the iteration ran away */
 #define HG_FK_MAX_STEP 1.0
 #define HG_FK_ITERATION_CAP 100
@@ -125,6 +135,8 @@ int hg_inverse_kinematics(const hg_geometry *g, const double pose[6], double z[6
         return HG_ERR_NONFINITE_INPUT;
     if (fabs(pose[4]) > HG_MAX_ABS_B_RAD)
         return HG_ERR_EULER_SINGULAR;
+    if (!within_reach(g, 3, pose))
+        return HG_ERR_UNREACHABLE;
     hg_rotation(pose[3], pose[4], pose[5], R);
     head_offsets(g, R, w);
     for (k = 0; k < HG_NBARS; k++) {
@@ -192,6 +204,8 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
     }
     if (!hg_all_finite(6, z) || !hg_all_finite(6, pose) || !isfinite(o.tolerance_m))
         return HG_ERR_NONFINITE_INPUT;
+    if (!within_reach(g, 6, z))
+        return HG_ERR_UNREACHABLE;
     for (k = 0; k < 6; k++)
         c[k] = pose[k];
     for (it = 1; it <= o.max_iterations; it++) {

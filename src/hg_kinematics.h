@@ -18,6 +18,10 @@
 #include "hg_params.h"
 
 #define HG_NBARS 6
+/* positions (pose X Y Z, joints) beyond this many bar lengths are refused
+ * as unreachable: far outside any machine, and where rounding would
+ * swallow the bar length */
+#define HG_MAX_ABS_POSITION_BARS 100.0
 /* poses with |B| above this are refused (3-2-1 Euler singularity at 90 deg) */
 #define HG_MAX_ABS_B_RAD 1.4835298641951802 /* 85 degrees */
 
@@ -58,13 +62,14 @@ void hg_constraint_jacobian(const hg_geometry *g, const double z[6], const doubl
                             double jac_pose[36], double dphi_dz[6]);
 
 /* Closed-form inverse kinematics: pose -> joints. 0, or
- * HG_ERR_NONFINITE_INPUT, HG_ERR_EULER_SINGULAR, HG_ERR_UNREACHABLE (joints
- * untouched on failure). */
+ * HG_ERR_NONFINITE_INPUT, HG_ERR_EULER_SINGULAR, HG_ERR_UNREACHABLE (also for
+ * |X|, |Y|, |Z| beyond HG_MAX_ABS_POSITION_BARS l) (joints untouched on failure). */
 int hg_inverse_kinematics(const hg_geometry *g, const double pose[6], double z[6]);
 
 /* Forward kinematics by Newton-Raphson on the six bar equations with the
  * analytic Jacobian, starting from pose (the guess) and overwriting it with
- * the answer on success only. 0, or HG_ERR_NONFINITE_INPUT,
+ * the answer on success only. 0, or HG_ERR_NONFINITE_INPUT, HG_ERR_UNREACHABLE
+ * (a joint beyond HG_MAX_ABS_POSITION_BARS l),
  * HG_ERR_NO_CONVERGENCE, HG_ERR_SINGULAR_JACOBIAN, HG_ERR_WRONG_BRANCH,
  * HG_ERR_DIVERGED, HG_ERR_EULER_SINGULAR. report may be 0. */
 int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6],

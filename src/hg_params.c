@@ -152,14 +152,21 @@ int hg_params_check(const hg_params *p, const char **bad_field, const char **why
         "tool_d", "head_com", "j_rotor", "c_visc", "f_coulomb", "c_stop",
     };
     unsigned i;
-    int rc = hg_geometry_check(&p->geo, bad_field, why);
+    int rc = hg_geometry_check(&p->geo, bad_field, why), n;
     hg_params *q = (hg_params *)p; /* read-only use of the by-name lookup */
+    const hg_param_info *t = hg_params_table(&n);
     if (rc)
         return rc;
+    /* no machine needs a number of 1e9 SI units; beyond it products overflow */
+    for (i = 0; i < (unsigned)n; i++) {
+        double v = *hg_params_field(q, t[i].name);
+        if (!(fabs(v) < HG_PARAM_MAX_ABS))
+            return refuse(bad_field, t[i].name, why, "must be finite and below 1e9 in magnitude (SI units)");
+    }
     for (i = 0; i < sizeof positive / sizeof positive[0]; i++) {
         double v = *hg_params_field(q, positive[i]);
-        if (!(isfinite(v) && v > 0))
-            return refuse(bad_field, positive[i], why, "must be positive and finite");
+        if (!(isfinite(v) && v >= HG_PARAM_MIN_POSITIVE))
+            return refuse(bad_field, positive[i], why, "must be positive (at least 1e-9 in SI units)");
     }
     for (i = 0; i < sizeof nonneg / sizeof nonneg[0]; i++) {
         double v = *hg_params_field(q, nonneg[i]);

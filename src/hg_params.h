@@ -52,6 +52,11 @@ typedef struct {
     double counts_per_rev;     /* encoder counts per motor revolution */
 } hg_params;
 
+/* hg_params_check refuses any field at or above this magnitude (SI). */
+#define HG_PARAM_MAX_ABS 1e9
+/* ... and any must-be-positive field below this one (1/x would overflow). */
+#define HG_PARAM_MIN_POSITIVE 1e-9
+
 /* One entry of the by-name table. */
 typedef struct {
     const char *name;      /* spec name, e.g. "m_head" */

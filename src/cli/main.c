@@ -2,8 +2,6 @@
  *   hexaglide ik X Y Z A B C            pose (mm, deg) -> joints (mm)
  *   hexaglide fk J0..J5 [--guess ...]   joints (mm) -> pose (mm, deg)
  *   hexaglide sim [options]             offline dynamics simulation (CSV) */
-#include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,24 +15,6 @@ static void usage(FILE *f)
             "       hexaglide sim [--model standard|reduced-joints|reduced-cartesian]\n"
             "                     [--time S] [--dt S] [--volts V0,..,V5] [--set name=value]... [--csv FILE]\n"
             "units: X Y Z and joints in mm, A B C in degrees (see README.md)\n");
-}
-
-int cli_parse_double(const char *text, const char *what, double *out)
-{
-    char *end = 0;
-    double v;
-    errno = 0;
-    v = strtod(text, &end);
-    if (end == text || *end != '\0') {
-        fprintf(stderr, "hexaglide: %s: '%s' is not a number\n", what, text);
-        return -1;
-    }
-    if (!isfinite(v) || errno == ERANGE) {
-        fprintf(stderr, "hexaglide: %s: '%s' is not a finite number\n", what, text);
-        return -1;
-    }
-    *out = v;
-    return 0;
 }
 
 int main(int argc, char **argv)

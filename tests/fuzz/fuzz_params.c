@@ -1,0 +1,60 @@
+/* fuzz_params.c - the parameter set by name: random names (table names,
+ * near misses, garbage) and extreme values, then validation and model
+ * building. Properties: no crash; a refusal names a real field and a
+ * reason; a set that passes validation builds a model. */
+#include <stdio.h>
+#include <stdlib.h>
+#include "fuzz_input.h"
+#include "hg_dynamics.h"
+#include "hg_errors.h"
+
+static void fail(const char *what)
+{
+    fprintf(stderr, "fuzz_params: property violated: %s\n", what);
+    abort();
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    fuzz_input in = {data, size, 0};
+    static hg_model m;
+    hg_params p;
+    const hg_param_info *t;
+    const char *field = 0, *why = 0;
+    int n, i, rc, count = fuzz_byte(&in) % 8;
+    t = hg_params_table(&n);
+    hg_params_default(&p);
+    for (i = 0; i < count; i++) {
+        uint8_t sel = fuzz_byte(&in);
+        char name[24];
+        double v, scale;
+        if (sel < 200) {
+            int f = sel % n;
+            double *cur = hg_params_field(&p, t[f].name);
+            scale = fuzz_double(&in, -2.0, 3.0);
+            v = (fuzz_byte(&in) & 1) ? *cur * scale : scale;
+            rc = hg_params_set(&p, t[f].name, v);
+            if ((rc == HG_OK) != (isfinite(v) != 0))
+                fail("set accepted a non-finite value or refused a finite one");
+        } else { /* a name that is not in the table */
+            size_t k, len = fuzz_byte(&in) % (sizeof name - 1);
+            for (k = 0; k < len; k++)
+                name[k] = (char)(fuzz_byte(&in) | 1);
+            name[len] = '\0';
+            if (!hg_params_field(&p, name) && hg_params_set(&p, name, 1.0) != HG_ERR_BAD_PARAM)
+                fail("set accepted an unknown name");
+        }
+    }
+    rc = hg_params_check(&p, &field, &why);
+    if (rc != HG_OK && rc != HG_ERR_BAD_PARAM)
+        fail("check returned an unknown code");
+    if (rc == HG_ERR_BAD_PARAM && (!field || !why || !hg_params_field(&p, field)))
+        fail("refusal does not name a real field and a reason");
+    rc = hg_model_init(&m, &p, (hg_model_kind)(fuzz_byte(&in) % HG_MODEL_COUNT), &field, &why);
+    if (rc == HG_ERR_BAD_PARAM && (!field || !why))
+        fail("model init refusal without field and reason");
+    if (hg_params_check(&p, 0, 0) == HG_OK && rc == HG_ERR_BAD_PARAM &&
+        !hg_params_field(&p, field ? field : ""))
+        fail("model refused a valid set without naming a field");
+    return 0;
+}
