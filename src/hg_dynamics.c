@@ -81,20 +81,6 @@ static void unpack(const hg_model *m, const double *q, const double *qd, const d
     }
 }
 
-/* Max bar-length error (m) of joints z and pose c, from Phi = |B-A|^2 - l^2. */
-static double bar_length_error(const hg_params *p, const double *z, const double *c)
-{
-    double phi[6], worst = 0.0;
-    int k;
-    hg_constraints(&p->geo, z, c, phi);
-    for (k = 0; k < 6; k++) {
-        double e = fabs(phi[k]) / (sqrt(phi[k] + p->geo.l_m * p->geo.l_m) + p->geo.l_m);
-        if (!(e <= worst))
-            worst = e;
-    }
-    return worst;
-}
-
 /* Bar angles (phi, theta) of u = (A - B)/l = Rx(phi) Ry(theta) (0,0,-1). */
 static void bar_angles(const hg_params *p, const double *z, const double *c, double *a)
 {
@@ -127,7 +113,7 @@ int hg_data_reset(const hg_model *m, hg_data *d)
         return rc;
     /* z' = 0, so the velocity problem d' = A z' gives d' = 0 */
     unpack(m, q, qd, 0, &nd);
-    nd.residual_m = bar_length_error(&m->p, nd.z_m, nd.pose);
+    nd.residual_m = hg_bar_length_error(&m->p, nd.z_m, nd.pose);
     if (!(nd.residual_m <= HG_STAB_MAX_RESIDUAL_M))
         return HG_ERR_NO_CONVERGENCE;
     *d = nd;
@@ -184,7 +170,7 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
 int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
 {
     double q0[HG_NQ_MAX], qd0[HG_NQ_MAX], q1[HG_NQ_MAX], qd1[HG_NQ_MAX], qdd[HG_NQ_MAX];
-    double fz[6], cur[6], res;
+    double fz[6], cur[6], res = 0.0;
     int n = hg_system_nq(m), rc;
     if (!(isfinite(dt_s) && dt_s > 0.0 && dt_s <= HG_DT_MAX_S)) {
         d->last_error = HG_ERR_BAD_DT;
@@ -194,27 +180,24 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
     hg_carriage_forces(&m->p, d->z_m, d->zd_mps, volts, fz, cur);
     switch (m->kind) {
     case HG_MODEL_STANDARD:
-        rc = hg_step_standard(m, q0, qd0, fz, dt_s, q1, qd1, qdd);
+        rc = hg_step_standard(m, q0, qd0, fz, dt_s, q1, qd1, qdd, &res);
         break;
     case HG_MODEL_REDUCED_JOINTS:
-        rc = hg_step_joints(m, q0, qd0, fz, dt_s, q1, qd1, qdd);
+        rc = hg_step_joints(m, q0, qd0, fz, dt_s, q1, qd1, qdd, &res);
         break;
     case HG_MODEL_REDUCED_CARTESIAN:
-        rc = hg_step_cartesian(m, q0, qd0, fz, dt_s, q1, qd1, qdd);
+        rc = hg_step_cartesian(m, q0, qd0, fz, dt_s, q1, qd1, qdd, &res);
         break;
     case HG_MODEL_FUSED_CARTESIAN:
-        rc = hg_step_fused(m, q0, qd0, fz, dt_s, q1, qd1, qdd);
+        rc = hg_step_fused(m, q0, qd0, fz, dt_s, q1, qd1, qdd, &res);
         break;
     default:
         rc = HG_ERR_BAD_PARAM;
     }
     if (rc == 0 && !(hg_all_finite(n, q1) && hg_all_finite(n, qd1) && hg_all_finite(n, qdd)))
         rc = HG_ERR_STATE_NONFINITE;
-    if (rc == 0) {
-        res = bar_length_error(&m->p, q1, q1 + n - 6);
-        if (!(res <= HG_STAB_MAX_RESIDUAL_M))
-            rc = HG_ERR_STABILIZATION;
-    }
+    if (rc == 0 && !(res <= HG_STAB_MAX_RESIDUAL_M))
+        rc = HG_ERR_STABILIZATION;
     if (rc) {
         d->last_error = rc;
         return rc;

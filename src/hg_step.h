@@ -3,7 +3,8 @@
  * standard q = [z(6), a(12), c(6)] (a = phi_k, theta_k per bar), all SI.
  * Each step reads (q0, qd0) and the carriage forces fz (N) and writes the
  * new state (q1, qd1) and the accelerations of the step (qdd); it never
- * touches its inputs, so a failed step leaves the caller's state intact. */
+ * touches its inputs, so a failed step leaves the caller's state intact.
+ * residual_m receives the largest bar-length error after the stabilization. */
 #ifndef HG_STEP_H
 #define HG_STEP_H
 
@@ -43,21 +44,28 @@ void hg_improved_euler(int n, const double *q0, const double *qd0, const double 
 /* Standard and Reduced Joints: z independent (Eq. 13 with A = -Phi_d^-1 Phi_z),
  * one Newton-Raphson position iteration and the velocity projection. */
 int hg_step_joints(const hg_model *m, const double *q0, const double *qd0,
-                   const double fz[6], double dt, double *q1, double *qd1, double *qdd);
+                   const double fz[6], double dt, double *q1, double *qd1, double *qdd,
+                   double *residual_m);
 
 /* Standard with the bar structure of Phi_d and M_dd exploited (same
  * algorithm and results as hg_step_joints on the standard model). */
 int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
-                     const double fz[6], double dt, double *q1, double *qd1, double *qdd);
+                     const double fz[6], double dt, double *q1, double *qd1, double *qdd,
+                     double *residual_m);
 
 /* Reduced Cartesian: c independent, Phi_z diagonal (A = -Phi_z^-1 Phi_c). */
 int hg_step_cartesian(const hg_model *m, const double *q0, const double *qd0,
-                      const double fz[6], double dt, double *q1, double *qd1, double *qdd);
+                      const double fz[6], double dt, double *q1, double *qd1, double *qdd,
+                      double *residual_m);
 
 /* Fused Reduced Cartesian: the generated hg_gen_fused_accel, then the same
  * integration and stabilization as hg_step_cartesian. */
 int hg_step_fused(const hg_model *m, const double *q0, const double *qd0,
-                  const double fz[6], double dt, double *q1, double *qd1, double *qdd);
+                  const double fz[6], double dt, double *q1, double *qd1, double *qdd,
+                  double *residual_m);
+
+/* Largest bar-length error ||B - A| - l| (m) of joints z and pose c. */
+double hg_bar_length_error(const hg_params *p, const double *z, const double *c);
 
 /* Full Newton-Raphson on the dependent positions of q (z fixed; for the
  * reduced models the head pose c, for the standard model the bar angles

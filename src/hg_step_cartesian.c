@@ -5,76 +5,98 @@
  * variant gets its accelerations from one generated function. */
 #include "hg_step.h"
 #include "hg_linalg.h"
+#include "hg_spd6.h"
 #include "hg_errors.h"
+
+/* fixed 6x6 loops: let the compiler unroll them completely */
+#define HG_UNROLL _Pragma("GCC unroll 6")
 #include "hg_gen_reduced.h"
 
-/* One Newton step z -= phi / Phi_z at the predicted state, then z' = A c'. */
-static void stabilize(const hg_model *m, double *q1, double *qd1)
+/* One Newton step z -= phi / Phi_z at the predicted state, then
+ * z' = A c' = -Phi_z^-1 (Phi_c c'). Phi is exactly quadratic in z_k
+ * (d^2 Phi_k / dz_k^2 = 2), so the bar's residual after the step is
+ * delta^2 (m^2): the bar-length error delta^2 / (2 l) needs no new
+ * evaluation. Returns that error (m). */
+static double stabilize(const hg_model *m, double *q1, double *qd1)
 {
-    double phi[6], pz[6], pc[36];
-    int k, j;
-    hg_gen_reduced_constraints(m->k, q1, phi, pz, pc);
+    double phi[6], pz[6], vc[6], worst = 0.0;
+    int k;
+    hg_gen_reduced_stabilize(m->k, q1, qd1, phi, pz, vc);
+    HG_UNROLL
     for (k = 0; k < 6; k++) {
-        double ipz = 1.0 / pz[k], v = 0.0;
-        q1[k] -= phi[k] * ipz;
-        for (j = 0; j < 6; j++)
-            v += pc[6 * k + j] * qd1[6 + j];
-        qd1[k] = -v * ipz;
+        double ipz = 1.0 / pz[k], delta = phi[k] * ipz, e;
+        q1[k] -= delta;
+        qd1[k] = -vc[k] * ipz;
+        e = delta * delta / (2.0 * m->p.geo.l_m);
+        if (!(e <= worst))
+            worst = e;
     }
+    return worst;
 }
 
 int hg_step_cartesian(const hg_model *m, const double *q0, const double *qd0,
-                      const double fz[6], double dt, double *q1, double *qd1, double *qdd)
+                      const double fz[6], double dt, double *q1, double *qd1, double *qdd,
+                      double *residual_m)
 {
     double mzz[6], Mzc[36], Mcc[36], Q[12], pz[6], pc[36], gm[6];
     double A[36], b[6], fq[6], T1[36], Mh[36], rhs[6];
     int i, j, k, rc;
     hg_gen_reduced_terms(m->k, q0, qd0, mzz, Mzc, Mcc, Q, pz, pc, gm);
+    HG_UNROLL
     for (k = 0; k < 6; k++) {
         double ipz = 1.0 / pz[k];
+        HG_UNROLL
         for (j = 0; j < 6; j++)
             A[6 * k + j] = -pc[6 * k + j] * ipz;
         b[k] = -gm[k] * ipz;
         fq[k] = Q[k] + fz[k];
     }
+    HG_UNROLL
     for (i = 0; i < 6; i++)            /* T1 = M_cz + A^T M_zz */
+        HG_UNROLL
         for (k = 0; k < 6; k++)
             T1[6 * i + k] = Mzc[6 * k + i] + A[6 * k + i] * mzz[k];
+    HG_UNROLL
     for (i = 0; i < 6; i++) {
         double r = Q[6 + i];
+        HG_UNROLL
         for (k = 0; k < 6; k++)
             r += A[6 * k + i] * fq[k] - T1[6 * i + k] * b[k];
         rhs[i] = r;
+        HG_UNROLL
         for (j = 0; j <= i; j++) {
             double v = Mcc[6 * i + j];
+            HG_UNROLL
             for (k = 0; k < 6; k++)
                 v += T1[6 * i + k] * A[6 * k + j] + Mzc[6 * k + j] * A[6 * k + i];
             Mh[6 * i + j] = v;
         }
     }
-    rc = hg_cholesky_factor(6, Mh);
+    rc = hg_spd6_solve(Mh, rhs);
     if (rc)
         return rc;
-    hg_cholesky_solve(6, Mh, rhs);
+    HG_UNROLL
     for (k = 0; k < 6; k++) {          /* z'' = A c'' + b */
         double v = b[k];
+        HG_UNROLL
         for (j = 0; j < 6; j++)
             v += A[6 * k + j] * rhs[j];
         qdd[k] = v;
         qdd[6 + k] = rhs[k];
     }
     hg_improved_euler(HG_NQ_REDUCED, q0, qd0, qdd, dt, q1, qd1);
-    stabilize(m, q1, qd1);
+    *residual_m = stabilize(m, q1, qd1);
     return 0;
 }
 
 int hg_step_fused(const hg_model *m, const double *q0, const double *qd0,
-                  const double fz[6], double dt, double *q1, double *qd1, double *qdd)
+                  const double fz[6], double dt, double *q1, double *qd1, double *qdd,
+                  double *residual_m)
 {
     int rc = hg_gen_fused_accel(m->k, q0, qd0, fz, qdd);
     if (rc)
         return rc;
     hg_improved_euler(HG_NQ_REDUCED, q0, qd0, qdd, dt, q1, qd1);
-    stabilize(m, q1, qd1);
+    *residual_m = stabilize(m, q1, qd1);
     return 0;
 }

@@ -5,6 +5,7 @@
 #include <string.h>
 #include "hg_step.h"
 #include "hg_linalg.h"
+#include "hg_spd6.h"
 #include "hg_errors.h"
 
 void hg_improved_euler(int n, const double *q0, const double *qd0, const double *qdd,
@@ -57,10 +58,9 @@ static int reduced_accelerations(const hg_system *s, const double *X, const doub
             Mh[i * 6 + j] = v;
         }
     }
-    rc = hg_cholesky_factor(6, Mh);
+    rc = hg_spd6_solve(Mh, rhs);
     if (rc)
         return rc;
-    hg_cholesky_solve(6, Mh, rhs);
     for (i = 0; i < 6; i++)
         qdd[i] = rhs[i];
     for (r = 0; r < nd; r++) {         /* d'' = A z'' + b */
@@ -73,7 +73,8 @@ static int reduced_accelerations(const hg_system *s, const double *X, const doub
 }
 
 int hg_step_joints(const hg_model *m, const double *q0, const double *qd0,
-                   const double fz[6], double dt, double *q1, double *qd1, double *qdd)
+                   const double fz[6], double dt, double *q1, double *qd1, double *qdd,
+                   double *residual_m)
 {
     hg_system s;
     double X[18 * 7], phi[18];
@@ -103,5 +104,6 @@ int hg_step_joints(const hg_model *m, const double *q0, const double *qd0,
             v -= X[r * 7 + j] * qd1[j];
         qd1[6 + r] = v;
     }
+    *residual_m = hg_bar_length_error(&m->p, q1, q1 + n - 6);
     return 0;
 }

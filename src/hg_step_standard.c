@@ -9,6 +9,7 @@
 #include <string.h>
 #include "hg_step.h"
 #include "hg_linalg.h"
+#include "hg_spd6.h"
 #include "hg_errors.h"
 #include "hg_gen_standard.h"
 
@@ -87,7 +88,8 @@ static void matrix_a(const std_factor *f, double A[18 * 6])
 }
 
 int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
-                     const double fz[6], double dt, double *q1, double *qd1, double *qdd)
+                     const double fz[6], double dt, double *q1, double *qd1, double *qdd,
+                     double *residual_m)
 {
     double mzz[6], Mza[12], Maa[24], Mcc[36], Q[24], Pa[36], Pc[108], gm[18];
     double A[18 * 6], b[18], T1[6 * 18], Mh[36], rhs[6], phi[18], x[18];
@@ -126,9 +128,8 @@ int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
             Mh[6 * i + j] = v;
         }
     }
-    if ((rc = hg_cholesky_factor(6, Mh)))
+    if ((rc = hg_spd6_solve(Mh, rhs)))
         return rc;
-    hg_cholesky_solve(6, Mh, rhs);
     for (i = 0; i < 6; i++)
         qdd[i] = rhs[i];
     for (r = 0; r < 18; r++) {         /* d'' = A z'' + b */
@@ -151,5 +152,6 @@ int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
             v += A[r * 6 + j] * qd1[j];
         qd1[6 + r] = v;
     }
+    *residual_m = hg_bar_length_error(&m->p, q1, q1 + 18);
     return 0;
 }

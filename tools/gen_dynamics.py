@@ -325,6 +325,23 @@ def reduced_atomized(q, qd):
     return dict(levels=atoms.levels, M=M, Q=Q, phi=phi, Jq=Jq, gamma=gamma, V=V)
 
 
+def reduced_stabilize_atomized(q, qd):
+    """phi, Phi_z and Phi_c c' = -2 d.(P' + w x r) of the reduced model."""
+    z, Pp, Pd = q[:6, 0], sp.Matrix(q[6:9, 0]), sp.Matrix(qd[6:9, 0])
+    atoms = Atoms()
+    kin = reduced_kinematics(q, qd, atoms)
+    r, w = kin["r"], kin["w"]
+    atoms.level()
+    phi, pz, vc = sp.zeros(6, 1), sp.zeros(6, 1), sp.zeros(6, 1)
+    for k in range(6):
+        B = post_point(k, P["lb"]) + sp.Matrix([0, 0, P["h"] + z[k]])
+        d = atoms.vec("d%d_" % k, B - Pp - r[k])
+        phi[k] = (d.T * d)[0] - P["l"] ** 2
+        pz[k] = 2 * d[2]
+        vc[k] = -2 * (d.T * (Pd + w.cross(r[k])))[0]
+    return dict(levels=atoms.levels, phi=phi, Phi_z=pz, vc=vc)
+
+
 def reduced_constraints_atomized(q):
     """phi and Phi_q of the reduced model with the head offsets as atoms."""
     z, Pp = q[:6, 0], sp.Matrix(q[6:9, 0])
@@ -632,6 +649,15 @@ def gen_reduced(outdir):
         "                                double Phi_z[6], double Phi_c[36])",
         "Bar constraints |B-A|^2 - l^2 (m^2) and their Jacobian", assigns, names,
         levels=mc["levels"])
+    ms = reduced_stabilize_atomized(q, qd)
+    assigns = [("phi[%d]" % i, ms["phi"][i]) for i in range(6)]
+    assigns += [("Phi_z[%d]" % i, ms["Phi_z"][i]) for i in Z]
+    assigns += [("vc[%d]" % i, ms["vc"][i]) for i in Z]
+    fl_stab = u.function(
+        "void hg_gen_reduced_stabilize(const double *k, const double q[12], const double qd[12],\n"
+        "                              double phi[6], double Phi_z[6], double vc[6])",
+        "For the Reduced Cartesian stabilization: phi, the diagonal Phi_z and "
+        "vc = Phi_c c' (m^2/s)", assigns, names, levels=ms["levels"])
     fl_pot = u.function(
         "void hg_gen_reduced_potential(const double *k, const double q[12], double *v)",
         "Gravity potential (J, up to a constant)", [("*v", m["V"])], names,
@@ -640,6 +666,7 @@ def gen_reduced(outdir):
     u.macros += ["#define HG_GEN_REDUCED_TERMS_FLOPS %d" % fl_terms,
                  "#define HG_GEN_REDUCED_CONSTRAINTS_FLOPS %d" % fl_con,
                  "#define HG_GEN_REDUCED_POTENTIAL_FLOPS %d" % fl_pot,
+                 "#define HG_GEN_REDUCED_STABILIZE_FLOPS %d" % fl_stab,
                  "#define HG_GEN_FUSED_ACCEL_FLOPS %d" % fl_fused]
     write_unit(u, outdir)
     return m
@@ -655,6 +682,9 @@ def gen_fused(u, m, names):
     sym = {}
 
     def S(name, expr):
+        expr = sp.sympify(expr)
+        if expr.is_Number or expr.free_symbols <= PARAMS:
+            return expr         # structural zeros and constants stay literal
         s = sp.Symbol(name)
         prim.append((s, expr))
         sym[name] = s
@@ -686,6 +716,9 @@ def gen_fused(u, m, names):
     fz = sp.symbols("fz0:6")
 
     def T(name, expr):
+        expr = hoist(sp.sympify(expr))
+        if expr.is_Number:
+            return expr
         s = sp.Symbol(name)
         seq.append((s, expr))
         return s

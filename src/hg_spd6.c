@@ -1,0 +1,48 @@
+/* hg_spd6.c - 6x6 LDL^T solve for the reduced mass matrices. */
+#include <math.h>
+#include "hg_spd6.h"
+#include "hg_errors.h"
+
+/* fixed 6x6 loops: let the compiler unroll them completely */
+#define HG_UNROLL _Pragma("GCC unroll 6")
+
+#define HG_SPD6_MIN_PIVOT 1e-13   /* relative to the diagonal entry */
+
+int hg_spd6_solve(double M[36], double b[6])
+{
+    double id[6];      /* 1 / D */
+    int i, j, k;
+    HG_UNROLL
+    for (j = 0; j < 6; j++) {
+        double d = M[6 * j + j];
+        HG_UNROLL
+        for (k = 0; k < j; k++)
+            d -= M[6 * j + k] * M[6 * j + k] * M[6 * k + k];
+        if (!(d > HG_SPD6_MIN_PIVOT * M[6 * j + j]) || !isfinite(d))
+            return HG_ERR_SINGULAR_MASS;
+        M[6 * j + j] = d;
+        id[j] = 1.0 / d;
+        HG_UNROLL
+        for (i = j + 1; i < 6; i++) {   /* L(i,j) = (M(i,j) - sum L(i,k) D(k) L(j,k)) / D(j) */
+            double s = M[6 * i + j];
+            HG_UNROLL
+            for (k = 0; k < j; k++)
+                s -= M[6 * i + k] * M[6 * k + k] * M[6 * j + k];
+            M[6 * i + j] = s * id[j];
+        }
+    }
+    HG_UNROLL
+    for (i = 0; i < 6; i++)            /* L y = b */
+        HG_UNROLL
+        for (k = 0; k < i; k++)
+            b[i] -= M[6 * i + k] * b[k];
+    HG_UNROLL
+    for (i = 0; i < 6; i++)            /* D z = y */
+        b[i] *= id[i];
+    HG_UNROLL
+    for (i = 5; i >= 0; i--)           /* L^T x = z */
+        HG_UNROLL
+        for (k = i + 1; k < 6; k++)
+            b[i] -= M[6 * k + i] * b[k];
+    return 0;
+}

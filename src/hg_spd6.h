@@ -1,0 +1,12 @@
+/* hg_spd6.h - solve M x = b for a 6x6 symmetric positive definite M
+ * (the reduced mass matrix of every parametrization) by LDL^T with
+ * reciprocal pivots: no square roots, six divisions, fixed size. */
+#ifndef HG_SPD6_H
+#define HG_SPD6_H
+
+/* Factor the lower triangle of M (row-major 6x6, upper triangle ignored)
+ * in place and solve for b in place. 0, or HG_ERR_SINGULAR_MASS when a
+ * pivot is not positive (relative to the diagonal) or not finite. */
+int hg_spd6_solve(double M[36], double b[6]);
+
+#endif
