@@ -82,6 +82,7 @@ typedef struct {
     hal_bit_t *param_error, *dac_garbage;
     hal_s32_t *fault_code;
     hal_u32_t *dout_word;
+    hal_s32_t estop_loop_out;         /* output in the E-STOP loop, -1 none */
     hal_float_t adc_volts_per_amp;
     hg_params hal_p;                  /* the model parameters as HAL sees them */
     /* private state */
@@ -164,6 +165,18 @@ static void apply_params(board_t *b)
         for (k = 0; k < HG_BOARD_JOINTS; k++)
             hg_encoder_rescale(&b->encoder[k], b->d.z_m[k], b->m.p.lead_m, b->m.p.counts_per_rev);
     }
+}
+
+/* 1 when the board's E-STOP loop is open: the E-STOP button is pressed, or
+ * the loop output (estop-loop-out, iocontrol's user-enable-out in the stock
+ * motenc_io.hal) is off. The commanded output (pin xor invert) counts, so
+ * the loop can close although an open loop switches the outputs off. */
+static int estop_active(const board_t *b)
+{
+    int o = b->estop_loop_out;
+    if (*b->estop_button)
+        return 1;
+    return o >= 0 && o < HG_BOARD_OUTPUTS && *b->out[o].value == b->out[o].invert;
 }
 
 /* --- hal_motenc's functions --- */
@@ -262,7 +275,7 @@ static void digital_out_write(void *arg, long period)
         if (*b->out[j].value != b->out[j].invert)
             word |= (hal_u32_t)1 << j;
     /* E-STOP and an expired watchdog switch the outputs off in hardware */
-    *b->dout_word = (*b->estop_button || b->wd.expired) ? 0 : word;
+    *b->dout_word = (estop_active(b) || b->wd.expired) ? 0 : word;
 }
 
 static void misc_update(void *arg, long period)
@@ -274,7 +287,7 @@ static void misc_update(void *arg, long period)
         *b->watchdog_reset = 0;
         hg_watchdog_kick(&b->wd);
     }
-    *b->estop_in = *b->estop_button != 0;
+    *b->estop_in = estop_active(b);
     *b->estop_in_not = !*b->estop_in;
 }
 
@@ -337,7 +350,7 @@ static void dynamics(void *arg, long period)
         dt = 0;
     }
     expired = hg_watchdog_advance(&b->wd, dt);
-    amps_on = !*b->estop_button && !expired && !*b->fault;
+    amps_on = !estop_active(b) && !expired && !*b->fault;
     for (k = 0; k < HG_BOARD_JOINTS; k++)
         volts[k] = (amps_on && !*b->joint[k].amp_fail) ? b->dac_out_v[k] : 0.0;
     *b->amps_on = amps_on;
@@ -487,6 +500,8 @@ static int export_extra(board_t *b)
     TRY(hal_pin_bit_newf(HAL_OUT, &b->dac_garbage, comp_id, XP ".%d.dac-nan", id));
     TRY(hal_pin_u32_newf(HAL_OUT, &b->dout_word, comp_id, XP ".%d.digital-out-word", id));
     TRY(hal_param_float_newf(HAL_RW, &b->adc_volts_per_amp, comp_id, XP ".%d.adc-volts-per-amp", id));
+    TRY(hal_param_s32_newf(HAL_RW, &b->estop_loop_out, comp_id, XP ".%d.estop-loop-out", id));
+    b->estop_loop_out = 7;            /* out-07 as in LinuxCNC's motenc_io.hal */
     b->adc_volts_per_amp = 0.5;
     for (k = 0; k < n; k++)
         TRY(hal_param_float_newf(HAL_RW, (hal_float_t *)((char *)&b->hal_p + t[k].offset),

@@ -30,6 +30,7 @@ start_board() {
     for f in encoder-read digital-in-read adc-read dac-write dynamics digital-out-write misc-update; do
         h addf $B.$f servo || { not_ok "addf $B.$f"; exit 1; }
     done
+    h setp $B.out-07 1           # close the E-STOP loop (iocontrol's user-enable-out in a config)
 }
 
 # run_for SECONDS: let the thread run (wall clock; sim time is read from pins)
