@@ -123,9 +123,15 @@ int cmd_sim(int argc, char **argv)
             sim_usage();
             return 0;
         }
-        if (!has || strncmp(a, "--", 2) != 0) {
-            fprintf(stderr, "hexaglide sim: %s '%s'\n",
-                    strncmp(a, "--", 2) == 0 ? "missing value after" : "unexpected argument", a);
+        if (strcmp(a, "--model") && strcmp(a, "--time") && strcmp(a, "--dt") && strcmp(a, "--volts") &&
+            strcmp(a, "--set") && strcmp(a, "--csv")) {
+            fprintf(stderr, "hexaglide sim: unknown %s '%s'\n",
+                    strncmp(a, "--", 2) == 0 ? "option" : "argument", a);
+            sim_usage();
+            return 2;
+        }
+        if (!has) {
+            fprintf(stderr, "hexaglide sim: missing value after '%s'\n", a);
             sim_usage();
             return 2;
         }
@@ -150,12 +156,8 @@ int cmd_sim(int argc, char **argv)
                 return 2;
             if (strncmp(argv[i], "h=", 2) == 0)
                 h_set = 1;
-        } else if (strcmp(a, "--csv") == 0) {
-            csv = argv[++i];
         } else {
-            fprintf(stderr, "hexaglide sim: unknown option '%s'\n", a);
-            sim_usage();
-            return 2;
+            csv = argv[++i];
         }
     }
     if (!h_set)
@@ -205,8 +207,9 @@ int cmd_sim(int argc, char **argv)
     for (s = 0; s < n; s++) {
         rc = hg_step(m, &d, volts, dt);
         if (rc) {
-            fprintf(stderr, "hexaglide sim: step failed at t = %.6f s: %s (code %d)\n",
-                    d.t_s, hg_strerror(rc), rc);
+            fprintf(stderr, "hexaglide sim: the step from t = %.6f s to %.6f s failed: %s (code %d); "
+                            "the CSV stops at t = %.6f s\n",
+                    d.t_s, d.t_s + dt, hg_strerror(rc), rc, d.t_s);
             break;
         }
         d.t_s = (double)(s + 1) * dt;   /* no drift from summing dt */
