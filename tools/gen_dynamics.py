@@ -731,24 +731,25 @@ def gen_fused(u, m, names):
             Mh[i][j] = T("mh%d_%d" % (i, j), e)
     rhs = [T("r%d" % i, qc[i] + sum(A[kk][i] * fq[kk] - T1[i][kk] * b[kk] for kk in range(6)))
            for i in range(6)]
-    # unrolled Cholesky M = L L^T, pivot checks inserted by the printer
+    # unrolled LDL^T (M = L D L^T, unit L, reciprocal pivots: no square
+    # roots); pivot checks inserted by the printer
     L = [[None] * 6 for _ in range(6)]
-    iL = [None] * 6
+    E = [[None] * 6 for _ in range(6)]     # E[i][k] = L[i][k] D[k]
+    iD = [None] * 6
     checks = []
     for j in range(6):
-        dj = T("d%d" % j, Mh[j][j] - sum(L[j][kk] ** 2 for kk in range(j)))
+        dj = T("d%d" % j, Mh[j][j] - sum(L[j][kk] * E[j][kk] for kk in range(j)))
         checks.append(dj)
-        L[j][j] = T("l%d_%d" % (j, j), sp.sqrt(dj))
-        iL[j] = T("il%d" % j, 1 / L[j][j])
+        iD[j] = T("id%d" % j, 1 / dj)
         for i in range(j + 1, 6):
-            L[i][j] = T("l%d_%d" % (i, j),
-                        (Mh[i][j] - sum(L[i][kk] * L[j][kk] for kk in range(j))) * iL[j])
+            E[i][j] = T("ld%d_%d" % (i, j), Mh[i][j] - sum(L[i][kk] * E[j][kk] for kk in range(j)))
+            L[i][j] = T("l%d_%d" % (i, j), E[i][j] * iD[j])
     y = [None] * 6
     for i in range(6):
-        y[i] = T("y%d" % i, (rhs[i] - sum(L[i][kk] * y[kk] for kk in range(i))) * iL[i])
+        y[i] = T("y%d" % i, rhs[i] - sum(L[i][kk] * y[kk] for kk in range(i)))
     x = [None] * 6
     for i in reversed(range(6)):
-        x[i] = T("cdd%d" % i, (y[i] - sum(L[kk][i] * x[kk] for kk in range(i + 1, 6))) * iL[i])
+        x[i] = T("cdd%d" % i, y[i] * iD[i] - sum(L[kk][i] * x[kk] for kk in range(i + 1, 6)))
     outs = [("qdd[%d]" % (6 + i), x[i]) for i in range(6)]
     outs += [("qdd[%d]" % i, b[i] + sum(A[i][j] * x[j] for j in range(6))) for i in range(6)]
     pr = Printer({**names, **u.kmap(), **{s: "fz[%d]" % i for i, s in enumerate(fz)}})

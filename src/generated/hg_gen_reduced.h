@@ -12,7 +12,7 @@
 #define HG_GEN_REDUCED_CONSTRAINTS_FLOPS 391
 #define HG_GEN_REDUCED_POTENTIAL_FLOPS 19
 #define HG_GEN_REDUCED_STABILIZE_FLOPS 271
-#define HG_GEN_FUSED_ACCEL_FLOPS 1829
+#define HG_GEN_FUSED_ACCEL_FLOPS 1811
 
 /* Fill k[HG_GEN_REDUCED_NCONST] with the parameter-only subexpressions (108 flops). */
 void hg_gen_reduced_init(const hg_params *p, double *k);
@@ -33,7 +33,7 @@ void hg_gen_reduced_stabilize(const double *k, const double q[12], const double 
 /* Gravity potential (J, up to a constant) (19 flops) */
 void hg_gen_reduced_potential(const double *k, const double q[12], double *v);
 
-/* Fused Reduced Cartesian dynamics: with carriage forces fz, the accelerations qdd = [z'', c''] (c independent); 0 or HG_ERR_SINGULAR_MASS (1829 flops) */
+/* Fused Reduced Cartesian dynamics: with carriage forces fz, the accelerations qdd = [z'', c''] (c independent); 0 or HG_ERR_SINGULAR_MASS (1811 flops) */
 int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],
                        const double fz[6], double qdd[12]);
 
