@@ -89,6 +89,7 @@ typedef struct {
     hg_model m, m_new;
     hg_data d, d_saved;
     hg_params refused;                /* last parameter set refused (logged once) */
+    hg_params candidate;              /* the set being checked */
     hg_encoder encoder[HG_BOARD_ENCODERS];
     hg_watchdog wd;
     unsigned switches[HG_BOARD_JOINTS];
@@ -134,7 +135,8 @@ static void reinit_at_home(board_t *b)
 }
 
 /* Apply changed HAL model parameters if hg_params_check accepts them;
- * refuse (log once, param-error) otherwise. New geometry restarts at HOME. */
+ * refuse (log once, param-error) otherwise. New geometry restarts at HOME;
+ * h follows l, lb, lp (as in the command line) unless it was set too. */
 static void apply_params(board_t *b)
 {
     const char *field = "?", *why = "?";
@@ -142,7 +144,12 @@ static void apply_params(board_t *b)
     double old_lead = b->m.p.lead_m, old_cpr = b->m.p.counts_per_rev;
     if (b->have_refused && memcmp(&b->hal_p, &b->refused, sizeof b->hal_p) == 0)
         return;                       /* same refused set: already said so */
-    rc = hg_model_init(&b->m_new, &b->hal_p, b->m.kind, &field, &why);
+    b->candidate = b->hal_p;
+    if (b->hal_p.geo.h_m == b->m.p.geo.h_m &&
+        (b->hal_p.geo.l_m != b->m.p.geo.l_m || b->hal_p.geo.lb_m != b->m.p.geo.lb_m ||
+         b->hal_p.geo.lp_m != b->m.p.geo.lp_m))     /* h not set: keep HOME at pose 0 */
+        b->candidate.geo.h_m = hg_home_height(&b->candidate.geo);
+    rc = hg_model_init(&b->m_new, &b->candidate, b->m.kind, &field, &why);
     if (rc) {
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter %s refused: %s (%s); "
                         "keeping the previous parameter set\n", b->id,
