@@ -408,11 +408,32 @@ static void dynamics(void *arg, long period)
 
 #define TRY(call) do { if ((rc = (call)) != 0) return rc; } while (0)
 
+/* n analog channels <kind>-CC-value (pin, dir) with -offset and -gain. */
+static int export_analog(int id, analog_hal *a, int n, hal_pin_dir_t dir, const char *kind)
+{
+    int rc, ch;
+    for (ch = 0; ch < n; ch++) {
+        TRY(hal_pin_float_newf(dir, &a[ch].value, comp_id, "motenc.%d.%s-%02d-value", id, kind, ch));
+        TRY(hal_param_float_newf(HAL_RW, &a[ch].offset, comp_id, "motenc.%d.%s-%02d-offset", id, kind, ch));
+        TRY(hal_param_float_newf(HAL_RW, &a[ch].gain, comp_id, "motenc.%d.%s-%02d-gain", id, kind, ch));
+        a[ch].offset = 0.0;
+        a[ch].gain = 1.0;
+    }
+    return 0;
+}
+
+/* Export function motenc.<board>.<what>. */
+static int export_funct(board_t *b, const char *what, void (*f)(void *, long), int uses_fp)
+{
+    char name[HAL_NAME_LEN + 1];
+    rtapi_snprintf(name, sizeof name, "motenc.%d.%s", b->id, what);
+    return hal_export_funct(name, f, b, uses_fp, 0, comp_id);
+}
+
 /* hal_motenc's pins, parameters and functions, in its order. */
 static int export_motenc(board_t *b)
 {
     int rc, ch, id = b->id;
-    char name[HAL_NAME_LEN + 1];
     for (ch = 0; ch < HG_BOARD_ENCODERS; ch++) {
         enc_hal *p = &b->enc[ch];
         TRY(hal_pin_s32_newf(HAL_OUT, &p->count, comp_id, "motenc.%d.enc-%02d-count", id, ch));
@@ -423,48 +444,30 @@ static int export_motenc(board_t *b)
         TRY(hal_param_float_newf(HAL_RW, &p->scale, comp_id, "motenc.%d.enc-%02d-scale", id, ch));
         p->scale = p->old_scale = p->scale_recip = 1.0;
     }
-    rtapi_snprintf(name, sizeof name, "motenc.%d.encoder-read", id);
-    TRY(hal_export_funct(name, encoder_read, b, 1, 0, comp_id));
-    for (ch = 0; ch < HG_BOARD_DACS; ch++) {
-        TRY(hal_pin_float_newf(HAL_IN, &b->dac[ch].value, comp_id, "motenc.%d.dac-%02d-value", id, ch));
-        TRY(hal_param_float_newf(HAL_RW, &b->dac[ch].offset, comp_id, "motenc.%d.dac-%02d-offset", id, ch));
-        TRY(hal_param_float_newf(HAL_RW, &b->dac[ch].gain, comp_id, "motenc.%d.dac-%02d-gain", id, ch));
-        b->dac[ch].offset = 0.0;
-        b->dac[ch].gain = 1.0;
-    }
-    rtapi_snprintf(name, sizeof name, "motenc.%d.dac-write", id);
-    TRY(hal_export_funct(name, dac_write, b, 1, 0, comp_id));
-    for (ch = 0; ch < HG_BOARD_ADCS; ch++) {
-        TRY(hal_pin_float_newf(HAL_OUT, &b->adc[ch].value, comp_id, "motenc.%d.adc-%02d-value", id, ch));
-        TRY(hal_param_float_newf(HAL_RW, &b->adc[ch].offset, comp_id, "motenc.%d.adc-%02d-offset", id, ch));
-        TRY(hal_param_float_newf(HAL_RW, &b->adc[ch].gain, comp_id, "motenc.%d.adc-%02d-gain", id, ch));
-        b->adc[ch].offset = 0.0;
-        b->adc[ch].gain = 1.0;
-    }
-    rtapi_snprintf(name, sizeof name, "motenc.%d.adc-read", id);
-    TRY(hal_export_funct(name, adc_read, b, 1, 0, comp_id));
+    TRY(export_funct(b, "encoder-read", encoder_read, 1));
+    TRY(export_analog(id, b->dac, HG_BOARD_DACS, HAL_IN, "dac"));
+    TRY(export_funct(b, "dac-write", dac_write, 1));
+    TRY(export_analog(id, b->adc, HG_BOARD_ADCS, HAL_OUT, "adc"));
+    TRY(export_funct(b, "adc-read", adc_read, 1));
     for (ch = 0; ch < HG_BOARD_INPUTS; ch++) {
         TRY(hal_pin_bit_newf(HAL_OUT, &b->in[ch].value, comp_id, "motenc.%d.in-%02d", id, ch));
         TRY(hal_pin_bit_newf(HAL_OUT, &b->in[ch].value_not, comp_id, "motenc.%d.in-%02d-not", id, ch));
         *b->in[ch].value_not = 1;
     }
-    rtapi_snprintf(name, sizeof name, "motenc.%d.digital-in-read", id);
-    TRY(hal_export_funct(name, digital_in_read, b, 0, 0, comp_id));
+    TRY(export_funct(b, "digital-in-read", digital_in_read, 0));
     for (ch = 0; ch < HG_BOARD_OUTPUTS; ch++) {
         TRY(hal_pin_bit_newf(HAL_IN, &b->out[ch].value, comp_id, "motenc.%d.out-%02d", id, ch));
         TRY(hal_param_bit_newf(HAL_RW, &b->out[ch].invert, comp_id, "motenc.%d.out-%02d-invert", id, ch));
         b->out[ch].invert = 0;
     }
-    rtapi_snprintf(name, sizeof name, "motenc.%d.digital-out-write", id);
-    TRY(hal_export_funct(name, digital_out_write, b, 0, 0, comp_id));
+    TRY(export_funct(b, "digital-out-write", digital_out_write, 0));
     TRY(hal_pin_bit_newf(HAL_OUT, &b->estop_in, comp_id, "motenc.%d.estop-in", id));
     TRY(hal_pin_bit_newf(HAL_OUT, &b->estop_in_not, comp_id, "motenc.%d.estop-in-not", id));
     TRY(hal_pin_bit_newf(HAL_IO, &b->watchdog_reset, comp_id, "motenc.%d.watchdog-reset", id));
     TRY(hal_param_u32_newf(HAL_RW, &b->watchdog_control, comp_id, "motenc.%d.watchdog-control", id));
     *b->estop_in_not = 1;
     b->watchdog_control = 0;
-    rtapi_snprintf(name, sizeof name, "motenc.%d.misc-update", id);
-    TRY(hal_export_funct(name, misc_update, b, 0, 0, comp_id));
+    TRY(export_funct(b, "misc-update", misc_update, 0));
     return 0;
 }
 
@@ -475,7 +478,6 @@ static int export_extra(board_t *b)
     static const char axis[6] = {'x', 'y', 'z', 'a', 'b', 'c'};
     int rc, k, n, id = b->id;
     const hg_param_info *t = hg_params_table(&n);
-    char name[HAL_NAME_LEN + 1];
     for (k = 0; k < HG_BOARD_JOINTS; k++) {
         joint_hal *j = &b->joint[k];
         TRY(hal_pin_float_newf(HAL_OUT, &j->pos_mm, comp_id, XP ".%d.joint-%d.pos", id, k));
@@ -513,8 +515,7 @@ static int export_extra(board_t *b)
     for (k = 0; k < n; k++)
         TRY(hal_param_float_newf(HAL_RW, (hal_float_t *)((char *)&b->hal_p + t[k].offset),
                                  comp_id, XP ".%d.%s", id, t[k].name));
-    rtapi_snprintf(name, sizeof name, "motenc.%d.dynamics", id);
-    TRY(hal_export_funct(name, dynamics, b, 1, 0, comp_id));
+    TRY(export_funct(b, "dynamics", dynamics, 1));
     return 0;
 }
 
