@@ -5,6 +5,7 @@
 #   make demo     the virtual machine: home, run G-code, plots in out/
 #   make run      the same machine in AXIS
 #   make bench    speed of kinematics and dynamics
+#   make check    sanitizers and static analysis; make fuzz; make soak
 # Every entry point first installs the Debian packages it needs.
 
 CC      ?= gcc
@@ -67,6 +68,15 @@ test:
 check:
 	@tools/install-deps.sh test
 	@TESTS_ONLY=check tests/run_all.sh
+
+# bounded-time fuzzing, 1,000,000 inputs per target (tools/fuzz.sh)
+fuzz:
+	@tools/install-deps.sh test
+	@tools/fuzz.sh $(FUZZ_RUNS)
+
+# eight hours of simulated closed-loop motion, offline
+soak: host
+	@$(BUILD)/hexaglide soak --hours 8
 
 bench: all
 	@tools/install-deps.sh bench

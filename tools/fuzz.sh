@@ -6,56 +6,74 @@
 # Usage: tools/fuzz.sh [RUNS per target, default 1000000] [MAX_SECONDS per target, default 900]
 # Prints "ok - ..."/"not ok - ..." per target with inputs tried and inputs per second.
 cd "$(dirname "$0")/.." || exit 1
-RUNS=${1:-1000000}
-MAXT=${2:-900}
+if [ "$1" = --run ]; then MODE=run; NAME=$2; else MODE=all; RUNS=${1:-1000000}; MAXT=${2:-900}; fi
 OUT=build/fuzz
 mkdir -p "$OUT"
 CORE="$(ls src/hg_*.c src/generated/*.c) src/cli/cmd_kins.c src/cli/cmd_sim.c src/cli/cli_parse.c"
 INC="-Isrc -Isrc/generated -Isrc/cli -Itests/fuzz"
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=all"
-if command -v clang >/dev/null && echo 'int LLVMFuzzerTestOneInput(const char*d,long n){return 0;}' |
+if [ -n "$ENGINE" ]; then :   # set by the parent run
+elif command -v clang >/dev/null && echo 'int LLVMFuzzerTestOneInput(const char*d,long n){return 0;}' |
         clang -x c -fsanitize=fuzzer - -o "$OUT/probe" 2>/dev/null; then
     ENGINE=libFuzzer
 else
     ENGINE=standalone
 fi
-echo "# fuzz engine: $ENGINE, $RUNS inputs per target, at most $MAXT s each"
-status=0
-for src in tests/fuzz/fuzz_*.c; do
-    name=$(basename "$src" .c)
-    bin="$OUT/$name"
+[ $MODE = all ] && echo "# fuzz engine: $ENGINE, $RUNS inputs per target, at most $MAXT s each, ${FUZZ_JOBS:-2} at a time"
+JOBS=${FUZZ_JOBS:-2}
+
+# build_target NAME: compile tests/fuzz/NAME.c with the engine and sanitizers
+build_target() {
     if [ $ENGINE = libFuzzer ]; then
-        clang -std=gnu99 -O1 -g $SAN -fsanitize=fuzzer $INC -o "$bin" "$src" $CORE -lm 2>"$OUT/$name.build.log"
+        clang -std=gnu99 -O2 -g $SAN -fsanitize=fuzzer $INC -o "$OUT/$1" "tests/fuzz/$1.c" $CORE -lm
     else
-        gcc -std=gnu99 -O1 -g $SAN $INC -o "$bin" "$src" tests/fuzz/standalone_driver.c $CORE -lm 2>"$OUT/$name.build.log"
+        gcc -std=gnu99 -O2 -g $SAN $INC -o "$OUT/$1" "tests/fuzz/$1.c" tests/fuzz/standalone_driver.c $CORE -lm
     fi
-    if [ $? -ne 0 ]; then
-        echo "not ok - $name: build failed: $(head -3 "$OUT/$name.build.log" | tr '\n' ' ')"; status=1; continue
-    fi
+}
+
+# run_target NAME: fuzz it and print one ok / not ok line
+run_target() {
+    name=$1
     mkdir -p "$OUT/corpus-$name"
     start=$(date +%s.%N)
     if [ $ENGINE = libFuzzer ]; then
         mask=0; [ "$name" = fuzz_cli ] && mask=3   # the CLI talks; keep libFuzzer's own report
-        (cd "$OUT" && "./$name" -runs="$RUNS" -max_total_time="$MAXT" -max_len=512 -seed=1 -close_fd_mask=$mask \
-            -print_final_stats=1 "corpus-$name" >"$name.log" 2>&1)
-    else
-        "$bin" -runs="$RUNS" 2>/dev/null | tail -1 >"$OUT/$name.log" 
-    fi
-    rc=$?
-    secs=$(echo "$(date +%s.%N) - $start" | bc)
-    if [ $ENGINE = libFuzzer ]; then
+        (cd "$OUT" && "./$name" -runs="$RUNS" -max_total_time="$MAXT" -max_len=512 -seed=1 \
+            -close_fd_mask=$mask -print_final_stats=1 "corpus-$name" >"$name.log" 2>&1)
+        rc=$?
         runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$OUT/$name.log" | grep -o '[0-9]*$')
     else
+        "$OUT/$name" -runs="$RUNS" 2>"$OUT/$name.err" | tail -1 >"$OUT/$name.log"
+        rc=$?
         runs=$(grep -o 'Done [0-9]*' "$OUT/$name.log" | grep -o '[0-9]*')
     fi
+    secs=$(echo "$(date +%s.%N) - $start" | bc)
     runs=${runs:-0}
     rate=$(echo "$runs / $secs" | bc)
     if [ $rc -eq 0 ] && [ "$runs" -ge "$RUNS" ]; then
         echo "ok - $name: $runs inputs in ${secs%.*} s ($rate inputs/s), no crash, no NaN, all refusals coded"
     elif [ $rc -eq 0 ]; then
-        echo "not ok - $name: only $runs of $RUNS inputs in the $MAXT s budget ($rate inputs/s)"; status=1
+        echo "not ok - $name: only $runs of $RUNS inputs in the $MAXT s budget ($rate inputs/s)"
     else
-        echo "not ok - $name: $(grep -m1 -E 'property violated|ERROR|runtime error|deadly signal' "$OUT/$name.log") (log $OUT/$name.log; crash input in $OUT/)"; status=1
+        echo "not ok - $name: $(cat "$OUT/$name.log" "$OUT/$name.err" 2>/dev/null | grep -m1 -E 'property violated|ERROR|runtime error|deadly signal') (log $OUT/$name.log; crash input in $OUT/)"
+    fi
+}
+
+if [ $MODE = run ]; then run_target "$NAME"; exit 0; fi
+
+status=0
+targets=""
+for src in tests/fuzz/fuzz_*.c; do
+    name=$(basename "$src" .c)
+    if build_target "$name" 2>"$OUT/$name.build.log"; then
+        targets="$targets $name"
+    else
+        echo "not ok - $name: build failed: $(head -3 "$OUT/$name.build.log" | tr '\n' ' ')"; status=1
     fi
 done
+export ENGINE RUNS MAXT
+# JOBS targets at a time (one per core)
+for name in $targets; do echo "$name"; done | xargs -P "$JOBS" -I{} "$0" --run {} >"$OUT/results.txt"
+cat "$OUT/results.txt"
+grep -q '^not ok' "$OUT/results.txt" && status=1
 exit $status

@@ -5,7 +5,7 @@
 set -e
 need="linuxcnc-uspace linuxcnc-uspace-dev build-essential"
 case "$1" in
-  test)  need="$need libmujoco-dev python3-sympy python3-numpy python3-matplotlib cppcheck clang clang-tidy xvfb imagemagick" ;;
+  test)  need="$need libmujoco-dev python3-sympy python3-numpy python3-matplotlib cppcheck clang clang-tidy libclang-rt-14-dev bc xvfb imagemagick" ;;
   demo)  need="$need python3-matplotlib python3-numpy xvfb" ;;
   bench) need="$need libmujoco-dev valgrind" ;;
   run)   need="$need xvfb" ;;

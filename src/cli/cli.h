@@ -7,6 +7,7 @@
 int cmd_ik(int argc, char **argv);   /* ik X Y Z A B C */
 int cmd_fk(int argc, char **argv);   /* fk J0..J5 [--guess X Y Z A B C] */
 int cmd_sim(int argc, char **argv);  /* sim --model ... (offline simulator) */
+int cmd_soak(int argc, char **argv); /* soak [--hours H] (long closed-loop run) */
 
 /* Parse a finite double; 0 on success, -1 (and a message naming what) otherwise. */
 int cli_parse_double(const char *text, const char *what, double *out);

@@ -1,7 +1,8 @@
 /* main.c - build/hexaglide: the project's math on the command line.
  *   hexaglide ik X Y Z A B C            pose (mm, deg) -> joints (mm)
  *   hexaglide fk J0..J5 [--guess ...]   joints (mm) -> pose (mm, deg)
- *   hexaglide sim [options]             offline dynamics simulation (CSV) */
+ *   hexaglide sim [options]             offline dynamics simulation (CSV)
+ *   hexaglide soak [--hours H]          hours of closed-loop motion, health report */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +15,7 @@ static void usage(FILE *f)
             "       hexaglide fk J0 J1 J2 J3 J4 J5 [--guess X Y Z A B C]\n"
             "       hexaglide sim [--model standard|reduced-joints|reduced-cartesian]\n"
             "                     [--time S] [--dt S] [--volts V0,..,V5] [--set name=value]... [--csv FILE]\n"
+            "       hexaglide soak [--hours H] [--model NAME] [--seed N] [--dt S]\n"
             "units: X Y Z and joints in mm, A B C in degrees (see README.md)\n");
 }
 
@@ -29,6 +31,8 @@ int main(int argc, char **argv)
         return cmd_fk(argc - 2, argv + 2);
     if (strcmp(argv[1], "sim") == 0)
         return cmd_sim(argc - 2, argv + 2);
+    if (strcmp(argv[1], "soak") == 0)
+        return cmd_soak(argc - 2, argv + 2);
     if (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
         usage(stdout);
         return 0;

@@ -52,7 +52,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0; /* e.g. a geometry whose HOME cannot be assembled: refused, fine */
     if (hg_data_reset(&m, &d))
         return 0;
-    steps = 1 + fuzz_byte(&in) % 40;
+    steps = 1 + fuzz_byte(&in) % 16;
     for (i = 0; i < steps; i++) {
         double volts[6], dt;
         for (k = 0; k < 6; k++)
