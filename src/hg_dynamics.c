@@ -170,8 +170,8 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
 int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
 {
     double q0[HG_NQ_MAX], qd0[HG_NQ_MAX], q1[HG_NQ_MAX], qd1[HG_NQ_MAX], qdd[HG_NQ_MAX];
-    double fz[6], cur[6], res = 0.0;
-    int n = hg_system_nq(m), rc;
+    double fz[6], cur[6], res = 0.0, sc0[6], sc1[6];
+    int n = hg_system_nq(m), rc, trig = 0;
     if (!(isfinite(dt_s) && dt_s > 0.0 && dt_s <= HG_DT_MAX_S)) {
         d->last_error = HG_ERR_BAD_DT;
         return HG_ERR_BAD_DT;
@@ -186,10 +186,15 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
         rc = hg_step_joints(m, q0, qd0, fz, dt_s, q1, qd1, qdd, &res);
         break;
     case HG_MODEL_REDUCED_CARTESIAN:
-        rc = hg_step_cartesian(m, q0, qd0, fz, dt_s, q1, qd1, qdd, &res);
-        break;
     case HG_MODEL_FUSED_CARTESIAN:
-        rc = hg_step_fused(m, q0, qd0, fz, dt_s, q1, qd1, qdd, &res);
+        if (!(d->trig_valid && d->trig_key_rad[0] == d->pose[3] &&
+              d->trig_key_rad[1] == d->pose[4] && d->trig_key_rad[2] == d->pose[5]))
+            hg_head_trig(d->pose, sc0);
+        else
+            memcpy(sc0, d->trig_sc, sizeof sc0);
+        rc = (m->kind == HG_MODEL_FUSED_CARTESIAN ? hg_step_fused : hg_step_cartesian)(
+            m, q0, qd0, sc0, fz, dt_s, q1, qd1, qdd, sc1, &res);
+        trig = 1;
         break;
     default:
         rc = HG_ERR_BAD_PARAM;
@@ -203,6 +208,11 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
         return rc;
     }
     unpack(m, q1, qd1, qdd, d);
+    d->trig_valid = trig;
+    if (trig) {
+        memcpy(d->trig_key_rad, d->pose + 3, sizeof d->trig_key_rad);
+        memcpy(d->trig_sc, sc1, sizeof sc1);
+    }
     memcpy(d->current_a, cur, sizeof cur);
     memcpy(d->force_n, fz, sizeof fz);
     d->residual_m = res;

@@ -63,6 +63,11 @@ typedef struct {
     double force_n[6];           /* net non-inertial force on each carriage (drive+friction+stop) */
     double residual_m;           /* max bar-length error after the last stabilization */
     int last_error;              /* code of the last failed step, 0 if none */
+    /* internal cache of the Reduced Cartesian steps: sin/cos of the head
+     * angles of pose[3..5] (the stabilization's are the next step's) */
+    double trig_key_rad[3];      /* the angles trig_sc belongs to */
+    double trig_sc[6];           /* sin A, cos A, sin B, cos B, sin C, cos C */
+    int trig_valid;              /* 0: recompute */
 } hg_data;
 
 /* Check p and build the model: 0, or HG_ERR_BAD_PARAM with *bad_field and

@@ -53,16 +53,20 @@ int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
                      const double fz[6], double dt, double *q1, double *qd1, double *qdd,
                      double *residual_m);
 
-/* Reduced Cartesian: c independent, Phi_z diagonal (A = -Phi_z^-1 Phi_c). */
+/* Reduced Cartesian: c independent, Phi_z diagonal (A = -Phi_z^-1 Phi_c).
+ * sc0: sin/cos of q0's head angles (hg_head_trig); sc1 receives q1's. */
 int hg_step_cartesian(const hg_model *m, const double *q0, const double *qd0,
-                      const double fz[6], double dt, double *q1, double *qd1, double *qdd,
-                      double *residual_m);
+                      const double sc0[6], const double fz[6], double dt, double *q1,
+                      double *qd1, double *qdd, double sc1[6], double *residual_m);
 
 /* Fused Reduced Cartesian: the generated hg_gen_fused_accel, then the same
  * integration and stabilization as hg_step_cartesian. */
 int hg_step_fused(const hg_model *m, const double *q0, const double *qd0,
-                  const double fz[6], double dt, double *q1, double *qd1, double *qdd,
-                  double *residual_m);
+                  const double sc0[6], const double fz[6], double dt, double *q1,
+                  double *qd1, double *qdd, double sc1[6], double *residual_m);
+
+/* sc = sin A, cos A, sin B, cos B, sin C, cos C of pose c = X Y Z A B C. */
+void hg_head_trig(const double *c, double sc[6]);
 
 /* Largest bar-length error ||B - A| - l| (m) of joints z and pose c. */
 double hg_bar_length_error(const hg_params *p, const double *z, const double *c);

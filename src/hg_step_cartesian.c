@@ -17,11 +17,12 @@
  * (d^2 Phi_k / dz_k^2 = 2), so the bar's residual after the step is
  * delta^2 (m^2): the bar-length error delta^2 / (2 l) needs no new
  * evaluation. Returns that error (m). */
-static double stabilize(const hg_model *m, double *q1, double *qd1)
+static double stabilize(const hg_model *m, double *q1, double *qd1, double sc1[6])
 {
     double phi[6], pz[6], vc[6], worst = 0.0;
     int k;
-    hg_gen_reduced_stabilize(m->k, q1, qd1, phi, pz, vc);
+    hg_head_trig(q1 + 6, sc1);
+    hg_gen_reduced_stabilize(m->k, q1, qd1, sc1, phi, pz, vc);
     HG_UNROLL
     for (k = 0; k < 6; k++) {
         double ipz = 1.0 / pz[k], delta = phi[k] * ipz, e;
@@ -35,43 +36,46 @@ static double stabilize(const hg_model *m, double *q1, double *qd1)
 }
 
 int hg_step_cartesian(const hg_model *m, const double *q0, const double *qd0,
-                      const double fz[6], double dt, double *q1, double *qd1, double *qdd,
-                      double *residual_m)
+                      const double sc0[6], const double fz[6], double dt, double *q1,
+                      double *qd1, double *qdd, double sc1[6], double *residual_m)
 {
     double mzz[6], Mzc[36], Mcc[36], Q[12], pz[6], pc[36], gm[6];
-    double A[36], b[6], fq[6], T1[36], Mh[36], rhs[6];
+    double A[36], b[6], W[36], P[36], Mh[36], rhs[6];
     int i, j, k, rc;
-    hg_gen_reduced_terms(m->k, q0, qd0, mzz, Mzc, Mcc, Q, pz, pc, gm);
+    hg_gen_reduced_terms(m->k, q0, qd0, sc0, mzz, Mzc, Mcc, Q, pz, pc, gm);
+    /* Eq. 13 with z dependent, as sums of outer products over the carriages
+     * (rows of A): with W_k = M_zc,k + M_zz,k A_k / 2 and P = A^T W,
+     *   M_cc + M_cz A + (M_cz A)^T + A^T M_zz A = M_cc + P + P^T,
+     *   Q_c + A^T Q_z - (M_cz + A^T M_zz) b = Q_c + A^T (Q_z - M_zz b) - M_cz b. */
+    HG_UNROLL
+    for (i = 0; i < 36; i++)
+        P[i] = 0.0;
+    HG_UNROLL
+    for (i = 0; i < 6; i++)
+        rhs[i] = Q[6 + i];
     HG_UNROLL
     for (k = 0; k < 6; k++) {
-        double ipz = 1.0 / pz[k];
+        double ipz = 1.0 / pz[k], t;
         HG_UNROLL
-        for (j = 0; j < 6; j++)
+        for (j = 0; j < 6; j++) {
             A[6 * k + j] = -pc[6 * k + j] * ipz;
+            W[6 * k + j] = Mzc[6 * k + j] + 0.5 * mzz[k] * A[6 * k + j];
+        }
         b[k] = -gm[k] * ipz;
-        fq[k] = Q[k] + fz[k];
-    }
-    HG_UNROLL
-    for (i = 0; i < 6; i++)            /* T1 = M_cz + A^T M_zz */
+        t = Q[k] + fz[k] - mzz[k] * b[k];
         HG_UNROLL
-        for (k = 0; k < 6; k++)
-            T1[6 * i + k] = Mzc[6 * k + i] + A[6 * k + i] * mzz[k];
-    HG_UNROLL
-    for (i = 0; i < 6; i++) {
-        double r = Q[6 + i];
-        HG_UNROLL
-        for (k = 0; k < 6; k++)
-            r += A[6 * k + i] * fq[k] - T1[6 * i + k] * b[k];
-        rhs[i] = r;
-        HG_UNROLL
-        for (j = 0; j <= i; j++) {
-            double v = Mcc[6 * i + j];
+        for (i = 0; i < 6; i++) {
+            rhs[i] += A[6 * k + i] * t - Mzc[6 * k + i] * b[k];
             HG_UNROLL
-            for (k = 0; k < 6; k++)
-                v += T1[6 * i + k] * A[6 * k + j] + Mzc[6 * k + j] * A[6 * k + i];
-            Mh[6 * i + j] = v;
+            for (j = 0; j < 6; j++)
+                P[6 * i + j] += A[6 * k + i] * W[6 * k + j];
         }
     }
+    HG_UNROLL
+    for (i = 0; i < 6; i++)
+        HG_UNROLL
+        for (j = 0; j <= i; j++)
+            Mh[6 * i + j] = Mcc[6 * i + j] + P[6 * i + j] + P[6 * j + i];
     rc = hg_spd6_solve(Mh, rhs);
     if (rc)
         return rc;
@@ -85,18 +89,18 @@ int hg_step_cartesian(const hg_model *m, const double *q0, const double *qd0,
         qdd[6 + k] = rhs[k];
     }
     hg_improved_euler(HG_NQ_REDUCED, q0, qd0, qdd, dt, q1, qd1);
-    *residual_m = stabilize(m, q1, qd1);
+    *residual_m = stabilize(m, q1, qd1, sc1);
     return 0;
 }
 
 int hg_step_fused(const hg_model *m, const double *q0, const double *qd0,
-                  const double fz[6], double dt, double *q1, double *qd1, double *qdd,
-                  double *residual_m)
+                  const double sc0[6], const double fz[6], double dt, double *q1,
+                  double *qd1, double *qdd, double sc1[6], double *residual_m)
 {
-    int rc = hg_gen_fused_accel(m->k, q0, qd0, fz, qdd);
+    int rc = hg_gen_fused_accel(m->k, q0, qd0, sc0, fz, qdd);
     if (rc)
         return rc;
     hg_improved_euler(HG_NQ_REDUCED, q0, qd0, qdd, dt, q1, qd1);
-    *residual_m = stabilize(m, q1, qd1);
+    *residual_m = stabilize(m, q1, qd1, sc1);
     return 0;
 }

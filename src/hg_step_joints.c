@@ -6,6 +6,7 @@
 #include "hg_step.h"
 #include "hg_linalg.h"
 #include "hg_spd6.h"
+#include "hg_lu6.h"
 #include "hg_errors.h"
 
 void hg_improved_euler(int n, const double *q0, const double *qd0, const double *qdd,
@@ -19,6 +20,12 @@ void hg_improved_euler(int n, const double *q0, const double *qd0, const double 
     }
 }
 
+/* LU of Phi_d (nd x nd): the unrolled 6x6 one for the reduced model. */
+static int factor(int nd, double *Phi_d, int *piv)
+{
+    return nd == 6 ? hg_lu6_factor(Phi_d, piv) : hg_lu_factor(nd, Phi_d, piv);
+}
+
 /* X = Phi_d^-1 [Phi_z | v] (nd x 7) from a factored Phi_d. */
 static void solve_a_b(int nd, const double *lu, const int *piv, const double *Phi_z,
                       const double *v, double *X)
@@ -29,15 +36,19 @@ static void solve_a_b(int nd, const double *lu, const int *piv, const double *Ph
             X[r * 7 + j] = Phi_z[r * 6 + j];
         X[r * 7 + 6] = v[r];
     }
-    hg_lu_solve(nd, lu, piv, 7, X);
+    if (nd == 6)
+        hg_lu6_solve(lu, piv, 7, X);
+    else
+        hg_lu_solve(nd, lu, piv, 7, X);
 }
 
 /* z'' from Eq. 13: (M_zz + M_zd A + (M_zd A)^T + A^T M_dd A) z''
  *   = Q_z + A^T Q_d - (M_zd + A^T M_dd) b,  A = -X[:, :6], b = -X[:, 6]. */
-static int reduced_accelerations(const hg_system *s, const double *X, const double fz[6],
-                                  double *qdd)
+static inline __attribute__((always_inline)) int
+reduced_accelerations(const int nd, const hg_system *s, const double *X, const double fz[6],
+                      double *qdd)
 {
-    int nd = s->nd, i, j, r, t, rc;
+    int i, j, r, t, rc;
     double T1[6 * 18], Mh[36], rhs[6];
     for (i = 0; i < 6; i++)            /* T1 = M_zd + A^T M_dd (6 x nd) */
         for (r = 0; r < nd; r++) {
@@ -82,18 +93,19 @@ int hg_step_joints(const hg_model *m, const double *q0, const double *qd0,
     hg_system_terms(m, q0, qd0, &s);
     nd = s.nd;
     n = 6 + nd;
-    rc = hg_lu_factor(nd, s.Phi_d, piv);
+    rc = factor(nd, s.Phi_d, piv);
     if (rc)
         return rc;
     solve_a_b(nd, s.Phi_d, piv, s.Phi_z, s.gamma, X);
-    rc = reduced_accelerations(&s, X, fz, qdd);
+    /* nd as a constant lets the compiler unroll the 6-coordinate case */
+    rc = nd == 6 ? reduced_accelerations(6, &s, X, fz, qdd) : reduced_accelerations(18, &s, X, fz, qdd);
     if (rc)
         return rc;
     hg_improved_euler(n, q0, qd0, qdd, dt, q1, qd1);
     /* stabilization: Jacobians at the predicted state, one NR iteration,
      * then d' = A z' */
     hg_system_constraints(m, q1, phi, s.Phi_d, s.Phi_z);
-    rc = hg_lu_factor(nd, s.Phi_d, piv);
+    rc = factor(nd, s.Phi_d, piv);
     if (rc)
         return rc;
     solve_a_b(nd, s.Phi_d, piv, s.Phi_z, phi, X);

@@ -1,5 +1,6 @@
 /* hg_system.c - the generated terms of each parametrization as dense
  * blocks, the full Newton-Raphson position solve and the energies. */
+#define _GNU_SOURCE   /* sincos */
 #include <math.h>
 #include <string.h>
 #include "hg_step.h"
@@ -43,13 +44,21 @@ static void standard_terms(const hg_model *m, const double *q, const double *qd,
             s->Phi_d[r * 18 + 12 + c] = Phi_c[6 * r + c];
 }
 
+void hg_head_trig(const double *c, double sc[6])
+{
+    sincos(c[3], &sc[0], &sc[1]);
+    sincos(c[4], &sc[2], &sc[3]);
+    sincos(c[5], &sc[4], &sc[5]);
+}
+
 /* Reduced terms -> dense: d = c. */
 static void reduced_terms(const hg_model *m, const double *q, const double *qd, hg_system *s)
 {
-    double Phi_z[6];
+    double Phi_z[6], sc[6];
     int k;
     s->nd = 6;
-    hg_gen_reduced_terms(m->k, q, qd, s->mzz, s->Mzd, s->Mdd, s->Q, Phi_z, s->Phi_d, s->gamma);
+    hg_head_trig(q + 6, sc);
+    hg_gen_reduced_terms(m->k, q, qd, sc, s->mzz, s->Mzd, s->Mdd, s->Q, Phi_z, s->Phi_d, s->gamma);
     memset(s->Phi_z, 0, 36 * sizeof(double));
     for (k = 0; k < 6; k++)
         s->Phi_z[k * 6 + k] = Phi_z[k];
@@ -82,8 +91,9 @@ void hg_system_constraints(const hg_model *m, const double *q, double *phi,
             for (c = 0; c < 6; c++)
                 Phi_d[r * 18 + 12 + c] = Phi_c[6 * r + c];
     } else {
-        double pz[6];
-        hg_gen_reduced_constraints(m->k, q, phi, pz, Phi_d);
+        double pz[6], sc[6];
+        hg_head_trig(q + 6, sc);
+        hg_gen_reduced_constraints(m->k, q, sc, phi, pz, Phi_d);
         memset(Phi_z, 0, 36 * sizeof(double));
         for (k = 0; k < 6; k++)
             Phi_z[k * 6 + k] = pz[k];
@@ -148,6 +158,9 @@ void hg_model_energy(const hg_model *m, const double *q, const double *qd,
     *kinetic_j = t;
     if (m->kind == HG_MODEL_STANDARD)
         hg_gen_standard_potential(m->k, q, potential_j);
-    else
-        hg_gen_reduced_potential(m->k, q, potential_j);
+    else {
+        double sc[6];
+        hg_head_trig(q + 6, sc);
+        hg_gen_reduced_potential(m->k, q, sc, potential_j);
+    }
 }

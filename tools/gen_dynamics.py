@@ -510,6 +510,22 @@ def emit_levels(levels, printer, indent="    "):
     return lines, flops
 
 
+TRIG_SYMS = sp.symbols("sA cA sB cB sC cC")
+
+
+def trig_inputs(c):
+    """sin/cos of the head angles as inputs sc[6] = sA cA sB cB sC cC: the
+    caller computes them once per state (and can reuse them between the
+    stabilization of one step and the terms of the next)."""
+    sub, names = {}, {}
+    for i, a in enumerate(c[3:]):
+        sub[sp.sin(a)] = TRIG_SYMS[2 * i]
+        sub[sp.cos(a)] = TRIG_SYMS[2 * i + 1]
+    for i, t in enumerate(TRIG_SYMS):
+        names[t] = "sc[%d]" % i
+    return sub, names
+
+
 def state_names(q, qd):
     names = {}
     for i, s in enumerate(q):
@@ -538,8 +554,13 @@ class Unit:
         self.hoist = Hoister()
         self.funcs = []      # (prototype, doc, body lines)
         self.macros = []
+        self.trig = None     # substitution sin/cos(head angle) -> sc[] inputs
 
     def function(self, proto, doc, assigns, names, levels=(), prefix="x"):
+        if self.trig:
+            levels = [[(sy, x.subs(self.trig)) for sy, x in lev] for lev in levels]
+            assigns = [(lhs, sp.sympify(x).subs(self.trig)) for lhs, x in assigns]
+            assert not any(x.has(sp.sin, sp.cos) for lev in levels for _, x in lev)
         levels = prune(levels, [x for _, x in assigns])
         hl = [[(sy, self.hoist(x)) for sy, x in lev] for lev in levels]
         hoisted = [(lhs, self.hoist(x)) for lhs, x in assigns]
@@ -615,8 +636,10 @@ def gen_reduced(outdir):
     m = reduced_atomized(q, qd)
     M, Q, Jq, gamma = m["M"], m["Q"], m["Jq"], m["gamma"]
     u = Unit("hg_gen_reduced", "Bars lumped into exact point masses: q = [z(6), c(6)], "
-             "c = X Y Z A B C.")
-    names = state_names(q, qd)
+             "c = X Y Z A B C.\n * Every function but init takes sc[6] = sin A, cos A, sin B, cos B, "
+             "sin C, cos C of q[9..11].")
+    u.trig, trig_names = trig_inputs(q[6:, 0])
+    names = {**state_names(q, qd), **trig_names}
     Z, C = range(0, 6), range(6, 12)
     # M_zz is diagonal and constant; M_zc row k couples z_k with the head
     assigns = [("Mzz[%d]" % i, M[i, i]) for i in Z]
@@ -630,6 +653,7 @@ def gen_reduced(outdir):
             assert i == j or M[i, j] == 0 and Jq[i, j] == 0
     fl_terms = u.function(
         "void hg_gen_reduced_terms(const double *k, const double q[12], const double qd[12],\n"
+        "                          const double sc[6],\n"
         "                          double Mzz[6], double Mzc[36], double Mcc[36], double Q[12],\n"
         "                          double Phi_z[6], double Phi_c[36], double gamma[6])",
         "Mass matrix blocks (M_zz diagonal), Q = gravity - velocity terms, constraint "
@@ -640,7 +664,8 @@ def gen_reduced(outdir):
     assigns += [("Phi_z[%d]" % i, mc["Jq"][i, i]) for i in Z]
     assigns += matrix_assigns("Phi_c", mc["Jq"], range(6), C)
     fl_con = u.function(
-        "void hg_gen_reduced_constraints(const double *k, const double q[12], double phi[6],\n"
+        "void hg_gen_reduced_constraints(const double *k, const double q[12], const double sc[6],\n"
+        "                                double phi[6],\n"
         "                                double Phi_z[6], double Phi_c[36])",
         "Bar constraints |B-A|^2 - l^2 (m^2) and their Jacobian", assigns, names,
         levels=mc["levels"])
@@ -650,11 +675,13 @@ def gen_reduced(outdir):
     assigns += [("vc[%d]" % i, ms["vc"][i]) for i in Z]
     fl_stab = u.function(
         "void hg_gen_reduced_stabilize(const double *k, const double q[12], const double qd[12],\n"
+        "                              const double sc[6],\n"
         "                              double phi[6], double Phi_z[6], double vc[6])",
         "For the Reduced Cartesian stabilization: phi, the diagonal Phi_z and "
         "vc = Phi_c c' (m^2/s)", assigns, names, levels=ms["levels"])
     fl_pot = u.function(
-        "void hg_gen_reduced_potential(const double *k, const double q[12], double *v)",
+        "void hg_gen_reduced_potential(const double *k, const double q[12], const double sc[6],\n"
+        "                              double *v)",
         "Gravity potential (J, up to a constant)", [("*v", m["V"])], names,
         levels=[[(sy, x) for sy, x in m["levels"][0] if str(sy).startswith("sw")]])
     fl_fused = gen_fused(u, m, names)
@@ -696,7 +723,9 @@ def gen_fused(u, m, names):
     pz = [S("pz%d" % i, Jq[i, i]) for i in range(6)]
     pc = [[S("pc%d_%d" % (i, j), Jq[i, 6 + j]) for j in range(6)] for i in range(6)]
     gm = [S("gm%d" % i, gamma[i]) for i in range(6)]
-    levels = prune(m["levels"], [x for _, x in prim])
+    levels = [[(sy, x.subs(u.trig)) for sy, x in lev] for lev in m["levels"]]
+    prim = [(sy, sp.sympify(x).subs(u.trig)) for sy, x in prim]
+    levels = prune(levels, [x for _, x in prim])
     hl = [[(sy, hoist(x)) for sy, x in lev] for lev in levels]
     # primitives: hoisted + CSE'd; then the algebra on their symbols
     hp = [(s, hoist(x)) for s, x in prim]
@@ -766,6 +795,7 @@ def gen_fused(u, m, names):
     lines.append("    return 0;")
     u.funcs.append((
         "int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],\n"
+        "                       const double sc[6],\n"
         "                       const double fz[6], double qdd[12])",
         "Fused Reduced Cartesian dynamics: with carriage forces fz, the accelerations "
         "qdd = [z'', c''] (c independent); 0 or HG_ERR_SINGULAR_MASS (%d flops)" % flops,
