@@ -1,0 +1,367 @@
+#!/usr/bin/python3
+"""hexaglide_headless.py - scripted, display-less LinuxCNC front end.
+
+LinuxCNC starts it as the DISPLAY of hexaglide_headless.ini; its exit code
+becomes LinuxCNC's. It does what an operator does in AXIS: reset estop,
+machine on, home all joints (switch + index), run a G-code program, and
+reports the outcome. Optionally it samples HAL pins at servo rate with
+sampler/halsampler and writes them as CSV.
+
+Settings (environment):
+  HG_OUT        output directory (default ../out)
+  HG_PROGRAM    G-code file to run (default nc_files/hexaglide_logo.ngc)
+  HG_SCENARIO   run     home, run the program            (default)
+                estop   home, run, press estop HG_ESTOP_AFTER s into the program
+                refuse  home, run a program that must be refused
+                home    home only
+  HG_SAMPLE     1: sample HAL pins to HG_OUT/HG_TAG.csv (default 1)
+  HG_TAG        file name stem of outputs (default: the scenario)
+  HG_TIMEOUT    seconds allowed for the program (default 300)
+  HG_ESTOP_AFTER  seconds (default 2)
+Outputs: HG_OUT/HG_TAG.json (verdict, positions, errors, timings) and,
+with sampling, HG_OUT/HG_TAG.csv (one row per servo period).
+"""
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import hal
+import linuxcnc
+
+JOINTS = ["z11", "z12", "z21", "z22", "z31", "z32"]
+AXES = "xyzabc"
+SERVO_PERIOD_S = 0.001
+CLOCK_PIN = "motenc-hexaglide.0.sim-time"  # the virtual board's simulated time (s)
+
+
+def log(*a):
+    print("hexaglide_headless:", *a, file=sys.stderr, flush=True)
+
+
+def halcmd(*args, check=True):
+    """Run one halcmd command; return its stdout."""
+    r = subprocess.run(["halcmd"] + list(args), capture_output=True, text=True)
+    if check and r.returncode != 0:
+        raise RuntimeError("halcmd %s: %s" % (" ".join(args), r.stderr.strip()))
+    return r.stdout
+
+
+def pin_table():
+    """{pin name: (type, signal or None)} for every HAL pin."""
+    pins = {}
+    for line in halcmd("-s", "show", "pin").splitlines():
+        f = line.split()
+        if len(f) < 5:
+            continue
+        sig = None
+        if len(f) >= 7 and f[5] in ("==>", "<==", "<=>"):
+            sig = f[6]
+        pins[f[4]] = (f[1], sig)
+    return pins
+
+
+def sampled_pins():
+    """Pins recorded during a run, in CSV column order; missing ones are skipped."""
+    want = []
+    for j in range(6):
+        want.append("joint.%d.motor-pos-cmd" % j)
+    for j in range(6):
+        want.append("joint.%d.motor-pos-fb" % j)
+    for j in range(6):
+        want.append("joint.%d.f-error" % j)
+    for j in range(6):
+        want.append("pid.%d.output" % j)
+    for a in AXES:
+        want.append("axis.%s.pos-cmd" % a)
+    # the virtual board's view of the machine (docs/driver.md)
+    for a in AXES:
+        want.append("motenc-hexaglide.0.head-%s" % a)
+    want += ["motenc-hexaglide.0.step-time-ns", "motenc-hexaglide.0.fault",
+             "motenc-hexaglide.0.amps-on", "motenc-hexaglide.0.residual",
+             "hexaglidekins.fk-iterations", "hexaglidekins.fk-error",
+             "hexaglidekins.fk-fault", "hexaglidekins.fk-fail-count",
+             "hexaglidekins.fk-residual",
+             "motion.motion-enabled", "halui.program.is-running"]
+    return want
+
+
+class Sampler:
+    """sampler + halsampler on the servo thread, written out as CSV.
+
+    One sampler FIFO holds at most 20 pins, so the columns are spread over
+    several FIFOs that share one enable signal and are joined by sample
+    number."""
+    TYPE_CHAR = {"float": "f", "bit": "b", "s32": "s", "u32": "u"}
+    PER_FIFO = 20
+
+    def __init__(self, raw_stem):
+        table = pin_table()
+        self.cols = [p for p in sampled_pins() if p in table]
+        missing = [p for p in sampled_pins() if p not in table]
+        if missing:
+            log("not sampled (no such pin):", " ".join(missing))
+        # every FIFO also records the simulated time, the key that joins them
+        self.key = CLOCK_PIN if CLOCK_PIN in table else None
+        per = self.PER_FIFO - (1 if self.key else 0)
+        groups = [self.cols[i:i + per] for i in range(0, len(self.cols), per)]
+        if self.key:
+            groups = [[self.key] + g for g in groups]
+        self.groups = groups
+        cfgs = ["".join(self.TYPE_CHAR[table[p][0]] for p in g) for g in groups]
+        halcmd("loadrt", "sampler", "depth=" + ",".join(["30000"] * len(groups)),
+               "cfg=" + ",".join(cfgs))
+        halcmd("newsig", "hg-sample-enable", "bit")
+        for f, g in enumerate(groups):
+            for i, p in enumerate(g):
+                sig = table[p][1]
+                if sig is None:
+                    sig = "hg-sample-" + p
+                    halcmd("net", sig, p)
+                    table[p] = (table[p][0], sig)
+                halcmd("net", sig, "sampler.%d.pin.%d" % (f, i))
+            halcmd("net", "hg-sample-enable", "sampler.%d.enable" % f)
+            halcmd("addf", "sampler.%d" % f, "servo-thread")
+        self.raw_paths = ["%s.%d.raw" % (raw_stem, f) for f in range(len(groups))]
+        self.raw = [open(r, "w") for r in self.raw_paths]
+        self.procs = [subprocess.Popen(["halsampler", "-t", "-c", str(f)], stdout=self.raw[f])
+                      for f in range(len(groups))]
+
+    def enable(self, on):
+        halcmd("sets", "hg-sample-enable", "1" if on else "0")
+
+    def stop(self):
+        self.enable(False)
+        for _ in range(100):  # let halsampler drain the FIFOs
+            if all(int(float(hal.get_value("sampler.%d.curr-depth" % f))) == 0
+                   for f in range(len(self.groups))):
+                break
+            time.sleep(0.05)
+        time.sleep(0.2)
+        for p in self.procs:
+            p.send_signal(signal.SIGINT)
+        for p in self.procs:
+            try:
+                p.wait(5)
+            except subprocess.TimeoutExpired:
+                p.kill()
+        for r in self.raw:
+            r.close()
+
+    def read_raw(self, path):
+        """{key: [values]} of one halsampler file; the key is the simulated
+        time in microseconds (or the sample number without the board)."""
+        rows = {}
+        with open(path) as src:
+            for line in src:
+                f = line.split()
+                if len(f) < 2 or f[0] == "overrun":
+                    continue
+                if self.key:
+                    rows[int(round(float(f[1]) * 1e6))] = f[2:]
+                else:
+                    rows[int(f[0])] = f[1:]
+        return rows
+
+    def write_csv(self, csv_path):
+        """Raw halsampler text -> CSV with a time column; returns (rows, gaps)."""
+        parts = [self.read_raw(p) for p in self.raw_paths]
+        keys = sorted(set(parts[0]).intersection(*parts[1:]))
+        step = 1000 if self.key else 1
+        gaps = sum(1 for a, b in zip(keys, keys[1:]) if b - a > step)
+        with open(csv_path, "w") as dst:
+            dst.write("t_s," + ",".join(self.cols) + "\n")
+            first = keys[0] if keys else 0
+            for n in keys:
+                vals = []
+                for part in parts:
+                    vals += part[n]
+                dst.write("%.3f,%s\n" % ((n - first) * (1e-6 if self.key else SERVO_PERIOD_S),
+                                          ",".join(vals)))
+        for p in self.raw_paths:
+            os.unlink(p)
+        return len(keys), gaps
+
+
+class Machine:
+    def __init__(self):
+        self.s = linuxcnc.stat()
+        self.c = linuxcnc.command()
+        self.e = linuxcnc.error_channel()
+        self.errors = []
+
+    def poll(self):
+        self.s.poll()
+        while True:
+            m = self.e.poll()
+            if not m:
+                break
+            kind, text = m
+            self.errors.append(text)
+            log("LinuxCNC says:", text)
+        return self.s
+
+    def wait(self, cond, timeout, what, fail_on_error=False):
+        t0 = time.time()
+        n_err = len(self.errors)
+        while time.time() - t0 < timeout:
+            self.poll()
+            if cond(self.s):
+                return True
+            if fail_on_error and len(self.errors) > n_err:
+                raise RuntimeError("%s: LinuxCNC reported: %s" % (what, self.errors[n_err]))
+            time.sleep(0.05)
+        raise TimeoutError("%s: not reached within %.0f s" % (what, timeout))
+
+    def on(self):
+        self.c.state(linuxcnc.STATE_ESTOP_RESET)
+        self.wait(lambda s: s.task_state == linuxcnc.STATE_ESTOP_RESET, 10, "estop reset")
+        self.c.state(linuxcnc.STATE_ON)
+        self.wait(lambda s: s.task_state == linuxcnc.STATE_ON, 10, "machine on")
+
+    def home(self, timeout=120):
+        self.c.mode(linuxcnc.MODE_MANUAL)
+        self.c.wait_complete()
+        self.c.teleop_enable(0)
+        self.c.wait_complete()
+        self.c.home(-1)
+        self.wait(lambda s: all(s.homed[j] for j in range(6)), timeout, "homing",
+                  fail_on_error=True)
+
+    def run_program(self, path):
+        self.c.mode(linuxcnc.MODE_AUTO)
+        self.c.wait_complete()
+        self.c.program_open(path)
+        self.c.wait_complete()
+        self.c.auto(linuxcnc.AUTO_RUN, 0)
+
+    def joints(self):
+        return [self.s.joint[j]["output"] for j in range(6)]
+
+    def joints_fb(self):
+        return [self.s.joint[j]["input"] for j in range(6)]
+
+
+def main():
+    here = os.path.dirname(os.path.abspath(__file__))
+    out = os.path.abspath(os.environ.get("HG_OUT", os.path.join(here, "..", "out")))
+    os.makedirs(out, exist_ok=True)
+    scenario = os.environ.get("HG_SCENARIO", "run")
+    tag = os.environ.get("HG_TAG", scenario)
+    program = os.path.abspath(os.environ.get(
+        "HG_PROGRAM", os.path.join(here, "nc_files", "hexaglide_logo.ngc")))
+    timeout = float(os.environ.get("HG_TIMEOUT", "300"))
+    sample = os.environ.get("HG_SAMPLE", "1") == "1"
+
+    def on_term(signum, frame):
+        raise KeyboardInterrupt("signal %d" % signum)
+    signal.signal(signal.SIGTERM, on_term)
+
+    comp = hal.component("hexaglide_headless")
+    comp.ready()
+    m = Machine()
+    res = {"scenario": scenario, "program": program, "ok": False, "errors": m.errors}
+    sampler = None
+    t_start = time.time()
+    try:
+        if sample:
+            sampler = Sampler(os.path.join(out, tag))
+            sampler.enable(True)
+        m.poll()
+        res["joints_at_start"] = m.joints_fb()
+        m.on()
+        t0 = time.time()
+        m.home()
+        res["home_wall_s"] = round(time.time() - t0, 2)
+        m.poll()
+        res["joints_after_home"] = m.joints_fb()
+        res["pose_after_home"] = list(m.s.actual_position[:6])
+        log("homed in %.1f s (wall), joints %s" % (res["home_wall_s"], res["joints_after_home"]))
+        if scenario == "home":
+            res["ok"] = True
+        elif scenario in ("run", "estop", "refuse"):
+            n_err = len(m.errors)
+            m.run_program(program)
+            t0 = time.time()
+            if scenario == "estop":
+                after = float(os.environ.get("HG_ESTOP_AFTER", "2"))
+                m.wait(lambda s: s.interp_state != linuxcnc.INTERP_IDLE, 10, "program start")
+                time.sleep(after)
+                m.poll()
+                res["moving_before_estop"] = m.s.current_vel
+                res["joints_before_estop"] = m.joints_fb()
+                m.c.state(linuxcnc.STATE_ESTOP)
+                m.wait(lambda s: s.task_state == linuxcnc.STATE_ESTOP, 10, "estop")
+                time.sleep(0.5)
+                m.poll()
+                res["task_state"] = m.s.task_state
+                res["estop"] = bool(m.s.estop)
+                res["enabled"] = bool(m.s.enabled)
+                res["interp_idle"] = m.s.interp_state == linuxcnc.INTERP_IDLE
+                res["amp_enable"] = [bool(hal.get_value("joint.%d.amp-enable-out" % j)) for j in range(6)]
+                res["pid_output"] = [float(hal.get_value("pid.%d.output" % j)) for j in range(6)]
+                res["dac_value"] = [float(hal.get_value("motenc.0.dac-%02d-value" % j)) for j in range(6)]
+                # the simulation keeps running: the servo thread still turns
+                t1 = m.s.joint[0]["input"]
+                time.sleep(0.5)
+                m.poll()
+                res["joint0_moved_after_estop"] = m.s.joint[0]["input"] - t1
+                res["ok"] = (res["estop"] and not res["enabled"] and not any(res["amp_enable"])
+                             and all(v == 0.0 for v in res["pid_output"]))
+            else:
+                # wait for the program to start and to finish (or to be refused)
+                time.sleep(0.5)
+                m.wait(lambda s: s.interp_state == linuxcnc.INTERP_IDLE and s.queue == 0
+                       and s.state != linuxcnc.RCS_EXEC, timeout, "program end")
+                res["program_wall_s"] = round(time.time() - t0, 2)
+                time.sleep(0.3)
+                m.poll()
+                res["program_errors"] = m.errors[n_err:]
+                res["joints_cmd_end"] = m.joints()
+                res["joints_end"] = m.joints_fb()
+                res["pose_end"] = list(m.s.actual_position[:6])
+                res["task_state"] = m.s.task_state
+                res["ferror_max_stat"] = [m.s.joint[j]["ferror_highmark"] for j in range(6)]
+                if scenario == "run":
+                    res["ok"] = (not res["program_errors"] and m.s.task_state == linuxcnc.STATE_ON)
+                else:
+                    moved = max(abs(a - b) for a, b in zip(res["joints_end"], res["joints_after_home"]))
+                    res["moved_mm"] = moved
+                    res["ok"] = bool(res["program_errors"]) and m.s.task_state == linuxcnc.STATE_ON
+        else:
+            res["errors"].append("unknown HG_SCENARIO %r" % scenario)
+    except BaseException as ex:  # report, do not hang (SIGTERM from timeout too)
+        res["exception"] = "%s: %s" % (type(ex).__name__, ex)
+        log(res["exception"])
+    finally:
+        try:
+            m.poll()
+            res["fk"] = {k: hal.get_value("hexaglidekins." + k)
+                         for k in ("fk-iterations", "fk-fail-count", "fk-fault", "fk-error",
+                                   "fk-residual")}
+            res["board"] = {k: hal.get_value("motenc-hexaglide.0." + k)
+                            for k in ("fault", "fault-code", "steps", "step-time-max-ns",
+                                      "sim-time")}
+        except Exception as ex:
+            res["fk"] = "unavailable: %s" % ex
+        if sampler:
+            sampler.stop()
+            rows, gaps = sampler.write_csv(os.path.join(out, tag + ".csv"))
+            res["samples"] = rows
+            res["sample_gaps"] = gaps
+            res["columns"] = sampler.cols
+        res["wall_s"] = round(time.time() - t_start, 2)
+        with open(os.path.join(out, tag + ".json"), "w") as f:
+            json.dump(res, f, indent=1, default=str)
+        try:
+            m.c.state(linuxcnc.STATE_ESTOP)
+        except Exception:
+            pass
+    log("verdict:", "ok" if res["ok"] else "FAILED")
+    return 0 if res["ok"] else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,38 @@
+#!/bin/sh
+# hg_linuxcnc.sh - start LinuxCNC with a Hexaglide config, as root without a
+# realtime kernel, in its own IPC and network namespaces (HAL and NML live in
+# SysV shared memory, rtapi_app finds its master on an abstract unix socket)
+# so that other HAL sessions on the same host (tests,
+# halrun -U) cannot see or stop it, and it cannot stop them.
+# Usage: tools/hg_linuxcnc.sh [ini]    (default configs/hexaglide_headless.ini)
+# Environment HG_* is passed on to the headless front end
+# (configs/hexaglide_headless.py). Exit code: LinuxCNC's, i.e. the display's.
+if [ -z "$HG_IN_IPC_NS" ] && [ "$(id -u)" = 0 ] && unshare --ipc --net true 2>/dev/null; then
+    HG_IN_IPC_NS=1 exec unshare --ipc --net "$0" "$@"
+fi
+cd "$(dirname "$0")/.." || exit 1
+ini=${1:-configs/hexaglide_headless.ini}
+case $ini in /*) ;; *) ini=$PWD/$ini ;; esac
+[ -f "$ini" ] || { echo "hg_linuxcnc.sh: no such config $ini" >&2; exit 2; }
+export RTAPI_UID=${RTAPI_UID:-65534}
+# rtapi_app's master socket (a socket file, not a directory)
+export RTAPI_FIFO_PATH=/tmp/hexaglide-lcnc-$$.sock
+cd "$(dirname "$ini")" || exit 1
+# a fresh namespace has no leftovers; without one, clear a previous session's
+[ -n "$HG_IN_IPC_NS" ] || timeout 30 halrun -U >/dev/null 2>&1
+# a lock left by a LinuxCNC that was killed hard would make linuxcnc try
+# to stop that (gone) session and wait for it
+if [ -f /tmp/linuxcnc.lock ] && ! pgrep -f '^/bin/bash /usr/bin/linuxcnc' >/dev/null; then
+    rm -f /tmp/linuxcnc.lock
+fi
+# -r: LinuxCNC's messages stay on stdout/stderr even without a tty.
+# On TERM/INT (e.g. from timeout) let LinuxCNC shut down in order.
+linuxcnc -r "$ini" </dev/null &
+pid=$!
+trap 'kill -TERM $pid 2>/dev/null' TERM INT
+wait $pid
+rc=$?
+if kill -0 $pid 2>/dev/null; then wait $pid; rc=$?; fi
+[ -n "$HG_IN_IPC_NS" ] || timeout 30 halrun -U >/dev/null 2>&1
+rm -f "$RTAPI_FIFO_PATH"
+exit $rc
