@@ -10,6 +10,7 @@
 #include "hg_step.h"
 #include "hg_linalg.h"
 #include "hg_spd6.h"
+#include "hg_lu6.h"
 #include "hg_errors.h"
 #include "hg_gen_standard.h"
 
@@ -47,44 +48,41 @@ static int factor(const double *Pa, const double *Pc, std_factor *f)
                               n[2] * Pc[(3 * k + 2) * 6 + j];
     }
     f->Pc = Pc;
-    return hg_lu_factor(6, f->S, f->piv);
+    return hg_lu6_factor(f->S, f->piv);
 }
 
-/* x = Phi_d^-1 y for one right-hand side y (18): x = [a(12), c(6)]. */
-static void solve(const std_factor *f, const double *y, double *x)
+/* X = Phi_d^-1 [Phi_z | v] (18 x 7, row-major; rows a(12) then c(6)):
+ * Phi_z's column j is the unit load on bar j's z row. */
+static void solve7(const std_factor *f, const double v[18], double X[18 * 7])
 {
-    double *xc = x + 12;
-    int k, j, r;
-    for (k = 0; k < 6; k++)
-        xc[k] = f->n[k][0] * y[3 * k] + f->n[k][1] * y[3 * k + 1] + f->n[k][2] * y[3 * k + 2];
-    hg_lu_solve(6, f->S, f->piv, 1, xc);
-    for (k = 0; k < 6; k++) {
-        double t[3];
+    double xc[6 * 7];
+    int k, j, r, s;
+    for (k = 0; k < 6; k++) {          /* xc = S^-1 (n_k . Y_k) */
+        for (j = 0; j < 6; j++)
+            xc[7 * k + j] = (j == k) ? f->n[k][2] : 0.0;
+        xc[7 * k + 6] = f->n[k][0] * v[3 * k] + f->n[k][1] * v[3 * k + 1] +
+                        f->n[k][2] * v[3 * k + 2];
+    }
+    hg_lu6_solve(f->S, f->piv, 7, xc);
+    for (k = 0; k < 6; k++) {          /* bar k: x_a = G_k (Y_k - C_k xc) */
+        double t[3][7];
         for (r = 0; r < 3; r++) {
-            double v = y[3 * k + r];
             const double *row = f->Pc + (3 * k + r) * 6;
-            for (j = 0; j < 6; j++)
-                v -= row[j] * xc[j];
-            t[r] = v;
+            for (s = 0; s < 7; s++) {
+                double y = (s == 6) ? v[3 * k + r] : (r == 2 && s == k ? 1.0 : 0.0);
+                for (j = 0; j < 6; j++)
+                    y -= row[j] * xc[7 * j + s];
+                t[r][s] = y;
+            }
         }
-        x[2 * k] = f->G[k][0] * t[0] + f->G[k][1] * t[1] + f->G[k][2] * t[2];
-        x[2 * k + 1] = f->G[k][3] * t[0] + f->G[k][4] * t[1] + f->G[k][5] * t[2];
+        for (s = 0; s < 7; s++) {
+            X[(2 * k) * 7 + s] = f->G[k][0] * t[0][s] + f->G[k][1] * t[1][s] + f->G[k][2] * t[2][s];
+            X[(2 * k + 1) * 7 + s] = f->G[k][3] * t[0][s] + f->G[k][4] * t[1][s] + f->G[k][5] * t[2][s];
+        }
     }
-}
-
-/* A = -Phi_d^-1 Phi_z (18 x 6, column j from the unit load on bar j's z row). */
-static void matrix_a(const std_factor *f, double A[18 * 6])
-{
-    double y[18], x[18];
-    int j, r;
-    memset(y, 0, sizeof y);
-    for (j = 0; j < 6; j++) {
-        y[3 * j + 2] = 1.0;
-        solve(f, y, x);
-        y[3 * j + 2] = 0.0;
-        for (r = 0; r < 18; r++)
-            A[r * 6 + j] = -x[r];
-    }
+    for (k = 0; k < 6; k++)
+        for (s = 0; s < 7; s++)
+            X[(12 + k) * 7 + s] = xc[7 * k + s];
 }
 
 int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
@@ -92,16 +90,18 @@ int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
                      double *residual_m)
 {
     double mzz[6], Mza[12], Maa[24], Mcc[36], Q[24], Pa[36], Pc[108], gm[18];
-    double A[18 * 6], b[18], T1[6 * 18], Mh[36], rhs[6], phi[18], x[18];
+    double A[18 * 6], b[18], T1[6 * 18], Mh[36], rhs[6], phi[18], X[18 * 7];
     std_factor f;
     int i, j, k, r, s, rc;
     hg_gen_standard_terms(m->k, q0, qd0, mzz, Mza, Maa, Mcc, Q, Pa, Pc, gm);
     if ((rc = factor(Pa, Pc, &f)))
         return rc;
-    matrix_a(&f, A);
-    solve(&f, gm, b);
-    for (r = 0; r < 18; r++)
-        b[r] = -b[r];
+    solve7(&f, gm, X);
+    for (r = 0; r < 18; r++) {         /* A = -X(:, 0:6), b = -X(:, 6) */
+        for (j = 0; j < 6; j++)
+            A[r * 6 + j] = -X[r * 7 + j];
+        b[r] = -X[r * 7 + 6];
+    }
     for (i = 0; i < 6; i++) {          /* T1 = M_zd + A^T M_dd, M_dd block diagonal */
         for (k = 0; k < 6; k++)
             for (s = 0; s < 2; s++)
@@ -143,13 +143,12 @@ int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
     hg_gen_standard_constraints(m->k, q1, phi, Pa, Pc);
     if ((rc = factor(Pa, Pc, &f)))
         return rc;
-    solve(&f, phi, x);
-    matrix_a(&f, A);
+    solve7(&f, phi, X);
     for (r = 0; r < 18; r++) {
         double v = 0.0;
-        q1[6 + r] -= x[r];
+        q1[6 + r] -= X[r * 7 + 6];
         for (j = 0; j < 6; j++)
-            v += A[r * 6 + j] * qd1[j];
+            v -= X[r * 7 + j] * qd1[j];
         qd1[6 + r] = v;
     }
     *residual_m = hg_bar_length_error(&m->p, q1, q1 + 18);
