@@ -41,6 +41,10 @@ int hg_system_nq(const hg_model *m);
 void hg_improved_euler(int n, const double *q0, const double *qd0, const double *qdd,
                        double dt, double *q1, double *qd1);
 
+/* With X = Phi_d^-1 [Phi_z | Phi] (nd x 7) at the predicted state: the one
+ * Newton-Raphson iteration d1 -= Phi_d^-1 Phi and the projection d1' = A z1'. */
+void hg_stabilize_dependent(int nd, const double *X, double *q1, double *qd1);
+
 /* Standard and Reduced Joints: z independent (Eq. 13 with A = -Phi_d^-1 Phi_z),
  * one Newton-Raphson position iteration and the velocity projection. */
 int hg_step_joints(const hg_model *m, const double *q0, const double *qd0,

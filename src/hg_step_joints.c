@@ -26,6 +26,18 @@ static int factor(int nd, double *Phi_d, int *piv)
     return nd == 6 ? hg_lu6_factor(Phi_d, piv) : hg_lu_factor(nd, Phi_d, piv);
 }
 
+void hg_stabilize_dependent(int nd, const double *X, double *q1, double *qd1)
+{
+    int r, j;
+    for (r = 0; r < nd; r++) {
+        double v = 0.0;
+        q1[6 + r] -= X[r * 7 + 6];
+        for (j = 0; j < 6; j++)
+            v -= X[r * 7 + j] * qd1[j];
+        qd1[6 + r] = v;
+    }
+}
+
 /* X = Phi_d^-1 [Phi_z | v] (nd x 7) from a factored Phi_d. */
 static void solve_a_b(int nd, const double *lu, const int *piv, const double *Phi_z,
                       const double *v, double *X)
@@ -109,13 +121,7 @@ int hg_step_joints(const hg_model *m, const double *q0, const double *qd0,
     if (rc)
         return rc;
     solve_a_b(nd, s.Phi_d, piv, s.Phi_z, phi, X);
-    for (r = 0; r < nd; r++) {
-        double v = 0.0;
-        q1[6 + r] -= X[r * 7 + 6];
-        for (j = 0; j < 6; j++)
-            v -= X[r * 7 + j] * qd1[j];
-        qd1[6 + r] = v;
-    }
+    hg_stabilize_dependent(nd, X, q1, qd1);
     *residual_m = hg_bar_length_error(&m->p, q1, q1 + n - 6);
     return 0;
 }

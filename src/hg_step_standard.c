@@ -144,13 +144,7 @@ int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
     if ((rc = factor(Pa, Pc, &f)))
         return rc;
     solve7(&f, phi, X);
-    for (r = 0; r < 18; r++) {
-        double v = 0.0;
-        q1[6 + r] -= X[r * 7 + 6];
-        for (j = 0; j < 6; j++)
-            v -= X[r * 7 + j] * qd1[j];
-        qd1[6 + r] = v;
-    }
+    hg_stabilize_dependent(18, X, q1, qd1);
     *residual_m = hg_bar_length_error(&m->p, q1, q1 + 18);
     return 0;
 }

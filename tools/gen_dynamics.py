@@ -136,6 +136,22 @@ def head_rotation(c):
     return Rz(c[5]) * Ry(c[4]) * Rx(c[3])
 
 
+def composite_head(pts, m_pt):
+    """The head plus a point mass m_pt at each joint as one rigid body:
+    mass, COM (head frame) and inertia about the COM, all parameter-only."""
+    s_head = sp.Matrix([0, 0, -P["head_com"]])
+    mH = P["m_head"] + 6 * m_pt
+    sG = sp.simplify((P["m_head"] * s_head + m_pt * sum(pts, sp.zeros(3, 1))) / mH)
+
+    def about(rr, m):
+        d = rr - sG
+        return m * ((d.T * d)[0] * sp.eye(3) - d * d.T)
+    IG = sp.diag(P["i_head_xx"], P["i_head_yy"], P["i_head_zz"]) + about(s_head, P["m_head"])
+    for rr in pts:
+        IG += about(rr, m_pt)
+    return mH, sG, IG.applyfunc(lambda x: sp.simplify(sp.expand(x)))
+
+
 # ---------------------------------------------------------------------------
 # the two coordinate sets
 def reduced_model():
@@ -153,16 +169,7 @@ def reduced_model():
     m_pt = me + mm / 4
     pts = [post_point(k, P["lp"]) for k in range(6)]
     s_head = sp.Matrix([0, 0, -P["head_com"]])
-    mH = P["m_head"] + 6 * m_pt
-    sG = sp.simplify((P["m_head"] * s_head + m_pt * sum(pts, sp.zeros(3, 1))) / mH)
-
-    def about(r, m):
-        d = r - sG
-        return m * ((d.T * d)[0] * sp.eye(3) - d * d.T)
-    IG = sp.diag(P["i_head_xx"], P["i_head_yy"], P["i_head_zz"]) + about(s_head, P["m_head"])
-    for r in pts:
-        IG += about(r, m_pt)
-    IG = IG.applyfunc(lambda x: sp.simplify(sp.expand(x)))
+    mH, sG, IG = composite_head(pts, m_pt)
     sysm = System(q, qd)
     sysm.rigid_body(mH, Pp + R * sG, R, c[3:], cd[3:], IG)
     phi = []
@@ -249,18 +256,9 @@ def reduced_atomized(q, qd):
     # composite head: inertial body (lumped m_end + m_mid/4 at each joint)
     # and weight body (m_end + m_mid/2 at each joint), parameter-only
     s_head = sp.Matrix([0, 0, -P["head_com"]])
-    mH = P["m_head"] + 6 * m_pt
-    sG = sp.simplify((P["m_head"] * s_head + m_pt * sum(pts, sp.zeros(3, 1))) / mH)
+    mH, sG, IG = composite_head(pts, m_pt)
     WH = P["g"] * (P["m_head"] + 6 * (me + mm / 2))
     sW = sp.simplify(P["g"] * (P["m_head"] * s_head + (me + mm / 2) * sum(pts, sp.zeros(3, 1))) / WH)
-
-    def about(rr, m):
-        d = rr - sG
-        return m * ((d.T * d)[0] * sp.eye(3) - d * d.T)
-    IG = sp.diag(P["i_head_xx"], P["i_head_yy"], P["i_head_zz"]) + about(s_head, P["m_head"])
-    for rr in pts:
-        IG += about(rr, m_pt)
-    IG = IG.applyfunc(lambda x: sp.simplify(sp.expand(x)))
     s = atoms.vec("sg", R * sG)
     sw = atoms.vec("sw", R * sW)
     Iw_flat = R * IG * R.T
