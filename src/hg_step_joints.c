@@ -101,7 +101,7 @@ int hg_step_joints(const hg_model *m, const double *q0, const double *qd0,
 {
     hg_system s;
     double X[18 * 7], phi[18];
-    int piv[18], rc, nd, n, r, j;
+    int piv[18], rc, nd, n;
     hg_system_terms(m, q0, qd0, &s);
     nd = s.nd;
     n = 6 + nd;
