@@ -309,7 +309,7 @@ static void publish(board_t *b, const double volts[6])
         *j->pos_mm = finite_or_zero(b->d.z_m[k] * HG_MM_PER_M);
         *j->vel_mmps = finite_or_zero(b->d.zd_mps[k] * HG_MM_PER_M);
         *j->volts = finite_or_zero(volts[k]);
-        *j->current_a = finite_or_zero(b->d.current_a[k]);
+        *j->current_a = *b->fault ? 0.0 : finite_or_zero(b->d.current_a[k]); /* drives off */
         *j->force_n = finite_or_zero(b->d.force_n[k]);
     }
     hg_pose_to_user(b->d.pose, user);
