@@ -22,12 +22,30 @@ fi
 [ $MODE = all ] && echo "# fuzz engine: $ENGINE, $RUNS inputs per target, at most $MAXT s each, ${FUZZ_JOBS:-2} at a time"
 JOBS=${FUZZ_JOBS:-2}
 
-# build_target NAME: compile tests/fuzz/NAME.c with the engine and sanitizers
+# build_core: compile the project's sources once, instrumented for fuzzing
+build_core() {
+    mkdir -p "$OUT/obj"
+    objs=""
+    for c in $CORE; do
+        o="$OUT/obj/$(echo "$c" | tr '/' '_' | sed 's/\.c$/.o/')"
+        if [ ! -f "$o" ] || [ "$c" -nt "$o" ]; then
+            if [ $ENGINE = libFuzzer ]; then
+                clang -std=gnu99 -O2 -g $SAN -fsanitize=fuzzer-no-link $INC -c -o "$o" "$c" || return 1
+            else
+                gcc -std=gnu99 -O2 -g $SAN $INC -c -o "$o" "$c" || return 1
+            fi
+        fi
+        objs="$objs $o"
+    done
+    CORE_OBJS=$objs
+}
+
+# build_target NAME: link tests/fuzz/NAME.c with the engine and sanitizers
 build_target() {
     if [ $ENGINE = libFuzzer ]; then
-        clang -std=gnu99 -O2 -g $SAN -fsanitize=fuzzer $INC -o "$OUT/$1" "tests/fuzz/$1.c" $CORE -lm
+        clang -std=gnu99 -O2 -g $SAN -fsanitize=fuzzer $INC -o "$OUT/$1" "tests/fuzz/$1.c" $CORE_OBJS -lm
     else
-        gcc -std=gnu99 -O2 -g $SAN $INC -o "$OUT/$1" "tests/fuzz/$1.c" tests/fuzz/standalone_driver.c $CORE -lm
+        gcc -std=gnu99 -O2 -g $SAN $INC -o "$OUT/$1" "tests/fuzz/$1.c" tests/fuzz/standalone_driver.c $CORE_OBJS -lm
     fi
 }
 
@@ -63,6 +81,10 @@ if [ $MODE = run ]; then run_target "$NAME"; exit 0; fi
 
 status=0
 targets=""
+if ! build_core 2>"$OUT/core.build.log"; then
+    echo "not ok - fuzz: building the project's sources failed: $(grep -m3 error "$OUT/core.build.log" | tr '\n' ' ')"
+    exit 1
+fi
 for src in tests/fuzz/fuzz_*.c; do
     name=$(basename "$src" .c)
     if build_target "$name" 2>"$OUT/$name.build.log"; then
