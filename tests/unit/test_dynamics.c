@@ -7,6 +7,7 @@
 #include "hg_test.h"
 #include "hg_dynamics.h"
 #include "hg_errors.h"
+#include "hg_linalg.h"
 
 /* the spec's tables (shared/hexaglide-model.md) */
 #define SPEC_G 9.81
@@ -160,6 +161,29 @@ static void test_stop(hg_model_kind kind)
           hg_model_name(kind), d.z_m[0] * 1e3, p.stop_max_m * 1e3, worst * 1e3);
 }
 
+/* A step that fails for real (dt = 10 ms into the hard stops makes the
+ * explicit step unstable) reports it and leaves the state as it was. */
+static void test_failure_leaves_state(hg_model_kind kind)
+{
+    hg_params p;
+    hg_model m;
+    hg_data d, before;
+    double v[6] = {10, -10, 10, -10, 10, -10};
+    int rc = 0, s, finite = 1;
+    hg_params_default(&p);
+    hg_model_init(&m, &p, kind, 0, 0);
+    hg_data_reset(&m, &d);
+    for (s = 0; s < 5000 && rc == 0; s++) {
+        before = d;
+        rc = hg_step(&m, &d, v, 0.01);
+        finite &= hg_all_finite(6, d.z_m) && hg_all_finite(6, d.pose) && hg_all_finite(6, d.zd_mps);
+    }
+    d.last_error = before.last_error;
+    CHECK(rc < 0 && finite && memcmp(&d, &before, sizeof d) == 0,
+          "%s: unstable run fails at t = %.2f s with '%s', state untouched and finite",
+          hg_model_name(kind), before.t_s, hg_strerror(rc));
+}
+
 static void test_refused(void)
 {
     hg_params p;
@@ -215,6 +239,7 @@ int main(void)
         test_holding((hg_model_kind)kind);
         test_free_fall((hg_model_kind)kind);
         test_stop((hg_model_kind)kind);
+        test_failure_leaves_state((hg_model_kind)kind);
     }
     test_agreement();
     test_refused();
