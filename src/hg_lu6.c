@@ -2,8 +2,8 @@
 #include <math.h>
 #include "hg_lu6.h"
 #include "hg_errors.h"
+#include "hg_unroll.h"
 
-#define HG_UNROLL _Pragma("GCC unroll 6")
 #define HG_LU6_TINY 1e-13
 #define HG_LU6_MAX_RHS 8
 

@@ -2,9 +2,8 @@
 #include <math.h>
 #include "hg_spd6.h"
 #include "hg_errors.h"
+#include "hg_unroll.h"
 
-/* fixed 6x6 loops: let the compiler unroll them completely */
-#define HG_UNROLL _Pragma("GCC unroll 6")
 
 #define HG_SPD6_MIN_PIVOT 1e-13   /* relative to the diagonal entry */
 

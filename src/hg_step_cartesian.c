@@ -7,9 +7,8 @@
 #include "hg_linalg.h"
 #include "hg_spd6.h"
 #include "hg_errors.h"
+#include "hg_unroll.h"
 
-/* fixed 6x6 loops: let the compiler unroll them completely */
-#define HG_UNROLL _Pragma("GCC unroll 6")
 #include "hg_gen_reduced.h"
 
 /* One Newton step z -= phi / Phi_z at the predicted state, then

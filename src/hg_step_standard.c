@@ -23,6 +23,7 @@ typedef struct {
     const double *Pc;    /* Phi_c, 18 x 6 */
 } std_factor;
 
+/* Factor Phi_d = [blockdiag(Pa) | Pc] by bars into f. */
 static int factor(const double *Pa, const double *Pc, std_factor *f)
 {
     int k, j, r;
