@@ -17,7 +17,9 @@ Settings (environment):
   HG_SAMPLE     1: sample HAL pins to HG_OUT/HG_TAG.csv (default 1)
   HG_TAG        file name stem of outputs (default: the scenario)
   HG_TIMEOUT    seconds allowed for the program (default 300)
-  HG_ESTOP_AFTER  seconds (default 2)
+  HG_ESTOP_AFTER  seconds (default 2); estop = the board's E-STOP button
+                (motenc-hexaglide.0.estop-button), released afterwards and
+                the machine switched on again
 Outputs: HG_OUT/HG_TAG.json (verdict, positions, errors, timings) and,
 with sampling, HG_OUT/HG_TAG.csv (one row per servo period).
 """
@@ -292,7 +294,9 @@ def main():
                 m.poll()
                 res["moving_before_estop"] = m.s.current_vel
                 res["joints_before_estop"] = m.joints_fb()
-                m.c.state(linuxcnc.STATE_ESTOP)
+                # the operator hits the machine's E-STOP button: the board opens
+                # its estop loop (estop-in-not -> iocontrol.0.emc-enable-in)
+                halcmd("setp", "motenc-hexaglide.0.estop-button", "1")
                 m.wait(lambda s: s.task_state == linuxcnc.STATE_ESTOP, 10, "estop")
                 time.sleep(0.5)
                 m.poll()
@@ -302,14 +306,23 @@ def main():
                 res["interp_idle"] = m.s.interp_state == linuxcnc.INTERP_IDLE
                 res["amp_enable"] = [bool(hal.get_value("joint.%d.amp-enable-out" % j)) for j in range(6)]
                 res["pid_output"] = [float(hal.get_value("pid.%d.output" % j)) for j in range(6)]
-                res["dac_value"] = [float(hal.get_value("motenc.0.dac-%02d-value" % j)) for j in range(6)]
-                # the simulation keeps running: the servo thread still turns
-                t1 = m.s.joint[0]["input"]
+                res["drive_volts"] = [float(hal.get_value("motenc-hexaglide.0.joint-%d.volts" % j))
+                                      for j in range(6)]
+                res["board_amps_on"] = bool(hal.get_value("motenc-hexaglide.0.amps-on"))
+                # the simulation keeps running: with the drives off the machine sinks
+                z0 = float(hal.get_value("motenc-hexaglide.0.joint-0.pos"))
                 time.sleep(0.5)
+                res["joint0_sank_mm"] = z0 - float(hal.get_value("motenc-hexaglide.0.joint-0.pos"))
+                # release the button: the machine can be switched on again
+                halcmd("setp", "motenc-hexaglide.0.estop-button", "0")
+                time.sleep(0.2)
+                m.on()
                 m.poll()
-                res["joint0_moved_after_estop"] = m.s.joint[0]["input"] - t1
+                res["on_again"] = m.s.task_state == linuxcnc.STATE_ON
                 res["ok"] = (res["estop"] and not res["enabled"] and not any(res["amp_enable"])
-                             and all(v == 0.0 for v in res["pid_output"]))
+                             and all(v == 0.0 for v in res["pid_output"])
+                             and all(v == 0.0 for v in res["drive_volts"])
+                             and not res["board_amps_on"] and res["on_again"])
             else:
                 # wait for the program to start and to finish (or to be refused)
                 time.sleep(0.5)
