@@ -1,6 +1,8 @@
 /* hg_system.c - the generated terms of each parametrization as dense
  * blocks, the full Newton-Raphson position solve and the energies. */
-#define _GNU_SOURCE   /* sincos */
+#ifndef _GNU_SOURCE
+#define _GNU_SOURCE   /* sincos; Makefile.modinc already defines it */
+#endif
 #include <math.h>
 #include <string.h>
 #include "hg_step.h"
