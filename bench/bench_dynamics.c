@@ -84,7 +84,7 @@ int main(void)
         HG_GEN_STANDARD_TERMS_FLOPS + HG_GEN_STANDARD_CONSTRAINTS_FLOPS,
         HG_GEN_REDUCED_TERMS_FLOPS + HG_GEN_REDUCED_CONSTRAINTS_FLOPS,
         HG_GEN_REDUCED_TERMS_FLOPS + HG_GEN_REDUCED_STABILIZE_FLOPS,
-        HG_GEN_FUSED_ACCEL_FLOPS + HG_GEN_REDUCED_STABILIZE_FLOPS};
+        HG_GEN_FUSED_STEP_FLOPS};
     double timer, med[HG_MODEL_COUNT], p99[HG_MODEL_COUNT];
     int kind, i, failed = 0;
     {   /* the cost of the two clock reads around each step */

@@ -63,8 +63,8 @@ int hg_step_cartesian(const hg_model *m, const double *q0, const double *qd0,
                       const double sc0[6], const double fz[6], double dt, double *q1,
                       double *qd1, double *qdd, double sc1[6], double *residual_m);
 
-/* Fused Reduced Cartesian: the generated hg_gen_fused_accel, then the same
- * integration and stabilization as hg_step_cartesian. */
+/* Fused Reduced Cartesian: the whole step is the generated hg_gen_fused_step
+ * (same algorithm as hg_step_cartesian). */
 int hg_step_fused(const hg_model *m, const double *q0, const double *qd0,
                   const double sc0[6], const double fz[6], double dt, double *q1,
                   double *qd1, double *qdd, double sc1[6], double *residual_m);

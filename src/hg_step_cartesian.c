@@ -96,10 +96,5 @@ int hg_step_fused(const hg_model *m, const double *q0, const double *qd0,
                   const double sc0[6], const double fz[6], double dt, double *q1,
                   double *qd1, double *qdd, double sc1[6], double *residual_m)
 {
-    int rc = hg_gen_fused_accel(m->k, q0, qd0, sc0, fz, qdd);
-    if (rc)
-        return rc;
-    hg_improved_euler(HG_NQ_REDUCED, q0, qd0, qdd, dt, q1, qd1);
-    *residual_m = stabilize(m, q1, qd1, sc1);
-    return 0;
+    return hg_gen_fused_step(m->k, q0, qd0, sc0, fz, dt, q1, qd1, qdd, sc1, residual_m);
 }

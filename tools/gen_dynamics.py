@@ -602,7 +602,8 @@ def write_unit(unit, outdir):
         h.append("/* %s */" % doc)
         h.append(proto + ";")
     h += ["", "#endif", ""]
-    c = [stamp(sp.__version__), '#include <math.h>', '#include "hg_errors.h"',
+    c = [stamp(sp.__version__), "#define _GNU_SOURCE  /* sincos */", '#include <math.h>',
+         '#include "hg_errors.h"',
          '#include "%s.h"' % unit.name, ""]
     c.append("void %s_init(const hg_params *p, double *k)" % unit.name)
     c.append("{")
@@ -682,12 +683,13 @@ def gen_reduced(outdir):
         "                              double *v)",
         "Gravity potential (J, up to a constant)", [("*v", m["V"])], names,
         levels=[[(sy, x) for sy, x in m["levels"][0] if str(sy).startswith("sw")]])
+    u.q, u.qd = list(q), list(qd)
     fl_fused = gen_fused(u, m, names)
     u.macros += ["#define HG_GEN_REDUCED_TERMS_FLOPS %d" % fl_terms,
                  "#define HG_GEN_REDUCED_CONSTRAINTS_FLOPS %d" % fl_con,
                  "#define HG_GEN_REDUCED_POTENTIAL_FLOPS %d" % fl_pot,
                  "#define HG_GEN_REDUCED_STABILIZE_FLOPS %d" % fl_stab,
-                 "#define HG_GEN_FUSED_ACCEL_FLOPS %d" % fl_fused]
+                 "#define HG_GEN_FUSED_STEP_FLOPS %d" % fl_fused]
     write_unit(u, outdir)
     return m
 
@@ -777,12 +779,53 @@ def gen_fused(u, m, names):
     x = [None] * 6
     for i in reversed(range(6)):
         x[i] = T("cdd%d" % i, y[i] * iD[i] - sum(L[kk][i] * x[kk] for kk in range(i + 1, 6)))
-    outs = [("qdd[%d]" % (6 + i), x[i]) for i in range(6)]
-    outs += [("qdd[%d]" % i, b[i] + sum(A[i][j] * x[j] for j in range(6))) for i in range(6)]
-    pr = Printer({**names, **u.kmap(), **{s: "fz[%d]" % i for i, s in enumerate(fz)}})
+    qdd_s = [T("zdd%d" % i, b[i] + sum(A[i][j] * x[j] for j in range(6))) for i in range(6)] + x
+    # the rest of the step: improved Euler on the full state ...
+    q, qd = u.q, u.qd
+    dt = sp.Symbol("dt")
+    q1 = [T("q1_%d" % i, q[i] + qd[i] * dt + qdd_s[i] * dt * dt / 2) for i in range(12)]
+    # (z' of the prediction is not needed: the projection replaces it)
+    qd1 = [None] * 6 + [T("qd1_%d" % i, qd[i] + qdd_s[i] * dt) for i in range(6, 12)]
+    # ... sin/cos of the new head angles (returned for the next step) ...
+    for i in range(3):
+        seq.append((None, "sincos(%s, &sc1[%d], &sc1[%d]);" % (q1[9 + i].name, 2 * i, 2 * i + 1)))
+    # ... one Newton step on z and the velocity projection z' = A c' at
+    # the predicted state (the atoms of reduced_stabilize_atomized there)
+    ms = reduced_stabilize_atomized(sp.Matrix(q), sp.Matrix(qd))
+    sc1 = sp.symbols("s1A c1A s1B c1B s1C c1C")
+    at = {}
+    for lev in ms["levels"]:
+        for sy, _ in lev:
+            at[sy] = sp.Symbol("s_" + sy.name)
+    to_new = {**{a: b for a, b in zip(TRIG_SYMS, sc1)}, **{a: b for a, b in zip(q, q1)},
+              **{a: b for a, b in zip(qd[6:], qd1[6:])}, **at}
+
+    def moved(e):
+        return sp.sympify(e).subs(u.trig).subs(to_new, simultaneous=True)
+    slevels = [[(at[sy], moved(x)) for sy, x in lev] for lev in ms["levels"]]
+    outs_s = [moved(e) for e in list(ms["phi"]) + list(ms["Phi_z"]) + list(ms["vc"])]
+    slevels = prune(slevels, outs_s)
+    for li, lev in enumerate(slevels):
+        hx = [hoist(x) for _, x in lev]
+        lreps, lred = sp.cse(hx, symbols=sp.numbered_symbols("cs%d_" % li), optimizations="basic")
+        seq += list(lreps) + [(sy, x) for (sy, _), x in zip(lev, lred)]
+    phi1, pz1, vc1 = outs_s[:6], outs_s[6:12], outs_s[12:]
+    ipz1 = [T("ipz1_%d" % k, 1 / pz1[k]) for k in range(6)]
+    dl = [T("dl%d" % k, phi1[k] * ipz1[k]) for k in range(6)]
+    rl = T("rl", 1 / (2 * P["l"]))
+    outs = [("qdd[%d]" % i, qdd_s[i]) for i in range(12)]
+    outs += [("q1[%d]" % k, q1[k] - dl[k]) for k in range(6)]
+    outs += [("q1[%d]" % i, q1[i]) for i in range(6, 12)]
+    outs += [("qd1[%d]" % k, -vc1[k] * ipz1[k]) for k in range(6)]
+    outs += [("qd1[%d]" % i, qd1[i]) for i in range(6, 12)]
+    pr = Printer({**names, **u.kmap(), **{s: "fz[%d]" % i for i, s in enumerate(fz)},
+                  **{s: "sc1[%d]" % i for i, s in enumerate(sc1)}})
     lines = []
     flops = 0
     for s, e in seq:
+        if s is None:
+            lines.append("    " + e)
+            continue
         lines.append("    const double %s = %s;" % (s.name, pr.doprint(e)))
         flops += count_flops([e])
         if s in checks:
@@ -790,13 +833,30 @@ def gen_fused(u, m, names):
     for lhs, e in outs:
         lines.append("    %s = %s;" % (lhs, pr.doprint(e)))
         flops += count_flops([e])
+    # largest bar-length error after the Newton step: Phi is quadratic in
+    # z_k, so bar k is left with delta_k^2 (m^2), i.e. delta_k^2 / (2 l) (m)
+    lines.append("    {")
+    lines.append("        const double e[6] = {%s};" % ", ".join("%s*%s*rl" % (d.name, d.name) for d in dl))
+    lines.append("        double worst = 0.0;")
+    lines.append("        int i;")
+    lines.append("        for (i = 0; i < 6; i++)")
+    lines.append("            if (!(e[i] <= worst))")
+    lines.append("                worst = e[i];")
+    lines.append("        *residual_m = worst;")
+    lines.append("    }")
+    flops += 18
     lines.append("    return 0;")
     u.funcs.append((
-        "int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],\n"
-        "                       const double sc[6],\n"
-        "                       const double fz[6], double qdd[12])",
-        "Fused Reduced Cartesian dynamics: with carriage forces fz, the accelerations "
-        "qdd = [z'', c''] (c independent); 0 or HG_ERR_SINGULAR_MASS (%d flops)" % flops,
+        "int hg_gen_fused_step(const double *k, const double q[12], const double qd[12],\n"
+        "                      const double sc[6], const double fz[6], double dt,\n"
+        "                      double q1[12], double qd1[12], double qdd[12], double sc1[6],\n"
+        "                      double *residual_m)",
+        "The whole Reduced Cartesian step in one function (the paper's future work): "
+        "with carriage forces fz, the accelerations qdd = [z'', c''] (Eq. 13, c "
+        "independent, unrolled LDL^T), improved Euler over dt, one Newton step on z "
+        "and z' = A c' at the predicted state; sc1 = sin/cos of q1's head angles, "
+        "residual_m the largest bar-length error left (m). 0 or HG_ERR_SINGULAR_MASS "
+        "(%d flops, sin/cos not counted)" % flops,
         lines))
     return flops
 
