@@ -602,7 +602,8 @@ def write_unit(unit, outdir):
         h.append("/* %s */" % doc)
         h.append(proto + ";")
     h += ["", "#endif", ""]
-    c = [stamp(sp.__version__), "#define _GNU_SOURCE  /* sincos */", '#include <math.h>',
+    c = [stamp(sp.__version__), "#ifndef _GNU_SOURCE", "#define _GNU_SOURCE  /* sincos */",
+         "#endif", '#include <math.h>',
          '#include "hg_errors.h"',
          '#include "%s.h"' % unit.name, ""]
     c.append("void %s_init(const hg_params *p, double *k)" % unit.name)
