@@ -3,15 +3,7 @@
 # in a 1 ms servo thread in the order docs/driver.md gives, and offers
 # small helpers: h (halcmd), g (getp), snapshot (stop the thread, read,
 # restart), wait_pin, approx.
-#
-# Each test runs in its own SysV IPC namespace when `unshare --ipc` works
-# (root), with its own RTAPI_FIFO_PATH, so a LinuxCNC session elsewhere on
-# the machine cannot collide with it.
-if [ -z "$HG_HAL_ISOLATED" ] && command -v unshare >/dev/null 2>&1 &&
-   unshare --ipc true 2>/dev/null; then
-    HG_HAL_ISOLATED=1 exec unshare --ipc "$0" "$@"
-fi
-export RTAPI_FIFO_PATH=${RTAPI_FIFO_PATH:-/tmp/hg-rtapi-$(basename "$0")-$$}
+# hal_env.sh puts each test in its own IPC namespace (see there).
 . "$(dirname "$0")/hal_env.sh"
 REALTIME=/usr/lib/linuxcnc/realtime
 B=motenc.0
