@@ -49,6 +49,14 @@ double hg_home_height(const hg_geometry *g)
     return sqrt(g->l_m * g->l_m - d * d);
 }
 
+void hg_params_keep_home(hg_params *p, const hg_params *before)
+{
+    if (p->geo.h_m == before->geo.h_m &&
+        (p->geo.l_m != before->geo.l_m || p->geo.lb_m != before->geo.lb_m ||
+         p->geo.lp_m != before->geo.lp_m))
+        p->geo.h_m = hg_home_height(&p->geo);
+}
+
 void hg_params_default(hg_params *p)
 {
     memset(p, 0, sizeof *p);

@@ -85,6 +85,10 @@ int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char *
 /* Check the whole set (geometry, positive masses, ordered strokes, ...). */
 int hg_params_check(const hg_params *p, const char **bad_field, const char **why);
 
+/* After changes from `before` to p: when l, lb or lp changed and h did not,
+ * recompute h so that HOME stays at pose 0 (a user who sets h keeps it). */
+void hg_params_keep_home(hg_params *p, const hg_params *before);
+
 /* h that puts the head at pose 0 when all carriages are at 0: sqrt(l^2-(lb-lp)^2). */
 double hg_home_height(const hg_geometry *g);
 

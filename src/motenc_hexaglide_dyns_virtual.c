@@ -145,10 +145,7 @@ static void apply_params(board_t *b)
     if (b->have_refused && memcmp(&b->hal_p, &b->refused, sizeof b->hal_p) == 0)
         return;                       /* same refused set: already said so */
     b->candidate = b->hal_p;
-    if (b->hal_p.geo.h_m == b->m.p.geo.h_m &&
-        (b->hal_p.geo.l_m != b->m.p.geo.l_m || b->hal_p.geo.lb_m != b->m.p.geo.lb_m ||
-         b->hal_p.geo.lp_m != b->m.p.geo.lp_m))     /* h not set: keep HOME at pose 0 */
-        b->candidate.geo.h_m = hg_home_height(&b->candidate.geo);
+    hg_params_keep_home(&b->candidate, &b->m.p);
     rc = hg_model_init(&b->m_new, &b->candidate, b->m.kind, &field, &why);
     if (rc) {
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter %s refused: %s (%s); "

@@ -103,12 +103,12 @@ static void write_row(FILE *f, const hg_data *d)
 
 int cmd_sim(int argc, char **argv)
 {
-    hg_params p;
+    hg_params p, defaults;
     hg_model *m;
     hg_data d;
     double t_end = 1.0, dt = 0.001, volts[6] = {0, 0, 0, 0, 0, 0};
     const char *csv = 0, *bad = 0, *why = 0;
-    int kind = HG_MODEL_REDUCED_CARTESIAN, h_set = 0, i, rc;
+    int kind = HG_MODEL_REDUCED_CARTESIAN, i, rc;
     long n, s;
     FILE *out = stdout;
     hg_params_default(&p);
@@ -154,14 +154,12 @@ int cmd_sim(int argc, char **argv)
         } else if (strcmp(a, "--set") == 0) {
             if (parse_set(argv[++i], &p))
                 return 2;
-            if (strncmp(argv[i], "h=", 2) == 0)
-                h_set = 1;
         } else {
             csv = argv[++i];
         }
     }
-    if (!h_set)
-        p.geo.h_m = hg_home_height(&p.geo);   /* keep HOME at pose 0 */
+    hg_params_default(&defaults);
+    hg_params_keep_home(&p, &defaults);   /* HOME stays at pose 0 unless h was set */
     if (!(t_end >= 0.0)) {
         fprintf(stderr, "hexaglide sim: --time must be >= 0 s, got %g\n", t_end);
         return 2;
