@@ -142,7 +142,9 @@ static void apply_params(board_t *b)
     const char *field = "?", *why = "?";
     int k, rc, geometry_changed;
     double old_lead = b->m.p.lead_m, old_cpr = b->m.p.counts_per_rev;
-    if (b->have_refused && memcmp(&b->hal_p, &b->refused, sizeof b->hal_p) == 0)
+    /* bitwise on purpose: a NaN a user set must compare equal to itself;
+     * hg_params is all doubles, no padding */
+    if (b->have_refused && memcmp(&b->hal_p, &b->refused, sizeof b->hal_p) == 0) // NOLINT(bugprone-suspicious-memory-comparison)
         return;                       /* same refused set: already said so */
     b->candidate = b->hal_p;
     hg_params_keep_home(&b->candidate, &b->m.p);
@@ -157,7 +159,7 @@ static void apply_params(board_t *b)
         *b->param_error = 1;
         return;
     }
-    geometry_changed = memcmp(&b->m_new.p.geo, &b->m.p.geo, sizeof b->m.p.geo) != 0;
+    geometry_changed = memcmp(&b->m_new.p.geo, &b->m.p.geo, sizeof b->m.p.geo) != 0; // NOLINT(bugprone-suspicious-memory-comparison): bitwise change test, all doubles
     b->m = b->m_new;
     b->hal_p = b->m.p;                /* as the model holds them: no re-apply next cycle */
     b->have_refused = 0;
@@ -339,7 +341,7 @@ static void dynamics(void *arg, long period)
         reinit_at_home(b);
     }
     b->prev_reset = *b->reset;
-    if (memcmp(&b->hal_p, &b->m.p, sizeof b->hal_p) != 0)
+    if (memcmp(&b->hal_p, &b->m.p, sizeof b->hal_p) != 0) // NOLINT(bugprone-suspicious-memory-comparison): bitwise change test, NaN-safe
         apply_params(b);
     else if (b->have_refused) {       /* put back to the values in force */
         b->have_refused = 0;

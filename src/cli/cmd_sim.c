@@ -30,7 +30,7 @@ static int parse_volts(const char *text, double volts[6])
         fprintf(stderr, "hexaglide sim: --volts: argument too long\n");
         return -1;
     }
-    strcpy(buf, text);
+    memcpy(buf, text, strlen(text) + 1);   /* length checked above */
     for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(0, ",", &save)) {
         char what[32];
         if (n == 6) {
@@ -83,7 +83,7 @@ static void list_params(void)
     hg_params_default(&p);
     for (i = 0; i < n; i++)
         printf("%-16s %-8s %-14.9g %s\n", t[i].name, t[i].unit,
-               *(double *)((char *)&p + t[i].offset), t[i].what);
+               *hg_params_field(&p, t[i].name), t[i].what);
 }
 
 static void write_row(FILE *f, const hg_data *d)
@@ -123,8 +123,8 @@ int cmd_sim(int argc, char **argv)
             sim_usage();
             return 0;
         }
-        if (strcmp(a, "--model") && strcmp(a, "--time") && strcmp(a, "--dt") && strcmp(a, "--volts") &&
-            strcmp(a, "--set") && strcmp(a, "--csv")) {
+        if (strcmp(a, "--model") != 0 && strcmp(a, "--time") != 0 && strcmp(a, "--dt") != 0 &&
+            strcmp(a, "--volts") != 0 && strcmp(a, "--set") != 0 && strcmp(a, "--csv") != 0) {
             fprintf(stderr, "hexaglide sim: unknown %s '%s'\n",
                     strncmp(a, "--", 2) == 0 ? "option" : "argument", a);
             sim_usage();

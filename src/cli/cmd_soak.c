@@ -92,7 +92,7 @@ int cmd_soak(int argc, char **argv)
     double work_j = 0, work_abs_j = 0, drift = 0, ferr_max = 0, z_prev[6], cmd_prev[6];
     const char *bad = 0, *why = 0;
     int kind = HG_MODEL_REDUCED_CARTESIAN, i, k, rc = 0, faults = 0;
-    long n, s, fault_step = -1;
+    long n, s;
     for (i = 0; i + 1 < argc; i += 2) {
         if (strcmp(argv[i], "--hours") == 0) {
             if (cli_parse_double(argv[i + 1], "--hours", &hours))
@@ -161,8 +161,6 @@ int cmd_soak(int argc, char **argv)
         rc = hg_step(m, &d, volts, dt);
         if (rc) {
             faults++;
-            if (fault_step < 0)
-                fault_step = s;
             fprintf(stderr, "hexaglide soak: step failed at t = %.3f s: %s\n", t, hg_strerror(rc));
             break;
         }
