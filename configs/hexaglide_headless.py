@@ -17,6 +17,7 @@ Settings (environment):
   HG_SAMPLE     1: sample HAL pins to HG_OUT/HG_TAG.csv (default 1)
   HG_TAG        file name stem of outputs (default: the scenario)
   HG_TIMEOUT    seconds allowed for the program (default 300)
+  HG_SETP       "pin value;pin value..." set with halcmd before estop reset
   HG_ESTOP_AFTER  seconds (default 2); estop = the board's E-STOP button
                 (motenc-hexaglide.0.estop-button), released afterwards and
                 the machine switched on again
@@ -214,6 +215,9 @@ class Machine:
                 return True
             if fail_on_error and len(self.errors) > n_err:
                 raise RuntimeError("%s: LinuxCNC reported: %s" % (what, self.errors[n_err]))
+            if fail_on_error and self.s.task_state != linuxcnc.STATE_ON:
+                raise RuntimeError("%s: machine is no longer on (task_state %d; errors %s)"
+                                   % (what, self.s.task_state, self.errors))
             time.sleep(0.05)
         raise TimeoutError("%s: not reached within %.0f s" % (what, timeout))
 
@@ -271,6 +275,8 @@ def main():
         if sample:
             sampler = Sampler(os.path.join(out, tag))
             sampler.enable(True)
+        for item in filter(None, os.environ.get("HG_SETP", "").split(";")):
+            halcmd("setp", *item.split())  # e.g. gains under test (tools/tune_pid.sh)
         m.poll()
         res["joints_at_start"] = m.joints_fb()
         m.on()
