@@ -54,6 +54,30 @@ static void test_sinking(hg_model_kind kind)
           "%s: sinking is a pure vertical translation", hg_model_name(kind));
 }
 
+/* Coulomb friction only (smoothed by tanh): the terminal sinking speed
+ * solves f_coulomb tanh(v / v_coulomb) = W / 6. */
+static void test_coulomb(hg_model_kind kind)
+{
+    hg_params p;
+    hg_model m;
+    hg_data d;
+    double v0[6] = {0, 0, 0, 0, 0, 0}, fc = 100.0, vc = 0.002, expect, worst = 0;
+    int rc, k;
+    hg_params_default(&p);
+    p.c_visc_ns_per_m = 0;
+    p.f_coulomb_n = fc;
+    p.v_coulomb_mps = vc;
+    expect = -vc * atanh(spec_weight / 6 / fc);
+    hg_model_init(&m, &p, kind, 0, 0);
+    hg_data_reset(&m, &d);
+    rc = run(&m, &d, v0, 1e-3, 1.0);
+    for (k = 0; k < 6; k++)
+        worst = fmax(worst, fabs(d.zd_mps[k] - expect));
+    CHECK(rc == 0 && worst < 1e-6 * fabs(expect),
+          "%s: Coulomb friction only, sinking speed %.6f mm/s = -v_c atanh(W/(6 f_c)) = %.6f mm/s",
+          hg_model_name(kind), d.zd_mps[0] * 1e3, expect * 1e3);
+}
+
 static void test_holding(hg_model_kind kind)
 {
     hg_params p;
@@ -237,6 +261,7 @@ int main(void)
     for (kind = 0; kind < HG_MODEL_COUNT; kind++) {
         test_sinking((hg_model_kind)kind);
         test_holding((hg_model_kind)kind);
+        test_coulomb((hg_model_kind)kind);
         test_free_fall((hg_model_kind)kind);
         test_stop((hg_model_kind)kind);
         test_failure_leaves_state((hg_model_kind)kind);
