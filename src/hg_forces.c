@@ -5,7 +5,8 @@
 
 #define HG_DAC_MAX_V 10.0
 
-double hg_drive_current(const hg_params *p, double volts)
+/* Amplifier current (A) for a DAC command. */
+static inline double drive_current(const hg_params *p, double volts)
 {
     double v = isfinite(volts) ? volts : 0.0;
     double i;
@@ -21,7 +22,8 @@ double hg_drive_current(const hg_params *p, double volts)
     return i;
 }
 
-double hg_stop_force(const hg_params *p, double z_m, double zd_mps)
+/* Force (N, +z) of the hard stops on a carriage at z_m moving at zd_mps. */
+static inline double stop_force(const hg_params *p, double z_m, double zd_mps)
 {
     double f = 0.0;
     if (z_m > p->stop_max_m) {
@@ -42,11 +44,11 @@ void hg_carriage_forces(const hg_params *p, const double z_m[6], const double zd
     const double screw = 2.0 * HG_PI / p->lead_m; /* N per N m */
     int k;
     for (k = 0; k < 6; k++) {
-        double i = hg_drive_current(p, volts[k]);
+        double i = drive_current(p, volts[k]);
         double f = i * p->kt_nm_per_a * screw - p->c_visc_ns_per_m * zd_mps[k];
         if (p->f_coulomb_n > 0.0)
             f -= p->f_coulomb_n * tanh(zd_mps[k] / p->v_coulomb_mps);
-        f += hg_stop_force(p, z_m[k], zd_mps[k]);
+        f += stop_force(p, z_m[k], zd_mps[k]);
         force_n[k] = f;
         if (current_a)
             current_a[k] = i;
