@@ -7,7 +7,9 @@
 # Usage: tools/hg_linuxcnc.sh [ini]    (default configs/hexaglide_headless.ini)
 # Environment HG_* is passed on to the headless front end
 # (configs/hexaglide_headless.py). Exit code: LinuxCNC's, i.e. the display's.
-if [ -z "$HG_IN_IPC_NS" ] && [ "$(id -u)" = 0 ] && unshare --ipc --net true 2>/dev/null; then
+# HG_SHARED_HAL=1: no namespaces, so halcmd/halscope started from another
+# terminal can attach to this session (docs/linuxcnc.md).
+if [ -z "$HG_SHARED_HAL" ] && [ -z "$HG_IN_IPC_NS" ] && [ "$(id -u)" = 0 ] && unshare --ipc --net true 2>/dev/null; then
     HG_IN_IPC_NS=1 exec unshare --ipc --net "$0" "$@"
 fi
 cd "$(dirname "$0")/.." || exit 1
@@ -15,11 +17,19 @@ ini=${1:-configs/hexaglide_headless.ini}
 case $ini in /*) ;; *) ini=$PWD/$ini ;; esac
 [ -f "$ini" ] || { echo "hg_linuxcnc.sh: no such config $ini" >&2; exit 2; }
 export RTAPI_UID=${RTAPI_UID:-65534}
-# rtapi_app's master socket (a socket file, not a directory)
-export RTAPI_FIFO_PATH=/tmp/hexaglide-lcnc-$$.sock
+# rtapi_app's master socket (a socket file, not a directory); shared
+# sessions use a fixed one that other terminals can name
+if [ -n "$HG_IN_IPC_NS" ]; then
+    export RTAPI_FIFO_PATH=/tmp/hexaglide-lcnc-$$.sock
+else
+    export RTAPI_FIFO_PATH=${RTAPI_FIFO_PATH:-/tmp/hexaglide-lcnc.sock}
+fi
 cd "$(dirname "$ini")" || exit 1
 # a fresh namespace has no leftovers; without one, clear a previous session's
-[ -n "$HG_IN_IPC_NS" ] || timeout 30 halrun -U >/dev/null 2>&1
+# (only when no other realtime session is running: it would be stopped too)
+if [ -z "$HG_IN_IPC_NS" ] && ! pgrep -x rtapi_app >/dev/null; then
+    timeout 30 halrun -U >/dev/null 2>&1
+fi
 # a lock left by a LinuxCNC that was killed hard would make linuxcnc try
 # to stop that (gone) session and wait for it
 if [ -f /tmp/linuxcnc.lock ] && ! pgrep -f '^/bin/bash /usr/bin/linuxcnc' >/dev/null; then
@@ -33,6 +43,5 @@ trap 'kill -TERM $pid 2>/dev/null' TERM INT
 wait $pid
 rc=$?
 if kill -0 $pid 2>/dev/null; then wait $pid; rc=$?; fi
-[ -n "$HG_IN_IPC_NS" ] || timeout 30 halrun -U >/dev/null 2>&1
 rm -f "$RTAPI_FIFO_PATH"
 exit $rc

@@ -31,6 +31,9 @@ except Exception as ex:
     print("%-34s failed: %s" % (g, ex)); sys.exit(0)
 col = lambda n: d[:, names.index(n)]
 run = col("halui.program.is-running") > 0.5
+if not run.any():
+    print("%-34s program did not run (see the .log: e.g. following-error trip while homing)" % g)
+    sys.exit(0)
 fe = max(np.abs(col("joint.%d.f-error" % j)[run]).max() for j in range(6))
 end = max(abs(col("joint.%d.f-error" % j)[run][-1]) for j in range(6))
 v = max(np.abs(col("pid.%d.output" % j)[run]).max() for j in range(6))
