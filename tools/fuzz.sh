@@ -28,7 +28,8 @@ build_core() {
     objs=""
     for c in $CORE; do
         o="$OUT/obj/$(echo "$c" | tr '/' '_' | sed 's/\.c$/.o/')"
-        if [ ! -f "$o" ] || [ "$c" -nt "$o" ]; then
+        # rebuild when the source or any header of src/ is newer than the object
+        if [ ! -f "$o" ] || [ "$c" -nt "$o" ] || [ -n "$(find src -name '*.h' -newer "$o" | head -1)" ]; then
             if [ $ENGINE = libFuzzer ]; then
                 clang -std=gnu99 -O2 -g $SAN -fsanitize=fuzzer-no-link $INC -c -o "$o" "$c" || return 1
             else
