@@ -2,9 +2,11 @@
 # run.sh - make run: the virtual Hexaglide in AXIS with its vismach 3D view
 # (configs/hexaglide.ini). Installs the modules first.
 #   With an X display ($DISPLAY): interactive; quit AXIS to stop.
-#   Without one, or with HG_SCREENSHOT=file.png: runs AXIS under Xvfb,
-#   waits until AXIS and the 3D view are up, saves a screenshot (default
-#   out/run_screenshot.png) and shuts LinuxCNC down.
+#   Without one, or with HG_SCREENSHOT=file.png: runs AXIS under Xvfb with
+#   HG_AUTOSTART=1 (AXIS homes and starts the logo program by itself,
+#   configs/hexaglide_axisrc.py), waits until AXIS and the 3D view are up
+#   and the machine moves, saves two screenshots 3 s apart (default
+#   out/run_screenshot.png and out/run_screenshot_2.png) and shuts down.
 cd "$(dirname "$0")/.." || exit 1
 [ -n "$HG_NO_INSTALL" ] || make -s install || exit 1
 mkdir -p out
@@ -13,6 +15,8 @@ if [ -n "$DISPLAY" ] && [ -z "$HG_SCREENSHOT" ]; then
 fi
 
 shot=${HG_SCREENSHOT:-out/run_screenshot.png}
+shot2=${shot%.png}_2.png
+export HG_AUTOSTART=${HG_AUTOSTART-1}
 wait_s=${HG_WAIT_S:-90}
 # a free X display number
 n=91
@@ -37,9 +41,9 @@ while [ $t -lt "$wait_s" ] && kill -0 $lcnc 2>/dev/null; do
 done
 rc=1
 if [ $up = 1 ]; then
-    sleep "${HG_SETTLE_S:-5}"   # let both windows draw
-    import -window root "$shot" && rc=0
-    echo "run: screenshot $shot"
+    sleep "${HG_SETTLE_S:-15}"   # draw, home (about 6 s), start the program
+    import -window root "$shot" && sleep 3 && import -window root "$shot2" && rc=0
+    echo "run: screenshots $shot $shot2"
 else
     echo "run: AXIS and the 3D view did not both come up within ${wait_s}s; see out/run.log" >&2
 fi
