@@ -11,6 +11,9 @@ cd "$(dirname "$0")/.." || exit 1
 [ -n "$HG_NO_INSTALL" ] || make -s install || exit 1
 mkdir -p out
 if [ -n "$DISPLAY" ] && [ -z "$HG_SCREENSHOT" ]; then
+    # a TCP display (ssh -X: localhost:10.0) is out of reach from a private
+    # network namespace: run in the shared one then
+    case $DISPLAY in :*) ;; *) export HG_SHARED_HAL=1 ;; esac
     exec tools/hg_linuxcnc.sh configs/hexaglide.ini
 fi
 
