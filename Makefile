@@ -84,7 +84,7 @@ bench: all
 	@bench/run_bench.sh
 
 # each bench/bench_*.c is one program; bench_mujoco* also links MuJoCo
-$(BUILD)/bench/%: bench/%.c $(CORE_OBJS)
+$(BUILD)/bench/%: bench/%.c bench/bench_timing.h $(CORE_OBJS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_HOST) -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST) $(if $(findstring mujoco,$*),-lmujoco)
 # ... and includes the MuJoCo model generator

@@ -10,29 +10,16 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 #include "hg_dynamics.h"
 #include "hg_errors.h"
 #include "hg_gen_reduced.h"
 #include "hg_gen_standard.h"
+#include "bench_timing.h"
 
 #define BENCH_STEPS 200000
 #define WARMUP 2000
 #define DT_S 1e-3
 #define PI 3.14159265358979323846
-
-static double now_ns(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec * 1e9 + t.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* DAC volts of the servo motion at time t. */
 static void servo(const hg_model *m, double t, const double z[6], double v[6])
@@ -60,17 +47,15 @@ static int bench(hg_model_kind kind, double *ns, double *median, double *p99)
     for (s = 0; s < WARMUP + BENCH_STEPS; s++) {
         double v[6], t0, t1;
         servo(&m, d.t_s, d.z_m, v);
-        t0 = now_ns();
+        t0 = bench_now_us();
         rc = hg_step(&m, &d, v, DT_S);
-        t1 = now_ns();
+        t1 = bench_now_us();
         if (rc)
             return rc;
         if (s >= WARMUP)
             ns[s - WARMUP] = t1 - t0;
     }
-    qsort(ns, BENCH_STEPS, sizeof *ns, cmp_double);
-    *median = ns[BENCH_STEPS / 2] / 1e3;
-    *p99 = ns[(int)(0.99 * (BENCH_STEPS - 1))] / 1e3;
+    bench_percentiles(ns, BENCH_STEPS, median, p99);
     return 0;
 }
 
@@ -88,10 +73,10 @@ int main(void)
     double timer, med[HG_MODEL_COUNT], p99[HG_MODEL_COUNT];
     int kind, i, failed = 0;
     {   /* the cost of the two clock reads around each step */
-        double t0 = now_ns(), t1;
+        double t0 = bench_now_us(), t1;
         for (i = 0; i < 1000000; i++)
-            t1 = now_ns();
-        timer = (t1 - t0) / 1e6 / 1e3;
+            t1 = bench_now_us();
+        timer = (t1 - t0) / 1e6;
     }
     printf("one hg_step at dt = 1 ms, %d timed steps per model after %d warm-up steps\n"
            "(each step timed alone; one clock_gettime costs %.3f us and is included)\n\n",

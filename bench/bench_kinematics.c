@@ -3,33 +3,12 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 #include "hg_errors.h"
 #include "hg_kinematics.h"
+#include "bench_timing.h"
 
 #define NPOSES 20000
 #define DEG (3.14159265358979323846 / 180.0)
-
-static double now_ns(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec * 1e9 + t.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* Median and 99th percentile (in us) of n samples given in ns; sorts them. */
-static void stats(double *ns, int n, double *median_us, double *p99_us)
-{
-    qsort(ns, n, sizeof *ns, cmp_double);
-    *median_us = ns[n / 2] / 1e3;
-    *p99_us = ns[(int)(0.99 * n)] / 1e3;
-}
 
 static double uniform(unsigned *s, double lo, double hi)
 {
@@ -56,16 +35,16 @@ int main(void)
             n++;
     }
     for (i = 0; i < NPOSES; i++) {
-        double z[6], t0 = now_ns();
+        double z[6], t0 = bench_now_us();
         for (k = 0; k < reps; k++)
             hg_inverse_kinematics(&p.geo, poses[i], z);
-        t_ik[i] = (now_ns() - t0) / reps;
+        t_ik[i] = (bench_now_us() - t0) / reps;
         sink += z[0];
     }
     for (i = 0; i < NPOSES; i++) {
-        double c[6] = {0, 0, 0, 0, 0, 0}, t0 = now_ns();
+        double c[6] = {0, 0, 0, 0, 0, 0}, t0 = bench_now_us();
         hg_forward_kinematics(&p.geo, joints[i], c, 0, &rep);
-        t_fk_home[i] = now_ns() - t0;
+        t_fk_home[i] = bench_now_us() - t0;
         it_home += rep.iterations;
         if (rep.iterations > max_home)
             max_home = rep.iterations;
@@ -75,21 +54,21 @@ int main(void)
         double c[6], t0;
         for (k = 0; k < 6; k++)
             c[k] = poses[i][k] + 1e-6;
-        t0 = now_ns();
+        t0 = bench_now_us();
         hg_forward_kinematics(&p.geo, joints[i], c, 0, &rep);
-        t_fk_near[i] = now_ns() - t0;
+        t_fk_near[i] = bench_now_us() - t0;
         it_near += rep.iterations;
     }
     printf("kinematics over %d random poses (X,Y +-120 mm, Z +-200 mm, A,B +-20 deg, C +-25 deg)\n", NPOSES);
-    stats(t_ik, NPOSES, &med, &p99);
+    bench_percentiles(t_ik, NPOSES, &med, &p99);
     printf("  inverse:              median %.3f us, p99 %.3f us\n", med, p99);
     printf("BENCH kins-inverse median_us=%.4f p99_us=%.4f\n", med, p99);
-    stats(t_fk_home, NPOSES, &med, &p99);
+    bench_percentiles(t_fk_home, NPOSES, &med, &p99);
     printf("  forward from HOME:    median %.3f us, p99 %.3f us, %.2f iterations (max %d)\n", med,
            p99, (double)it_home / NPOSES, max_home);
     printf("BENCH kins-forward-from-home median_us=%.4f p99_us=%.4f iters=%.2f\n", med, p99,
            (double)it_home / NPOSES);
-    stats(t_fk_near, NPOSES, &med, &p99);
+    bench_percentiles(t_fk_near, NPOSES, &med, &p99);
     printf("  forward from 1e-6 away (motion's case): median %.3f us, p99 %.3f us, %.2f iterations\n",
            med, p99, (double)it_near / NPOSES);
     printf("BENCH kins-forward-tracking median_us=%.4f p99_us=%.4f iters=%.2f\n", med, p99,

@@ -15,9 +15,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include "hg_dynamics.h"
 #include "hg_mujoco_model.c"
+#include "bench_timing.h"
 
 /* The project's dynamics may not be built yet: link it weakly. */
 #pragma weak hg_model_init
@@ -53,27 +53,6 @@ static void bench_servo_volts(const bench_servo *s, double t, const double z[6],
     }
 }
 
-static double now_us(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* Sort the samples and return the median and the 99th percentile. */
-static void percentiles(double *us, int n, double *median, double *p99)
-{
-    qsort(us, n, sizeof *us, cmp_double);
-    *median = us[n / 2];
-    *p99 = us[(int)(0.99 * (n - 1))];
-}
-
 /* Time mj_step with the given integrator; 0 or -1. */
 static int bench_mujoco(const hg_params *p, const char *integrator, const char *name,
                         double *us, double *median_out)
@@ -102,9 +81,9 @@ static int bench_mujoco(const hg_params *p, const char *integrator, const char *
         bench_servo_volts(&s, d->time, z, v);
         for (k = 0; k < 6; k++)
             d->ctrl[k] = v[k];
-        t0 = now_us();
+        t0 = bench_now_us();
         mj_step(m, d);
-        t1 = now_us();
+        t1 = bench_now_us();
         if (i >= WARMUP)
             us[i - WARMUP] = t1 - t0;
         /* outside the timed region: the loop closure of the new state */
@@ -118,7 +97,7 @@ static int bench_mujoco(const hg_params *p, const char *integrator, const char *
         for (k = 0; k < 6; k++)
             zmax = fmax(zmax, fabs(d->qpos[ix.slide_qpos[k]]));
     }
-    percentiles(us, STEPS, &median, &p99);
+    bench_percentiles(us, STEPS, &median, &p99);
     printf("mujoco %-8s nq=%d nv=%d equality rows=%d: median %.2f us, p99 %.2f us per mj_step; "
            "max |z| %.1f mm, loop-closure error: max %.3g m (at t = %.3f s), max after 1 s %.3g m, over %.0f s\n",
            integrator, m->nq, m->nv, 3 * m->neq, median, p99, zmax * 1e3, viol, viol_t, viol_steady, d->time);
@@ -148,15 +127,15 @@ static int bench_project(const hg_params *p, hg_model_kind kind, double *us, dou
         double t0, t1;
         int rc;
         bench_servo_volts(&s, d.t_s, d.z_m, v);
-        t0 = now_us();
+        t0 = bench_now_us();
         rc = hg_step(&m, &d, v, DT_S);
-        t1 = now_us();
+        t1 = bench_now_us();
         if (rc != 0)
             return -1;
         if (i >= WARMUP)
             us[i - WARMUP] = t1 - t0;
     }
-    percentiles(us, STEPS, &median, &p99);
+    bench_percentiles(us, STEPS, &median, &p99);
     *median_out = median;
     *p99_out = p99;
     return 0;

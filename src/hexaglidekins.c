@@ -65,6 +65,23 @@ static int current_geometry(hg_geometry *g)
     return rc;
 }
 
+/* EmcPose (mm, deg) -> core pose (m, rad). */
+static void pose_from_emc(const EmcPose *pos, double pose[6])
+{
+    double user[6] = {pos->tran.x, pos->tran.y, pos->tran.z, pos->a, pos->b, pos->c};
+    hg_pose_from_user(user, pose);
+}
+
+/* core pose (m, rad) -> EmcPose (mm, deg); u v w are 0. */
+static void pose_to_emc(const double pose[6], EmcPose *pos)
+{
+    double user[6];
+    hg_pose_to_user(pose, user);
+    pos->tran.x = user[0]; pos->tran.y = user[1]; pos->tran.z = user[2];
+    pos->a = user[3]; pos->b = user[4]; pos->c = user[5];
+    pos->u = pos->v = pos->w = 0.0;
+}
+
 int kinematicsForward(const double *joints, EmcPose *pos,
                       const KINEMATICS_FORWARD_FLAGS *fflags,
                       KINEMATICS_INVERSE_FLAGS *iflags)
@@ -72,13 +89,11 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     hg_geometry g;
     hg_fk_options opt;
     hg_fk_report rep = {0, 0.0};
-    double z[6], user[6], pose[6];
+    double z[6], pose[6];
     int k, rc;
     (void)fflags;
     (void)iflags;
-    user[0] = pos->tran.x; user[1] = pos->tran.y; user[2] = pos->tran.z;
-    user[3] = pos->a; user[4] = pos->b; user[5] = pos->c;
-    hg_pose_from_user(user, pose);
+    pose_from_emc(pos, pose);
     for (k = 0; k < 6; k++)
         z[k] = joints[k] / HG_MM_PER_M;
     opt.max_iterations = *hd->fk_max_iterations;
@@ -94,10 +109,7 @@ int kinematicsForward(const double *joints, EmcPose *pos,
         *hd->fk_fail_count += 1;
         return rc;
     }
-    hg_pose_to_user(pose, user);
-    pos->tran.x = user[0]; pos->tran.y = user[1]; pos->tran.z = user[2];
-    pos->a = user[3]; pos->b = user[4]; pos->c = user[5];
-    pos->u = pos->v = pos->w = 0.0;
+    pose_to_emc(pose, pos);
     return 0;
 }
 
@@ -106,13 +118,11 @@ int kinematicsInverse(const EmcPose *pos, double *joints,
                       KINEMATICS_FORWARD_FLAGS *fflags)
 {
     hg_geometry g;
-    double user[6], pose[6], z[6];
+    double pose[6], z[6];
     int k, rc;
     (void)iflags;
     (void)fflags;
-    user[0] = pos->tran.x; user[1] = pos->tran.y; user[2] = pos->tran.z;
-    user[3] = pos->a; user[4] = pos->b; user[5] = pos->c;
-    hg_pose_from_user(user, pose);
+    pose_from_emc(pos, pose);
     rc = current_geometry(&g);
     if (rc == 0)
         rc = hg_inverse_kinematics(&g, pose, z);
