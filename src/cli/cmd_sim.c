@@ -169,12 +169,12 @@ int cmd_sim(int argc, char **argv)
                 HG_DT_MAX_S, dt);
         return 2;
     }
-    n = (long)floor(t_end / dt + 0.5);
-    if (n > SIM_MAX_STEPS) {
-        fprintf(stderr, "hexaglide sim: %ld steps is more than the %ld allowed; use a larger --dt "
-                        "or a shorter --time\n", n, SIM_MAX_STEPS);
+    if (floor(t_end / dt + 0.5) > (double)SIM_MAX_STEPS) {  /* compare before converting to long */
+        fprintf(stderr, "hexaglide sim: %.3g steps is more than the %ld allowed; use a larger --dt "
+                        "or a shorter --time\n", floor(t_end / dt + 0.5), SIM_MAX_STEPS);
         return 2;
     }
+    n = (long)floor(t_end / dt + 0.5);
     m = malloc(sizeof *m);
     if (!m) {
         fprintf(stderr, "hexaglide sim: out of memory\n");
