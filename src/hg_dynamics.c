@@ -58,6 +58,15 @@ static void pack(const hg_model *m, const hg_data *d, double *q, double *qd)
     }
 }
 
+/* hg_data -> q = [z, c], qd of the lumped-bar model (broken-bar step). */
+static void lumped_pack(const hg_data *d, double *q, double *qd)
+{
+    memcpy(q, d->z_m, sizeof d->z_m);
+    memcpy(q + 6, d->pose, sizeof d->pose);
+    memcpy(qd, d->zd_mps, sizeof d->zd_mps);
+    memcpy(qd + 6, d->posed, sizeof d->posed);
+}
+
 /* State vectors -> hg_data (positions, velocities, carriage accelerations). */
 static void unpack(const hg_model *m, const double *q, const double *qd, const double *qdd,
                    hg_data *d)
@@ -104,8 +113,10 @@ static void bar_angles(const hg_params *p, const double *z, const double *c, dou
         for (r = 0; r < 3; r++)
             u[r] = A[k][r] - B[k][r];
         n = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        if (!(n > 0.0))                /* a broken bar's ends can meet */
+            continue;
         a[2 * k] = atan2(u[1], -u[2]);
-        a[2 * k + 1] = asin(-u[0] / n);
+        a[2 * k + 1] = asin(fmax(-1.0, fmin(1.0, -u[0] / n)));
     }
 }
 
@@ -158,7 +169,8 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
         hg_gen_standard_init(p, m->k);
     else
         hg_gen_reduced_init(p, m->k);
-    if (!hg_all_finite(HG_MAX_CONSTS, m->k)) {
+    hg_gen_reduced_init(p, m->k_lumped);
+    if (!hg_all_finite(HG_MAX_CONSTS, m->k) || !hg_all_finite(HG_MAX_LUMPED_CONSTS, m->k_lumped)) {
         if (bad_field)
             *bad_field = "params";
         if (why)
@@ -175,6 +187,39 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
     }
     pack(m, &d, q, qd);
     hg_model_energy(m, q, qd, &t, &m->potential_home_j);
+    lumped_pack(&d, q, qd);
+    hg_lumped_energy(m->k_lumped, q, qd, &t, &m->potential_lumped_home_j);
+    return 0;
+}
+
+/* The broken-bar step on d's [z, c]: 0 with q1 (n of m's kind, standard
+ * bar angles from the geometry, rates 0), qd1, qdd filled, or a code. */
+static int step_broken(const hg_model *m, const hg_data *d, const double fz[6], double dt_s,
+                       double *q1, double *qd1, double *qdd, double *res)
+{
+    double q0[HG_NQ_REDUCED], qd0[HG_NQ_REDUCED], ql[HG_NQ_REDUCED], qdl[HG_NQ_REDUCED];
+    double qddl[HG_NQ_REDUCED];
+    int rc;
+    lumped_pack(d, q0, qd0);
+    rc = hg_step_broken(m, d->broken_bars, q0, qd0, fz, dt_s, ql, qdl, qddl, res);
+    if (rc)
+        return rc;
+    if (m->kind != HG_MODEL_STANDARD) {
+        memcpy(q1, ql, sizeof ql);
+        memcpy(qd1, qdl, sizeof qdl);
+        memcpy(qdd, qddl, sizeof qddl);
+        return 0;
+    }
+    memset(qd1, 0, HG_NQ_STANDARD * sizeof(double));
+    memset(qdd, 0, HG_NQ_STANDARD * sizeof(double));
+    memcpy(q1, ql, 6 * sizeof(double));
+    memcpy(q1 + 6, d->bar_rad, sizeof d->bar_rad);
+    memcpy(q1 + 18, ql + 6, 6 * sizeof(double));
+    bar_angles(&m->p, ql, ql + 6, q1 + 6);
+    memcpy(qd1, qdl, 6 * sizeof(double));
+    memcpy(qd1 + 18, qdl + 6, 6 * sizeof(double));
+    memcpy(qdd, qddl, 6 * sizeof(double));
+    memcpy(qdd + 18, qddl + 6, 6 * sizeof(double));
     return 0;
 }
 
@@ -189,7 +234,10 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
     }
     pack(m, d, q0, qd0);
     hg_carriage_forces(&m->p, d->z_m, d->zd_mps, volts, fz, cur);
-    switch (m->kind) {
+    switch (d->broken_bars & HG_BARS_ALL ? HG_MODEL_COUNT : m->kind) {
+    case HG_MODEL_COUNT:               /* a bar broken: any kind */
+        rc = step_broken(m, d, fz, dt_s, q1, qd1, qdd, &res);
+        break;
     case HG_MODEL_STANDARD:
         rc = hg_step_standard(m, q0, qd0, fz, dt_s, q1, qd1, qdd, &res);
         break;
@@ -235,6 +283,12 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
 void hg_energy(const hg_model *m, const hg_data *d, double *kinetic_j, double *potential_j)
 {
     double q[HG_NQ_MAX], qd[HG_NQ_MAX], v;
+    if (d->broken_bars & HG_BARS_ALL) {
+        lumped_pack(d, q, qd);
+        hg_lumped_energy(m->k_lumped, q, qd, kinetic_j, &v);
+        *potential_j = v - m->potential_lumped_home_j;
+        return;
+    }
     pack(m, d, q, qd);
     hg_model_energy(m, q, qd, kinetic_j, &v);
     *potential_j = v - m->potential_home_j;

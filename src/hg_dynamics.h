@@ -36,6 +36,7 @@ const char *hg_model_name(hg_model_kind kind);
 int hg_model_from_name(const char *name);
 
 #define HG_MAX_CONSTS 256   /* room for hoisted parameter-only subexpressions */
+#define HG_MAX_LUMPED_CONSTS 64 /* room for the lumped-bar model's */
 
 typedef struct {
     hg_params p;                 /* the parameter set this model was built from */
@@ -45,10 +46,16 @@ typedef struct {
     double rotor_mass_kg;        /* j_rotor (2 pi / lead)^2, inertia without weight */
     double potential_home_j;     /* gravity potential at HOME (energies are relative to it) */
     double k[HG_MAX_CONSTS];     /* generated init: parameter-only subexpressions */
+    double k_lumped[HG_MAX_LUMPED_CONSTS]; /* the lumped-bar model's (broken-bar step), any kind */
+    double potential_lumped_home_j; /* lumped-bar gravity potential at HOME */
 } hg_model;
 
 #define HG_DT_MAX_S 0.01              /* hg_step refuses longer steps (HG_ERR_BAD_DT) */
 #define HG_STAB_MAX_RESIDUAL_M 1e-6   /* bar-length error after stabilization that counts as diverged */
+#define HG_BARS_ALL 0x3fu             /* broken_bars: bit k is bar k (joint k) */
+#define HG_BROKEN_HEAD_Z_MIN_M (-0.6) /* broken machine: head Z below this is out of volume */
+#define HG_BROKEN_REACH_M 1.0         /* broken machine: |X|, |Y| or a |z_k| above this is out of volume */
+#define HG_BROKEN_ROT_MAX_RAD 0.3490658503988659 /* broken machine: |A|, |B| or |C| above 20 deg is out of volume */
 
 typedef struct {
     double t_s;                  /* simulated time since reset */
@@ -63,6 +70,8 @@ typedef struct {
     double force_n[6];           /* net non-inertial force on each carriage (drive+friction+stop) */
     double residual_m;           /* max bar-length error after the last stabilization */
     int last_error;              /* code of the last failed step, 0 if none */
+    unsigned broken_bars;        /* fault injection: bit k set = bar k removed (HG_BARS_ALL);
+                                    hg_data_reset clears it (all bars intact) */
     /* internal cache of the Reduced Cartesian steps: sin/cos of the head
      * angles of pose[3..5] (the stabilization's are the next step's) */
     double trig_key_rad[3];      /* the angles trig_sc belongs to */
@@ -82,11 +91,22 @@ int hg_data_reset(const hg_model *m, hg_data *d);
 /* Integrate one step of dt_s seconds with the given DAC volts (clamped to
  * +-10 V; non-finite volts count as 0). 0, or a negative code (BAD_DT,
  * STATE_NONFINITE, STABILIZATION, SINGULAR_MASS, ...) in which case d is
- * left exactly as it was before the call except last_error. */
+ * left exactly as it was before the call except last_error.
+ * With any bit of d->broken_bars set, every kind takes the broken-bar step
+ * (lumped bars in q = [z, c], only the intact bars' constraints, see
+ * hg_step_broken in hg_step.h; standard: bar angles follow the geometry,
+ * their rates are 0); it also fails with OUT_OF_VOLUME (head Z below
+ * HG_BROKEN_HEAD_Z_MIN_M, |X|, |Y| or a |z_k| above HG_BROKEN_REACH_M, a
+ * head angle beyond HG_BROKEN_ROT_MAX_RAD: the model has no contacts, and a
+ * head swinging further would strike bars that it passes through here),
+ * SINGULAR_JACOBIAN or DIVERGED.
+ * Clearing bits again needs hg_data_reset (the broken bar's length is
+ * not restored). */
 int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s);
 
 /* Kinetic energy (J, rotor included) and potential energy (J, gravity,
- * zero at HOME) of the state in d. */
+ * zero at HOME) of the state in d (of the lumped-bar model when a bar is
+ * broken). */
 void hg_energy(const hg_model *m, const hg_data *d, double *kinetic_j, double *potential_j);
 
 #endif

@@ -17,6 +17,7 @@ const char *hg_strerror(int code)
     case HG_ERR_BAD_DT: return "time step not positive, not finite or too large";
     case HG_ERR_SINGULAR_MASS: return "reduced mass matrix not positive definite";
     case HG_ERR_DIVERGED: return "Newton-Raphson diverged";
+    case HG_ERR_OUT_OF_VOLUME: return "machine fell out of the volume the model represents (broken bar)";
     default: return "unknown error";
     }
 }

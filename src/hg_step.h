@@ -69,6 +69,23 @@ int hg_step_fused(const hg_model *m, const double *q0, const double *qd0,
                   const double sc0[6], const double fz[6], double dt, double *q1,
                   double *qd1, double *qdd, double sc1[6], double *residual_m);
 
+/* Machine with the bars in mask `broken` removed, any kind: the lumped-bar
+ * model (m->k_lumped) in q = [z(6), c(6)] keeping only the intact bars'
+ * constraints (the broken bars' lumped masses stay: see docs/dynamics.md),
+ * accelerations from the augmented (KKT) system, improved Euler, then an
+ * M-weighted Newton projection of q (bounded) and projection of q' onto
+ * the remaining constraints. residual_m: largest intact-bar length error.
+ * 0, SINGULAR_JACOBIAN, DIVERGED, STABILIZATION or OUT_OF_VOLUME
+ * (the region of hg_step's contract in hg_dynamics.h). */
+int hg_step_broken(const hg_model *m, unsigned broken, const double *q0, const double *qd0,
+                   const double fz[6], double dt, double *q1, double *qd1, double *qdd,
+                   double *residual_m);
+
+/* Kinetic (J, rotor included) and gravity potential (J, up to a constant)
+ * energies of the lumped-bar model with constants k at (q, qd), q = [z, c]. */
+void hg_lumped_energy(const double *k, const double *q, const double *qd,
+                      double *kinetic_j, double *potential_j);
+
 /* sc = sin A, cos A, sin B, cos B, sin C, cos C of pose c = X Y Z A B C. */
 void hg_head_trig(const double *c, double sc[6]);
 

@@ -53,14 +53,14 @@ void hg_head_trig(const double *c, double sc[6])
     sincos(c[5], &sc[4], &sc[5]);
 }
 
-/* Reduced terms -> dense: d = c. */
-static void reduced_terms(const hg_model *m, const double *q, const double *qd, hg_system *s)
+/* Reduced terms with constants kc -> dense: d = c. */
+static void reduced_terms(const double *kc, const double *q, const double *qd, hg_system *s)
 {
     double Phi_z[6], sc[6];
     int k;
     s->nd = 6;
     hg_head_trig(q + 6, sc);
-    hg_gen_reduced_terms(m->k, q, qd, sc, s->mzz, s->Mzd, s->Mdd, s->Q, Phi_z, s->Phi_d, s->gamma);
+    hg_gen_reduced_terms(kc, q, qd, sc, s->mzz, s->Mzd, s->Mdd, s->Q, Phi_z, s->Phi_d, s->gamma);
     memset(s->Phi_z, 0, 36 * sizeof(double));
     for (k = 0; k < 6; k++)
         s->Phi_z[k * 6 + k] = Phi_z[k];
@@ -71,7 +71,7 @@ void hg_system_terms(const hg_model *m, const double *q, const double *qd, hg_sy
     if (m->kind == HG_MODEL_STANDARD)
         standard_terms(m, q, qd, s);
     else
-        reduced_terms(m, q, qd, s);
+        reduced_terms(m->k, q, qd, s);
 }
 
 void hg_system_constraints(const hg_model *m, const double *q, double *phi,
@@ -141,28 +141,42 @@ int hg_solve_positions(const hg_model *m, double *q)
     return HG_ERR_NO_CONVERGENCE;
 }
 
+/* 1/2 q'^T M q' from the dense blocks of s. */
+static double kinetic_energy(const hg_system *s, const double *qd)
+{
+    double t = 0.0;
+    int i, j, nd = s->nd;
+    for (i = 0; i < 6; i++) {
+        t += 0.5 * s->mzz[i] * qd[i] * qd[i];
+        for (j = 0; j < nd; j++)
+            t += s->Mzd[i * nd + j] * qd[i] * qd[6 + j];
+    }
+    for (i = 0; i < nd; i++)
+        for (j = 0; j < nd; j++)
+            t += 0.5 * s->Mdd[i * nd + j] * qd[6 + i] * qd[6 + j];
+    return t;
+}
+
+void hg_lumped_energy(const double *k, const double *q, const double *qd,
+                      double *kinetic_j, double *potential_j)
+{
+    hg_system s;
+    double sc[6];
+    reduced_terms(k, q, qd, &s);
+    *kinetic_j = kinetic_energy(&s, qd);
+    hg_head_trig(q + 6, sc);
+    hg_gen_reduced_potential(k, q, sc, potential_j);
+}
+
 void hg_model_energy(const hg_model *m, const double *q, const double *qd,
                      double *kinetic_j, double *potential_j)
 {
     hg_system s;
-    double t = 0.0;
-    int i, j, nd;
+    if (m->kind != HG_MODEL_STANDARD) {
+        hg_lumped_energy(m->k, q, qd, kinetic_j, potential_j);
+        return;
+    }
     hg_system_terms(m, q, qd, &s);
-    nd = s.nd;
-    for (i = 0; i < 6; i++) {
-        t += 0.5 * s.mzz[i] * qd[i] * qd[i];
-        for (j = 0; j < nd; j++)
-            t += s.Mzd[i * nd + j] * qd[i] * qd[6 + j];
-    }
-    for (i = 0; i < nd; i++)
-        for (j = 0; j < nd; j++)
-            t += 0.5 * s.Mdd[i * nd + j] * qd[6 + i] * qd[6 + j];
-    *kinetic_j = t;
-    if (m->kind == HG_MODEL_STANDARD)
-        hg_gen_standard_potential(m->k, q, potential_j);
-    else {
-        double sc[6];
-        hg_head_trig(q + 6, sc);
-        hg_gen_reduced_potential(m->k, q, sc, potential_j);
-    }
+    *kinetic_j = kinetic_energy(&s, qd);
+    hg_gen_standard_potential(m->k, q, potential_j);
 }
