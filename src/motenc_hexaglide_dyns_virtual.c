@@ -62,6 +62,7 @@ typedef struct {
     hal_bit_t *stuck_min, *stuck_max, *stuck_home; /* IN: switch frozen at its reading */
     hal_bit_t *index_lost;            /* IN: index pulses not seen */
     hal_s32_t *enc_glitch;            /* IO: counts added once, then cleared */
+    hal_bit_t *bar_broken;            /* IN: bar N breaks (its constraint is removed) */
 } joint_hal;
 
 typedef struct {
@@ -82,6 +83,7 @@ typedef struct {
     hal_bit_t *param_error, *dac_garbage;
     hal_s32_t *fault_code;
     hal_u32_t *dout_word;
+    hal_u32_t *bars_broken;           /* OUT: bit N = bar N broken in the model */
     hal_s32_t estop_loop_out;         /* output in the E-STOP loop, -1 none */
     hal_float_t adc_volts_per_amp;
     hg_params hal_p;                  /* the model parameters as HAL sees them */
@@ -316,6 +318,7 @@ static void publish(board_t *b, const double volts[6])
         *b->head[k] = finite_or_zero(user[k]);
     *b->sim_time_s = finite_or_zero(b->d.t_s);
     *b->residual_m = finite_or_zero(b->d.residual_m);
+    *b->bars_broken = b->d.broken_bars;
 }
 
 /* 1 if every published state number is finite. */
@@ -328,6 +331,33 @@ static int state_finite(const hg_data *d)
     return ok;
 }
 
+/* First joint whose bar-broken pin is TRUE, or -1. */
+static int bar_pin_set(const board_t *b)
+{
+    int k;
+    for (k = 0; k < HG_BOARD_JOINTS; k++)
+        if (*b->joint[k].bar_broken)
+            return k;
+    return -1;
+}
+
+/* Break the bars whose pins went TRUE (one RTAPI message each); a broken
+ * bar stays broken until a reset. */
+static void break_bars(board_t *b)
+{
+    int k;
+    for (k = 0; k < HG_BOARD_JOINTS; k++) {
+        unsigned bit = 1u << k;
+        if (!*b->joint[k].bar_broken || (b->d.broken_bars & bit))
+            continue;
+        b->d.broken_bars |= bit;
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: bar %d (joint %d) broke (" XP
+                        ".%d.joint-%d.bar-broken): the head hangs on the other bars; the fault "
+                        "latches when it leaves the volume the model represents\n",
+                        b->id, k, k, b->id, k);
+    }
+}
+
 static void dynamics(void *arg, long period)
 {
     board_t *b = arg;
@@ -336,9 +366,16 @@ static void dynamics(void *arg, long period)
     int k, amps_on, expired;
 
     if (*b->reset && !b->prev_reset) {
-        b->have_refused = 0;
-        apply_params(b);
-        reinit_at_home(b);
+        int k = bar_pin_set(b);
+        if (k >= 0) {
+            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: reset refused: " XP
+                            ".%d.joint-%d.bar-broken is TRUE; set it FALSE, then reset again\n",
+                            b->id, b->id, k);
+        } else {
+            b->have_refused = 0;
+            apply_params(b);
+            reinit_at_home(b);
+        }
     }
     b->prev_reset = *b->reset;
     if (memcmp(&b->hal_p, &b->m.p, sizeof b->hal_p) != 0) // NOLINT(bugprone-suspicious-memory-comparison): bitwise change test, NaN-safe
@@ -364,6 +401,7 @@ static void dynamics(void *arg, long period)
 
     if (!*b->fault) {
         int rc;
+        break_bars(b);
         b->d_saved = b->d;
         rc = hg_step(&b->m, &b->d, volts, dt);
         if (rc == 0 && !state_finite(&b->d))
@@ -490,12 +528,14 @@ static int export_extra(board_t *b)
         TRY(hal_pin_bit_newf(HAL_IN, &j->stuck_home, comp_id, XP ".%d.joint-%d.stuck-home", id, k));
         TRY(hal_pin_bit_newf(HAL_IN, &j->index_lost, comp_id, XP ".%d.joint-%d.index-lost", id, k));
         TRY(hal_pin_s32_newf(HAL_IO, &j->enc_glitch, comp_id, XP ".%d.joint-%d.enc-glitch", id, k));
+        TRY(hal_pin_bit_newf(HAL_IN, &j->bar_broken, comp_id, XP ".%d.joint-%d.bar-broken", id, k));
     }
     for (k = 0; k < 6; k++)
         TRY(hal_pin_float_newf(HAL_OUT, &b->head[k], comp_id, XP ".%d.head-%c", id, axis[k]));
     TRY(hal_pin_float_newf(HAL_OUT, &b->sim_time_s, comp_id, XP ".%d.sim-time", id));
     TRY(hal_pin_float_newf(HAL_OUT, &b->residual_m, comp_id, XP ".%d.residual", id));
     TRY(hal_pin_u32_newf(HAL_OUT, &b->steps, comp_id, XP ".%d.steps", id));
+    TRY(hal_pin_u32_newf(HAL_OUT, &b->bars_broken, comp_id, XP ".%d.bars-broken", id));
     TRY(hal_pin_u32_newf(HAL_OUT, &b->step_ns, comp_id, XP ".%d.step-time-ns", id));
     TRY(hal_pin_u32_newf(HAL_IO, &b->step_max_ns, comp_id, XP ".%d.step-time-max-ns", id));
     TRY(hal_pin_bit_newf(HAL_OUT, &b->fault, comp_id, XP ".%d.fault", id));
