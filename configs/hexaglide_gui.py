@@ -114,4 +114,4 @@ def _placed_tk(*args, **kw):
 
 
 vismach.tkinter.Tk = _placed_tk
-main(model, tool_tip, work, size=1300, lat=-75, lon=25)
+main(model, tool_tip, work, size=1300, lat=-72, lon=-30)
