@@ -60,7 +60,7 @@ run_target() {
         (cd "$OUT" && "./$name" -runs="$RUNS" -max_total_time="$MAXT" -max_len=512 -seed=1 \
             -close_fd_mask=$mask -print_final_stats=1 "corpus-$name" >"$name.log" 2>&1)
         rc=$?
-        runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$OUT/$name.log" | grep -o '[0-9]*$')
+        runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$OUT/$name.log" | grep -o '[0-9]*$' | tail -1)
     else
         "$OUT/$name" -runs="$RUNS" 2>"$OUT/$name.err" | tail -1 >"$OUT/$name.log"
         rc=$?
