@@ -60,6 +60,7 @@ typedef struct {
     hal_float_t *volts, *current_a, *force_n; /* drive volts applied, motor current, net force */
     hal_bit_t *amp_fail;              /* IN: amplifier of this joint failed */
     hal_bit_t *stuck_min, *stuck_max, *stuck_home; /* IN: switch frozen at its reading */
+    hal_bit_t *tripped_min, *tripped_max, *tripped_home; /* IN: switch reads tripped anywhere */
     hal_bit_t *index_lost;            /* IN: index pulses not seen */
     hal_s32_t *enc_glitch;            /* IO: counts added once, then cleared */
     hal_bit_t *bar_broken;            /* IN: bar N breaks (its constraint is removed) */
@@ -421,13 +422,16 @@ static void dynamics(void *arg, long period)
         joint_hal *j = &b->joint[k];
         unsigned stuck = (*j->stuck_min ? HG_SW_MIN : 0u) | (*j->stuck_max ? HG_SW_MAX : 0u) |
                          (*j->stuck_home ? HG_SW_HOME : 0u);
+        unsigned tripped = (*j->tripped_min ? HG_SW_MIN : 0u) | (*j->tripped_max ? HG_SW_MAX : 0u) |
+                           (*j->tripped_home ? HG_SW_HOME : 0u);
         hg_encoder_update(&b->encoder[k], b->d.z_m[k], b->m.p.lead_m, b->m.p.counts_per_rev,
                           *j->index_lost);
         if (*j->enc_glitch) {
             hg_encoder_glitch(&b->encoder[k], *j->enc_glitch);
             *j->enc_glitch = 0;
         }
-        b->switches[k] = hg_switches_stuck(hg_switches(&b->m.p, b->d.z_m[k]), b->switches[k], stuck);
+        b->switches[k] = hg_switches_stuck(hg_switches(&b->m.p, b->d.z_m[k]), b->switches[k], stuck)
+                         | tripped;
     }
     publish(b, volts);
 
@@ -526,6 +530,9 @@ static int export_extra(board_t *b)
         TRY(hal_pin_bit_newf(HAL_IN, &j->stuck_min, comp_id, XP ".%d.joint-%d.stuck-min", id, k));
         TRY(hal_pin_bit_newf(HAL_IN, &j->stuck_max, comp_id, XP ".%d.joint-%d.stuck-max", id, k));
         TRY(hal_pin_bit_newf(HAL_IN, &j->stuck_home, comp_id, XP ".%d.joint-%d.stuck-home", id, k));
+        TRY(hal_pin_bit_newf(HAL_IN, &j->tripped_min, comp_id, XP ".%d.joint-%d.tripped-min", id, k));
+        TRY(hal_pin_bit_newf(HAL_IN, &j->tripped_max, comp_id, XP ".%d.joint-%d.tripped-max", id, k));
+        TRY(hal_pin_bit_newf(HAL_IN, &j->tripped_home, comp_id, XP ".%d.joint-%d.tripped-home", id, k));
         TRY(hal_pin_bit_newf(HAL_IN, &j->index_lost, comp_id, XP ".%d.joint-%d.index-lost", id, k));
         TRY(hal_pin_s32_newf(HAL_IO, &j->enc_glitch, comp_id, XP ".%d.joint-%d.enc-glitch", id, k));
         TRY(hal_pin_bit_newf(HAL_IN, &j->bar_broken, comp_id, XP ".%d.joint-%d.bar-broken", id, k));
