@@ -14,6 +14,9 @@ Settings (environment):
                 estop   home, run, press estop HG_ESTOP_AFTER s into the program
                 refuse  home, run a program that must be refused
                 home    home only
+                fault   home, run, set HG_FAULT HG_FAULT_AFTER s into the program,
+                        wait for LinuxCNC to trip, clear the fault, machine on,
+                        home again, one MDI move (docs/reliability.md)
   HG_SAMPLE     1: sample HAL pins to HG_OUT/HG_TAG.csv (default 1)
   HG_TAG        file name stem of outputs (default: the scenario)
   HG_TIMEOUT    seconds allowed for the program (default 300)
@@ -21,6 +24,14 @@ Settings (environment):
   HG_ESTOP_AFTER  seconds (default 2); estop = the board's E-STOP button
                 (motenc-hexaglide.0.estop-button), released afterwards and
                 the machine switched on again
+  HG_FAULT      "pin value;pin value..." set at once (hal.set_p) in scenario
+                fault, e.g. "motenc-hexaglide.0.joint-1.amp-fail 1"
+  HG_FAULT_AFTER  seconds into the program (default 1.5)
+  HG_FAULT_UNLINK pins disconnected from their signals before the program
+                and connected again for the recovery, e.g. joint.1.amp-fault-in:
+                a drive whose fault output is not wired
+  HG_FAULT_ON_AGAIN 1: try machine on while the fault is still there
+  HG_FAULT_MDI  the recovery's MDI move (default "G90 G1 X5 Y-5 Z5 F600")
 Outputs: HG_OUT/HG_TAG.json (verdict, positions, errors, timings) and,
 with sampling, HG_OUT/HG_TAG.csv (one row per servo period).
 """
@@ -50,6 +61,27 @@ def halcmd(*args, check=True):
     if check and r.returncode != 0:
         raise RuntimeError("halcmd %s: %s" % (" ".join(args), r.stderr.strip()))
     return r.stdout
+
+
+def setp_items(text):
+    """'pin value;pin value...' -> [(pin, value)]."""
+    return [tuple(item.split()) for item in filter(None, text.split(";"))]
+
+
+def sim_time():
+    """The virtual board's simulated time, s."""
+    return float(hal.get_value(CLOCK_PIN))
+
+
+def wait_pin(pin, value, timeout):
+    """Poll a bit pin every 0.5 ms until it reads value; the simulated time
+    then, or None. Resolution: about one servo period."""
+    t0 = time.time()
+    while time.time() - t0 < timeout:
+        if bool(hal.get_value(pin)) == value:
+            return sim_time()
+        time.sleep(0.0005)
+    return None
 
 
 def pin_table():
@@ -232,6 +264,10 @@ class Machine:
         self.c.wait_complete()
         self.c.teleop_enable(0)
         self.c.wait_complete()
+        self.poll()
+        if any(self.s.homed[j] for j in range(6)):  # homing again: forget the old home
+            self.c.unhome(-1)
+            self.wait(lambda s: not any(s.homed[j] for j in range(6)), 10, "unhome")
         self.c.home(-1)
         self.wait(lambda s: all(s.homed[j] for j in range(6)), timeout, "homing",
                   fail_on_error=True)
@@ -243,11 +279,94 @@ class Machine:
         self.c.wait_complete()
         self.c.auto(linuxcnc.AUTO_RUN, 0)
 
+    def mdi(self, line, timeout=30):
+        self.c.mode(linuxcnc.MODE_MDI)
+        self.c.wait_complete()
+        self.c.mdi(line)
+        time.sleep(0.3)
+        self.wait(lambda s: s.interp_state == linuxcnc.INTERP_IDLE and s.queue == 0
+                  and s.state != linuxcnc.RCS_EXEC, timeout, "MDI " + line, fail_on_error=True)
+
     def joints(self):
         return [self.s.joint[j]["output"] for j in range(6)]
 
     def joints_fb(self):
         return [self.s.joint[j]["input"] for j in range(6)]
+
+
+def fault_scenario(m, program, res):
+    """Inject HG_FAULT mid-program; record how LinuxCNC trips; recover."""
+    faults = setp_items(os.environ.get("HG_FAULT", ""))
+    after = float(os.environ.get("HG_FAULT_AFTER", "1.5"))
+    table = pin_table()
+    relink = [(p, table[p][1]) for p in os.environ.get("HG_FAULT_UNLINK", "").split()]
+    for pin, sig in relink:
+        halcmd("unlinkp", pin)
+    res["unlinked"] = relink
+    with open(program) as f:
+        res["program_lines"] = len(f.read().splitlines())
+    m.run_program(program)
+    m.wait(lambda s: s.interp_state != linuxcnc.INTERP_IDLE, 10, "program start")
+    time.sleep(after)
+    m.poll()
+    res["moving_before_fault"] = m.s.current_vel
+    res["pose_before_fault"] = list(m.s.actual_position[:6])
+    n_err = len(m.errors)
+    t_before = sim_time()
+    for pin, val in faults:
+        hal.set_p(pin, val)
+    t_after = sim_time()
+    t_trip = wait_pin("motion.motion-enabled", False, 10)
+    res["fault_sim_s"] = [t_before, t_after]
+    res["trip_sim_s"] = t_trip
+    if t_trip is not None:
+        res["fault_to_trip_ms"] = [round((t_trip - t_after) * 1e3, 1),
+                                   round((t_trip - t_before) * 1e3, 1)]
+    m.wait(lambda s: s.task_state != linuxcnc.STATE_ON and s.interp_state == linuxcnc.INTERP_IDLE,
+           10, "machine off, interpreter idle")
+    time.sleep(0.5)
+    m.poll()
+    res["trip_errors"] = m.errors[n_err:]
+    res["task_state"] = m.s.task_state
+    res["enabled"] = bool(m.s.enabled)
+    res["interp_idle"] = m.s.interp_state == linuxcnc.INTERP_IDLE
+    res["motion_line"] = m.s.motion_line
+    res["pose_at_trip"] = list(m.s.actual_position[:6])
+    res["ferror_highmark"] = [m.s.joint[j]["ferror_highmark"] for j in range(6)]
+    res["amp_enable"] = [bool(hal.get_value("joint.%d.amp-enable-out" % j)) for j in range(6)]
+    if os.environ.get("HG_FAULT_ON_AGAIN") == "1":
+        # the operator presses machine on with the fault still there
+        n_err = len(m.errors)
+        m.c.state(linuxcnc.STATE_ESTOP_RESET)
+        m.c.wait_complete()
+        m.c.state(linuxcnc.STATE_ON)
+        m.c.wait_complete()
+        time.sleep(1.0)
+        m.poll()
+        res["on_with_fault_errors"] = m.errors[n_err:]
+        res["on_with_fault_stays_on"] = m.s.task_state == linuxcnc.STATE_ON and bool(m.s.enabled)
+    # recovery: the fault goes away (amplifier replaced, switch freed)
+    for pin, val in faults:
+        hal.set_p(pin, "0")
+    for pin, sig in relink:
+        halcmd("net", sig, pin)
+    time.sleep(0.2)
+    n_err = len(m.errors)
+    m.on()
+    res["on_again"] = True
+    t0 = time.time()
+    m.home()
+    res["rehome_wall_s"] = round(time.time() - t0, 2)
+    mdi = os.environ.get("HG_FAULT_MDI", "G90 G1 X5 Y-5 Z5 F600")
+    m.mdi(mdi)
+    time.sleep(0.3)
+    m.poll()
+    res["mdi"] = mdi
+    res["pose_after_mdi"] = list(m.s.actual_position[:6])
+    res["recovery_errors"] = m.errors[n_err:]
+    res["ok"] = (t_trip is not None and bool(res["trip_errors"]) and not res["enabled"]
+                 and res["interp_idle"] and not res["recovery_errors"]
+                 and m.s.task_state == linuxcnc.STATE_ON)
 
 
 def main():
@@ -349,6 +468,8 @@ def main():
                     moved = max(abs(a - b) for a, b in zip(res["joints_end"], res["joints_after_home"]))
                     res["moved_mm"] = moved
                     res["ok"] = bool(res["program_errors"]) and m.s.task_state == linuxcnc.STATE_ON
+        elif scenario == "fault":
+            fault_scenario(m, program, res)
         else:
             res["errors"].append("unknown HG_SCENARIO %r" % scenario)
     except BaseException as ex:  # report, do not hang (SIGTERM from timeout too)

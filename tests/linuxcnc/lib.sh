@@ -18,3 +18,11 @@ hg_scenario() {
     echo "# LinuxCNC exit code $LCNC_RC (log: out/tests/$tag.log)"
     grep -a '^hexaglide_headless' "$OUT/$tag.log" | sed 's/^/# /'
 }
+# hg_no_crash TAG: one TAP line, no crash signs in out/tests/TAG.log
+hg_no_crash() {
+    if grep -a -i -E 'segmentation|core dumped|traceback' "$OUT/$1.log" >/dev/null; then
+        echo "not ok - crash signs in out/tests/$1.log"
+    else
+        echo "ok - no crash signs in out/tests/$1.log"
+    fi
+}
