@@ -60,7 +60,7 @@ run_target() {
         (cd "$OUT" && "./$name" -runs="$RUNS" -max_total_time="$MAXT" -max_len=512 -seed=1 \
             -close_fd_mask=$mask -print_final_stats=1 "corpus-$name" >"$name.log" 2>&1)
         rc=$?
-        runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$OUT/$name.log" | grep -o '[0-9]*$' | tail -1)
+        runs=$(grep -a -o 'stat::number_of_executed_units: *[0-9]*' "$OUT/$name.log" | grep -o '[0-9]*$' | tail -1)
     else
         "$OUT/$name" -runs="$RUNS" 2>"$OUT/$name.err" | tail -1 >"$OUT/$name.log"
         rc=$?
@@ -74,7 +74,7 @@ run_target() {
     elif [ $rc -eq 0 ]; then
         echo "not ok - $name: only $runs of $RUNS inputs in the $MAXT s budget ($rate inputs/s)"
     else
-        echo "not ok - $name: $(cat "$OUT/$name.log" "$OUT/$name.err" 2>/dev/null | grep -m1 -E 'property violated|ERROR|runtime error|deadly signal') (log $OUT/$name.log; crash input in $OUT/)"
+        echo "not ok - $name: $(cat "$OUT/$name.log" "$OUT/$name.err" 2>/dev/null | grep -a -m1 -E 'property violated|ERROR|runtime error|deadly signal') (log $OUT/$name.log; crash input in $OUT/)"
     fi
 }
 
