@@ -18,7 +18,8 @@ enum hg_error {
     HG_ERR_BAD_DT = -10,           /* time step not positive, not finite or too large */
     HG_ERR_SINGULAR_MASS = -11,    /* the reduced mass matrix is not positive definite */
     HG_ERR_DIVERGED = -12,         /* Newton-Raphson step grew instead of shrinking */
-    HG_ERR_OUT_OF_VOLUME = -13     /* a broken machine fell out of the region the model represents */
+    HG_ERR_OUT_OF_VOLUME = -13,    /* a broken machine fell out of the region the model represents */
+    HG_ERR_LAST = HG_ERR_OUT_OF_VOLUME /* the most negative code: keep it the last */
 };
 
 /* A short English description of an hg_error code (static string). */

@@ -1,6 +1,7 @@
 /* fuzz_dynamics.c - the dynamics step with random parameter sets that pass
  * validation, every parametrization, random and garbage volts (NaN, inf,
- * 1e300) and time steps. Properties: no crash; every call returns 0 or a
+ * 1e300) and time steps, and now and then broken bars.
+ * Properties: no crash; every call returns 0 or a
  * documented code; the state in hg_data stays finite; a failed step leaves
  * the state exactly as it was. */
 #include <stdio.h>
@@ -52,6 +53,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0; /* e.g. a geometry whose HOME cannot be assembled: refused, fine */
     if (hg_data_reset(&m, &d))
         return 0;
+    if (fuzz_byte(&in) < 32)          /* now and then, fault injection: broken bars */
+        d.broken_bars = fuzz_byte(&in) & HG_BARS_ALL;
     steps = 1 + fuzz_byte(&in) % 16;
     for (i = 0; i < steps; i++) {
         double volts[6], dt;
@@ -60,7 +63,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         dt = (fuzz_byte(&in) < 240) ? 1e-3 : fuzz_double(&in, 0.0, 0.012);
         before = d;
         rc = hg_step(&m, &d, volts, dt);
-        if (rc > 0 || rc < HG_ERR_DIVERGED)
+        if (rc > 0 || rc < HG_ERR_LAST)
             fail("step returned an unknown code");
         if (!state_finite(&d))
             fail("state not finite after a step");
