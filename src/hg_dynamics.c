@@ -90,17 +90,6 @@ static void unpack(const hg_model *m, const double *q, const double *qd, const d
     }
 }
 
-/* 1 when all n values are finite: x - x is 0 for finite x and NaN for
- * inf or NaN, and a sum of zeros stays exactly 0 (no branch per value). */
-static int all_finite(int n, const double *v)
-{
-    double s = 0.0;
-    int i;
-    for (i = 0; i < n; i++)
-        s += v[i] - v[i];
-    return s == 0.0;
-}
-
 /* Bar angles (phi, theta) of u = (A - B)/l = Rx(phi) Ry(theta) (0,0,-1). */
 static void bar_angles(const hg_params *p, const double *z, const double *c, double *a)
 {
@@ -258,7 +247,7 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
     default:
         rc = HG_ERR_BAD_PARAM;
     }
-    if (rc == 0 && !(all_finite(n, q1) && all_finite(n, qd1) && all_finite(n, qdd)))
+    if (rc == 0 && !(hg_all_finite(n, q1) && hg_all_finite(n, qd1) && hg_all_finite(n, qdd)))
         rc = HG_ERR_STATE_NONFINITE;
     if (rc == 0 && !(res <= HG_STAB_MAX_RESIDUAL_M))
         rc = HG_ERR_STABILIZATION;

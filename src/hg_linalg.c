@@ -1,15 +1,17 @@
-/* hg_linalg.c - bounded LU and Cholesky for n <= HG_LINALG_MAX_N. */
+/* hg_linalg.c - bounded LU for n <= HG_LINALG_MAX_N and a finiteness test. */
 #include <math.h>
 #include "hg_linalg.h"
 #include "hg_errors.h"
 
 int hg_all_finite(int n, const double *v)
 {
+    /* x - x is 0 for finite x and NaN for inf or NaN, and a sum of zeros
+     * stays exactly 0: one branch for the whole array (hot in hg_step) */
+    double s = 0.0;
     int i;
     for (i = 0; i < n; i++)
-        if (!isfinite(v[i]))
-            return 0;
-    return 1;
+        s += v[i] - v[i];
+    return s == 0.0;
 }
 
 int hg_lu_factor(int n, double *a, int *piv)
@@ -75,45 +77,5 @@ void hg_lu_solve(int n, const double *lu, const int *piv, int nrhs, double *b)
         }
         for (i = 0; i < n; i++)
             b[i * nrhs + r] = x[i];
-    }
-}
-
-int hg_cholesky_factor(int n, double *a)
-{
-    int i, j, k;
-    if (n < 1 || n > HG_LINALG_MAX_N)
-        return HG_ERR_SINGULAR_MASS;
-    for (j = 0; j < n; j++) {
-        double d = a[j * n + j];
-        for (k = 0; k < j; k++)
-            d -= a[j * n + k] * a[j * n + k];
-        if (!(d > 0.0) || !isfinite(d))
-            return HG_ERR_SINGULAR_MASS;
-        d = sqrt(d);
-        a[j * n + j] = d;
-        for (i = j + 1; i < n; i++) {
-            double s = a[i * n + j];
-            for (k = 0; k < j; k++)
-                s -= a[i * n + k] * a[j * n + k];
-            a[i * n + j] = s / d;
-        }
-    }
-    return 0;
-}
-
-void hg_cholesky_solve(int n, const double *l, double *b)
-{
-    int i, k;
-    for (i = 0; i < n; i++) {
-        double s = b[i];
-        for (k = 0; k < i; k++)
-            s -= l[i * n + k] * b[k];
-        b[i] = s / l[i * n + i];
-    }
-    for (i = n - 1; i >= 0; i--) {
-        double s = b[i];
-        for (k = i + 1; k < n; k++)
-            s -= l[k * n + i] * b[k];
-        b[i] = s / l[i * n + i];
     }
 }

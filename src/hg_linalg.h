@@ -15,13 +15,6 @@ int hg_lu_factor(int n, double *a, int *piv);
  * b (n x nrhs, row-major), in place. */
 void hg_lu_solve(int n, const double *lu, const int *piv, int nrhs, double *b);
 
-/* Cholesky factorization in place (lower triangle: a = L L^T).
- * 0, or HG_ERR_SINGULAR_MASS when a is not positive definite. */
-int hg_cholesky_factor(int n, double *a);
-
-/* Solve L L^T x = b in place for one right-hand side. */
-void hg_cholesky_solve(int n, const double *l, double *b);
-
 /* 1 when every one of the n values is finite. */
 int hg_all_finite(int n, const double *v);
 
