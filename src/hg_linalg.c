@@ -1,18 +1,7 @@
-/* hg_linalg.c - bounded LU for n <= HG_LINALG_MAX_N and a finiteness test. */
+/* hg_linalg.c - bounded LU for n <= HG_LINALG_MAX_N. */
 #include <math.h>
 #include "hg_linalg.h"
 #include "hg_errors.h"
-
-int hg_all_finite(int n, const double *v)
-{
-    /* x - x is 0 for finite x and NaN for inf or NaN, and a sum of zeros
-     * stays exactly 0: one branch for the whole array (hot in hg_step) */
-    double s = 0.0;
-    int i;
-    for (i = 0; i < n; i++)
-        s += v[i] - v[i];
-    return s == 0.0;
-}
 
 int hg_lu_factor(int n, double *a, int *piv)
 {

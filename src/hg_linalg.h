@@ -15,7 +15,16 @@ int hg_lu_factor(int n, double *a, int *piv);
  * b (n x nrhs, row-major), in place. */
 void hg_lu_solve(int n, const double *lu, const int *piv, int nrhs, double *b);
 
-/* 1 when every one of the n values is finite. */
-int hg_all_finite(int n, const double *v);
+/* 1 when every one of the n values is finite. x - x is 0 for finite x and
+ * NaN for inf or NaN, and a sum of zeros stays exactly 0: one branch for the
+ * whole array (inline: it guards every hg_step). */
+static inline int hg_all_finite(int n, const double *v)
+{
+    double s = 0.0;
+    int i;
+    for (i = 0; i < n; i++)
+        s += v[i] - v[i];
+    return s == 0.0;
+}
 
 #endif
