@@ -124,7 +124,7 @@ int hg_data_reset(const hg_model *m, hg_data *d)
         return rc;
     /* z' = 0, so the velocity problem d' = A z' gives d' = 0 */
     unpack(m, q, qd, 0, &nd);
-    nd.residual_m = hg_bar_length_error(&m->p, nd.z_m, nd.pose);
+    nd.residual_m = hg_bar_length_error(&m->p.geo, nd.z_m, nd.pose);
     if (!(nd.residual_m <= HG_STAB_MAX_RESIDUAL_M))
         return HG_ERR_NO_CONVERGENCE;
     *d = nd;

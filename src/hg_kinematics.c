@@ -156,8 +156,7 @@ int hg_inverse_kinematics(const hg_geometry *g, const double pose[6], double z[6
     return HG_OK;
 }
 
-/* Largest bar-length error | |B-A| - l | over the six bars (metres). */
-static double bar_length_error(const hg_geometry *g, const double z[6], const double pose[6])
+double hg_bar_length_error(const hg_geometry *g, const double z[6], const double pose[6])
 {
     double phi[6], worst = 0.0;
     int k;
@@ -234,7 +233,7 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
             break;
         }
     }
-    residual = bar_length_error(g, z, c);
+    residual = hg_bar_length_error(g, z, c);
     if (report)
         report->residual_m = residual;
     /* the last step was below tolerance, so the residual is far below it;

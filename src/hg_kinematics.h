@@ -56,6 +56,11 @@ void hg_joint_points(const hg_geometry *g, const double z[6], const double pose[
 void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6],
                     double phi[6]);
 
+/* Largest bar-length error | |B_k - A_k| - l | over the six bars (metres),
+ * from Phi without cancellation: |B-A| - l = Phi / (|B-A| + l). NaN-safe:
+ * a non-finite error is returned as such. */
+double hg_bar_length_error(const hg_geometry *g, const double z[6], const double pose[6]);
+
 /* Analytic Jacobian dPhi/dpose (6x6 row-major, phi row k, pose column) and,
  * if dphi_dz is not 0, the diagonal dPhi_k/dz_k. */
 void hg_constraint_jacobian(const hg_geometry *g, const double z[6], const double pose[6],

@@ -89,9 +89,6 @@ void hg_lumped_energy(const double *k, const double *q, const double *qd,
 /* sc = sin A, cos A, sin B, cos B, sin C, cos C of pose c = X Y Z A B C. */
 void hg_head_trig(const double *c, double sc[6]);
 
-/* Largest bar-length error ||B - A| - l| (m) of joints z and pose c. */
-double hg_bar_length_error(const hg_params *p, const double *z, const double *c);
-
 /* Full Newton-Raphson on the dependent positions of q (z fixed; for the
  * reduced models the head pose c, for the standard model the bar angles
  * and c) from the guess in q. 0, HG_ERR_NO_CONVERGENCE or HG_ERR_SINGULAR_JACOBIAN. */

@@ -122,6 +122,6 @@ int hg_step_joints(const hg_model *m, const double *q0, const double *qd0,
         return rc;
     solve_a_b(nd, s.Phi_d, piv, s.Phi_z, phi, X);
     hg_stabilize_dependent(nd, X, q1, qd1);
-    *residual_m = hg_bar_length_error(&m->p, q1, q1 + n - 6);
+    *residual_m = hg_bar_length_error(&m->p.geo, q1, q1 + n - 6);
     return 0;
 }

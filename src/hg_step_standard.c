@@ -146,6 +146,6 @@ int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
         return rc;
     solve7(&f, phi, X);
     hg_stabilize_dependent(18, X, q1, qd1);
-    *residual_m = hg_bar_length_error(&m->p, q1, q1 + 18);
+    *residual_m = hg_bar_length_error(&m->p.geo, q1, q1 + 18);
     return 0;
 }

@@ -102,20 +102,6 @@ void hg_system_constraints(const hg_model *m, const double *q, double *phi,
     }
 }
 
-/* From Phi = |B-A|^2 - l^2: |B-A| - l = Phi / (|B-A| + l). */
-double hg_bar_length_error(const hg_params *p, const double *z, const double *c)
-{
-    double phi[6], worst = 0.0;
-    int k;
-    hg_constraints(&p->geo, z, c, phi);
-    for (k = 0; k < 6; k++) {
-        double e = fabs(phi[k]) / (sqrt(phi[k] + p->geo.l_m * p->geo.l_m) + p->geo.l_m);
-        if (!(e <= worst))
-            worst = e;
-    }
-    return worst;
-}
-
 int hg_solve_positions(const hg_model *m, double *q)
 {
     double phi[18], Phi_d[18 * 18], Phi_z[18 * 6];
