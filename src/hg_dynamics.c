@@ -37,6 +37,36 @@ int hg_model_from_name(const char *name)
     return -1;
 }
 
+static const char *const integrator_names[HG_INTEGRATOR_COUNT] = {
+    "improved-euler", "heun", "rk4",
+};
+
+const char *hg_integrator_name(hg_integrator which)
+{
+    if ((int)which < 0 || which >= HG_INTEGRATOR_COUNT)
+        return 0;
+    return integrator_names[which];
+}
+
+int hg_integrator_from_name(const char *name)
+{
+    int i;
+    if (!name)
+        return -1;
+    for (i = 0; i < HG_INTEGRATOR_COUNT; i++)
+        if (strcmp(name, integrator_names[i]) == 0)
+            return i;
+    return -1;
+}
+
+int hg_model_set_integrator(hg_model *m, int which)
+{
+    if (which < 0 || which >= HG_INTEGRATOR_COUNT)
+        return HG_ERR_BAD_PARAM;
+    m->integrator = (hg_integrator)which;
+    return 0;
+}
+
 /* hg_data -> state vectors of m's parametrization. */
 static void pack(const hg_model *m, const hg_data *d, double *q, double *qd)
 {

@@ -35,12 +35,27 @@ const char *hg_model_name(hg_model_kind kind);
 /* Kind for a name, or -1 when the name is unknown. */
 int hg_model_from_name(const char *name);
 
+/* Time integration scheme of one step (hg_integrate.[ch] holds the schemes). */
+typedef enum {
+    HG_INTEGRATOR_IMPROVED_EULER = 0, /* the paper's: q += qd dt + qdd dt^2/2, qd += qdd dt (default) */
+    HG_INTEGRATOR_HEUN = 1,           /* second order (RK2), then the same stabilization */
+    HG_INTEGRATOR_RK4 = 2,            /* classical fourth order, then the same stabilization */
+    HG_INTEGRATOR_COUNT = 3
+} hg_integrator;
+
+/* Name of a scheme ("improved-euler", "heun", "rk4"); 0 for an invalid one. */
+const char *hg_integrator_name(hg_integrator which);
+
+/* Scheme for a name, or -1 when the name is unknown. */
+int hg_integrator_from_name(const char *name);
+
 #define HG_MAX_CONSTS 256   /* room for hoisted parameter-only subexpressions */
 #define HG_MAX_LUMPED_CONSTS 64 /* room for the lumped-bar model's */
 
 typedef struct {
     hg_params p;                 /* the parameter set this model was built from */
     hg_model_kind kind;
+    hg_integrator integrator;    /* scheme of hg_step (hg_model_init: improved Euler) */
     double force_per_volt_n;     /* ka kt 2 pi / lead */
     double force_max_n;          /* i_max kt 2 pi / lead */
     double rotor_mass_kg;        /* j_rotor (2 pi / lead)^2, inertia without weight */
@@ -83,6 +98,10 @@ typedef struct {
  * *why naming the cause (static strings), or another negative code. */
 int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
                   const char **bad_field, const char **why);
+
+/* Use scheme `which` from now on: 0, or HG_ERR_BAD_PARAM (m unchanged)
+ * when which is not in [0, HG_INTEGRATOR_COUNT). */
+int hg_model_set_integrator(hg_model *m, int which);
 
 /* Put the machine at HOME at rest (z = 0, z' = 0), solving the dependent
  * coordinates and velocities with full Newton-Raphson. 0 or a negative code. */
