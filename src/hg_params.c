@@ -1,7 +1,7 @@
 /* hg_params.c - defaults, by-name access and validation of hg_params. */
-#include <math.h>
+#include "hg_math.h"
 #include <stddef.h>
-#include <string.h>
+#include "hg_string.h"
 #include "hg_params.h"
 #include "hg_errors.h"
 
