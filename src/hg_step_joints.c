@@ -13,7 +13,7 @@
 /* Scratch laid over d->work.step. */
 typedef struct {
     double mzz[6], Mzc[36], Mcc[36], Q[12], pz[6], pc[36], gm[6], sc[6];
-    double X[6 * 7], T1[36], Mh[36], rhs[6], phi[6];
+    double X[6 * 7], phi[6];
     int piv[6];
 } joints_ws;
 typedef char hg_joints_ws_fits[sizeof(joints_ws) <= sizeof(((hg_work *)0)->step) ? 1 : -1];
@@ -40,6 +40,7 @@ int hg_joints_accel(const hg_model *m, hg_data *d, const double *q, const double
 {
     joints_ws *w = (joints_ws *)d->work.step;
     const double *X = w->X;
+    double T1[36], Mh[36], rhs[6];     /* on the stack: they alias nothing */
     int i, j, r, t, rc;
     hg_head_trig(q + 6, w->sc);
     hg_gen_reduced_terms(m->k, q, qd, w->sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->pz, w->pc, w->gm);
@@ -55,32 +56,32 @@ int hg_joints_accel(const hg_model *m, hg_data *d, const double *q, const double
             HG_UNROLL
             for (t = 0; t < 6; t++)
                 acc -= X[t * 7 + i] * w->Mcc[t * 6 + r];
-            w->T1[i * 6 + r] = acc;
+            T1[i * 6 + r] = acc;
         }
     HG_UNROLL
     for (i = 0; i < 6; i++) {
         double acc = w->Q[i] + fz[i];
         HG_UNROLL
         for (r = 0; r < 6; r++)
-            acc += -X[r * 7 + i] * w->Q[6 + r] + w->T1[i * 6 + r] * X[r * 7 + 6];
-        w->rhs[i] = acc;
+            acc += -X[r * 7 + i] * w->Q[6 + r] + T1[i * 6 + r] * X[r * 7 + 6];
+        rhs[i] = acc;
         for (j = 0; j <= i; j++) {     /* T1 A + (M_zc A)^T, lower triangle */
             double v = (i == j) ? w->mzz[i] : 0.0;
             HG_UNROLL
             for (r = 0; r < 6; r++)
-                v -= w->T1[i * 6 + r] * X[r * 7 + j] + w->Mzc[j * 6 + r] * X[r * 7 + i];
-            w->Mh[i * 6 + j] = v;
+                v -= T1[i * 6 + r] * X[r * 7 + j] + w->Mzc[j * 6 + r] * X[r * 7 + i];
+            Mh[i * 6 + j] = v;
         }
     }
-    if ((rc = hg_spd6_solve(w->Mh, w->rhs)))
+    if ((rc = hg_spd6_solve(Mh, rhs)))
         return rc;
     HG_UNROLL
     for (r = 0; r < 6; r++) {          /* c'' = A z'' + b */
         double acc = -X[r * 7 + 6];
         HG_UNROLL
         for (j = 0; j < 6; j++)
-            acc -= X[r * 7 + j] * w->rhs[j];
-        qdd[r] = w->rhs[r];
+            acc -= X[r * 7 + j] * rhs[j];
+        qdd[r] = rhs[r];
         qdd[6 + r] = acc;
     }
     return 0;
