@@ -9,8 +9,9 @@
  * pose = X Y Z (m) A B C (rad) of the head reference point, as in
  * hg_kinematics.h. Volts are the DAC commands of joints 0..5.
  *
- * Pure C and libm: no LinuxCNC dependency; hg_step has no malloc, no stdio
- * and bounded loops, and never leaves a non-finite number in hg_data. */
+ * Pure C and rtapi_math's functions (hg_math.h): no LinuxCNC dependency;
+ * hg_step has no malloc, no stdio, bounded loops and stack frames under
+ * 2560 bytes, and never leaves a non-finite number in hg_data's state. */
 #ifndef HG_DYNAMICS_H
 #define HG_DYNAMICS_H
 
@@ -44,19 +45,22 @@ int hg_model_set_integrator(hg_model *m, int which);
 int hg_data_reset(const hg_model *m, hg_data *d);
 
 /* Integrate one step of dt_s seconds with the given DAC volts (clamped to
- * +-10 V; non-finite volts count as 0). 0, or a negative code (BAD_DT,
- * STATE_NONFINITE, STABILIZATION, SINGULAR_MASS, ...) in which case d is
- * left exactly as it was before the call except last_error.
+ * +-10 V, non-finite volts count as 0; held over the step) with the scheme
+ * m->integrator (hg_integrate.h: the paper's improved Euler by default).
+ * 0, or a negative code (BAD_DT, STATE_NONFINITE, STABILIZATION,
+ * SINGULAR_MASS, ...) in which case d's state (the first
+ * HG_DATA_STATE_BYTES) is left exactly as it was before the call except
+ * last_error; d->work is scratch.
  * With any bit of d->broken_bars set, every kind takes the broken-bar step
  * (lumped bars in q = [z, c], only the intact bars' constraints, see
- * hg_step_broken in hg_step.h; standard: bar angles follow the geometry,
+ * hg_step_broken.h; standard: bar angles follow the geometry,
  * their rates are 0); it also fails with OUT_OF_VOLUME (head Z below
  * HG_BROKEN_HEAD_Z_MIN_M, |X|, |Y| or a |z_k| above HG_BROKEN_REACH_M, a
  * head angle beyond HG_BROKEN_ROT_MAX_RAD: the model has no contacts, and a
  * head swinging further would strike bars that it passes through here),
  * SINGULAR_JACOBIAN or DIVERGED.
  * Clearing bits again needs hg_data_reset (the broken bar's length is
- * not restored). */
+ * not restored). Substeps: call it n times with dt_s / n. */
 int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s);
 
 /* Kinetic energy (J, rotor included) and potential energy (J, gravity,

@@ -1,4 +1,4 @@
-/* hg_step_cartesian.c - one step of the Reduced Cartesian parametrization
+/* hg_step_cartesian.c - the Reduced Cartesian parametrization
  * (head pose c independent, carriage heights z dependent): Phi_z is
  * diagonal, so A = -Phi_z^-1 Phi_c costs 36 products and the position
  * stabilization is one diagonal Newton step per carriage. The fused
@@ -15,7 +15,7 @@
  * z' = A c' = -Phi_z^-1 (Phi_c c'). Phi is exactly quadratic in z_k
  * (d^2 Phi_k / dz_k^2 = 2), so the bar's residual after the step is
  * delta^2 (m^2): the bar-length error delta^2 / (2 l) needs no new
- * evaluation. Returns that error (m). */
+ * evaluation: *residual_m is that error (m). */
 int hg_cartesian_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd1,
                            double *residual_m)
 {
