@@ -196,8 +196,11 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
         return rc;
     }
     hg_model_energy(m, q, qd, &t, &m->potential_home_j);
-    if (kind == HG_MODEL_STANDARD)     /* [z, c] of the lumped-bar model */
-        memcpy(q + 6, q + 18, 6 * sizeof(double));
+    if (kind == HG_MODEL_STANDARD) {   /* [z, c] of the lumped-bar model */
+        int i;
+        for (i = 0; i < 6; i++)
+            q[6 + i] = q[18 + i];
+    }
     hg_lumped_energy(m->k_lumped, q, qd, &t, &m->potential_lumped_home_j);
     return 0;
 }
