@@ -249,6 +249,8 @@ static void encoders(hg_board *b, const hg_board_inputs *in, hg_board_outputs *o
     for (ch = 0; ch < HG_BOARD_ENCODERS; ch++) {
         hg_encoder *e = &b->enc[ch];
         double s = in->enc_scale[ch];
+        if (e->latch_hit)             /* the driver was told (index_latched) last step */
+            hg_encoder_arm(e, 0);
         hg_encoder_arm(e, in->index_enable[ch]);
         if (ch < HG_BOARD_JOINTS) {
             hg_encoder_update(e, b->d.z_m[ch], b->m.p.lead_m, b->m.p.counts_per_rev,
@@ -433,4 +435,54 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
                                            in->stuck[k]) | in->tripped[k];
     adc(b, in);
     publish(b, in, out, volts);
+}
+
+/* Append the decimal digits of u (no sign) at p; returns the new end. */
+static char *put_uint(char *p, unsigned long long u, int min_digits)
+{
+    char tmp[24];
+    int n = 0;
+    do {
+        tmp[n++] = (char)('0' + (int)(u % 10u));
+        u /= 10u;
+    } while (u && n < 20);
+    while (n < min_digits && n < 20)
+        tmp[n++] = '0';
+    while (n)
+        *p++ = tmp[--n];
+    return p;
+}
+
+void hg_board_format_value(char buf[HG_BOARD_VALUE_LEN], double v)
+{
+    char *p = buf;
+    unsigned long long ip, frac;
+    double a;
+    if (v != v) {
+        memcpy(buf, "nan", 4);
+        return;
+    }
+    if (v < 0 || (v == 0 && 1 / v < 0)) {
+        *p++ = '-';
+        v = -v;
+    }
+    if (v > 1e15) {                   /* inf or beyond 6 decimals' reach */
+        memcpy(p, v > 1.7976931348623157e308 ? "inf" : "huge", 5);
+        return;
+    }
+    a = floor(v);
+    ip = (unsigned long long)a;
+    frac = (unsigned long long)floor((v - a) * 1e6 + 0.5);
+    if (frac >= 1000000ull) {
+        ip++;
+        frac -= 1000000ull;
+    }
+    p = put_uint(p, ip, 1);
+    if (frac) {
+        *p++ = '.';
+        p = put_uint(p, frac, 6);
+        while (p[-1] == '0')          /* 1.500000 -> 1.5 */
+            p--;
+    }
+    *p = '\0';
 }

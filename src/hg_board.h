@@ -205,6 +205,11 @@ int hg_board_params_check(const hg_board_params *p, unsigned long long *mask,
 int hg_board_explain_refusal(const hg_board *b, const hg_board_params *want,
                              unsigned long long *mask, const char *why[HG_BOARD_WHY_LEN]);
 
+/* v as text without stdio (rtapi_print_msg formats no floats in kernel
+ * builds): "-12.5", up to 6 decimals, "nan", "inf", "huge" (|v| > 1e15). */
+#define HG_BOARD_VALUE_LEN 32
+void hg_board_format_value(char buf[HG_BOARD_VALUE_LEN], double v);
+
 /* HAL name of refused_mask bit i ("c-visc", "substeps", ...), 0 if none. */
 const char *hg_board_param_hal_name(int bit);
 
