@@ -302,7 +302,7 @@ static void adc(hg_board *b, const hg_board_inputs *in)
 static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outputs *out,
                     const double volts[6])
 {
-    int k, i, open = in ? estop_open(in) : 1;
+    int k, i, open = in ? estop_open(in) : 0; /* before any step: pins as hal_motenc powers up */
     for (k = 0; k < HG_BOARD_JOINTS; k++) {
         out->z_m[k] = finite_or_zero(b->d.z_m[k]);
         out->zd_mps[k] = finite_or_zero(b->d.zd_mps[k]);

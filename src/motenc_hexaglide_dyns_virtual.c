@@ -375,7 +375,6 @@ static int export_motenc(board_t *b)
     for (ch = 0; ch < HG_BOARD_INPUTS; ch++) {
         PIN(bit, HAL_OUT, &b->din[ch], "motenc.%d.in-%02d", id, ch);
         PIN(bit, HAL_OUT, &b->din_not[ch], "motenc.%d.in-%02d-not", id, ch);
-        *b->din_not[ch] = 1;
     }
     TRY(export_funct(b, "digital-in-read", digital_in_read, 0));
     for (ch = 0; ch < HG_BOARD_OUTPUTS; ch++) {
@@ -491,7 +490,10 @@ int rtapi_app_main(void)
         hal_exit(comp_id);
         return rc;
     }
-    publish(b);
+    publish(b);                       /* power-up values of every pin */
+    encoder_read(b, 0);
+    digital_in_read(b, 0);
+    misc_update(b, 0);
     rtapi_print_msg(RTAPI_MSG_INFO, MODNAME ": board %d, model %s, ready\n", board, model);
     hal_ready(comp_id);
     return 0;
