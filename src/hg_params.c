@@ -54,10 +54,11 @@ double hg_home_height(const hg_geometry *g)
 
 void hg_params_keep_home(hg_params *p, const hg_params *before)
 {
-    if (p->geo.h_m == before->geo.h_m &&
+    double h = hg_home_height(&p->geo);
+    if (p->geo.h_m == before->geo.h_m && isfinite(h) &&
         (p->geo.l_m != before->geo.l_m || p->geo.lb_m != before->geo.lb_m ||
          p->geo.lp_m != before->geo.lp_m))
-        p->geo.h_m = hg_home_height(&p->geo);
+        p->geo.h_m = h;
 }
 
 void hg_params_default(hg_params *p)

@@ -100,7 +100,8 @@ int hg_params_check(const hg_params *p, const char **bad_field, const char **why
 int hg_params_check_all(const hg_params *p, unsigned long long *mask, const char *why[HG_PARAMS_MAX]);
 
 /* After changes from `before` to p: when l, lb or lp changed and h did not,
- * recompute h so that HOME stays at pose 0 (a user who sets h keeps it). */
+ * recompute h so that HOME stays at pose 0 (a user who sets h keeps it;
+ * a geometry without a HOME, l <= lb - lp, keeps h: the check names l). */
 void hg_params_keep_home(hg_params *p, const hg_params *before);
 
 /* h that puts the head at pose 0 when all carriages are at 0: sqrt(l^2-(lb-lp)^2). */
