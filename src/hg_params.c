@@ -114,6 +114,19 @@ double *hg_params_field(hg_params *p, const char *name)
     return 0;
 }
 
+double *hg_params_at(hg_params *p, int i)
+{
+    int n;
+    const hg_param_info *t = hg_params_table(&n);
+    return i >= 0 && i < n ? (double *)((char *)p + t[i].offset) : 0;
+}
+
+double hg_params_get(const hg_params *p, int i)
+{
+    const double *f = hg_params_at((hg_params *)p, i); /* read only */
+    return f ? *f : 0.0;
+}
+
 int hg_params_set(hg_params *p, const char *name, double value)
 {
     double *f = hg_params_field(p, name);

@@ -80,6 +80,12 @@ const hg_param_info *hg_params_table(int *count);
 /* Pointer to the field called name, or 0 if there is none. */
 double *hg_params_field(hg_params *p, const char *name);
 
+/* Field of table entry i (0 <= i < table length), or 0 for another i. */
+double *hg_params_at(hg_params *p, int i);
+
+/* Value of table entry i, or 0 for an index outside the table. */
+double hg_params_get(const hg_params *p, int i);
+
 /* Set field name to value: 0, or HG_ERR_BAD_PARAM for an unknown name or a
  * non-finite value. Does not validate the whole set: call hg_params_check. */
 int hg_params_set(hg_params *p, const char *name, double value);

@@ -90,8 +90,7 @@ static void mutate(fuzz_input *f, hg_board_inputs *in, int n_params)
         in->bar_broken[j] = fuzz_byte(f) < 64;
         break;
     case 13: case 14: {          /* a hostile or a slightly changed parameter */
-        const hg_param_info *t = hg_params_table(0);
-        double *v = (double *)((char *)&in->params.model + t[ch % n_params].offset);
+        double *v = hg_params_at(&in->params.model, ch % n_params);
         *v = (fuzz_byte(f) & 1) ? *v * fuzz_double(f, 0.5, 2.0) : fuzz_double(f, -2.0, 2.0);
         break;
     }
