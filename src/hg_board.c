@@ -467,7 +467,10 @@ void hg_board_format_value(char buf[HG_BOARD_VALUE_LEN], double v)
         v = -v;
     }
     if (v > 1e15) {                   /* inf or beyond 6 decimals' reach */
-        memcpy(p, v > 1.7976931348623157e308 ? "inf" : "huge", 5);
+        if (v > 1.7976931348623157e308)
+            memcpy(p, "inf", 4);
+        else
+            memcpy(p, "huge", 5);
         return;
     }
     a = floor(v);
