@@ -280,6 +280,12 @@ static int parse_number(hg_record *r, const char *s, size_t n, long column, int 
         return fail(r, e, HG_REC_ERR_NUMBER, r->line, column, field,
                     "empty field: every field is a number; the row is damaged, record again");
     excerpt(ex, sizeof ex, s, n);
+    if (r->kind[field] == HG_REC_ANY &&
+        ((n == 3 && (memcmp(s, "nan", 3) == 0 || memcmp(s, "inf", 3) == 0)) ||
+         (n == 4 && (memcmp(s, "-nan", 4) == 0 || memcmp(s, "-inf", 4) == 0)))) {
+        *v = s[n - 1] == 'n' ? (double)NAN : s[0] == '-' ? -(double)INFINITY : (double)INFINITY;
+        return 0;
+    }
     for (i = 0; i < n; i++)
         if (!number_char(s[i]))
             break;
@@ -299,7 +305,7 @@ static int parse_number(hg_record *r, const char *s, size_t n, long column, int 
                  "(or fix this field)", ex);
         return fail(r, e, HG_REC_ERR_NUMBER, r->line, column + (long)(end - tmp), field, text);
     }
-    if (!isfinite(x) || (errno == ERANGE && fabs(x) > 1.0)) {
+    if ((!isfinite(x) || (errno == ERANGE && fabs(x) > 1.0)) && r->kind[field] != HG_REC_ANY) {
         snprintf(text, sizeof text, "'%s' is out of the range of a double; the row is damaged, "
                  "record again", ex);
         return fail(r, e, HG_REC_ERR_NUMBER, r->line, column, field, text);

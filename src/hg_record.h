@@ -7,7 +7,8 @@
  *   sample,name1,name2,...          header: column names, comma-separated
  *   0,1.5,-3,...                    one row per servo period, sample 0, 1, 2...
  * Numbers are C/Python float syntax (decimal or hexadecimal, e.g. repr()
- * or %.17g output): they round-trip every double exactly. NaN, inf,
+ * or %.17g output): they round-trip every double exactly. NaN, inf (except
+ * in HG_REC_ANY columns: "nan", "inf", "-inf"),
  * missing or extra fields, gaps in the sample column, a line without its
  * newline (an interrupted recording) and binary data are errors.
  *
@@ -32,7 +33,8 @@ typedef enum {
     HG_REC_F64 = 0,                   /* any finite double (the default) */
     HG_REC_S32 = 1,                   /* integer in [-2^31, 2^31) */
     HG_REC_U32 = 2,                   /* integer in [0, 2^32) */
-    HG_REC_BIT = 3                    /* 0 or 1 */
+    HG_REC_BIT = 3,                   /* 0 or 1 */
+    HG_REC_ANY = 4                    /* a double, or nan, inf, -inf (raw inputs as HAL held them) */
 } hg_record_kind;
 
 /* Error codes (negative, distinct). */
