@@ -15,7 +15,10 @@ ifeq ($(SANITIZE),1)
 BUILD   := build/asan
 SANFLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 endif
-CFLAGS_HOST := -std=gnu99 -O2 -g -Wall -Wextra -Werror -Isrc -Isrc/generated $(SANFLAGS)
+# -ffp-contract=off here and in src/Makefile.modules: no fused multiply-add in
+# either build, so the host (replay, sim) and the realtime module round alike
+# (docs/replay.md)
+CFLAGS_HOST := -std=gnu99 -O2 -g -ffp-contract=off -Wall -Wextra -Werror -Isrc -Isrc/generated $(SANFLAGS)
 LDLIBS_HOST := -lm $(SANFLAGS)
 
 # pure math, no LinuxCNC dependency: every src/hg_*.c and src/generated/*.c
