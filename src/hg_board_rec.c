@@ -3,6 +3,9 @@
 #include "hg_string.h"
 #include "hg_board_rec.h"
 
+/* Table macros: n is a string literal pasted to a suffix, f a member
+ * designator for offsetof; neither can take parentheses. */
+/* NOLINTBEGIN(bugprone-macro-parentheses) */
 #define IN(n, t, f, nf) { n, t, HG_BRS_IN, nf, 0, 0, 0, offsetof(hg_board_inputs, f) }
 #define OUT(n, t, f) { n, t, HG_BRS_OUT, 0, 0, 0, 0, offsetof(hg_board_outputs, f) }
 #define INPACK(n, f, cnt, bits) \
@@ -19,6 +22,7 @@
     OUT(n "-07", t, f[7])
 #define OUT6(n, t, f) OUT(n "-0", t, f[0]), OUT(n "-1", t, f[1]), OUT(n "-2", t, f[2]), \
     OUT(n "-3", t, f[3]), OUT(n "-4", t, f[4]), OUT(n "-5", t, f[5])
+/* NOLINTEND(bugprone-macro-parentheses) */
 
 typedef char hg_board_rec_8_channels[(HG_BOARD_DACS == 8 && HG_BOARD_ENCODERS == 8 &&
                                       HG_BOARD_ADCS == 8 && HG_BOARD_JOINTS == 6 &&

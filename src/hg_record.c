@@ -240,7 +240,7 @@ int hg_record_need(const hg_record *r, const char *name, hg_record_error *e)
 
 void hg_record_set_kind(hg_record *r, int col, hg_record_kind kind)
 {
-    if (col > 0 && col < r->ncols)
+    if (col > 0 && col < r->ncols && col < HG_RECORD_MAX_COLS)
         r->kind[col] = kind;
 }
 

@@ -111,11 +111,11 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
     o->substeps = -1;
     o->integrator = -1;
     for (i = 0; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : 0;
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "";
         int takes = strcmp(a, "--csv") == 0 || strcmp(a, "--plot") == 0 || strcmp(a, "--set") == 0 ||
                     strcmp(a, "--model") == 0 || strcmp(a, "--substeps") == 0 ||
                     strcmp(a, "--integrator") == 0;
-        if (takes && !v) {
+        if (takes && i + 1 >= argc) {
             fprintf(stderr, "hexaglide replay: %s needs a value\n", a);
             return 2;
         }
@@ -182,16 +182,18 @@ static int parse_sets(const replay_opts *o, unsigned long *off, double *val)
     int i;
     for (i = 0; i < o->nset; i++) {
         hg_params p;
-        char name[64];
+        int k, np;
+        const hg_param_info *t = hg_params_table(&np);
         const char *eq = strchr(o->set[i], '=');
         size_t n = eq ? (size_t)(eq - o->set[i]) : 0;
         hg_params_default(&p);
         if (cli_parse_set("replay", o->set[i], &p))
             return 2;
-        memcpy(name, o->set[i], n);   /* cli_parse_set checked n < 64 */
-        name[n] = '\0';
-        off[i] = (unsigned long)((char *)hg_params_field(&p, name) - (char *)&p);
-        val[i] = *hg_params_field(&p, name);
+        for (k = 0; k < np; k++)      /* cli_parse_set found the name in this table */
+            if (strlen(t[k].name) == n && strncmp(t[k].name, o->set[i], n) == 0) {
+                off[i] = t[k].offset;
+                memcpy(&val[i], (const char *)&p + t[k].offset, sizeof val[i]);
+            }
     }
     return 0;
 }
