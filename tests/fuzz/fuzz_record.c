@@ -84,7 +84,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             for (c = 0; c < r.ncols; c++) {
                 if (!isfinite(row[c]) && r.kind[c] != HG_REC_ANY)
                     fail("a row holds a non-finite value");
-                if (r.kind[c] != HG_REC_F64 && row[c] != floor(row[c]))
+                if ((r.kind[c] == HG_REC_S32 || r.kind[c] == HG_REC_U32 || r.kind[c] == HG_REC_BIT) &&
+                    row[c] != floor(row[c]))
                     fail("an integer column holds a fraction");
                 if (r.kind[c] == HG_REC_BIT && row[c] != 0.0 && row[c] != 1.0)
                     fail("a bit column holds something else than 0 or 1");
