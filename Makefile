@@ -15,7 +15,12 @@ ifeq ($(SANITIZE),1)
 BUILD   := build/asan
 SANFLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 endif
-CFLAGS_HOST := -std=gnu99 -O2 -g -Wall -Wextra -Werror -Isrc -Isrc/generated $(SANFLAGS)
+# -ffp-contract=off here and in src/Makefile.modules: no fused multiply-add in
+# either build, so the host (replay, sim) and the realtime module round alike
+# (docs/replay.md); and the same -fno-builtin-sin/cos/sincos as the realtime
+# build (rtapi_math has no sincos), so both call the same libm functions
+RT_SAME_FLAGS := -ffp-contract=off -fno-builtin-sin -fno-builtin-cos -fno-builtin-sincos
+CFLAGS_HOST := -std=gnu99 -O2 -g $(RT_SAME_FLAGS) -Wall -Wextra -Werror -Isrc -Isrc/generated $(SANFLAGS)
 LDLIBS_HOST := -lm $(SANFLAGS)
 
 # pure math, no LinuxCNC dependency: every src/hg_*.c and src/generated/*.c
