@@ -36,7 +36,8 @@ export RTAPI_UID=${RTAPI_UID:-65534}
 # rtapi_app's master socket (a socket file, not a directory); shared
 # sessions use a fixed one that other terminals can name
 if [ -n "$HG_IN_IPC_NS" ]; then
-    export RTAPI_FIFO_PATH=/tmp/hexaglide-lcnc-$$.sock
+    # HG_RTAPI_FIFO_PATH: a caller in the same namespace (tests/linuxcnc/test_halscope) names it
+    export RTAPI_FIFO_PATH=${HG_RTAPI_FIFO_PATH:-/tmp/hexaglide-lcnc-$$.sock}
 else
     export RTAPI_FIFO_PATH=${RTAPI_FIFO_PATH:-/tmp/hexaglide-lcnc.sock}
 fi
