@@ -28,14 +28,23 @@ UNIT_BINS := $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(UNIT_SRCS))
 BENCH_SRCS := $(sort $(wildcard bench/bench_*.c))
 BENCH_BINS := $(patsubst bench/%.c,$(BUILD)/bench/%,$(BENCH_SRCS))
 
-.PHONY: all deps modules host install test check fuzz soak demo run bench clean unit-tests
+.PHONY: all deps modules host lib install test check fuzz soak demo run bench clean unit-tests
 
 all: deps host modules
 
 deps:
 	@tools/install-deps.sh build
 
-host: $(BUILD)/hexaglide $(UNIT_BINS)
+host: $(BUILD)/hexaglide $(UNIT_BINS) $(if $(SANFLAGS),,$(BUILD)/libhexaglide.so)
+
+# the core as a shared library for Python (tools/hexaglide.py, docs/python.md)
+PIC_OBJS := $(patsubst src/%.c,$(BUILD)/pic/%.o,$(CORE_SRCS))
+lib: $(BUILD)/libhexaglide.so
+$(BUILD)/libhexaglide.so: $(PIC_OBJS)
+	$(CC) -shared -o $@ $^ $(LDLIBS_HOST)
+$(BUILD)/pic/%.o: src/%.c $(wildcard src/*.h src/generated/*.h)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_HOST) -fPIC -c -o $@ $<
 
 $(BUILD)/host/%.o: src/%.c $(wildcard src/*.h src/generated/*.h src/cli/*.h)
 	@mkdir -p $(dir $@)

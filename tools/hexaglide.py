@@ -1,0 +1,282 @@
+"""hexaglide.py - the virtual Hexaglide's C core from Python (ctypes).
+
+The same code the LinuxCNC modules run, built as build/libhexaglide.so
+(`make lib`; `make` builds it too). See docs/python.md.
+
+    import hexaglide as hg
+    z = hg.ik([0, 0, -50, 8, -6, 10])             # joints (mm) of a pose (mm, deg)
+    pose = hg.fk(z)                               # and back
+    m = hg.Model("reduced-cartesian")             # the dynamics, SI inside
+    m.step([1.0] * 6, 0.001)                      # one step with six DAC volts
+    loop = hg.Loop()                              # six LinuxCNC pids + the board
+    res = loop.run(cmd_mm)                        # cmd_mm: (n, 6) joint commands
+    res.ferror_mm, res.output_v, res.peak_ferror_mm
+
+Units at this interface are the user's (mm, degrees, volts) except Model,
+which is the core's own (m, rad, s) as in src/hg_dynamics.h.
+"""
+import ctypes as C
+import os
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+LIB_PATH = os.environ.get("HEXAGLIDE_LIB", os.path.join(HERE, "..", "build", "libhexaglide.so"))
+JOINTS = 6
+MODELS = ["standard", "reduced-joints", "reduced-cartesian", "fused-cartesian"]
+
+try:
+    _lib = C.CDLL(LIB_PATH)
+except OSError as ex:  # pragma: no cover - a message the user can act on
+    raise ImportError("cannot load %s (%s): run `make lib` first, or set HEXAGLIDE_LIB" % (LIB_PATH, ex))
+
+_d6 = C.c_double * 6
+_P = C.c_void_p
+
+
+class HexaglideError(RuntimeError):
+    """A core function returned a negative code (src/hg_errors.h)."""
+
+    def __init__(self, what, code):
+        self.code = code
+        super().__init__("%s: %s (code %d)" % (what, strerror(code), code))
+
+
+def _sig(name, res, *args):
+    f = getattr(_lib, name)
+    f.restype = res
+    f.argtypes = list(args)
+    return f
+
+
+_strerror = _sig("hg_strerror", C.c_char_p, C.c_int)
+
+
+def strerror(code):
+    """Text of an error code."""
+    return _strerror(code).decode()
+
+
+class PidGains(C.Structure):
+    """hg_pid_gains: the pid.N pins (names as LinuxCNC's, units mm and V)."""
+    _fields_ = [(n, C.c_double) for n in
+                ("pgain", "igain", "dgain", "bias", "ff0", "ff1", "ff2", "ff3", "deadband",
+                 "maxerror", "maxerror_i", "maxerror_d", "maxcmd_d", "maxcmd_dd", "maxcmd_ddd",
+                 "maxoutput")] + [("error_previous_target", C.c_int)]
+
+
+class LoopConfig(C.Structure):
+    """hg_loop_config."""
+    _fields_ = [("pid", PidGains * 6), ("input_scale", _d6), ("output_scale", _d6),
+                ("output_offset", _d6), ("ferror_limit_mm", C.c_double), ("period_ns", C.c_long),
+                ("model_kind", C.c_int)]
+
+
+class LoopSummary(C.Structure):
+    """hg_loop_summary."""
+    _fields_ = [("peak_ferror_mm", _d6), ("peak_output_v", _d6), ("rms_ferror_mm", _d6),
+                ("periods", C.c_long), ("tripped_at", C.c_long)]
+
+
+class Data(C.Structure):
+    """hg_data: the dynamics state (SI)."""
+    _fields_ = [("t_s", C.c_double), ("z_m", _d6), ("zd_mps", _d6), ("zdd_mps2", _d6),
+                ("pose", _d6), ("posed", _d6), ("bar_rad", C.c_double * 12),
+                ("bar_radps", C.c_double * 12), ("current_a", _d6), ("force_n", _d6),
+                ("residual_m", C.c_double), ("last_error", C.c_int), ("broken_bars", C.c_uint),
+                ("trig_key_rad", C.c_double * 3), ("trig_sc", _d6), ("trig_valid", C.c_int)]
+
+
+_sizeof = _sig("hg_loop_sizeof", C.c_ulong, C.c_int)
+for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data)):
+    if _sizeof(_i) != C.sizeof(_s):
+        raise ImportError("%s: layout differs from the library's (%d vs %d bytes): rebuild both"
+                          % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
+
+_params_default = _sig("hg_params_default", None, _P)
+_params_set = _sig("hg_params_set", C.c_int, _P, C.c_char_p, C.c_double)
+_params_field = _sig("hg_params_field", C.POINTER(C.c_double), _P, C.c_char_p)
+_model_init = _sig("hg_model_init", C.c_int, _P, _P, C.c_int, C.POINTER(C.c_char_p), C.POINTER(C.c_char_p))
+_model_from_name = _sig("hg_model_from_name", C.c_int, C.c_char_p)
+_data_reset = _sig("hg_data_reset", C.c_int, _P, _P)
+_step = _sig("hg_step", C.c_int, _P, _P, _d6, C.c_double)
+_energy = _sig("hg_energy", None, _P, _P, C.POINTER(C.c_double), C.POINTER(C.c_double))
+_ik = _sig("hg_inverse_kinematics", C.c_int, _P, _d6, _d6)
+_fk = _sig("hg_forward_kinematics", C.c_int, _P, _d6, _d6, _P, _P)
+_loop_default = _sig("hg_loop_config_default", None, C.POINTER(LoopConfig))
+_loop_init = _sig("hg_loop_init", C.c_int, _P, C.POINTER(LoopConfig), _P)
+_loop_step = _sig("hg_loop_step", C.c_int, _P, _d6, _P)
+_dp = np.ctypeslib.ndpointer(dtype=np.float64, flags="C_CONTIGUOUS")
+_loop_run = _sig("hg_loop_run", C.c_int, _P, _dp, C.c_long, C.c_long, _P, _P, C.POINTER(LoopSummary))
+
+
+class Params:
+    """hg_params: the machine's parameter set, by spec name (SI), e.g. p["c_visc"]."""
+
+    def __init__(self, **values):
+        self.buf = C.create_string_buffer(_sizeof(6))
+        _params_default(self.buf)
+        for k, v in values.items():
+            self[k] = v
+
+    def __getitem__(self, name):
+        f = _params_field(self.buf, name.encode())
+        if not f:
+            raise KeyError(name)
+        return f[0]
+
+    def __setitem__(self, name, value):
+        if _params_set(self.buf, name.encode(), float(value)):
+            raise KeyError("unknown parameter or bad value: %s=%r" % (name, value))
+
+
+def _geometry(params):
+    return (params or Params()).buf  # hg_geometry is the first member of hg_params
+
+
+def ik(pose_user, params=None):
+    """Joints (mm) of a pose (X Y Z mm, A B C deg)."""
+    pose = _d6(*[v / 1000.0 for v in pose_user[:3]], *[np.radians(v) for v in pose_user[3:]])
+    z = _d6()
+    rc = _ik(_geometry(params), pose, z)
+    if rc:
+        raise HexaglideError("ik", rc)
+    return np.array(z[:]) * 1000.0
+
+
+def fk(joints_mm, guess_user=(0, 0, 0, 0, 0, 0), params=None):
+    """Pose (mm, deg) of six joint positions (mm), Newton from guess."""
+    z = _d6(*[v / 1000.0 for v in joints_mm])
+    pose = _d6(*[v / 1000.0 for v in guess_user[:3]], *[np.radians(v) for v in guess_user[3:]])
+    rc = _fk(_geometry(params), z, pose, None, None)
+    if rc:
+        raise HexaglideError("fk", rc)
+    return np.concatenate([np.array(pose[:3]) * 1000.0, np.degrees(pose[3:])])
+
+
+class Model:
+    """hg_model + hg_data: the machine's dynamics (SI units, src/hg_dynamics.h)."""
+
+    def __init__(self, kind="reduced-cartesian", params=None):
+        k = _model_from_name(kind.encode())
+        if k < 0:
+            raise ValueError("unknown model %r; one of %s" % (kind, MODELS))
+        self.params = params or Params()
+        self.m = C.create_string_buffer(_sizeof(4))
+        self.d = Data()
+        bad, why = C.c_char_p(), C.c_char_p()
+        rc = _model_init(self.m, self.params.buf, k, C.byref(bad), C.byref(why))
+        if rc:
+            raise HexaglideError("model: %s %s" % ((bad.value or b"").decode(), (why.value or b"").decode()), rc)
+        self.reset()
+
+    def reset(self):
+        """HOME at rest."""
+        rc = _data_reset(self.m, C.byref(self.d))
+        if rc:
+            raise HexaglideError("reset", rc)
+
+    def step(self, volts, dt_s):
+        """One integration step with six DAC volts; returns self.d."""
+        rc = _step(self.m, C.byref(self.d), _d6(*volts), dt_s)
+        if rc:
+            raise HexaglideError("step", rc)
+        return self.d
+
+    def energy(self):
+        """(kinetic, potential) J."""
+        k, p = C.c_double(), C.c_double()
+        _energy(self.m, C.byref(self.d), C.byref(k), C.byref(p))
+        return k.value, p.value
+
+    @property
+    def z_m(self):
+        return np.array(self.d.z_m[:])
+
+    @property
+    def zdd_mps2(self):
+        return np.array(self.d.zdd_mps2[:])
+
+
+class RunResult:
+    """What Loop.run returns: per-period f-errors and outputs (n, 6), and the summary."""
+
+    def __init__(self, ferror, output, summ, rc):
+        self.ferror_mm, self.output_v, self.rc = ferror, output, rc
+        self.peak_ferror_mm = np.array(summ.peak_ferror_mm[:])
+        self.peak_output_v = np.array(summ.peak_output_v[:])
+        self.rms_ferror_mm = np.array(summ.rms_ferror_mm[:])
+        self.periods = summ.periods
+        self.tripped_at = summ.tripped_at
+
+    @property
+    def ok(self):
+        return self.rc == 0 and self.tripped_at < 0
+
+
+GAIN_KEYS = {"P": "pgain", "I": "igain", "D": "dgain", "BIAS": "bias", "FF0": "ff0", "FF1": "ff1",
+             "FF2": "ff2", "FF3": "ff3", "DEADBAND": "deadband", "MAX_OUTPUT": "maxoutput",
+             "MAX_ERROR_I": "maxerror_i"}
+
+
+class Loop:
+    """Six LinuxCNC pid loops around the virtual board (src/hg_loop.h), mm and volts.
+
+    gains: a list of six dicts of INI keys (P, I, D, FF0, FF1, FF2, FF3, BIAS,
+    DEADBAND, MAX_OUTPUT, MAX_ERROR_I) overriding configs/hexaglide.ini's values."""
+
+    def __init__(self, gains=None, params=None, ferror_limit_mm=0.0, period_ns=1000000,
+                 model="reduced-cartesian"):
+        self.cfg = LoopConfig()
+        _loop_default(C.byref(self.cfg))
+        self.cfg.ferror_limit_mm = ferror_limit_mm
+        self.cfg.period_ns = period_ns
+        self.cfg.model_kind = MODELS.index(model)
+        for j, g in enumerate(gains or []):
+            for key, v in g.items():
+                setattr(self.cfg.pid[j], GAIN_KEYS[key], float(v))
+        self.params = params or Params()
+        self.buf = C.create_string_buffer(_sizeof(0))
+        self.reset()
+
+    def reset(self):
+        """Machine at HOME at rest, PIDs reset."""
+        rc = _loop_init(self.buf, C.byref(self.cfg), self.params.buf)
+        if rc:
+            raise HexaglideError("loop init", rc)
+
+    def run(self, cmd_mm, start=0, keep=True):
+        """Run the commands (n, 6) from the current state; summary over rows >= start."""
+        cmd = np.ascontiguousarray(cmd_mm, dtype=np.float64)
+        if cmd.ndim != 2 or cmd.shape[1] != JOINTS:
+            raise ValueError("commands must be an (n, 6) array, got %s" % (cmd.shape,))
+        n = cmd.shape[0]
+        fe = np.zeros((n, JOINTS)) if keep else None
+        out = np.zeros((n, JOINTS)) if keep else None
+        summ = LoopSummary()
+        rc = _loop_run(self.buf, cmd, n, start,
+                       fe.ctypes.data_as(_P) if keep else None,
+                       out.ctypes.data_as(_P) if keep else None, C.byref(summ))
+        if keep and summ.periods < n:
+            fe, out = fe[:summ.periods], out[:summ.periods]
+        return RunResult(fe, out, summ, rc)
+
+
+_pid_calc = _sig("hg_pid_calc", C.c_double, C.POINTER(PidGains), _P, C.c_double, C.c_double, C.c_int,
+                 C.c_int, C.c_long)
+_pid_reset = _sig("hg_pid_reset", None, _P)
+
+
+def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000):
+    """LinuxCNC's pid (src/hg_pid.c) on recorded pins: outputs for arrays of
+    command and feedback (and enable, default 1), starting from reset."""
+    g = PidGains()
+    _sig("hg_pid_defaults", None, C.POINTER(PidGains))(C.byref(g))
+    for key, v in gains.items():
+        setattr(g, GAIN_KEYS[key], float(v))
+    st = C.create_string_buffer(256)
+    _pid_reset(st)
+    n = len(command)
+    en = np.ones(n, dtype=int) if enable is None else np.asarray(enable, dtype=int)
+    return np.array([_pid_calc(C.byref(g), st, float(command[i]), float(feedback[i]), int(en[i]), 0, period_ns)
+                     for i in range(n)])
