@@ -1,47 +1,50 @@
 /* hg_params.c - defaults, by-name access and validation of hg_params. */
-#include <math.h>
 #include <stddef.h>
-#include <string.h>
+#include "hg_math.h"
+#include "hg_string.h"
 #include "hg_params.h"
 #include "hg_errors.h"
 
 #define F(field) offsetof(hg_params, field)
 
 static const hg_param_info table[] = {
-    {"l",          "m",      "bar length",                              F(geo.l_m)},
-    {"lb",         "m",      "machine axis to guide plane",             F(geo.lb_m)},
-    {"e",          "m",      "half spacing of a post's guides",         F(geo.e_m)},
-    {"lp",         "m",      "head joint radius",                       F(geo.lp_m)},
-    {"h",          "m",      "carriage height above head joints at HOME", F(geo.h_m)},
-    {"tool_d",     "m",      "tool tip below Op",                       F(tool_d_m)},
-    {"g",          "m/s^2",  "gravity",                                 F(g_mps2)},
-    {"m_head",     "kg",     "head mass",                               F(m_head_kg)},
-    {"head_com",   "m",      "head COM below Op",                       F(head_com_m)},
-    {"i_head_xx",  "kg m^2", "head inertia about COM, x",               F(i_head_xx_kgm2)},
-    {"i_head_yy",  "kg m^2", "head inertia about COM, y",               F(i_head_yy_kgm2)},
-    {"i_head_zz",  "kg m^2", "head inertia about COM, z",               F(i_head_zz_kgm2)},
-    {"m_bar",      "kg",     "bar mass",                                F(m_bar_kg)},
-    {"i_bar",      "kg m^2", "bar transverse inertia about carriage joint", F(i_bar_kgm2)},
-    {"m_carriage", "kg",     "carriage mass",                           F(m_carriage_kg)},
-    {"lead",       "m/rev",  "ball-screw lead",                         F(lead_m)},
-    {"j_rotor",    "kg m^2", "rotor + screw inertia",                   F(j_rotor_kgm2)},
-    {"ka",         "A/V",    "amplifier gain",                          F(ka_a_per_v)},
-    {"kt",         "N m/A",  "motor torque constant",                   F(kt_nm_per_a)},
-    {"i_max",      "A",      "amplifier current limit",                 F(i_max_a)},
-    {"c_visc",     "N s/m",  "viscous friction per carriage",           F(c_visc_ns_per_m)},
-    {"f_coulomb",  "N",      "Coulomb friction per carriage",           F(f_coulomb_n)},
-    {"v_coulomb",  "m/s",    "Coulomb smoothing speed",                 F(v_coulomb_mps)},
-    {"stop_min",   "m",      "hard stop, bottom",                       F(stop_min_m)},
-    {"stop_max",   "m",      "hard stop, top",                          F(stop_max_m)},
-    {"k_stop",     "N/m",    "hard-stop stiffness",                     F(k_stop_n_per_m)},
-    {"c_stop",     "N s/m",  "hard-stop damping",                       F(c_stop_ns_per_m)},
-    {"limit_min",  "m",      "limit switch, bottom",                    F(limit_min_m)},
-    {"limit_max",  "m",      "limit switch, top",                       F(limit_max_m)},
-    {"home_switch","m",      "home switch on at or above",              F(home_switch_m)},
-    {"counts_per_rev", "1/rev", "encoder counts per motor revolution",  F(counts_per_rev)},
+    {"l", "m", "bar length", F(geo.l_m), "l", "mm", 1000.0},
+    {"lb", "m", "machine axis to guide plane", F(geo.lb_m), "lb", "mm", 1000.0},
+    {"e", "m", "half spacing of a post's guides", F(geo.e_m), "e", "mm", 1000.0},
+    {"lp", "m", "head joint radius", F(geo.lp_m), "lp", "mm", 1000.0},
+    {"h", "m", "carriage height above head joints at HOME", F(geo.h_m), "h", "mm", 1000.0},
+    {"tool_d", "m", "tool tip below Op", F(tool_d_m), "tool-d", "mm", 1000.0},
+    {"g", "m/s^2", "gravity", F(g_mps2), "g", "m/s^2", 1.0},
+    {"m_head", "kg", "head mass", F(m_head_kg), "m-head", "kg", 1.0},
+    {"head_com", "m", "head COM below Op", F(head_com_m), "head-com", "mm", 1000.0},
+    {"i_head_xx", "kg m^2", "head inertia about COM, x", F(i_head_xx_kgm2), "i-head-xx", "kg m^2", 1.0},
+    {"i_head_yy", "kg m^2", "head inertia about COM, y", F(i_head_yy_kgm2), "i-head-yy", "kg m^2", 1.0},
+    {"i_head_zz", "kg m^2", "head inertia about COM, z", F(i_head_zz_kgm2), "i-head-zz", "kg m^2", 1.0},
+    {"m_bar", "kg", "bar mass", F(m_bar_kg), "m-bar", "kg", 1.0},
+    {"i_bar", "kg m^2", "bar transverse inertia about carriage joint", F(i_bar_kgm2), "i-bar", "kg m^2", 1.0},
+    {"m_carriage", "kg", "carriage mass", F(m_carriage_kg), "m-carriage", "kg", 1.0},
+    {"lead", "m/rev", "ball-screw lead", F(lead_m), "lead", "mm/rev", 1000.0},
+    {"j_rotor", "kg m^2", "rotor + screw inertia", F(j_rotor_kgm2), "j-rotor", "kg m^2", 1.0},
+    {"ka", "A/V", "amplifier gain", F(ka_a_per_v), "ka", "A/V", 1.0},
+    {"kt", "N m/A", "motor torque constant", F(kt_nm_per_a), "kt", "N m/A", 1.0},
+    {"i_max", "A", "amplifier current limit", F(i_max_a), "i-max", "A", 1.0},
+    {"c_visc", "N s/m", "viscous friction per carriage", F(c_visc_ns_per_m), "c-visc", "N s/m", 1.0},
+    {"f_coulomb", "N", "Coulomb friction per carriage", F(f_coulomb_n), "f-coulomb", "N", 1.0},
+    {"v_coulomb", "m/s", "Coulomb smoothing speed", F(v_coulomb_mps), "v-coulomb", "m/s", 1.0},
+    {"stop_min", "m", "hard stop, bottom", F(stop_min_m), "stop-min", "mm", 1000.0},
+    {"stop_max", "m", "hard stop, top", F(stop_max_m), "stop-max", "mm", 1000.0},
+    {"k_stop", "N/m", "hard-stop stiffness", F(k_stop_n_per_m), "k-stop", "N/m", 1.0},
+    {"c_stop", "N s/m", "hard-stop damping", F(c_stop_ns_per_m), "c-stop", "N s/m", 1.0},
+    {"limit_min", "m", "limit switch, bottom", F(limit_min_m), "limit-min", "mm", 1000.0},
+    {"limit_max", "m", "limit switch, top", F(limit_max_m), "limit-max", "mm", 1000.0},
+    {"home_switch", "m", "home switch on at or above", F(home_switch_m), "home-switch", "mm", 1000.0},
+    {"counts_per_rev", "1/rev", "encoder counts per motor revolution", F(counts_per_rev), "counts-per-rev", "1/rev", 1.0},
 };
 
 #undef F
+
+/* masks over the table are 64-bit and hg_board uses bits 62, 63 */
+typedef char hg_params_table_fits[(sizeof table / sizeof table[0] <= HG_PARAMS_MAX) ? 1 : -1];
 
 double hg_home_height(const hg_geometry *g)
 {
@@ -119,35 +122,86 @@ int hg_params_set(hg_params *p, const char *name, double value)
     return HG_OK;
 }
 
-/* Report a failed check: set the outputs and return HG_ERR_BAD_PARAM. */
-static int refuse(const char **bad_field, const char *field,
-                  const char **why, const char *reason)
+/* Collects failed rules: the first (field, reason) and, when mask is given,
+ * every failed field's bit and reason (the first reason per field). */
+typedef struct {
+    const char *first_field, *first_why;
+    unsigned long long mask;
+    const char **why;      /* HG_PARAMS_MAX entries, or 0 */
+} check_report;
+
+/* Index of field name in the table, or -1. */
+static int field_index(const char *name)
 {
+    int i, n;
+    const hg_param_info *t = hg_params_table(&n);
+    for (i = 0; i < n; i++)
+        if (strcmp(t[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+/* Record that field failed for reason. */
+static void refuse(check_report *r, const char *field, const char *reason)
+{
+    int i = field_index(field);
+    if (!r->first_field) {
+        r->first_field = field;
+        r->first_why = reason;
+    }
+    if (i >= 0 && !(r->mask & (1ull << i))) {
+        r->mask |= 1ull << i;
+        if (r->why)
+            r->why[i] = reason;
+    }
+}
+
+/* 1 if field has failed a rule already. */
+static int failed(const check_report *r, const char *field)
+{
+    int i = field_index(field);
+    return i >= 0 && (r->mask & (1ull << i)) != 0;
+}
+
+/* The geometry rules, in order; a rule that depends on a failed field is
+ * skipped (it would only repeat the cause). */
+static void geometry_rules(const hg_geometry *g, check_report *r)
+{
+    if (!(isfinite(g->l_m) && g->l_m > 0))
+        refuse(r, "l", "must be a positive finite length");
+    if (!(isfinite(g->lb_m) && g->lb_m > 0))
+        refuse(r, "lb", "must be a positive finite length");
+    if (!failed(r, "lb") && !(isfinite(g->e_m) && g->e_m >= 0 && g->e_m < g->lb_m))
+        refuse(r, "e", "must be finite, >= 0 and smaller than lb");
+    if (!failed(r, "lb") && !(isfinite(g->lp_m) && g->lp_m > 0 && g->lp_m < g->lb_m))
+        refuse(r, "lp", "must be positive and smaller than lb");
+    if (!failed(r, "l") && !failed(r, "lb") && !failed(r, "lp") && !(g->l_m > g->lb_m - g->lp_m))
+        refuse(r, "l", "bars too short to reach the head: need l > lb - lp");
+    if (!failed(r, "l") && !(isfinite(g->h_m) && g->h_m > 0 && g->h_m < 2 * g->l_m))
+        refuse(r, "h", "must be positive and below 2 l");
+}
+
+/* Copy the first failure to the caller's outputs; HG_OK or HG_ERR_BAD_PARAM. */
+static int first_failure(const check_report *r, const char **bad_field, const char **why)
+{
+    if (!r->first_field)
+        return HG_OK;
     if (bad_field)
-        *bad_field = field;
+        *bad_field = r->first_field;
     if (why)
-        *why = reason;
+        *why = r->first_why;
     return HG_ERR_BAD_PARAM;
 }
 
 int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char **why)
 {
-    if (!(isfinite(g->l_m) && g->l_m > 0))
-        return refuse(bad_field, "l", why, "must be a positive finite length");
-    if (!(isfinite(g->lb_m) && g->lb_m > 0))
-        return refuse(bad_field, "lb", why, "must be a positive finite length");
-    if (!(isfinite(g->e_m) && g->e_m >= 0 && g->e_m < g->lb_m))
-        return refuse(bad_field, "e", why, "must be finite, >= 0 and smaller than lb");
-    if (!(isfinite(g->lp_m) && g->lp_m > 0 && g->lp_m < g->lb_m))
-        return refuse(bad_field, "lp", why, "must be positive and smaller than lb");
-    if (!(g->l_m > g->lb_m - g->lp_m))
-        return refuse(bad_field, "l", why, "bars too short to reach the head: need l > lb - lp");
-    if (!(isfinite(g->h_m) && g->h_m > 0 && g->h_m < 2 * g->l_m))
-        return refuse(bad_field, "h", why, "must be positive and below 2 l");
-    return HG_OK;
+    check_report r = {0, 0, 0, 0};
+    geometry_rules(g, &r);
+    return first_failure(&r, bad_field, why);
 }
 
-int hg_params_check(const hg_params *p, const char **bad_field, const char **why)
+/* Every rule of the whole set, in order (geometry first). */
+static void params_rules(const hg_params *p, check_report *r)
 {
     /* fields that must be finite and strictly positive */
     static const char *const positive[] = {
@@ -160,42 +214,61 @@ int hg_params_check(const hg_params *p, const char **bad_field, const char **why
         "tool_d", "head_com", "j_rotor", "c_visc", "f_coulomb", "c_stop",
     };
     unsigned i;
-    int rc = hg_geometry_check(&p->geo, bad_field, why), n;
+    int n;
     hg_params *q = (hg_params *)p; /* read-only use of the by-name lookup */
     const hg_param_info *t = hg_params_table(&n);
-    if (rc)
-        return rc;
+    geometry_rules(&p->geo, r);
     /* no machine needs a number of 1e9 SI units; beyond it products overflow */
     for (i = 0; i < (unsigned)n; i++) {
         double v = *hg_params_field(q, t[i].name);
         if (!(fabs(v) < HG_PARAM_MAX_ABS))
-            return refuse(bad_field, t[i].name, why, "must be finite and below 1e9 in magnitude (SI units)");
+            refuse(r, t[i].name, "must be finite and below 1e9 in magnitude (SI units)");
     }
     for (i = 0; i < sizeof positive / sizeof positive[0]; i++) {
         double v = *hg_params_field(q, positive[i]);
         if (!(isfinite(v) && v >= HG_PARAM_MIN_POSITIVE))
-            return refuse(bad_field, positive[i], why, "must be positive (at least 1e-9 in SI units)");
+            refuse(r, positive[i], "must be positive (at least 1e-9 in SI units)");
     }
     for (i = 0; i < sizeof nonneg / sizeof nonneg[0]; i++) {
         double v = *hg_params_field(q, nonneg[i]);
         if (!(isfinite(v) && v >= 0))
-            return refuse(bad_field, nonneg[i], why, "must be finite and >= 0");
+            refuse(r, nonneg[i], "must be finite and >= 0");
     }
     /* a lumped bar needs m_end > 0 and m_mid >= 0: m_bar l^2 / 4 <= i_bar < m_bar l^2 / 2 */
-    if (!(p->i_bar_kgm2 >= p->m_bar_kg * p->geo.l_m * p->geo.l_m / 4 &&
+    if (!failed(r, "i_bar") && !failed(r, "m_bar") && !failed(r, "l") &&
+        !(p->i_bar_kgm2 >= p->m_bar_kg * p->geo.l_m * p->geo.l_m / 4 &&
           p->i_bar_kgm2 < p->m_bar_kg * p->geo.l_m * p->geo.l_m / 2))
-        return refuse(bad_field, "i_bar", why,
-                      "must lie in [m_bar l^2/4, m_bar l^2/2) for a bar with its COM at mid-length");
-    if (!(isfinite(p->stop_min_m) && p->stop_min_m < p->limit_min_m))
-        return refuse(bad_field, "stop_min", why, "must be finite and below limit_min");
+        refuse(r, "i_bar", "must lie in [m_bar l^2/4, m_bar l^2/2) for a bar with its COM at mid-length");
+    if (!failed(r, "limit_min") && !(isfinite(p->stop_min_m) && p->stop_min_m < p->limit_min_m))
+        refuse(r, "stop_min", "must be finite and below limit_min");
     if (!(isfinite(p->limit_min_m) && p->limit_min_m < 0))
-        return refuse(bad_field, "limit_min", why, "must be finite and below HOME (0)");
+        refuse(r, "limit_min", "must be finite and below HOME (0)");
     if (!(isfinite(p->limit_max_m) && p->limit_max_m > 0))
-        return refuse(bad_field, "limit_max", why, "must be finite and above HOME (0)");
-    if (!(isfinite(p->stop_max_m) && p->stop_max_m > p->limit_max_m))
-        return refuse(bad_field, "stop_max", why, "must be finite and above limit_max");
-    if (!(isfinite(p->home_switch_m) && p->home_switch_m > p->limit_min_m &&
+        refuse(r, "limit_max", "must be finite and above HOME (0)");
+    if (!failed(r, "limit_max") && !(isfinite(p->stop_max_m) && p->stop_max_m > p->limit_max_m))
+        refuse(r, "stop_max", "must be finite and above limit_max");
+    if (!failed(r, "limit_min") && !failed(r, "limit_max") &&
+        !(isfinite(p->home_switch_m) && p->home_switch_m > p->limit_min_m &&
           p->home_switch_m < p->limit_max_m))
-        return refuse(bad_field, "home_switch", why, "must lie between the limit switches");
-    return HG_OK;
+        refuse(r, "home_switch", "must lie between the limit switches");
+}
+
+int hg_params_check(const hg_params *p, const char **bad_field, const char **why)
+{
+    check_report r = {0, 0, 0, 0};
+    params_rules(p, &r);
+    return first_failure(&r, bad_field, why);
+}
+
+int hg_params_check_all(const hg_params *p, unsigned long long *mask, const char *why[HG_PARAMS_MAX])
+{
+    check_report r = {0, 0, 0, why};
+    int i;
+    if (why)
+        for (i = 0; i < HG_PARAMS_MAX; i++)
+            why[i] = 0;
+    params_rules(p, &r);
+    if (mask)
+        *mask = r.mask;
+    return r.first_field ? HG_ERR_BAD_PARAM : HG_OK;
 }

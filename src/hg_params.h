@@ -63,7 +63,13 @@ typedef struct {
     const char *unit;      /* SI unit, e.g. "kg" */
     const char *what;      /* one-line description */
     unsigned long offset;  /* offsetof(hg_params, field) */
+    const char *hal_name;  /* HAL parameter name: the spec name with _ -> -, e.g. "m-head" */
+    const char *hal_unit;  /* unit on HAL: mm for lengths (LinuxCNC machine units), else the SI unit */
+    double hal_scale;      /* HAL value = SI value * hal_scale (1000 for lengths, else 1) */
 } hg_param_info;
+
+/* Upper bound of the table's length (bit masks over the table fit in 64 bits). */
+#define HG_PARAMS_MAX 48
 
 /* Fill p with the spec's defaults (h computed from l, lb, lp). */
 void hg_params_default(hg_params *p);
@@ -84,6 +90,14 @@ int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char *
 
 /* Check the whole set (geometry, positive masses, ordered strokes, ...). */
 int hg_params_check(const hg_params *p, const char **bad_field, const char **why);
+
+/* Check the whole set and report EVERY invalid field: 0, or
+ * HG_ERR_BAD_PARAM with bit i of *mask (may be 0) set for each invalid
+ * table entry i and why[i] (may be 0; HG_PARAMS_MAX entries, 0 for valid
+ * ones) its reason. A rule that depends on an invalid field is skipped
+ * (e.g. "l > lb - lp" when lb is invalid). The first failure is the one
+ * hg_params_check reports. */
+int hg_params_check_all(const hg_params *p, unsigned long long *mask, const char *why[HG_PARAMS_MAX]);
 
 /* After changes from `before` to p: when l, lb or lp changed and h did not,
  * recompute h so that HOME stays at pose 0 (a user who sets h keeps it). */

@@ -9,6 +9,15 @@ int cmd_fk(int argc, char **argv);   /* fk J0..J5 [--guess X Y Z A B C] */
 int cmd_sim(int argc, char **argv);  /* sim --model ... (offline simulator) */
 int cmd_soak(int argc, char **argv); /* soak [--hours H] (long closed-loop run) */
 
+#include "hg_board.h"
+
+/* A board (malloc'd; free() it) with model kind and block p, or 0 after a
+ * message on stderr naming every invalid field (spec names, SI units). */
+hg_board *cli_board_new(const char *cmd, int kind, const hg_board_params *p);
+
+/* --dt seconds -> the board's period in whole ns; 0, or -1 with a message. */
+int cli_parse_period(const char *cmd, double dt, long *period_ns);
+
 /* Parse a finite double; 0 on success, -1 (and a message naming what) otherwise. */
 int cli_parse_double(const char *text, const char *what, double *out);
 

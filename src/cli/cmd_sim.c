@@ -1,5 +1,6 @@
-/* cmd_sim.c - the sim subcommand: offline forward-dynamics simulation
- * with constant DAC volts, one CSV row per step (mm, mm/s, degrees). */
+/* cmd_sim.c - the sim subcommand: offline simulation of the virtual board
+ * (hg_board.h, the code LinuxCNC runs) with constant DAC volts and the
+ * amplifiers enabled, one CSV row per servo period (mm, mm/s, degrees). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,9 +17,12 @@ static void sim_usage(void)
     fprintf(stderr,
             "usage: hexaglide sim [--model standard|reduced-joints|reduced-cartesian|fused-cartesian]\n"
             "                     [--time S] [--dt S] [--volts V0,V1,V2,V3,V4,V5]\n"
+            "                     [--substeps N] [--integrator improved-euler|heun|rk4]\n"
             "                     [--set name=value]... [--csv FILE] [--list-params]\n"
-            "defaults: reduced-cartesian, 1 s, dt 0.001 s, 0 V, CSV to stdout;\n"
-            "--set takes the parameter's SI unit (see --list-params)\n");
+            "defaults: reduced-cartesian, 1 s, dt 0.001 s, 0 V, 1 substep, improved-euler, CSV to stdout.\n"
+            "--dt is the board's servo period (whole ns); --volts go through the board's 13-bit DAC;\n"
+            "--set takes the spec name and SI unit (see --list-params; HAL uses the hyphenated name,\n"
+            "lengths in mm)\n");
 }
 
 /* Parse "v0,...,v5" into volts; 0 or -1 with a message. */
@@ -82,36 +86,40 @@ static void list_params(void)
     hg_params p;
     hg_params_default(&p);
     for (i = 0; i < n; i++)
-        printf("%-16s %-8s %-14.9g %s\n", t[i].name, t[i].unit,
-               *hg_params_field(&p, t[i].name), t[i].what);
+        printf("%-16s %-8s %-14.9g %s (HAL: %s, %s)\n", t[i].name, t[i].unit,
+               *hg_params_field(&p, t[i].name), t[i].what, t[i].hal_name, t[i].hal_unit);
 }
 
-static void write_row(FILE *f, const hg_data *d)
+static void write_row(FILE *f, double t, const hg_board_outputs *o)
 {
     int k;
-    fprintf(f, "%.9g", d->t_s);
+    fprintf(f, "%.9g", t);
     for (k = 0; k < 6; k++)
-        fprintf(f, ",%.9g", d->z_m[k] * HG_MM_PER_M);
+        fprintf(f, ",%.9g", o->z_m[k] * HG_MM_PER_M);
     for (k = 0; k < 6; k++)
-        fprintf(f, ",%.9g", d->zd_mps[k] * HG_MM_PER_M);
+        fprintf(f, ",%.9g", o->zd_mps[k] * HG_MM_PER_M);
     for (k = 0; k < 3; k++)
-        fprintf(f, ",%.9g", d->pose[k] * HG_MM_PER_M);
+        fprintf(f, ",%.9g", o->pose[k] * HG_MM_PER_M);
     for (k = 3; k < 6; k++)
-        fprintf(f, ",%.9g", d->pose[k] * HG_DEG_PER_RAD);
+        fprintf(f, ",%.9g", o->pose[k] * HG_DEG_PER_RAD);
     fputc('\n', f);
 }
 
 int cmd_sim(int argc, char **argv)
 {
-    hg_params p, defaults;
-    hg_model *m;
-    hg_data d;
-    double t_end = 1.0, dt = 0.001, volts[6] = {0, 0, 0, 0, 0, 0};
-    const char *csv = 0, *bad = 0, *why = 0;
-    int kind = HG_MODEL_REDUCED_CARTESIAN, i, rc;
-    long n, s;
-    FILE *out = stdout;
-    hg_params_default(&p);
+    hg_params defaults;
+    hg_board_params bp;
+    hg_board *b;
+    hg_board_inputs in;
+    hg_board_outputs out;
+    double t_end = 1.0, dt = 0.001, volts[6] = {0, 0, 0, 0, 0, 0}, substeps = 1;
+    const char *csv = 0;
+    int kind = HG_MODEL_REDUCED_CARTESIAN, i, k, rc = 0;
+    long n, s, period_ns;
+    FILE *out_f = stdout;
+    hg_params_default(&bp.model);
+    bp.substeps = 1;
+    bp.integrator = HG_INTEGRATOR_IMPROVED_EULER;
     for (i = 0; i < argc; i++) {
         const char *a = argv[i];
         int has = i + 1 < argc;
@@ -124,7 +132,8 @@ int cmd_sim(int argc, char **argv)
             return 0;
         }
         if (strcmp(a, "--model") != 0 && strcmp(a, "--time") != 0 && strcmp(a, "--dt") != 0 &&
-            strcmp(a, "--volts") != 0 && strcmp(a, "--set") != 0 && strcmp(a, "--csv") != 0) {
+            strcmp(a, "--volts") != 0 && strcmp(a, "--set") != 0 && strcmp(a, "--csv") != 0 &&
+            strcmp(a, "--substeps") != 0 && strcmp(a, "--integrator") != 0) {
             fprintf(stderr, "hexaglide sim: unknown %s '%s'\n",
                     strncmp(a, "--", 2) == 0 ? "option" : "argument", a);
             sim_usage();
@@ -142,6 +151,22 @@ int cmd_sim(int argc, char **argv)
                                 "reduced-cartesian, fused-cartesian)\n", argv[i]);
                 return 2;
             }
+        } else if (strcmp(a, "--integrator") == 0) {
+            int which = hg_integrator_from_name(argv[++i]);
+            if (which < 0) {
+                fprintf(stderr, "hexaglide sim: unknown integrator '%s' (improved-euler, heun, rk4)\n", argv[i]);
+                return 2;
+            }
+            bp.integrator = (unsigned)which;
+        } else if (strcmp(a, "--substeps") == 0) {
+            if (cli_parse_double(argv[++i], "--substeps", &substeps))
+                return 2;
+            if (!(substeps >= 1 && substeps <= HG_SUBSTEPS_MAX && substeps == floor(substeps))) {
+                fprintf(stderr, "hexaglide sim: --substeps must be an integer in 1..%u, got %s\n",
+                        HG_SUBSTEPS_MAX, argv[i]);
+                return 2;
+            }
+            bp.substeps = (unsigned)substeps;
         } else if (strcmp(a, "--time") == 0) {
             if (cli_parse_double(argv[++i], "--time", &t_end))
                 return 2;
@@ -152,14 +177,14 @@ int cmd_sim(int argc, char **argv)
             if (parse_volts(argv[++i], volts))
                 return 2;
         } else if (strcmp(a, "--set") == 0) {
-            if (parse_set(argv[++i], &p))
+            if (parse_set(argv[++i], &bp.model))
                 return 2;
         } else {
             csv = argv[++i];
         }
     }
     hg_params_default(&defaults);
-    hg_params_keep_home(&p, &defaults);   /* HOME stays at pose 0 unless h was set */
+    hg_params_keep_home(&bp.model, &defaults);   /* HOME stays at pose 0 unless h was set */
     if (!(t_end >= 0.0)) {
         fprintf(stderr, "hexaglide sim: --time must be >= 0 s, got %g\n", t_end);
         return 2;
@@ -169,54 +194,48 @@ int cmd_sim(int argc, char **argv)
                 HG_DT_MAX_S, dt);
         return 2;
     }
+    if (cli_parse_period("sim", dt, &period_ns))
+        return 2;
+    dt = (double)period_ns * 1e-9;           /* what the board integrates */
     if (floor(t_end / dt + 0.5) > (double)SIM_MAX_STEPS) {  /* compare before converting to long */
         fprintf(stderr, "hexaglide sim: %.3g steps is more than the %ld allowed; use a larger --dt "
                         "or a shorter --time\n", floor(t_end / dt + 0.5), SIM_MAX_STEPS);
         return 2;
     }
     n = (long)floor(t_end / dt + 0.5);
-    m = malloc(sizeof *m);
-    if (!m) {
-        fprintf(stderr, "hexaglide sim: out of memory\n");
-        return 1;
-    }
-    rc = hg_model_init(m, &p, (hg_model_kind)kind, &bad, &why);
-    if (rc) {
-        fprintf(stderr, "hexaglide sim: bad parameter '%s': %s\n", bad ? bad : "?", why ? why : hg_strerror(rc));
-        free(m);
+    b = cli_board_new("sim", kind, &bp);
+    if (!b)
         return 2;
-    }
-    rc = hg_data_reset(m, &d);
-    if (rc) {
-        fprintf(stderr, "hexaglide sim: cannot assemble HOME: %s\n", hg_strerror(rc));
-        free(m);
-        return 1;
-    }
     if (csv) {
-        out = fopen(csv, "w");
-        if (!out) {
+        out_f = fopen(csv, "w");
+        if (!out_f) {
             perror(csv);
-            free(m);
+            free(b);
             return 1;
         }
     }
-    fprintf(out, "t,j0,j1,j2,j3,j4,j5,v0,v1,v2,v3,v4,v5,x,y,z,a,b,c\n");
-    write_row(out, &d);
+    hg_board_inputs_default(b, &in);
+    in.dout_values = 1u << in.estop_loop_out;   /* E-STOP loop closed: amplifiers on */
+    for (k = 0; k < 6; k++)
+        in.dac_v[k] = volts[k];
+    hg_board_peek(b, &out);
+    fprintf(out_f, "t,j0,j1,j2,j3,j4,j5,v0,v1,v2,v3,v4,v5,x,y,z,a,b,c\n");
+    write_row(out_f, 0.0, &out);
     for (s = 0; s < n; s++) {
-        rc = hg_step(m, &d, volts, dt);
-        if (rc) {
+        hg_board_step(b, &in, &out, period_ns);
+        if (out.fault) {
             fprintf(stderr, "hexaglide sim: the step from t = %.6f s to %.6f s failed: %s (code %d); "
                             "the CSV stops at t = %.6f s\n",
-                    d.t_s, d.t_s + dt, hg_strerror(rc), rc, d.t_s);
+                    s * dt, (s + 1) * dt, hg_strerror(out.fault_code), out.fault_code, s * dt);
+            rc = out.fault_code;
             break;
         }
-        d.t_s = (double)(s + 1) * dt;   /* no drift from summing dt */
-        write_row(out, &d);
+        write_row(out_f, (double)(s + 1) * dt, &out);   /* no drift from summing dt */
     }
-    if (out != stdout && fclose(out) != 0) {
+    if (out_f != stdout && fclose(out_f) != 0) {
         perror(csv);
         rc = rc ? rc : -1;
     }
-    free(m);
+    free(b);
     return rc ? 1 : 0;
 }

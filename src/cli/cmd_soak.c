@@ -1,7 +1,8 @@
 /* cmd_soak.c - the soak subcommand: hours of simulated time, offline and
  * faster than real time, of the machine following a random smooth
- * trajectory through six PID loops. Reports constraint drift, energy
- * balance, faults, following error and the wall time it took.
+ * trajectory through six PID loops into the virtual board (hg_board.h, the
+ * code LinuxCNC runs: DACs, amplifiers, encoders). Reports constraint
+ * drift, energy balance, faults, following error and the wall time it took.
  *   hexaglide soak [--hours H] [--model NAME] [--seed N] [--dt S] */
 #include <math.h>
 #include <stdio.h>
@@ -83,17 +84,17 @@ static double now_s(void)
 
 int cmd_soak(int argc, char **argv)
 {
-    hg_params p;
-    hg_model *m;
-    hg_data d;
+    hg_board_params bp;
+    hg_board *b;
+    hg_board_inputs in;
+    hg_board_outputs out;
     hg_pid_gains gains;
     hg_pid_state pid[6];
     soak_trajectory tr;
     double hours = 8.0, dt = 0.001, seed_d = 1, t0, wall, e0k, e0p, ek, ep;
     double work_j = 0, work_abs_j = 0, drift = 0, ferr_max = 0, z_prev[6], cmd_prev[6];
-    const char *bad = 0, *why = 0;
     int kind = HG_MODEL_REDUCED_CARTESIAN, i, k, rc = 0, faults = 0;
-    long n, s;
+    long n, s, period_ns;
     for (i = 0; i + 1 < argc; i += 2) {
         if (strcmp(argv[i], "--hours") == 0) {
             if (cli_parse_double(argv[i + 1], "--hours", &hours))
@@ -122,60 +123,61 @@ int cmd_soak(int argc, char **argv)
         fprintf(stderr, "hexaglide soak: need 0 < --hours <= 1000 and 0 < --dt <= %g s\n", HG_DT_MAX_S);
         return 2;
     }
-    m = malloc(sizeof *m);
-    if (!m)
+    if (cli_parse_period("soak", dt, &period_ns))
+        return 2;
+    dt = (double)period_ns * 1e-9;
+    hg_params_default(&bp.model);
+    bp.substeps = 1;
+    bp.integrator = HG_INTEGRATOR_IMPROVED_EULER;
+    b = cli_board_new("soak", kind, &bp);
+    if (!b)
         return 1;
-    hg_params_default(&p);
-    rc = hg_model_init(m, &p, (hg_model_kind)kind, &bad, &why);
-    if (rc == 0)
-        rc = hg_data_reset(m, &d);
-    if (rc) {
-        fprintf(stderr, "hexaglide soak: cannot build the model: %s %s\n", bad ? bad : "", why ? why : hg_strerror(rc));
-        free(m);
-        return 1;
-    }
-    soak_gains(m, &gains);
+    hg_board_inputs_default(b, &in);
+    in.dout_values = 1u << in.estop_loop_out;   /* E-STOP loop closed: amplifiers on */
+    hg_board_peek(b, &out);
+    soak_gains(&b->m, &gains);
     for (k = 0; k < 6; k++) {
         hg_pid_reset(&pid[k]);
         z_prev[k] = cmd_prev[k] = 0;
     }
     trajectory_init(&tr, (unsigned long long)fabs(seed_d) * 7919 + 1);
-    hg_energy(m, &d, &e0k, &e0p);
+    hg_energy(&b->m, &b->d, &e0k, &e0p);
     n = (long)(hours * 3600.0 / dt + 0.5);
     t0 = now_s();
     for (s = 0; s < n; s++) {
-        double t = (s + 1) * dt, pose[6], cmd[6], volts[6];
+        double t = (s + 1) * dt, pose[6], cmd[6];
         trajectory_pose(&tr, t, pose);
-        if (hg_inverse_kinematics(&m->p.geo, pose, cmd)) {
+        if (hg_inverse_kinematics(&b->m.p.geo, pose, cmd)) {
             fprintf(stderr, "hexaglide soak: trajectory left the working volume at t = %.3f s\n", t);
             rc = 1;
             break;
         }
         for (k = 0; k < 6; k++) {
-            double fe = fabs(cmd_prev[k] - d.z_m[k]);
+            double fe = fabs(cmd_prev[k] - out.z_m[k]);
             if (fe > ferr_max && t > 2.5)
                 ferr_max = fe;
-            volts[k] = hg_pid_calc(&gains, &pid[k], cmd[k] * HG_MM_PER_M, d.z_m[k] * HG_MM_PER_M, 1, 0,
-                                   (long)(dt * 1e9 + 0.5));
+            in.dac_v[k] = hg_pid_calc(&gains, &pid[k], cmd[k] * HG_MM_PER_M, out.z_m[k] * HG_MM_PER_M, 1, 0,
+                                      period_ns);
             cmd_prev[k] = cmd[k];
-            z_prev[k] = d.z_m[k];
+            z_prev[k] = out.z_m[k];
         }
-        rc = hg_step(m, &d, volts, dt);
-        if (rc) {
+        in.dac_written = 1;
+        hg_board_step(b, &in, &out, period_ns);
+        if (out.fault) {
             faults++;
-            fprintf(stderr, "hexaglide soak: step failed at t = %.3f s: %s\n", t, hg_strerror(rc));
+            fprintf(stderr, "hexaglide soak: step failed at t = %.3f s: %s\n", t, hg_strerror(out.fault_code));
             break;
         }
         for (k = 0; k < 6; k++) {
-            double dw = d.force_n[k] * (d.z_m[k] - z_prev[k]);
+            double dw = out.force_n[k] * (out.z_m[k] - z_prev[k]);
             work_j += dw;
             work_abs_j += fabs(dw);
         }
-        if (d.residual_m > drift)
-            drift = d.residual_m;
+        if (out.residual_m > drift)
+            drift = out.residual_m;
     }
     wall = now_s() - t0;
-    hg_energy(m, &d, &ek, &ep);
+    hg_energy(&b->m, &b->d, &ek, &ep);
     printf("soak: %s, %.2f h simulated (%ld steps of %.3g s) in %.1f s wall (%.0fx real time, %.3f us/step)\n",
            hg_model_name((hg_model_kind)kind), s * dt / 3600.0, s, dt, wall, s * dt / (wall > 0 ? wall : 1),
            1e6 * wall / (s > 0 ? s : 1));
@@ -189,6 +191,6 @@ int cmd_soak(int argc, char **argv)
     printf("SOAK drift_m=%.3e energy_rel=%.3e faults=%d ferr_mm=%.4f wall_s=%.1f steps=%ld\n", drift,
            fabs((ek + ep) - (e0k + e0p) - work_j) / (work_abs_j > 0 ? work_abs_j : 1), faults,
            ferr_max * HG_MM_PER_M, wall, s);
-    free(m);
+    free(b);
     return (rc || faults) ? 1 : 0;
 }

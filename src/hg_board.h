@@ -1,0 +1,216 @@
+/* hg_board.h - the virtual MOTENC-100 board with the Hexaglide behind it:
+ * one servo period of everything motenc_hexaglide_dyns_virtual does
+ * (parameter apply/refuse, reset edge, E-STOP loop, watchdog, amplifier
+ * enables, the dynamics with substeps, fault latch with rollback, broken
+ * bars, encoders with index latch, switches with stuck/tripped injection,
+ * ADCs, digital I/O), as a pure function of the board's state and one
+ * input record. The HAL glue copies pins into hg_board_inputs, calls
+ * hg_board_step once per period (from motenc.<board>.dynamics) and copies
+ * hg_board_outputs back to pins; `hexaglide sim`/`soak`, the unit tests,
+ * the fuzzers and `hexaglide replay` drive the same function.
+ *
+ * Units: SI and radians inside (z in m from HOME, pose m/rad, volts, A, N);
+ * the glue converts to mm/degrees for HAL. Deterministic: the same initial
+ * board and the same input sequence give bit-identical outputs.
+ *
+ * Pure C (hg_math.h, hg_string.h): no LinuxCNC include, no malloc, no stdio,
+ * bounded loops; hg_board has no pointers, so it can live in hal_malloc'd
+ * memory; no output is ever NaN or inf. Not thread-safe per board. */
+#ifndef HG_BOARD_H
+#define HG_BOARD_H
+
+#include "hg_params.h"
+#include "hg_dynamics.h"
+#include "hg_sensors.h"
+
+#define HG_SUBSTEPS_MAX 64u           /* substeps param: 1..HG_SUBSTEPS_MAX */
+#define HG_PERIOD_MAX_NS 10000000L    /* HG_DT_MAX_S in ns: longest period integrated */
+
+/* Bits of the refused-field mask (hg_board_outputs.refused_mask): bit i is
+ * entry i of hg_params_table (i < HG_PARAMS_MAX), plus these two. */
+#define HG_BOARD_BIT_SUBSTEPS 62
+#define HG_BOARD_BIT_INTEGRATOR 63
+
+/* The parameter block: the model parameters and the integration settings.
+ * HAL: motenc-hexaglide.<board>.<spec name, _ -> -> (lengths in mm there,
+ * converted with hg_params_table's hal_scale), .substeps, .integrator. */
+typedef struct {
+    hg_params model;                  /* SI units */
+    unsigned substeps;                /* integration steps per servo period, 1..HG_SUBSTEPS_MAX */
+    unsigned integrator;              /* hg_integrator, 0..HG_INTEGRATOR_COUNT-1 */
+} hg_board_params;
+
+/* One servo period's inputs. Which HAL pin or parameter feeds each field
+ * (board B; CC two-digit channel; N joint 0..5) - what a recorder captures: */
+typedef struct {
+    /* dac-write: (motenc.B.dac-CC-value - dac-CC-offset) * dac-CC-gain,
+     * exactly as hal_motenc computes it, before any clamp (NaN, inf allowed) */
+    double dac_v[HG_BOARD_DACS];
+    int dac_written;                  /* 1 if motenc.B.dac-write ran since the last step (watchdog auto reset) */
+    unsigned dout_values;             /* bit j = motenc.B.out-JJ (j 0..31) */
+    unsigned dout_inverts;            /* bit j = motenc.B.out-JJ-invert */
+    int estop_loop_out;               /* motenc-hexaglide.B.estop-loop-out (-1 or out of 0..31: none) */
+    int estop_button;                 /* motenc-hexaglide.B.estop-button */
+    int reset;                        /* motenc-hexaglide.B.reset (rising edge acts) */
+    unsigned watchdog_control;        /* motenc.B.watchdog-control */
+    int watchdog_reset;               /* motenc.B.watchdog-reset (the glue clears the pin) */
+    int index_enable[HG_BOARD_ENCODERS]; /* motenc.B.enc-CC-index-enable */
+    int enc_reset[HG_BOARD_ENCODERS];    /* motenc.B.enc-CC-reset */
+    double enc_scale[HG_BOARD_ENCODERS]; /* motenc.B.enc-CC-scale */
+    int adc_read;                     /* 1 if motenc.B.adc-read ran since the last step */
+    double adc_gain[HG_BOARD_ADCS];   /* motenc.B.adc-CC-gain */
+    double adc_offset[HG_BOARD_ADCS]; /* motenc.B.adc-CC-offset */
+    double adc_volts_per_amp;         /* motenc-hexaglide.B.adc-volts-per-amp */
+    /* fault injection, per joint: motenc-hexaglide.B.joint-N.<name> */
+    int amp_fail[HG_BOARD_JOINTS];    /* amp-fail */
+    unsigned stuck[HG_BOARD_JOINTS];  /* HG_SW_* bits: stuck-min, stuck-max, stuck-home */
+    unsigned tripped[HG_BOARD_JOINTS]; /* HG_SW_* bits: tripped-min, tripped-max, tripped-home */
+    int index_lost[HG_BOARD_JOINTS];  /* index-lost */
+    int enc_glitch[HG_BOARD_JOINTS];  /* enc-glitch (counts; the glue clears the pin after a step) */
+    int bar_broken[HG_BOARD_JOINTS];  /* bar-broken */
+    /* the parameter block as HAL shows it (converted to SI); a change is
+     * tried when it differs from the block of the previous step */
+    hg_board_params params;
+} hg_board_inputs;
+
+/* Event bits (hg_board_outputs.events): what happened in this step, for
+ * the glue's RTAPI messages. Each names its data fields. */
+enum {
+    HG_EV_PARAM_REFUSED = 1u << 0,    /* refused_mask (every invalid field), param_rc; previous set kept */
+    HG_EV_PARAM_APPLIED = 1u << 1,    /* a changed parameter block is in force */
+    HG_EV_GEOMETRY_RESTART = 1u << 2, /* with PARAM_APPLIED: new geometry, machine restarted at HOME */
+    HG_EV_RESET_DONE = 1u << 3,       /* reset edge: HOME at rest, counters 0, fault cleared */
+    HG_EV_RESET_REFUSED = 1u << 4,    /* reset edge refused: reset_refused_joint's bar-broken is set */
+    HG_EV_FAULT_LATCHED = 1u << 5,    /* fault latched now: fault_code, fault_cause */
+    HG_EV_BAR_BROKEN = 1u << 6,       /* bars_newly_broken: bit k = bar k broke in this step */
+    HG_EV_PERIOD_BAD = 1u << 7,       /* period_ns outside (0, HG_PERIOD_MAX_NS]: not integrated */
+    HG_EV_DAC_NAN = 1u << 8,          /* dac_nan_new: bit ch = channel ch became NaN (outputs 0 V) */
+    HG_EV_ENC_SCALE_BAD = 1u << 9,    /* enc_scale_bad: bit ch = scale was 0/NaN, set to 1.0 */
+    HG_EV_WATCHDOG_KICKED = 1u << 10  /* watchdog_reset input consumed (glue clears the pin) */
+};
+
+/* Why the fault latched (hg_board_outputs.fault_cause). */
+typedef enum {
+    HG_FAULT_NONE = 0,
+    HG_FAULT_STEP = 1,                /* a dynamics (sub)step failed or left a non-finite state */
+    HG_FAULT_PERIOD = 2,              /* bad thread period (code HG_ERR_BAD_DT) */
+    HG_FAULT_HOME = 3                 /* the machine could not be assembled at HOME on reset */
+} hg_fault_cause;
+
+/* One servo period's outputs (all finite). HAL pin of each field: */
+typedef struct {
+    /* encoder-read: motenc.B.enc-CC-count, -position, -index */
+    int count[HG_BOARD_ENCODERS];
+    double position[HG_BOARD_ENCODERS];   /* count / scale in force */
+    int index[HG_BOARD_ENCODERS];         /* an index pulse passed in this step */
+    int index_latched[HG_BOARD_ENCODERS]; /* the armed latch fired: glue clears enc-CC-index-enable */
+    double enc_scale[HG_BOARD_ENCODERS];  /* scale in force (1.0 after a refused one): enc-CC-scale */
+    /* digital-in-read: motenc.B.in-CC (and -not = !in) */
+    unsigned char in[HG_BOARD_INPUTS];
+    /* digital-out-write: motenc-hexaglide.B.digital-out-word */
+    unsigned dout_word;
+    /* misc-update: motenc.B.estop-in (-not = !estop_in) */
+    int estop_in;
+    /* adc-read: motenc.B.adc-CC-value */
+    double adc[HG_BOARD_ADCS];
+    /* motenc-hexaglide.B.*: the machine (SI; the glue shows mm, mm/s, deg) */
+    double pose[6];                   /* head-x..head-c: X Y Z (m) A B C (rad) */
+    double z_m[HG_BOARD_JOINTS];      /* joint-N.pos */
+    double zd_mps[HG_BOARD_JOINTS];   /* joint-N.vel */
+    double volts[HG_BOARD_JOINTS];    /* joint-N.volts: what the amplifier got (0 when off) */
+    double current_a[HG_BOARD_JOINTS]; /* joint-N.current (0 while faulted) */
+    double force_n[HG_BOARD_JOINTS];  /* joint-N.force */
+    double sim_time_s;                /* sim-time */
+    double residual_m;                /* residual */
+    unsigned steps;                   /* steps: servo periods integrated since load/reset */
+    unsigned bars_broken;             /* bars-broken */
+    int fault;                        /* fault */
+    int fault_code;                   /* fault-code (hg_errors.h), 0 if none */
+    int amps_on;                      /* amps-on */
+    int watchdog_expired;             /* watchdog-expired */
+    int param_error;                  /* param-error: the last change was refused (or an enc scale) */
+    int dac_nan;                      /* dac-nan: some DAC's product is NaN */
+    hg_board_params params;           /* the block in force (the glue shows it on the HAL params) */
+    /* events of this step and their data */
+    unsigned events;                  /* HG_EV_* bits */
+    unsigned long long refused_mask;  /* PARAM_REFUSED: every invalid field (bits as above) */
+    int param_rc;                     /* PARAM_REFUSED: HG_ERR_BAD_PARAM, or the code of a set that
+                                         passed the checks but could not be built */
+    int reset_refused_joint;          /* RESET_REFUSED: first joint whose bar-broken input is set */
+    int fault_cause;                  /* FAULT_LATCHED: hg_fault_cause */
+    unsigned bars_newly_broken;       /* BAR_BROKEN */
+    unsigned dac_nan_new;             /* DAC_NAN */
+    unsigned enc_scale_bad;           /* ENC_SCALE_BAD */
+} hg_board_outputs;
+
+/* The board: model, state, sensors and latches (no pointers). */
+typedef struct {
+    hg_model m;                       /* the model in force (m.integrator: integrator in force) */
+    hg_model m_new;                   /* scratch: a candidate model being built */
+    hg_data d;                        /* the machine's state */
+    hg_data d_saved;                  /* state at the start of the period (rollback) */
+    unsigned substeps;                /* in force */
+    hg_board_params last_in;          /* the input block of the previous step (change detection) */
+    hg_encoder enc[HG_BOARD_ENCODERS];
+    double enc_scale[HG_BOARD_ENCODERS]; /* in force */
+    double enc_scale_in[HG_BOARD_ENCODERS]; /* input of the previous step (change detection) */
+    hg_watchdog wd;
+    unsigned switches[HG_BOARD_JOINTS]; /* HG_SW_* as the inputs read them */
+    double adc_sample_v[HG_BOARD_ADCS]; /* converted, not yet published */
+    double adc_value[HG_BOARD_ADCS];  /* published */
+    int adc_state;                    /* 0 power-up, 1/2: which group of 4 converts next */
+    unsigned dac_nan;                 /* bit ch: channel ch's product is NaN */
+    int prev_reset;
+    int fault, fault_code;
+    int param_error;
+    unsigned steps;                   /* servo periods integrated since load */
+} hg_board;
+
+/* Power-up: model `kind` with parameter block p (0: spec defaults,
+ * 1 substep, improved Euler), machine at HOME at rest, counters 0,
+ * watchdog disabled, no fault. 0, or HG_ERR_BAD_PARAM (p refused; use
+ * hg_board_params_check to name the fields) or another negative code. */
+int hg_board_init(hg_board *b, hg_model_kind kind, const hg_board_params *p);
+
+/* Inputs that leave the board idle: DAC 0 V, outputs off (so the E-STOP
+ * loop of out-07 is OPEN: set bit 7 of dout_values, or estop_loop_out -1,
+ * to power the amplifiers), estop_loop_out 7, watchdog disabled, enc scale
+ * 1, adc gain 1 offset 0, adc-volts-per-amp 0.5, no fault injection, the
+ * parameter block in force on b. */
+void hg_board_inputs_default(const hg_board *b, hg_board_inputs *in);
+
+/* Outputs of the board as it stands (what the glue shows after load),
+ * without stepping: no events. */
+void hg_board_peek(const hg_board *b, hg_board_outputs *out);
+
+/* One servo period of period_ns (the HAL thread's period): see the file
+ * comment. Order: reset edge, parameter change, watchdog (control, kick,
+ * DAC auto reset, advance), amplifier enables, broken bars, `substeps`
+ * hg_steps of period/substeps (all or nothing: a failure restores the state
+ * of the period's start and latches the fault), encoders (update, glitch,
+ * latch, reset, scale), switches, ADC, digital I/O, E-STOP. Faulted:
+ * state frozen, drives off, until a reset edge. */
+void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out, long period_ns);
+
+/* Check a parameter block: 0, or HG_ERR_BAD_PARAM with *mask (may be 0)
+ * holding every invalid field (bits as refused_mask) and why[i] (may be 0;
+ * array of HG_BOARD_WHY_LEN) the reason for bit i (static strings). */
+#define HG_BOARD_WHY_LEN 64
+int hg_board_params_check(const hg_board_params *p, unsigned long long *mask,
+                          const char *why[HG_BOARD_WHY_LEN]);
+
+/* After a PARAM_REFUSED event: the reasons for the refused input block
+ * want (as hg_board_params_check, on the candidate the board tried: h
+ * follows l, lb, lp as in apply). Same outputs as hg_board_params_check. */
+int hg_board_explain_refusal(const hg_board *b, const hg_board_params *want,
+                             unsigned long long *mask, const char *why[HG_BOARD_WHY_LEN]);
+
+/* v as text without stdio (rtapi_print_msg formats no floats in kernel
+ * builds): "-12.5", up to 6 decimals, "nan", "inf", "huge" (|v| > 1e15). */
+#define HG_BOARD_VALUE_LEN 32
+void hg_board_format_value(char buf[HG_BOARD_VALUE_LEN], double v);
+
+/* HAL name of refused_mask bit i ("c-visc", "substeps", ...), 0 if none. */
+const char *hg_board_param_hal_name(int bit);
+
+#endif
