@@ -23,23 +23,27 @@ void hg_loop_config_default(hg_loop_config *c)
     c->model_kind = HG_MODEL_REDUCED_CARTESIAN;
 }
 
-int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_params *p)
+int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p)
 {
-    const char *bad, *why;
     int k, rc;
-    if (c->period_ns <= 0 || c->period_ns > (long)(HG_DT_MAX_S * 1e9))
+    if (c->period_ns <= 0 || c->period_ns > HG_PERIOD_MAX_NS)
         return HG_ERR_BAD_DT;
+    if (c->model_kind < 0 || c->model_kind >= HG_MODEL_COUNT)
+        return HG_ERR_BAD_PARAM;
     for (k = 0; k < HG_LOOP_JOINTS; k++)
         if (!isfinite(c->input_scale[k]) || c->input_scale[k] == 0.0)
             return HG_ERR_BAD_PARAM;
     L->cfg = *c;
-    rc = hg_model_init(&L->model, p, (hg_model_kind)c->model_kind, &bad, &why);
-    if (rc == 0)
-        rc = hg_data_reset(&L->model, &L->data);
+    rc = hg_board_init(&L->board, (hg_model_kind)c->model_kind, p);
     if (rc)
         return rc;
+    hg_board_inputs_default(&L->board, &L->in);
+    L->in.dout_values |= 1u << 7;      /* iocontrol's user-enable-out closes the E-STOP loop (out-07) */
+    L->in.dac_written = 1;
+    for (k = 0; k < HG_LOOP_JOINTS; k++)
+        L->in.enc_scale[k] = c->input_scale[k];
+    hg_board_peek(&L->board, &L->out);
     for (k = 0; k < HG_LOOP_JOINTS; k++) {
-        hg_encoder_init(&L->enc[k], L->data.z_m[k], L->model.p.lead_m, L->model.p.counts_per_rev);
         hg_pid_reset(&L->pid[k]);
         L->prev_cmd_mm[k] = 0.0;
     }
@@ -47,29 +51,24 @@ int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_params *p)
     return 0;
 }
 
-/* The plant: the board's dac-write + dynamics for one period with the pid
- * outputs as DAC values; afterwards the encoders hold the new positions. */
+/* The plant: the board's dac-write + dynamics (+ encoders) for one period
+ * with the pid outputs as DAC values, through hg_board_step as LinuxCNC's
+ * motenc.0.dac-write and motenc.0.dynamics run it. 0 or the fault code. */
 static int plant_step(hg_loop *L, const double dac_value[HG_LOOP_JOINTS])
 {
-    double volts[HG_LOOP_JOINTS];
-    hg_data saved = L->data;
-    int k, rc;
+    int k;
     for (k = 0; k < HG_LOOP_JOINTS; k++)
-        volts[k] = hg_dac_output(hg_dac_volts(dac_value[k], L->cfg.output_offset[k], L->cfg.output_scale[k], 0));
-    rc = hg_step(&L->model, &L->data, volts, L->cfg.period_ns * 1e-9);
-    if (rc) {
-        L->data = saved;
-        return rc;
-    }
-    for (k = 0; k < HG_LOOP_JOINTS; k++)
-        hg_encoder_update(&L->enc[k], L->data.z_m[k], L->model.p.lead_m, L->model.p.counts_per_rev, 0);
-    return 0;
+        L->in.dac_v[k] = (dac_value[k] - L->cfg.output_offset[k]) * L->cfg.output_scale[k];
+    hg_board_step(&L->board, &L->in, &L->out, L->cfg.period_ns);
+    if (!L->out.fault)
+        return 0;
+    return L->out.fault_code ? L->out.fault_code : HG_ERR_STATE_NONFINITE;
 }
 
-/* The board's encoder-read: position = count * (1 / scale), as hal_motenc. */
+/* The board's encoder-read: the position the last period left on the counter (mm). */
 static double plant_position_mm(const hg_loop *L, int k)
 {
-    return hg_encoder_count(&L->enc[k]) * (1.0 / L->cfg.input_scale[k]);
+    return L->out.position[k];
 }
 
 int hg_loop_step(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], hg_loop_sample *out)
@@ -90,12 +89,10 @@ int hg_loop_step(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], hg_loop_sample
             out->output_v[k] = dac[k];
     }
     rc = plant_step(L, dac);
-    if (rc)
-        return rc;
     for (k = 0; k < HG_LOOP_JOINTS; k++)
         L->prev_cmd_mm[k] = cmd_mm[k];
     L->periods++;
-    return 0;
+    return rc;
 }
 
 int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
@@ -129,8 +126,10 @@ int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *fer
         }
         if (i >= from)
             counted++;
-        if (sum->tripped_at >= 0)
+        if (sum->tripped_at >= 0) {
+            i++;
             break;
+        }
     }
     sum->periods = i;
     for (k = 0; k < HG_LOOP_JOINTS; k++)
@@ -148,6 +147,8 @@ unsigned long hg_loop_sizeof(int which)
     case 4: return sizeof(hg_model);
     case 5: return sizeof(hg_data);
     case 6: return sizeof(hg_params);
+    case 7: return sizeof(hg_board_params);
+    case 8: return sizeof(hg_board);
     default: return 0;
     }
 }

@@ -13,9 +13,8 @@
 #ifndef HG_LOOP_H
 #define HG_LOOP_H
 
-#include "hg_dynamics.h"
+#include "hg_board.h"
 #include "hg_pid.h"
-#include "hg_sensors.h"
 
 #define HG_LOOP_JOINTS 6
 
@@ -33,9 +32,9 @@ typedef struct {
 /* The closed loop: board (plant) + six PID states + motion's memory. */
 typedef struct {
     hg_loop_config cfg;
-    hg_model model;                    /* plant: the board's machine */
-    hg_data data;
-    hg_encoder enc[HG_LOOP_JOINTS];
+    hg_board board;                    /* the plant: the virtual board and its machine */
+    hg_board_inputs in;                /* what the HAL glue would copy in each period */
+    hg_board_outputs out;              /* the board's outputs after the last period */
     hg_pid_state pid[HG_LOOP_JOINTS];
     double prev_cmd_mm[HG_LOOP_JOINTS]; /* motion's command of the previous period */
     long periods;                      /* periods run since hg_loop_init */
@@ -60,13 +59,15 @@ typedef struct {
 /* Config with configs/hexaglide.ini's current values (the hand-tuned gains). */
 void hg_loop_config_default(hg_loop_config *c);
 
-/* Machine at HOME at rest, counters at 0, PIDs reset, motion's command 0.
+/* Machine at HOME at rest, counters at 0, amplifiers on (E-STOP loop closed),
+ * PIDs reset, motion's command 0. p: the board's parameter block (model
+ * parameters, substeps, integrator; 0: the spec's defaults as on HAL load).
  * 0, or a negative code (bad parameters or period: HG_ERR_BAD_PARAM / BAD_DT). */
-int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_params *p);
+int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p);
 
 /* One servo period with motion's joint commands cmd_mm; out may be 0.
- * 0, or the plant's negative code (the loop is then unchanged except the PIDs),
- * or HG_ERR_NONFINITE_INPUT for a non-finite command. */
+ * 0, or the board's fault code (latched: the board stays faulted),
+ * or HG_ERR_NONFINITE_INPUT for a non-finite command (nothing run). */
 int hg_loop_step(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], hg_loop_sample *out);
 
 /* Run n periods of commands cmd_mm[n][6] (row-major); per-period f-errors and
@@ -78,6 +79,7 @@ int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *fer
 
 /* sizeof the structs, for bindings that mirror them (tools/hexaglide.py). */
 unsigned long hg_loop_sizeof(int which);   /* 0 hg_loop, 1 config, 2 summary, 3 pid gains,
-                                             4 hg_model, 5 hg_data, 6 hg_params; else 0 */
+                                             4 hg_model, 5 hg_data, 6 hg_params,
+                                             7 hg_board_params, 8 hg_board; else 0 */
 
 #endif

@@ -105,6 +105,7 @@ _ik = _sig("hg_inverse_kinematics", C.c_int, _P, _d6, _d6)
 _fk = _sig("hg_forward_kinematics", C.c_int, _P, _d6, _d6, _P, _P)
 _loop_default = _sig("hg_loop_config_default", None, C.POINTER(LoopConfig))
 _loop_init = _sig("hg_loop_init", C.c_int, _P, C.POINTER(LoopConfig), _P)
+_params_copy_sz = _sizeof(6)
 _loop_step = _sig("hg_loop_step", C.c_int, _P, _d6, _P)
 _dp = np.ctypeslib.ndpointer(dtype=np.float64, flags="C_CONTIGUOUS")
 _loop_run = _sig("hg_loop_run", C.c_int, _P, _dp, C.c_long, C.c_long, _P, _P, C.POINTER(LoopSummary))
@@ -128,6 +129,14 @@ class Params:
     def __setitem__(self, name, value):
         if _params_set(self.buf, name.encode(), float(value)):
             raise KeyError("unknown parameter or bad value: %s=%r" % (name, value))
+
+    def board_params(self, substeps=1, integrator=0):
+        """hg_board_params: these model parameters + the board's substeps and integrator."""
+        buf = C.create_string_buffer(_sizeof(7))
+        C.memmove(buf, self.buf, _params_copy_sz)
+        extra = (C.c_uint * 2)(substeps, integrator)
+        C.memmove(C.byref(buf, _params_copy_sz), extra, C.sizeof(extra))
+        return buf
 
 
 def _geometry(params):
@@ -226,7 +235,7 @@ class Loop:
     DEADBAND, MAX_OUTPUT, MAX_ERROR_I) overriding configs/hexaglide.ini's values."""
 
     def __init__(self, gains=None, params=None, ferror_limit_mm=0.0, period_ns=1000000,
-                 model="reduced-cartesian"):
+                 model="reduced-cartesian", substeps=1, integrator=0):
         self.cfg = LoopConfig()
         _loop_default(C.byref(self.cfg))
         self.cfg.ferror_limit_mm = ferror_limit_mm
@@ -236,12 +245,13 @@ class Loop:
             for key, v in g.items():
                 setattr(self.cfg.pid[j], GAIN_KEYS[key], float(v))
         self.params = params or Params()
+        self.board_params = self.params.board_params(substeps, integrator)
         self.buf = C.create_string_buffer(_sizeof(0))
         self.reset()
 
     def reset(self):
         """Machine at HOME at rest, PIDs reset."""
-        rc = _loop_init(self.buf, C.byref(self.cfg), self.params.buf)
+        rc = _loop_init(self.buf, C.byref(self.cfg), self.board_params)
         if rc:
             raise HexaglideError("loop init", rc)
 
