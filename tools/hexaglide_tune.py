@@ -324,7 +324,7 @@ def cost(x):
     rms = max(r.rms_ferror_mm.max() for r in runs)
     volts = max(r.peak_output_v.max() for r in runs)
     c = peak + 0.2 * rms
-    c += 0.01 * max(0.0, volts - prob["vmax"])
+    c += 1.0 * max(0.0, volts - prob["vmax"])      # 1 mm per volt over: a hard limit in effect
     over, settled = step_metrics(step_response(gains, prob))
     if not settled:
         return 0.5 + c
@@ -544,7 +544,7 @@ def main(argv=None):
         log("current gains: %s (tuning from the model's gains instead)" % why)
         vcur = None
     else:
-        vcur = cur_pred["volts"].max()
+        vcur = max(r.peak_output_v.max() for r in trajectory_runs(cur, prob, prob["search_settles"]))
         log("current gains: peak |f-error| %.5f mm, peak output %.3f V"
             % (cur_pred["ferror"].max(), vcur))
     vmax_dac = min(g.get("MAX_OUTPUT", 10.0) or 10.0 for g in joints)

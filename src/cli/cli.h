@@ -8,6 +8,7 @@ int cmd_ik(int argc, char **argv);   /* ik X Y Z A B C */
 int cmd_fk(int argc, char **argv);   /* fk J0..J5 [--guess X Y Z A B C] */
 int cmd_sim(int argc, char **argv);  /* sim --model ... (offline simulator) */
 int cmd_soak(int argc, char **argv); /* soak [--hours H] (long closed-loop run) */
+int cmd_tune(int argc, char **argv); /* tune [--trajectory FILE] (runs tools/hexaglide_tune.py) */
 
 #include "hg_board.h"
 
