@@ -149,6 +149,8 @@ unsigned long hg_loop_sizeof(int which)
     case 6: return sizeof(hg_params);
     case 7: return sizeof(hg_board_params);
     case 8: return sizeof(hg_board);
+    case 9: return sizeof(hg_board_inputs);
+    case 10: return sizeof(hg_board_outputs);
     default: return 0;
     }
 }

@@ -93,6 +93,52 @@ for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data)):
         raise ImportError("%s: layout differs from the library's (%d vs %d bytes): rebuild both"
                           % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
 
+_NP = _sizeof(6) // 8          # doubles in hg_params
+
+
+class BoardParams(C.Structure):
+    """hg_board_params: model parameters (SI, as hg_params), substeps, integrator."""
+    _fields_ = [("model", C.c_double * _NP), ("substeps", C.c_uint), ("integrator", C.c_uint)]
+
+
+_e8i, _e8d = C.c_int * 8, C.c_double * 8
+_j6i, _j6u = C.c_int * 6, C.c_uint * 6
+
+
+class BoardInputs(C.Structure):
+    """hg_board_inputs: one servo period's inputs (src/hg_board.h)."""
+    _fields_ = [("dac_v", _e8d), ("dac_written", C.c_int), ("dout_values", C.c_uint),
+                ("dout_inverts", C.c_uint), ("estop_loop_out", C.c_int), ("estop_button", C.c_int),
+                ("reset", C.c_int), ("watchdog_control", C.c_uint), ("watchdog_reset", C.c_int),
+                ("index_enable", _e8i), ("enc_reset", _e8i), ("enc_scale", _e8d), ("adc_read", C.c_int),
+                ("adc_gain", _e8d), ("adc_offset", _e8d), ("adc_volts_per_amp", C.c_double),
+                ("amp_fail", _j6i), ("stuck", _j6u), ("tripped", _j6u), ("index_lost", _j6i),
+                ("enc_glitch", _j6i), ("bar_broken", _j6i), ("params", BoardParams)]
+
+
+class BoardOutputs(C.Structure):
+    """hg_board_outputs: one servo period's outputs (src/hg_board.h)."""
+    _fields_ = [("count", _e8i), ("position", _e8d), ("index", _e8i), ("index_latched", _e8i),
+                ("enc_scale", _e8d), ("in_", C.c_ubyte * 68), ("dout_word", C.c_uint), ("estop_in", C.c_int),
+                ("adc", _e8d), ("pose", _d6), ("z_m", _d6), ("zd_mps", _d6), ("volts", _d6),
+                ("current_a", _d6), ("force_n", _d6), ("sim_time_s", C.c_double), ("residual_m", C.c_double),
+                ("steps", C.c_uint), ("bars_broken", C.c_uint), ("fault", C.c_int), ("fault_code", C.c_int),
+                ("amps_on", C.c_int), ("watchdog_expired", C.c_int), ("param_error", C.c_int),
+                ("dac_nan", C.c_int), ("params", BoardParams), ("events", C.c_uint),
+                ("refused_mask", C.c_ulonglong), ("param_rc", C.c_int), ("reset_refused_joint", C.c_int),
+                ("fault_cause", C.c_int), ("bars_newly_broken", C.c_uint), ("dac_nan_new", C.c_uint),
+                ("enc_scale_bad", C.c_uint)]
+
+
+for _i, _s in ((7, BoardParams), (9, BoardInputs), (10, BoardOutputs)):
+    if _sizeof(_i) != C.sizeof(_s):
+        raise ImportError("%s: layout differs from the library's (%d vs %d bytes): rebuild both"
+                          % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
+
+_board_init = _sig("hg_board_init", C.c_int, _P, C.c_int, _P)
+_board_inputs_default = _sig("hg_board_inputs_default", None, _P, C.POINTER(BoardInputs))
+_board_peek = _sig("hg_board_peek", None, _P, C.POINTER(BoardOutputs))
+_board_step = _sig("hg_board_step", None, _P, C.POINTER(BoardInputs), C.POINTER(BoardOutputs), C.c_long)
 _params_default = _sig("hg_params_default", None, _P)
 _params_set = _sig("hg_params_set", C.c_int, _P, C.c_char_p, C.c_double)
 _params_field = _sig("hg_params_field", C.POINTER(C.c_double), _P, C.c_char_p)
@@ -205,6 +251,43 @@ class Model:
     @property
     def zdd_mps2(self):
         return np.array(self.d.zdd_mps2[:])
+
+
+class Board:
+    """hg_board: the virtual MOTENC-100 with the machine behind it (src/hg_board.h),
+    the very function LinuxCNC's motenc.0.dynamics runs. SI inside, as the core.
+
+        b = Board()                      # power-up: HOME at rest, E-STOP loop closed here
+        out = b.step([0.3] * 6)          # DAC volts of joints 0..5 for one 1 ms period
+        out.z_m[:], out.position[:6], out.count[:6], out.amps_on
+    b.inputs is the full hg_board_inputs record (fault injection, index-enable, ...)."""
+
+    def __init__(self, kind="reduced-cartesian", params=None, substeps=1, integrator=0, period_ns=1000000,
+                 estop_closed=True):
+        k = _model_from_name(kind.encode())
+        if k < 0:
+            raise ValueError("unknown model %r; one of %s" % (kind, MODELS))
+        self.params = params or Params()
+        self.buf = C.create_string_buffer(_sizeof(8))
+        rc = _board_init(self.buf, k, self.params.board_params(substeps, integrator))
+        if rc:
+            raise HexaglideError("board init", rc)
+        self.inputs = BoardInputs()
+        _board_inputs_default(self.buf, C.byref(self.inputs))
+        if estop_closed:
+            self.inputs.dout_values |= 1 << 7   # out-07 closes the E-STOP loop: amplifiers on
+        self.inputs.dac_written = 1
+        self.outputs = BoardOutputs()
+        _board_peek(self.buf, C.byref(self.outputs))
+        self.period_ns = period_ns
+
+    def step(self, dac_volts=None):
+        """One servo period; dac_volts (up to 8) replaces inputs.dac_v. Returns self.outputs."""
+        if dac_volts is not None:
+            for i, v in enumerate(dac_volts):
+                self.inputs.dac_v[i] = v
+        _board_step(self.buf, C.byref(self.inputs), C.byref(self.outputs), self.period_ns)
+        return self.outputs
 
 
 class RunResult:

@@ -110,6 +110,9 @@ def load_trajectory(path):
         try:
             vals = [float(x) for x in fields]
         except ValueError:
+            if header is None and not rows and "," in s and not any(c.isdigit() for c in fields[0][:1]):
+                raise BadInput("%s line %d is a header without joint.N.motor-pos-cmd columns: record "
+                               "motion's joint commands (docs/tuning.md)" % (path, no))
             raise BadInput("%s line %d does not parse as numbers: %r" % (path, no, s[:80]))
         if not np.all(np.isfinite(vals)):
             raise BadInput("%s line %d holds a NaN or infinite value" % (path, no))
@@ -328,7 +331,7 @@ def cost(x):
     over, settled = step_metrics(step_response(gains, prob))
     if not settled:
         return 0.5 + c
-    c += 0.01 * max(0.0, over - prob["max_overshoot"])
+    c += 1.0 * max(0.0, over - prob["max_overshoot"])  # 0.01 mm per % over: hard in effect
     if not gain_margin_ok(gains, prob):
         c += 0.05
     return c
@@ -593,7 +596,7 @@ def main(argv=None):
         log("no stable gains found: %s" % why)
         return 1
     over, settled = step_metrics(step_response(sug, prob))
-    if not settled or not gain_margin_ok(sug, prob):
+    if not settled or not gain_margin_ok(sug, prob) or over > a.max_overshoot + 0.02:
         log("the best gains found do not meet the stability margins (overshoot %.0f%%, settled %s, "
             "gain margin 6 dB %s): nothing suggested" % (100 * over, settled, gain_margin_ok(sug, prob)))
         return 1
@@ -601,6 +604,10 @@ def main(argv=None):
         "step overshoot %.0f%%, stable with P I D doubled"
         % (pred["ferror"].max(), "%.5f mm" % cur_pred["ferror"].max() if cur_pred else "unstable",
            pred["volts"].max(), prob["vmax"], 100 * over))
+    if cur_pred is not None and pred["ferror"].max() >= cur_pred["ferror"].max():
+        log("note: the suggestion is not better than the current gains on this trajectory "
+            "(%.5f vs %.5f mm): the current gains are already at the encoder's resolution or the "
+            "limits (--max-volts, --max-overshoot) bind" % (pred["ferror"].max(), cur_pred["ferror"].max()))
     text = ini_text(sug, pred, source)
     if a.output:
         atomic_write(a.output, lambda f: f.write(text.encode()))
