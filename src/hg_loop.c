@@ -151,6 +151,7 @@ unsigned long hg_loop_sizeof(int which)
     case 8: return sizeof(hg_board);
     case 9: return sizeof(hg_board_inputs);
     case 10: return sizeof(hg_board_outputs);
+    case 11: return sizeof(hg_pid_state);
     default: return 0;
     }
 }

@@ -355,21 +355,41 @@ class Loop:
         return RunResult(fe, out, summ, rc)
 
 
-_pid_calc = _sig("hg_pid_calc", C.c_double, C.POINTER(PidGains), _P, C.c_double, C.c_double, C.c_int,
-                 C.c_int, C.c_long)
-_pid_reset = _sig("hg_pid_reset", None, _P)
+class PidState(C.Structure):
+    """hg_pid_state: one pid's memory and output pins."""
+    _fields_ = [(n, C.c_double) for n in ("error_i", "error_d", "prev_error", "prev_cmd", "prev_fb",
+                                          "limit_state", "cmd_d", "cmd_dd", "cmd_ddd", "cmd_v", "fb_v")] + \
+        [("prev_ie", C.c_int), ("error", C.c_double), ("output", C.c_double), ("saturated", C.c_int),
+         ("saturated_s", C.c_double), ("saturated_count", C.c_int)]
 
 
-def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000):
-    """LinuxCNC's pid (src/hg_pid.c) on recorded pins: outputs for arrays of
-    command and feedback (and enable, default 1), starting from reset."""
+_pid_calc = _sig("hg_pid_calc", C.c_double, C.POINTER(PidGains), C.POINTER(PidState), C.c_double, C.c_double,
+                 C.c_int, C.c_int, C.c_long)
+_pid_defaults = _sig("hg_pid_defaults", None, C.POINTER(PidGains))
+
+
+def pid_gains(gains):
+    """PidGains from INI keys (pid.c's defaults for the others)."""
     g = PidGains()
-    _sig("hg_pid_defaults", None, C.POINTER(PidGains))(C.byref(g))
+    _pid_defaults(C.byref(g))
     for key, v in gains.items():
         setattr(g, GAIN_KEYS[key], float(v))
-    st = C.create_string_buffer(256)
-    _pid_reset(st)
+    return g
+
+
+def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000, state=None):
+    """LinuxCNC's pid (src/hg_pid.c) on recorded pins: outputs for arrays of
+    command and feedback (and enable, default 1), from `state` (a dict of
+    PidState fields; default the load-time state, all zero)."""
+    g = pid_gains(gains)
+    st = PidState()
+    for k, v in (state or {}).items():
+        setattr(st, k, v)
     n = len(command)
     en = np.ones(n, dtype=int) if enable is None else np.asarray(enable, dtype=int)
-    return np.array([_pid_calc(C.byref(g), st, float(command[i]), float(feedback[i]), int(en[i]), 0, period_ns)
-                     for i in range(n)])
+    return np.array([_pid_calc(C.byref(g), C.byref(st), float(command[i]), float(feedback[i]), int(en[i]), 0,
+                               period_ns) for i in range(n)])
+
+
+if _sizeof(11) != C.sizeof(PidState):
+    raise ImportError("PidState: layout differs from the library's: rebuild both")

@@ -5,7 +5,10 @@ and compare the measured peak following error per joint with the prediction.
     tools/verify_gains.py GAINS_FILE [--program NGC] [--tolerance 0.10]
 
 GAINS_FILE is tune's stdout (or --output): [JOINT_N] sections with
-P I D FF0 FF1 FF2 FF3 BIAS ... and the "# joint N: peak |f-error| ..." lines.
+P I D FF0 FF1 FF2 FF3 BIAS ... and the "# joint N: peak |f-error| ..." lines;
+or any INI (configs/hexaglide.ini: its [JOINT_N] gains). Without predicted
+lines the prediction is tune's, made offline on this run's own joint
+commands (motion's commands do not depend on the gains).
 The gains are set with halcmd over configs/hexaglide.ini's (HG_SETP of
 configs/hexaglide_headless.py), the program runs headless
 (tools/hg_linuxcnc.sh), every servo period is sampled, and the peaks over the
@@ -53,12 +56,17 @@ def parse_gains(path):
             if s.startswith("["):
                 sec = None
                 continue
+            if sec is None:
+                continue                       # other sections of an INI
             k, eq, v = s.partition("=")
             k = k.strip()
-            if not eq or sec is None:
-                raise ValueError("%s line %d: not KEY = value inside [JOINT_N]: %r" % (path, no, s))
+            if not eq:
+                raise ValueError("%s line %d: not KEY = value: %r" % (path, no, s))
             if k in PIN:
-                val = float(v)
+                try:
+                    val = float(v)
+                except ValueError:
+                    raise ValueError("%s line %d: %s = %r is not a number" % (path, no, k, v.strip()))
                 if not np.isfinite(val):
                     raise ValueError("%s line %d: %s is not finite" % (path, no, k))
                 gains[sec][k] = val
