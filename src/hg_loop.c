@@ -8,14 +8,7 @@ void hg_loop_config_default(hg_loop_config *c)
     int k;
     *c = (hg_loop_config){0};
     for (k = 0; k < HG_LOOP_JOINTS; k++) {
-        hg_pid_gains *g = &c->pid[k];
-        hg_pid_defaults(g);
-        g->pgain = 5.0;
-        g->igain = 100.0;
-        g->dgain = 0.04;
-        g->ff1 = 0.0221;
-        g->ff2 = 0.00023;
-        g->maxoutput = 10.0;
+        hg_pid_defaults(&c->pid[k]);
         c->input_scale[k] = 1000.0;
         c->output_scale[k] = 1.0;
     }

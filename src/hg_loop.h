@@ -56,7 +56,9 @@ typedef struct {
     long tripped_at;                   /* first period with |f-error| > ferror_limit_mm, or -1 */
 } hg_loop_summary;
 
-/* Config with configs/hexaglide.ini's current values (the hand-tuned gains). */
+/* Config with pid.c's load-time gains (hg_pid_defaults: Pgain 1, the rest 0),
+ * configs/hexaglide.ini's scales (1000 counts/mm, DAC gain 1, offset 0), a
+ * 1 ms period, the board's default model (reduced-cartesian), no trip limit. */
 void hg_loop_config_default(hg_loop_config *c);
 
 /* Machine at HOME at rest, counters at 0, amplifiers on (E-STOP loop closed),

@@ -15,12 +15,14 @@ The same code the LinuxCNC modules run, built as build/libhexaglide.so
 Units at this interface are the user's (mm, degrees, volts) except Model,
 which is the core's own (m, rad, s) as in src/hg_dynamics.h.
 """
+import configparser
 import ctypes as C
 import os
 
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+DEFAULT_INI = os.path.normpath(os.path.join(HERE, "..", "configs", "hexaglide.ini"))
 LIB_PATH = os.environ.get("HEXAGLIDE_LIB", os.path.join(HERE, "..", "build", "libhexaglide.so"))
 JOINTS = 6
 MODELS = ["standard", "reduced-joints", "reduced-cartesian", "fused-cartesian"]
@@ -306,6 +308,39 @@ class RunResult:
         return self.rc == 0 and self.tripped_at < 0
 
 
+def read_ini(path=DEFAULT_INI):
+    """[JOINT_0..5] and [AXIS_X..C] of a LinuxCNC INI as ([six {KEY: float}], {axis: {KEY: float}});
+    ValueError naming the file, section and key when something is missing or not a number."""
+    if not os.path.isfile(path):
+        raise ValueError("no such INI file: %s" % path)
+    cp = configparser.ConfigParser(strict=False, interpolation=None, comment_prefixes=("#", ";"))
+    cp.optionxform = str.upper
+    try:
+        with open(path) as f:
+            cp.read_string("".join(l for l in f if not l.startswith("#INCLUDE")))
+    except configparser.Error as ex:
+        raise ValueError("%s does not parse as an INI file: %s" % (path, ex))
+
+    def numbers(sec):
+        out = {}
+        for k, v in cp.items(sec):
+            try:
+                out[k] = float(v)
+            except ValueError:
+                pass                     # words (TYPE = LINEAR, HOME_USE_INDEX = YES)
+        return out
+    joints = []
+    for j in range(JOINTS):
+        if not cp.has_section("JOINT_%d" % j):
+            raise ValueError("%s has no [JOINT_%d] section" % (path, j))
+        joints.append(numbers("JOINT_%d" % j))
+        for k in ("P", "I", "D", "FF0", "FF1", "FF2", "FF3", "BIAS"):
+            if cp.has_option("JOINT_%d" % j, k) and k not in joints[-1]:
+                raise ValueError("%s [JOINT_%d] %s = %r is not a number" % (path, j, k, cp.get("JOINT_%d" % j, k)))
+    axes = {a: numbers("AXIS_" + a) if cp.has_section("AXIS_" + a) else {} for a in "XYZABC"}
+    return joints, axes
+
+
 GAIN_KEYS = {"P": "pgain", "I": "igain", "D": "dgain", "BIAS": "bias", "FF0": "ff0", "FF1": "ff1",
              "FF2": "ff2", "FF3": "ff3", "DEADBAND": "deadband", "MAX_OUTPUT": "maxoutput",
              "MAX_ERROR_I": "maxerror_i"}
@@ -315,7 +350,8 @@ class Loop:
     """Six LinuxCNC pid loops around the virtual board (src/hg_loop.h), mm and volts.
 
     gains: a list of six dicts of INI keys (P, I, D, FF0, FF1, FF2, FF3, BIAS,
-    DEADBAND, MAX_OUTPUT, MAX_ERROR_I) overriding configs/hexaglide.ini's values."""
+    DEADBAND, MAX_OUTPUT, MAX_ERROR_I); keys not given keep pid.c's load-time
+    values (Pgain 1, the rest 0). None: configs/hexaglide.ini's gains."""
 
     def __init__(self, gains=None, params=None, ferror_limit_mm=0.0, period_ns=1000000,
                  model="reduced-cartesian", substeps=1, integrator=0):
@@ -324,9 +360,18 @@ class Loop:
         self.cfg.ferror_limit_mm = ferror_limit_mm
         self.cfg.period_ns = period_ns
         self.cfg.model_kind = MODELS.index(model)
-        for j, g in enumerate(gains or []):
+        if gains is None:
+            gains = read_ini()[0]
+        for j, g in enumerate(gains):
             for key, v in g.items():
-                setattr(self.cfg.pid[j], GAIN_KEYS[key], float(v))
+                if key in GAIN_KEYS:
+                    setattr(self.cfg.pid[j], GAIN_KEYS[key], float(v))
+            if "INPUT_SCALE" in g:
+                self.cfg.input_scale[j] = g["INPUT_SCALE"]
+            if "OUTPUT_SCALE" in g:
+                self.cfg.output_scale[j] = g["OUTPUT_SCALE"]
+            if "OUTPUT_OFFSET" in g:
+                self.cfg.output_offset[j] = g["OUTPUT_OFFSET"]
         self.params = params or Params()
         self.board_params = self.params.board_params(substeps, integrator)
         self.buf = C.create_string_buffer(_sizeof(0))

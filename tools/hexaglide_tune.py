@@ -11,7 +11,6 @@ peak following error per joint (comment lines). stderr: progress.
 Exit codes: 0 ok, 1 no stable gains / unstable gains given, 2 bad input.
 """
 import argparse
-import configparser
 import ctypes as C
 import multiprocessing
 import os
@@ -42,41 +41,16 @@ def log(*a):
 
 # ------------------------------------------------------------------ INI
 def read_ini(path):
-    """The joints' gains/scales and the axes' limits of a LinuxCNC INI."""
-    if not os.path.isfile(path):
-        raise BadInput("no such INI file: %s" % path)
-    cp = configparser.ConfigParser(strict=False, interpolation=None, comment_prefixes=("#", ";"),
-                                   inline_comment_prefixes=None)
+    """hg.read_ini with BadInput for what the user must fix."""
     try:
-        with open(path) as f:
-            cp.read_string("".join(l for l in f if not l.startswith("#INCLUDE")))
-    except configparser.Error as ex:
-        raise BadInput("%s does not parse as an INI file: %s" % (path, ex))
-    joints = []
-    for j in range(hg.JOINTS):
-        sec = "JOINT_%d" % j
-        if not cp.has_section(sec):
-            raise BadInput("%s has no [%s] section" % (path, sec))
-        g = {}
-        for k in KEYS + ["DEADBAND", "MAX_OUTPUT", "MAX_ERROR_I", "INPUT_SCALE", "OUTPUT_SCALE",
-                         "OUTPUT_OFFSET", "FERROR", "MAX_VELOCITY", "MAX_ACCELERATION"]:
-            if cp.has_option(sec, k):
-                try:
-                    g[k] = float(cp.get(sec, k))
-                except ValueError:
-                    raise BadInput("%s [%s] %s = %r is not a number" % (path, sec, k, cp.get(sec, k)))
-        joints.append(g)
-    axes = {}
-    for a in "XYZABC":
-        sec = "AXIS_" + a
-        axes[a] = {k: cp.getfloat(sec, k) for k in ("MAX_VELOCITY", "MAX_ACCELERATION", "MIN_LIMIT", "MAX_LIMIT")
-                   if cp.has_option(sec, k)} if cp.has_section(sec) else {}
-    return joints, axes
+        return hg.read_ini(path)
+    except ValueError as ex:
+        raise BadInput(str(ex))
 
 
 def pid_keys(g):
-    """The gains of an INI joint dict that hg.Loop takes."""
-    return {k: v for k, v in g.items() if k in hg.GAIN_KEYS}
+    """What hg.Loop takes of an INI joint dict: the pid gains and limits, the scales."""
+    return {k: v for k, v in g.items() if k in hg.GAIN_KEYS or k in ("INPUT_SCALE", "OUTPUT_SCALE", "OUTPUT_OFFSET")}
 
 
 # ------------------------------------------------------------------ trajectories
@@ -555,7 +529,8 @@ def main(argv=None):
     start = model_start(cmd)
     P, I, D = pid_from_bandwidth(start, a.bandwidth, a.damping)
     prob["base"] = {"P": P, "I": I, "D": D, "FF1": start["FF1"], "FF2": start["FF2"], "BIAS": start["BIAS"]}
-    prob["fixed"] = [{k: g[k] for k in ("DEADBAND", "MAX_OUTPUT", "MAX_ERROR_I") if k in g} for g in joints]
+    prob["fixed"] = [{k: g[k] for k in ("DEADBAND", "MAX_OUTPUT", "MAX_ERROR_I", "INPUT_SCALE", "OUTPUT_SCALE",
+                                        "OUTPUT_OFFSET") if k in g} for g in joints]
     log("model start (%.0f Hz, damping %.2f): P %.3g I %.3g D %.3g FF1 %.4g FF2 %.4g BIAS %.4g (joint 0); "
         "effective mass %.1f-%.1f kg" % (a.bandwidth, a.damping, P[0], I[0], D[0], start["FF1"][0],
                                          start["FF2"][0], start["BIAS"][0], start["mass_kg"].min(),

@@ -27,6 +27,14 @@ int main(void)
     hold = w / 6 / fpv;
 
     hg_loop_config_default(&c);
+    for (k = 0; k < 6; k++) {   /* the hand-tuned gains of docs/linuxcnc.md */
+        c.pid[k].pgain = 5.0;
+        c.pid[k].igain = 100.0;
+        c.pid[k].dgain = 0.04;
+        c.pid[k].ff1 = 0.0221;
+        c.pid[k].ff2 = 0.00023;
+        c.pid[k].maxoutput = 10.0;
+    }
     rc = hg_loop_init(L, &c, 0);
     CHECK(rc == 0, "init at HOME: %d", rc);
     for (i = 0; i < 3000 && rc == 0; i++)
@@ -65,7 +73,7 @@ int main(void)
 
     /* bad inputs */
     cmd[0] = NAN;
-    hg_loop_config_default(&c);
+    c.ferror_limit_mm = 0;
     hg_loop_init(L, &c, 0);
     CHECK(hg_loop_step(L, cmd, &s) == HG_ERR_NONFINITE_INPUT, "NaN command refused");
     c.period_ns = 0;
