@@ -262,7 +262,7 @@ static void encoders(hg_board *b, const hg_board_inputs *in, hg_board_outputs *o
         }
         if (in->enc_reset[ch])
             hg_encoder_zero(e);
-        if (memcmp(&s, &b->enc_scale_in[ch], sizeof s) != 0) { /* a new input scale */
+        if (memcmp(&s, &b->enc_scale_in[ch], sizeof s) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise, a NaN scale equals itself
             b->enc_scale_in[ch] = s;
             if (!isfinite(s) || (s < 1e-20 && s > -1e-20)) {
                 out->enc_scale_bad |= 1u << ch;
@@ -467,7 +467,10 @@ void hg_board_format_value(char buf[HG_BOARD_VALUE_LEN], double v)
         v = -v;
     }
     if (v > 1e15) {                   /* inf or beyond 6 decimals' reach */
-        memcpy(p, v > 1.7976931348623157e308 ? "inf" : "huge", 5);
+        if (v > 1.7976931348623157e308)
+            memcpy(p, "inf", 4);
+        else
+            memcpy(p, "huge", 5);
         return;
     }
     a = floor(v);

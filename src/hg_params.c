@@ -54,10 +54,11 @@ double hg_home_height(const hg_geometry *g)
 
 void hg_params_keep_home(hg_params *p, const hg_params *before)
 {
-    if (p->geo.h_m == before->geo.h_m &&
+    double h = hg_home_height(&p->geo);
+    if (p->geo.h_m == before->geo.h_m && isfinite(h) &&
         (p->geo.l_m != before->geo.l_m || p->geo.lb_m != before->geo.lb_m ||
          p->geo.lp_m != before->geo.lp_m))
-        p->geo.h_m = hg_home_height(&p->geo);
+        p->geo.h_m = h;
 }
 
 void hg_params_default(hg_params *p)
@@ -111,6 +112,19 @@ double *hg_params_field(hg_params *p, const char *name)
         if (strcmp(t[i].name, name) == 0)
             return (double *)((char *)p + t[i].offset);
     return 0;
+}
+
+double *hg_params_at(hg_params *p, int i)
+{
+    int n;
+    const hg_param_info *t = hg_params_table(&n);
+    return i >= 0 && i < n ? (double *)((char *)p + t[i].offset) : 0;
+}
+
+double hg_params_get(const hg_params *p, int i)
+{
+    const double *f = hg_params_at((hg_params *)p, i); /* read only */
+    return f ? *f : 0.0;
 }
 
 int hg_params_set(hg_params *p, const char *name, double value)

@@ -80,6 +80,12 @@ const hg_param_info *hg_params_table(int *count);
 /* Pointer to the field called name, or 0 if there is none. */
 double *hg_params_field(hg_params *p, const char *name);
 
+/* Field of table entry i (0 <= i < table length), or 0 for another i. */
+double *hg_params_at(hg_params *p, int i);
+
+/* Value of table entry i, or 0 for an index outside the table. */
+double hg_params_get(const hg_params *p, int i);
+
 /* Set field name to value: 0, or HG_ERR_BAD_PARAM for an unknown name or a
  * non-finite value. Does not validate the whole set: call hg_params_check. */
 int hg_params_set(hg_params *p, const char *name, double value);
@@ -100,7 +106,8 @@ int hg_params_check(const hg_params *p, const char **bad_field, const char **why
 int hg_params_check_all(const hg_params *p, unsigned long long *mask, const char *why[HG_PARAMS_MAX]);
 
 /* After changes from `before` to p: when l, lb or lp changed and h did not,
- * recompute h so that HOME stays at pose 0 (a user who sets h keeps it). */
+ * recompute h so that HOME stays at pose 0 (a user who sets h keeps it;
+ * a geometry without a HOME, l <= lb - lp, keeps h: the check names l). */
 void hg_params_keep_home(hg_params *p, const hg_params *before);
 
 /* h that puts the head at pose 0 when all carriages are at 0: sqrt(l^2-(lb-lp)^2). */

@@ -144,7 +144,7 @@ static void read_params(board_t *b)
     for (i = 0; i < n; i++) {
         double v = b->par[i];
         if (memcmp(&v, &b->shadow[i], sizeof v) != 0) // NOLINT(bugprone-suspicious-memory-comparison): bitwise, a NaN a user set equals itself
-            *(double *)((char *)&b->ins.params.model + t[i].offset) = v / t[i].hal_scale;
+            *hg_params_at(&b->ins.params.model, i) = v / t[i].hal_scale;
     }
     b->ins.params.substeps = b->substeps;
     b->ins.params.integrator = b->integrator;
@@ -156,8 +156,8 @@ static void write_params(board_t *b)
     int i, n;
     const hg_param_info *t = hg_params_table(&n);
     for (i = 0; i < n; i++) {
-        double *want = (double *)((char *)&b->ins.params.model + t[i].offset);
-        double got = *(const double *)((const char *)&b->o.params.model + t[i].offset);
+        double *want = hg_params_at(&b->ins.params.model, i);
+        double got = hg_params_get(&b->o.params.model, i);
         if (memcmp(want, &got, sizeof got) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise
             *want = got;
             b->par[i] = got * t[i].hal_scale;
@@ -189,8 +189,7 @@ static void report_refusal(board_t *b)
         if (!((mask >> i) & 1u))
             continue;
         if (i < n)
-            hg_board_format_value(v, *(const double *)((const char *)&b->ins.params.model + t[i].offset) *
-                                     t[i].hal_scale);
+            hg_board_format_value(v, hg_params_get(&b->ins.params.model, i) * t[i].hal_scale);
         else
             hg_board_format_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->ins.params.substeps
                                                                 : b->ins.params.integrator);
@@ -436,8 +435,7 @@ static int export_extra(board_t *b)
     b->adc_volts_per_amp = b->ins.adc_volts_per_amp;
     for (k = 0; k < n; k++) {
         PAR(float, &b->par[k], XP ".%d.%s", id, t[k].hal_name);
-        b->par[k] = b->shadow[k] = *(const double *)((const char *)&b->o.params.model + t[k].offset) *
-                                   t[k].hal_scale;
+        b->par[k] = b->shadow[k] = hg_params_get(&b->o.params.model, k) * t[k].hal_scale;
     }
     PAR(u32, &b->substeps, XP ".%d.substeps", id);
     PAR(u32, &b->integrator, XP ".%d.integrator", id);

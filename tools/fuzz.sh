@@ -1,6 +1,7 @@
 #!/bin/sh
 # fuzz.sh - bounded-time fuzzing of the kinematics, the parameter set, the
-# command-line arguments and the dynamics step (tests/fuzz/fuzz_*.c).
+# command-line arguments, the dynamics step and the board (tests/fuzz/fuzz_*.c).
+# fuzz_dynamics and fuzz_board share one target's budget (RUNS/2 each).
 # With clang: libFuzzer + ASan + UBSan. Without: gcc, ASan + UBSan and a
 # seeded random driver (tests/fuzz/standalone_driver.c).
 # Usage: tools/fuzz.sh [RUNS per target, default 1000000] [MAX_SECONDS per target, default 900]
@@ -9,7 +10,7 @@ cd "$(dirname "$0")/.." || exit 1
 if [ "$1" = --run ]; then MODE=run; NAME=$2; else MODE=all; RUNS=${1:-1000000}; MAXT=${2:-900}; fi
 OUT=build/fuzz
 mkdir -p "$OUT"
-CORE="$(ls src/hg_*.c src/generated/*.c) src/cli/cmd_kins.c src/cli/cmd_sim.c src/cli/cli_parse.c"
+CORE="$(ls src/hg_*.c src/generated/*.c) src/cli/cmd_kins.c src/cli/cmd_sim.c src/cli/cli_parse.c src/cli/cli_board.c"
 INC="-Isrc -Isrc/generated -Isrc/cli -Itests/fuzz"
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=all"
 if [ -n "$ENGINE" ]; then :   # set by the parent run
@@ -50,9 +51,15 @@ build_target() {
     fi
 }
 
+# runs_for NAME: inputs for this target (the dynamics step and the board share one budget)
+runs_for() {
+    case $1 in fuzz_dynamics|fuzz_board) echo $((RUNS / 2)) ;; *) echo "$RUNS" ;; esac
+}
+
 # run_target NAME: fuzz it and print one ok / not ok line
 run_target() {
     name=$1
+    RUNS=$(runs_for "$name")
     mkdir -p "$OUT/corpus-$name"
     start=$(date +%s.%N)
     if [ $ENGINE = libFuzzer ]; then

@@ -1,7 +1,10 @@
 /* fuzz_params.c - the parameter set by name: random names (table names,
  * near misses, garbage) and extreme values, then validation and model
- * building. Properties: no crash; a refusal names a real field and a
- * reason; a set that passes validation builds a model. */
+ * building, and the board's all-fields check. Properties: no crash; a
+ * refusal names a real field and a reason; hg_params_check_all flags the
+ * field hg_params_check names, gives every flagged field a reason and
+ * flags nothing for a valid set; a set that passes validation builds a
+ * model. */
 #include <stdio.h>
 #include <stdlib.h>
 #include "fuzz_input.h"
@@ -50,6 +53,21 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fail("check returned an unknown code");
     if (rc == HG_ERR_BAD_PARAM && (!field || !why || !hg_params_field(&p, field)))
         fail("refusal does not name a real field and a reason");
+    {
+        const char *whys[HG_PARAMS_MAX];
+        unsigned long long mask;
+        int all = hg_params_check_all(&p, &mask, whys), first = -1;
+        for (i = 0; i < n; i++) {
+            if (((mask >> i) & 1u) && !whys[i])
+                fail("check_all flags a field without a reason");
+            if (rc == HG_ERR_BAD_PARAM && strcmp(t[i].name, field) == 0)
+                first = i;
+        }
+        if (all != rc || (rc == HG_OK) != (mask == 0) || (mask >> n) != 0)
+            fail("check_all disagrees with check");
+        if (rc == HG_ERR_BAD_PARAM && (first < 0 || !((mask >> first) & 1u)))
+            fail("check_all does not flag the field check names");
+    }
     rc = hg_model_init(&m, &p, (hg_model_kind)(fuzz_byte(&in) % HG_MODEL_COUNT), &field, &why);
     if (rc == HG_ERR_BAD_PARAM && (!field || !why))
         fail("model init refusal without field and reason");

@@ -1,0 +1,174 @@
+/* fuzz_board.c - the virtual board (hg_board_step) fed random input
+ * sequences: DAC values (NaN, inf, 1e300), digital outputs and inverts,
+ * E-STOP button and loop output, resets, watchdog control and kicks,
+ * index-enable, encoder resets and scales, ADC gains, fault injection
+ * (amp-fail, stuck/tripped switches, lost index, glitches, broken bars),
+ * hostile parameter changes (any field, substeps, integrator) and periods
+ * (0, negative, huge). Properties: no crash; every output number finite;
+ * codes and event data within their documented ranges; the block in force
+ * always passes validation; a refusal names at least one field and each
+ * named field has a reason; a faulted board keeps its state frozen and its
+ * drives off. */
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include "fuzz_input.h"
+#include "hg_board.h"
+#include "hg_errors.h"
+
+static void fail(const char *what)
+{
+    fprintf(stderr, "fuzz_board: property violated: %s\n", what);
+    abort();
+}
+
+/* every double of the outputs is finite */
+static int outputs_finite(const hg_board_outputs *o)
+{
+    int k, ok = isfinite(o->sim_time_s) && isfinite(o->residual_m);
+    for (k = 0; k < HG_BOARD_ENCODERS; k++)
+        ok = ok && isfinite(o->position[k]) && isfinite(o->enc_scale[k]);
+    for (k = 0; k < HG_BOARD_ADCS; k++)
+        ok = ok && isfinite(o->adc[k]);
+    for (k = 0; k < 6; k++)
+        ok = ok && isfinite(o->pose[k]) && isfinite(o->z_m[k]) && isfinite(o->zd_mps[k]) &&
+             isfinite(o->volts[k]) && isfinite(o->current_a[k]) && isfinite(o->force_n[k]);
+    return ok;
+}
+
+/* One random change to the inputs. */
+static void mutate(fuzz_input *f, hg_board_inputs *in, int n_params)
+{
+    uint8_t what = fuzz_byte(f), ch = fuzz_byte(f);
+    int k = ch % 8, j = ch % 6;
+    switch (what % 16) {
+    case 0: case 1: case 2:
+        in->dac_v[k] = fuzz_double(f, -12.0, 12.0);
+        break;
+    case 3:
+        in->dout_values ^= 1u << (ch % 32);
+        if (fuzz_byte(f) & 1)
+            in->dout_inverts ^= 1u << (fuzz_byte(f) % 32);
+        break;
+    case 4:
+        in->estop_button = fuzz_byte(f) & 1;
+        in->estop_loop_out = (int)fuzz_byte(f) - 40;
+        break;
+    case 5:
+        in->reset = !in->reset;
+        break;
+    case 6:
+        in->watchdog_control = fuzz_byte(f);
+        in->watchdog_reset = fuzz_byte(f) & 1;
+        in->dac_written = fuzz_byte(f) & 1;
+        break;
+    case 7:
+        in->index_enable[k] = !in->index_enable[k];
+        in->enc_reset[k] = fuzz_byte(f) < 32;
+        break;
+    case 8:
+        in->enc_scale[k] = fuzz_double(f, -2000.0, 2000.0);
+        break;
+    case 9:
+        in->adc_read = fuzz_byte(f) & 1;
+        in->adc_gain[k] = fuzz_double(f, -10.0, 10.0);
+        in->adc_offset[k] = fuzz_double(f, -10.0, 10.0);
+        in->adc_volts_per_amp = fuzz_double(f, -2.0, 2.0);
+        break;
+    case 10:
+        in->amp_fail[j] = fuzz_byte(f) & 1;
+        in->stuck[j] = fuzz_byte(f) & 7u;
+        in->tripped[j] = fuzz_byte(f) & 7u;
+        in->index_lost[j] = fuzz_byte(f) & 1;
+        break;
+    case 11: {
+        static const int glitch[] = {0, 1, -1, 5000, INT_MAX, INT_MIN};
+        in->enc_glitch[j] = glitch[fuzz_byte(f) % 6];
+        break;
+    }
+    case 12:
+        in->bar_broken[j] = fuzz_byte(f) < 64;
+        break;
+    case 13: case 14: {          /* a hostile or a slightly changed parameter */
+        double *v = hg_params_at(&in->params.model, ch % n_params);
+        *v = (fuzz_byte(f) & 1) ? *v * fuzz_double(f, 0.5, 2.0) : fuzz_double(f, -2.0, 2.0);
+        break;
+    }
+    default: {                  /* substeps and integrator, mostly small */
+        uint8_t s = fuzz_byte(f);
+        in->params.substeps = s < 200 ? 1u + s % 4u : s < 250 ? 0u : (unsigned)(s - 250) * 1000000000u;
+        in->params.integrator = fuzz_byte(f) % 5u;
+        break;
+    }
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    static hg_board b;
+    static hg_board_inputs in;
+    static hg_board_outputs out, prev;
+    fuzz_input f = {data, size, 0};
+    int n, i, k, steps;
+    hg_params_table(&n);
+    if (hg_board_init(&b, (hg_model_kind)(fuzz_byte(&f) % HG_MODEL_COUNT), 0))
+        fail("the default board does not build");
+    hg_board_inputs_default(&b, &in);
+    in.dout_values = 1u << 7;
+    hg_board_peek(&b, &prev);
+    steps = 1 + fuzz_byte(&f) % 24;
+    for (i = 0; i < steps; i++) {
+        long period = 1000000;
+        uint8_t p = fuzz_byte(&f);
+        for (k = fuzz_byte(&f) % 4; k > 0; k--)
+            mutate(&f, &in, n);
+        if (p >= 240) {             /* 0, negative, 1 ns, beyond 10 ms, extremes */
+            static const long odd[] = {0, -1, 1, 250000, 10000000, 10000001, 20000000, LONG_MIN, LONG_MAX};
+            double v = fuzz_double(&f, -2e7, 2e7);
+            period = (p & 1) ? odd[fuzz_byte(&f) % 9] : isfinite(v) && fabs(v) < 1e15 ? (long)v : 1000000;
+        }
+        hg_board_step(&b, &in, &out, period);
+        if (!outputs_finite(&out))
+            fail("an output is not finite");
+        if (out.fault_code > 0 || out.fault_code < HG_ERR_LAST || (out.fault == 0) != (out.fault_code == 0))
+            fail("fault code out of range or inconsistent with the fault flag");
+        if (out.events >= (HG_EV_WATCHDOG_KICKED << 1))
+            fail("unknown event bit");
+        if (out.fault_cause < HG_FAULT_NONE || out.fault_cause > HG_FAULT_HOME ||
+            out.reset_refused_joint < -1 || out.reset_refused_joint > 5 || out.bars_broken > HG_BARS_ALL)
+            fail("event data out of range");
+        if (hg_board_params_check(&out.params, 0, 0) != HG_OK)
+            fail("the block in force does not pass validation");
+        if (out.events & HG_EV_PARAM_REFUSED) {
+            const char *why[HG_BOARD_WHY_LEN];
+            unsigned long long mask, bad = out.refused_mask >> n;
+            if (out.param_rc == HG_ERR_BAD_PARAM) {
+                if (!out.refused_mask || (bad & ~((1ull << (HG_BOARD_BIT_SUBSTEPS - n)) |
+                                                  (1ull << (HG_BOARD_BIT_INTEGRATOR - n)))))
+                    fail("refusal names no field or a bit outside the table");
+                hg_board_explain_refusal(&b, &in.params, &mask, why);
+                if (mask != out.refused_mask)
+                    fail("explain_refusal disagrees with the refusal");
+                for (k = 0; k < HG_BOARD_WHY_LEN; k++)
+                    if (((mask >> k) & 1u) && (!why[k] || !hg_board_param_hal_name(k)))
+                        fail("a refused field without a reason or a HAL name");
+            } else if (out.param_rc >= 0 || out.param_rc < HG_ERR_LAST) {
+                fail("refusal code out of range");
+            }
+        }
+        for (k = 0; k < HG_BOARD_INPUTS; k++)
+            if (out.in[k] > 1)
+                fail("a digital input is not 0 or 1");
+        if (prev.fault && out.fault && !(out.events & (HG_EV_RESET_DONE | HG_EV_GEOMETRY_RESTART))) {
+            if (memcmp(out.z_m, prev.z_m, sizeof out.z_m) != 0 || out.sim_time_s != prev.sim_time_s)
+                fail("a faulted board moved");
+            for (k = 0; k < 6; k++)
+                if (out.volts[k] != 0 || out.current_a[k] != 0)
+                    fail("a faulted board drives");
+        }
+        in.enc_glitch[0] = in.enc_glitch[1] = in.enc_glitch[2] = 0;   /* as the glue: applied once */
+        in.enc_glitch[3] = in.enc_glitch[4] = in.enc_glitch[5] = 0;
+        prev = out;
+    }
+    return 0;
+}

@@ -1,0 +1,413 @@
+/* test_board.c - the virtual board's state machine (hg_board.h) without
+ * halrun: reset refused while a bar is broken, the E-STOP loop, the
+ * watchdog's 8 ms, refused parameters (every invalid field named, the set
+ * in force kept), the fault latch with the state frozen, the index latch,
+ * substeps against hg_step driven directly, bad periods, DAC NaN, encoder
+ * scale, determinism. Facts come from the MOTENC-100 (8 ms watchdog, 13-bit
+ * DAC), the spec (1000 counts/mm, 10 mm lead) and hg_step itself called
+ * independently of the board. */
+#include <math.h>
+#include <string.h>
+#include "hg_test.h"
+#include "hg_board.h"
+#include "hg_errors.h"
+
+#define PERIOD 1000000L              /* 1 ms */
+
+static hg_board b, b2;
+static hg_board_inputs in, in2;
+static hg_board_outputs out, out2;
+
+/* Fresh board (reduced Cartesian, defaults) with the E-STOP loop closed. */
+static void fresh(void)
+{
+    int rc = hg_board_init(&b, HG_MODEL_REDUCED_CARTESIAN, 0);
+    if (rc)
+        printf("# hg_board_init: %d\n", rc);
+    hg_board_inputs_default(&b, &in);
+    in.dout_values = 1u << 7;
+}
+
+/* Step n periods; returns the OR of the events seen. */
+static unsigned run(int n)
+{
+    unsigned ev = 0;
+    while (n-- > 0) {
+        hg_board_step(&b, &in, &out, PERIOD);
+        ev |= out.events;
+    }
+    return ev;
+}
+
+/* Bit of the parameter table entry called name. */
+static unsigned long long bit_of(const char *name)
+{
+    int i, n;
+    const hg_param_info *t = hg_params_table(&n);
+    for (i = 0; i < n; i++)
+        if (strcmp(t[i].name, name) == 0)
+            return 1ull << i;
+    return 0;
+}
+
+static void test_estop_loop(void)
+{
+    int k;
+    fresh();
+    in.dout_values = 0;
+    for (k = 0; k < 6; k++)
+        in.dac_v[k] = 2.0;
+    run(1);
+    CHECK(out.estop_in == 1 && out.amps_on == 0 && out.volts[0] == 0 && out.dout_word == 0,
+          "out-07 off: E-STOP loop open, amplifiers off, 0 V, outputs off");
+    in.dout_values = (1u << 7) | (1u << 3);
+    run(1);
+    CHECK(out.estop_in == 0 && out.amps_on == 1 && out.dout_word == ((1u << 7) | (1u << 3)) &&
+          fabs(out.volts[0] - 2.0) <= 20.0 / 8191.0,
+          "out-07 on: loop closed, amplifiers on, volts within one 13-bit DAC step of 2 V (%g)", out.volts[0]);
+    in.dout_values = 0;
+    in.dout_inverts = 1u << 7;
+    run(1);
+    CHECK(out.estop_in == 0 && out.amps_on == 1 && out.dout_word == (1u << 7),
+          "out-07 FALSE with out-07-invert: commanded on, loop closed");
+    in.estop_button = 1;
+    run(1);
+    CHECK(out.estop_in == 1 && out.amps_on == 0 && out.dout_word == 0 && out.current_a[0] == 0,
+          "E-STOP button: loop open, drives off, outputs off, no current");
+    in.estop_button = 0;
+    in.dout_inverts = 0;
+    in.estop_loop_out = -1;
+    run(1);
+    CHECK(out.estop_in == 0 && out.amps_on == 1, "estop-loop-out -1: no output in the loop, closed");
+}
+
+static void test_watchdog(void)
+{
+    int i, first = -1;
+    fresh();
+    in.watchdog_control = HG_WD_CTL_ENABLE;           /* 8 ms, no auto reset */
+    for (i = 1; i <= 12 && first < 0; i++) {
+        run(1);
+        if (out.watchdog_expired)
+            first = i;
+    }
+    CHECK(first == 8 || first == 9, "enabled watchdog (8 ms) expires after 8 periods of 1 ms unkicked (%d)", first);
+    CHECK(out.amps_on == 0 && out.dout_word == 0, "expired watchdog: amplifiers off, outputs off");
+    in.watchdog_reset = 1;
+    run(1);
+    CHECK((out.events & HG_EV_WATCHDOG_KICKED) && !out.watchdog_expired && out.amps_on,
+          "watchdog-reset: kicked (the driver clears the pin), alive again, amplifiers on");
+    in.watchdog_reset = 0;
+    in.watchdog_control = HG_WD_CTL_ENABLE | HG_WD_CTL_16MS | HG_WD_CTL_AUTO_RESET;
+    in.dac_written = 1;
+    for (i = 0; i < 100; i++) {
+        run(1);
+        if (out.watchdog_expired)
+            break;
+    }
+    CHECK(i == 100, "auto reset (control 21) with a dac-write every period: alive for 100 periods");
+    in.dac_written = 0;
+    first = -1;
+    for (i = 1; i <= 20 && first < 0; i++) {
+        run(1);
+        if (out.watchdog_expired)
+            first = i;
+    }
+    /* the last dac-write's period already counted 1 ms of the 16 */
+    CHECK(first == 15 || first == 16, "16 ms watchdog expires 16 ms after the last dac-write (%d more periods)", first);
+}
+
+static void test_refused_params(void)
+{
+    hg_board_params in_force;
+    const char *why[HG_BOARD_WHY_LEN];
+    unsigned long long mask, want;
+    unsigned ev;
+    int k, same = 1;
+    fresh();
+    for (k = 0; k < 6; k++)
+        in.dac_v[k] = 0.5 * (k - 2);
+    b2 = b;
+    in2 = in;
+    run(10);
+    in_force = out.params;
+    in.params.model.c_visc_ns_per_m = -1;
+    in.params.model.m_head_kg = 0;
+    in.params.model.lead_m = 0;
+    in.params.model.geo.l_m = 0.1;
+    ev = run(1);
+    want = bit_of("c_visc") | bit_of("m_head") | bit_of("lead") | bit_of("l");
+    CHECK((ev & HG_EV_PARAM_REFUSED) && out.refused_mask == want && out.param_rc == HG_ERR_BAD_PARAM,
+          "c_visc -1, m_head 0, lead 0, l 0.1: refused naming all four (mask %llx, want %llx)",
+          out.refused_mask, want);
+    CHECK(memcmp(&out.params, &in_force, sizeof in_force) == 0 && out.param_error == 1,
+          "refused: the set in force is unchanged and shown, param-error set");
+    hg_board_explain_refusal(&b, &in.params, &mask, why);
+    CHECK(mask == want && why[0] && why[7] && why[15] && why[20], "explain_refusal gives a reason for each (l: %s)",
+          why[0] ? why[0] : "none");
+    run(20);
+    for (k = 0; k < 31; k++) {                          /* the twin never saw the change */
+        hg_board_step(&b2, &in2, &out2, PERIOD);
+    }
+    for (k = 0; k < 6; k++)
+        same = same && out.z_m[k] == out2.z_m[k];
+    CHECK(same && out.param_error == 1 && !(out.events & HG_EV_PARAM_REFUSED),
+          "refused block held in the inputs: simulated with the old set, bit-identical to a twin; refused once");
+    in.params = out.params;                             /* the glue shows the set in force again */
+    ev = run(1);
+    CHECK(!(ev & (HG_EV_PARAM_REFUSED | HG_EV_PARAM_APPLIED)) && out.param_error == 1,
+          "inputs put back to the set in force: nothing applied, param-error stays until a change is accepted");
+    in.params.model.c_visc_ns_per_m = 2 * 5665.6;
+    ev = run(1);
+    CHECK((ev & HG_EV_PARAM_APPLIED) && !(ev & HG_EV_GEOMETRY_RESTART) && out.param_error == 0 &&
+          out.params.model.c_visc_ns_per_m == 2 * 5665.6,
+          "a valid change (c_visc doubled) is applied without a restart, param-error cleared");
+    in.params.substeps = 0;
+    in.params.integrator = 3;
+    ev = run(1);
+    CHECK((ev & HG_EV_PARAM_REFUSED) &&
+          out.refused_mask == ((1ull << HG_BOARD_BIT_SUBSTEPS) | (1ull << HG_BOARD_BIT_INTEGRATOR)) &&
+          out.params.substeps == 1 && out.params.integrator == 0,
+          "substeps 0 and integrator 3 refused, both named (%s, %s)",
+          hg_board_param_hal_name(HG_BOARD_BIT_SUBSTEPS), hg_board_param_hal_name(HG_BOARD_BIT_INTEGRATOR));
+    in.params.substeps = HG_SUBSTEPS_MAX + 1;
+    in.params.integrator = 0;
+    ev = run(1);
+    CHECK((ev & HG_EV_PARAM_REFUSED) && out.refused_mask == (1ull << HG_BOARD_BIT_SUBSTEPS),
+          "substeps %u refused", HG_SUBSTEPS_MAX + 1);
+    in.params.substeps = 2;
+    in.params.integrator = HG_INTEGRATOR_RK4;
+    ev = run(1);
+    CHECK((ev & HG_EV_PARAM_APPLIED) && b.m.integrator == HG_INTEGRATOR_RK4 && b.substeps == 2,
+          "substeps 2, integrator rk4 applied to the model");
+    in.params.model.geo.l_m = 1.1;
+    ev = run(1);
+    CHECK((ev & HG_EV_GEOMETRY_RESTART) &&
+          fabs(out.params.model.geo.h_m - sqrt(1.1 * 1.1 - (0.484 - 0.073085) * (0.484 - 0.073085))) < 1e-12,
+          "l 1.1: new geometry, restarted at HOME, h follows sqrt(l^2 - (lb - lp)^2)");
+}
+
+static void test_fault_frozen(void)
+{
+    hg_board_outputs before;
+    int i, latched = 0, events = 0;
+    fresh();
+    in.params.model.g_mps2 = 1e7;                       /* valid, but the stabilization diverges */
+    for (i = 0; i < 2000 && !out.fault; i++) {
+        before = out;
+        run(1);
+    }
+    CHECK(out.fault && out.fault_code < 0 && (out.events & HG_EV_FAULT_LATCHED) && out.fault_cause == HG_FAULT_STEP,
+          "g = 1e7: fault latched after %d periods with code %d (%s)", i, out.fault_code, hg_strerror(out.fault_code));
+    CHECK(memcmp(out.z_m, before.z_m, sizeof out.z_m) == 0 && out.sim_time_s == before.sim_time_s,
+          "rollback: the state is the last good one (the failing period left no trace)");
+    for (i = 0; i < 50; i++) {
+        run(1);
+        latched += out.fault;
+        events += (out.events & HG_EV_FAULT_LATCHED) != 0;
+    }
+    CHECK(latched == 50 && events == 0 && memcmp(out.z_m, before.z_m, sizeof out.z_m) == 0 &&
+          out.sim_time_s == before.sim_time_s && out.amps_on == 0 && out.volts[0] == 0 && out.current_a[0] == 0,
+          "faulted: state frozen for 50 periods, drives off, latched event once");
+    in.params.model.g_mps2 = 9.81;
+    in.reset = 1;
+    run(1);
+    CHECK(!out.fault && out.fault_code == 0 && (out.events & HG_EV_RESET_DONE), "reset edge clears the fault");
+}
+
+static void test_reset_bar_broken(void)
+{
+    int i;
+    unsigned ev;
+    fresh();
+    in.bar_broken[0] = 1;
+    ev = run(1);
+    CHECK((ev & HG_EV_BAR_BROKEN) && out.bars_newly_broken == 1 && out.bars_broken == 1,
+          "bar-broken 0: bar 0 breaks, event once");
+    for (i = 0; i < 5000 && !out.fault; i++)
+        run(1);
+    CHECK(out.fault && out.fault_code == HG_ERR_OUT_OF_VOLUME, "broken bar: the head leaves the modelled volume, fault %d",
+          out.fault_code);
+    in.reset = 1;
+    ev = run(1);
+    CHECK((ev & HG_EV_RESET_REFUSED) && out.reset_refused_joint == 0 && out.fault && out.bars_broken == 1,
+          "reset while bar-broken 0 is set: refused, naming joint 0; still faulted, bar still broken");
+    in.reset = 0;
+    in.bar_broken[0] = 0;
+    run(1);
+    in.reset = 1;
+    ev = run(1);
+    CHECK((ev & HG_EV_RESET_DONE) && !out.fault && out.bars_broken == 0 && fabs(out.z_m[0]) < 1e-3,
+          "bar-broken cleared, new reset edge: HOME, all bars intact, no fault");
+}
+
+static void test_index_latch(void)
+{
+    int i, k, fired = -1;
+    double z = 0;
+    fresh();
+    for (k = 0; k < 6; k++)
+        in.dac_v[k] = 3.0;                              /* up at ~20 mm/s */
+    run(100);
+    in.index_enable[0] = 1;
+    for (i = 0; i < 2000 && fired < 0; i++) {
+        run(1);
+        if (out.index_latched[0])
+            fired = i;
+    }
+    z = out.z_m[0];
+    {
+        /* spec: 1000 counts/mm, index every 10 mm: the counter reads the
+         * counts above the index mark just passed (floor of z in counts
+         * minus the mark's counts) */
+        long long above = (long long)floor(z * 1e6) - (long long)floor(z / 0.010) * 10000;
+        CHECK(fired >= 0 && out.index[0] && out.count[0] == above,
+              "index-enable: the latch fires at the next index (z %.6f mm), counter %d = counts above the mark %lld",
+              z * 1e3, out.count[0], above);
+    }
+    in.index_enable[0] = 0;                             /* the driver clears index-enable */
+    run(1);
+    CHECK(out.index_latched[0] == 0, "index-enable cleared: latch handshake done");
+    {
+        int c0 = out.count[0];
+        run(1000);                                      /* passes more index marks, no re-zero */
+        CHECK(out.count[0] - c0 > 5000, "not armed: later index marks leave the counter alone (%d -> %d)", c0, out.count[0]);
+    }
+    in.enc_reset[1] = 1;
+    run(1);
+    CHECK(out.count[1] == 0 && out.position[1] == 0, "enc-reset: counter 1 reads 0");
+    in.enc_reset[1] = 0;
+    in.enc_scale[2] = 0;
+    run(1);
+    CHECK((out.events & HG_EV_ENC_SCALE_BAD) && out.enc_scale_bad == 4 && out.enc_scale[2] == 1.0 && out.param_error,
+          "enc-02-scale 0: set to 1.0 as hal_motenc, reported once, param-error");
+}
+
+static void test_substeps(void)
+{
+    static hg_model m;
+    static hg_data d;
+    const char *f, *w;
+    double v[6] = {1.7, -0.9, 0.4, 1.1, -0.6, 0.8}, q[6], maxd = 0, maxd1 = 0;
+    int i, j, k, rc = 0;
+    /* independent: hg_step driven directly with P/N */
+    hg_params p;
+    hg_params_default(&p);
+    rc |= hg_model_init(&m, &p, HG_MODEL_REDUCED_CARTESIAN, &f, &w);
+    rc |= hg_data_reset(&m, &d);
+    for (k = 0; k < 6; k++)
+        q[k] = hg_dac_output(v[k]);                     /* the board's 13-bit DAC */
+    for (i = 0; i < 250; i++)
+        for (j = 0; j < 4; j++)
+            rc |= hg_step(&m, &d, q, 0.001 / 4);
+    fresh();
+    in.params.substeps = 4;
+    for (k = 0; k < 6; k++)
+        in.dac_v[k] = v[k];
+    run(250);
+    for (k = 0; k < 6; k++)
+        if (fabs(out.z_m[k] - d.z_m[k]) > maxd)
+            maxd = fabs(out.z_m[k] - d.z_m[k]);
+    fresh();
+    for (k = 0; k < 6; k++)
+        in.dac_v[k] = v[k];
+    run(250);
+    for (k = 0; k < 6; k++)
+        if (fabs(out.z_m[k] - d.z_m[k]) > maxd1)
+            maxd1 = fabs(out.z_m[k] - d.z_m[k]);
+    CHECK(rc == 0 && maxd < 1e-12 && maxd1 > 1e-9,
+          "substeps 4 over 1 ms = 4 hg_steps of 0.25 ms for 0.25 s (max diff %.3g m; 1 substep differs by %.3g m)",
+          maxd, maxd1);
+}
+
+static void test_bad_period(void)
+{
+    static const long bad[3] = {0, -1000000, 20000000};
+    int i;
+    for (i = 0; i < 3; i++) {
+        fresh();
+        hg_board_step(&b, &in, &out, bad[i]);
+        CHECK((out.events & HG_EV_PERIOD_BAD) && (out.events & HG_EV_FAULT_LATCHED) && out.fault_code == HG_ERR_BAD_DT &&
+              out.fault_cause == HG_FAULT_PERIOD && out.steps == 0 && out.sim_time_s == 0,
+              "period %ld ns: fault -10, nothing integrated", bad[i]);
+    }
+    hg_board_step(&b, &in, &out, PERIOD);
+    CHECK(out.fault && !(out.events & HG_EV_PERIOD_BAD), "then a good period: still latched, reported once");
+    in.reset = 1;
+    run(2);
+    CHECK(!out.fault && out.steps >= 1, "reset: integrating again");
+}
+
+static void test_dac_nan_determinism(void)
+{
+    int k, i;
+    unsigned ev;
+    fresh();
+    in.dac_v[2] = NAN;
+    in.dac_v[3] = INFINITY;
+    ev = run(3);
+    CHECK((ev & HG_EV_DAC_NAN) && out.dac_nan && out.volts[2] == 0 && out.volts[3] == 10.0,
+          "DAC NaN: 0 V and flagged; inf clamps to 10 V");
+    run(1);
+    CHECK(!(out.events & HG_EV_DAC_NAN), "DAC NaN reported once");
+    fresh();
+    b2 = b;
+    in2 = in;
+    for (i = 0; i < 300; i++) {
+        for (k = 0; k < 6; k++)
+            in.dac_v[k] = in2.dac_v[k] = hg_test_uniform(-5, 5);
+        hg_board_step(&b, &in, &out, PERIOD);
+        hg_board_step(&b2, &in2, &out2, PERIOD);
+        if (memcmp(&out, &out2, sizeof out) != 0)
+            break;
+    }
+    CHECK(i == 300, "deterministic: two boards with the same inputs give bit-identical outputs for 300 periods");
+}
+
+static void test_check_all_and_format(void)
+{
+    hg_params p;
+    const char *field = 0, *why = 0, *whys[HG_PARAMS_MAX];
+    unsigned long long mask;
+    char buf[HG_BOARD_VALUE_LEN];
+    int i, agree = 1;
+    for (i = 0; i < 200; i++) {
+        int n, f;
+        const hg_param_info *t = hg_params_table(&n);
+        hg_params_default(&p);
+        f = (int)hg_test_uniform(0, n);
+        *hg_params_field(&p, t[f].name) = hg_test_uniform(-2, 2);
+        if (hg_params_check(&p, &field, &why) == HG_OK) {
+            agree = agree && hg_params_check_all(&p, &mask, whys) == HG_OK && mask == 0;
+        } else {
+            agree = agree && hg_params_check_all(&p, &mask, whys) == HG_ERR_BAD_PARAM && (mask & bit_of(field)) &&
+                    whys[__builtin_ctzll(bit_of(field))] != 0;
+        }
+    }
+    CHECK(agree, "hg_params_check_all agrees with hg_params_check on 200 random single-field changes");
+    hg_board_format_value(buf, -12.5);
+    CHECK(strcmp(buf, "-12.5") == 0, "format -12.5: '%s'", buf);
+    hg_board_format_value(buf, 1000.0);
+    CHECK(strcmp(buf, "1000") == 0, "format 1000: '%s'", buf);
+    hg_board_format_value(buf, NAN);
+    CHECK(strcmp(buf, "nan") == 0, "format NaN: '%s'", buf);
+    hg_board_format_value(buf, -INFINITY);
+    CHECK(strcmp(buf, "-inf") == 0, "format -inf: '%s'", buf);
+    hg_board_format_value(buf, 0.0731);
+    CHECK(strcmp(buf, "0.0731") == 0, "format 0.0731: '%s'", buf);
+}
+
+int main(void)
+{
+    test_estop_loop();
+    test_watchdog();
+    test_refused_params();
+    test_fault_frozen();
+    test_reset_bar_broken();
+    test_index_latch();
+    test_substeps();
+    test_bad_period();
+    test_dac_nan_determinism();
+    test_check_all_and_format();
+    return hg_test_exit();
+}
