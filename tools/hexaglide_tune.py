@@ -319,7 +319,9 @@ def init_worker(prob):
 # ------------------------------------------------------------------ frequency response
 def sine_sweep(gains, prob, freqs, joint=0, amp_mm=0.02):
     """Closed-loop gain and phase (deg) from command to feedback of one joint,
-    by correlating the feedback with the commanded sine over whole periods."""
+    by correlating the feedback with the commanded sine over the second half
+    of the run. Feedback of period k is the encoder position read at its start
+    (time k T), the command the one motion issues then."""
     mags, phases = [], []
     for f in freqs:
         loop = hg.Loop(gains, ferror_limit_mm=prob["ferror_limit"])
@@ -334,16 +336,36 @@ def sine_sweep(gains, prob, freqs, joint=0, amp_mm=0.02):
             mags.append(np.nan)
             phases.append(np.nan)
             continue
-        fb = np.r_[cmd[:-1, joint] - r.ferror_mm[1:, joint], np.nan]
-        k0 = n // 2                              # skip the transient: last half
-        kk = np.arange(k0, n - 1)
+        fb = np.r_[0.0, cmd[:-1, joint] - r.ferror_mm[1:, joint]]   # f-error = previous command - position
+        kk = np.arange(n // 2, n)
         ref = np.exp(-2j * np.pi * f * t[kk])
-        y = np.sum(fb[kk] * ref)
-        u = np.sum(cmd[kk, joint] * ref)
-        h = y / u
+        h = np.sum(fb[kk] * ref) / np.sum(cmd[kk, joint] * ref)
         mags.append(abs(h))
         phases.append(np.degrees(np.angle(h)))
     return np.array(mags), np.array(phases)
+
+
+def loop_margins(gains, prob, freqs):
+    """Open-loop response L = T / (1 - T) from a sweep with the feed-forward
+    terms off (then T = L / (1 + L)); gain margin (dB) at the phase crossover,
+    phase margin (deg) at the gain crossover; nan where none is in the range."""
+    g0 = [dict(g, FF0=0.0, FF1=0.0, FF2=0.0, FF3=0.0) for g in gains]
+    mag, ph = sine_sweep(g0, prob, freqs)
+    T = mag * np.exp(1j * np.radians(ph))
+    L = T / (1 - T)
+    phase = np.degrees(np.unwrap(np.angle(L)))
+    gm = pm = np.nan
+    k = np.where((phase[:-1] > -180) & (phase[1:] <= -180))[0]
+    if len(k):
+        i = k[0]
+        w = (-180 - phase[i]) / (phase[i + 1] - phase[i])
+        gm = -20 * np.log10(np.exp(np.log(abs(L[i])) * (1 - w) + np.log(abs(L[i + 1])) * w))
+    k = np.where((abs(L[:-1]) >= 1) & (abs(L[1:]) < 1))[0]
+    if len(k):
+        i = k[0]
+        w = np.log(abs(L[i])) / (np.log(abs(L[i])) - np.log(abs(L[i + 1])))
+        pm = 180 + phase[i] + w * (phase[i + 1] - phase[i])
+    return L, phase, gm, pm
 
 
 # ------------------------------------------------------------------ output
@@ -362,6 +384,9 @@ def atomic_write(path, write):
         raise
 
 
+MARGIN_FREQS = np.logspace(np.log10(5), np.log10(450), 30)
+
+
 def ini_text(gains, pred, source):
     """The suggestion as INI sections + predicted peaks (comment lines)."""
     out = []
@@ -374,6 +399,9 @@ def ini_text(gains, pred, source):
     for j in range(6):
         out.append("# joint %d: peak |f-error| %.5f mm (%.5f..%.5f), peak output %.3f V"
                    % (j, pred["ferror"][j], pred["ferror_lo"][j], pred["ferror_hi"][j], pred["volts"][j]))
+    if "gm" in pred:
+        out.append("# joint 0 loop margins (sine sweep, feed-forward off): gain margin %.1f dB, phase margin %.0f deg"
+                   % (pred["gm"], pred["pm"]))
     return "\n".join(out) + "\n"
 
 
@@ -436,19 +464,25 @@ def plots(outdir, cur, sug, prob, source):
         a.grid(alpha=0.3)
     save(fig, "tune_ferror.png")
 
-    freqs = np.logspace(0, np.log10(250), 24)
-    fig, axs = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
-    for lab, g in (("current", cur), ("suggested", sug)):
+    freqs = np.logspace(0, np.log10(450), 36)
+    fig, axs = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
+    for (lab, g), col in zip((("current", cur), ("suggested", sug)), ("C0", "C1")):
         mag, ph = sine_sweep(g, prob, freqs)
-        axs[0].semilogx(freqs, 20 * np.log10(mag), "o-", ms=3, label=lab)
-        axs[1].semilogx(freqs, ph, "o-", ms=3, label=lab)
-    axs[0].set_ylabel("|fb / cmd| (dB)")
-    axs[0].set_title("Closed-loop sine sweep, joint 0, 0.02 mm (model)")
+        L, lph, gm, pm = loop_margins(g, prob, freqs)
+        axs[0].semilogx(freqs, 20 * np.log10(abs(L)), "o-", ms=3, color=col,
+                        label="%s: open loop L (GM %.1f dB, PM %.0f deg)" % (lab, gm, pm))
+        axs[0].semilogx(freqs, 20 * np.log10(mag), "--", color=col, label="%s: closed loop fb/cmd" % lab)
+        axs[1].semilogx(freqs, lph, "o-", ms=3, color=col, label="%s: open loop L" % lab)
+        axs[1].semilogx(freqs, np.degrees(np.unwrap(np.radians(ph))), "--", color=col, label="%s: closed loop" % lab)
+    axs[0].axhline(0, color="k", lw=0.5)
+    axs[1].axhline(-180, color="k", lw=0.5)
+    axs[0].set_ylabel("gain (dB)")
+    axs[0].set_title("Sine sweep, joint 0, 0.02 mm (model); L from the sweep without feed-forward")
     axs[1].set_ylabel("phase (deg)")
     axs[1].set_xlabel("frequency (Hz)")
     for a in axs:
         a.grid(alpha=0.3, which="both")
-        a.legend()
+        a.legend(fontsize=7)
     save(fig, "tune_bode.png")
     return paths
 
@@ -571,14 +605,15 @@ def main(argv=None):
         log("no stable gains found: %s" % why)
         return 1
     over, settled = step_metrics(step_response(sug, prob))
+    _, _, pred["gm"], pred["pm"] = loop_margins(sug, prob, MARGIN_FREQS)
     if not settled or not gain_margin_ok(sug, prob) or over > a.max_overshoot + 0.02:
         log("the best gains found do not meet the stability margins (overshoot %.0f%%, settled %s, "
             "gain margin 6 dB %s): nothing suggested" % (100 * over, settled, gain_margin_ok(sug, prob)))
         return 1
     log("suggested: peak |f-error| %.5f mm (current %s), peak output %.3f V (limit %.3f V), "
-        "step overshoot %.0f%%, stable with P I D doubled"
+        "step overshoot %.0f%%, stable with P I D doubled; sweep: gain margin %.1f dB, phase margin %.0f deg"
         % (pred["ferror"].max(), "%.5f mm" % cur_pred["ferror"].max() if cur_pred else "unstable",
-           pred["volts"].max(), prob["vmax"], 100 * over))
+           pred["volts"].max(), prob["vmax"], 100 * over, pred["gm"], pred["pm"]))
     if cur_pred is not None and pred["ferror"].max() >= cur_pred["ferror"].max():
         log("note: the suggestion is not better than the current gains on this trajectory "
             "(%.5f vs %.5f mm): the current gains are already at the encoder's resolution or the "
