@@ -469,9 +469,10 @@ def plots(outdir, cur, sug, prob, source):
     for (lab, g), col in zip((("current", cur), ("suggested", sug)), ("C0", "C1")):
         mag, ph = sine_sweep(g, prob, freqs)
         L, lph, gm, pm = loop_margins(g, prob, freqs)
-        axs[0].semilogx(freqs, 20 * np.log10(abs(L)), "o-", ms=3, color=col,
+        axs[0].semilogx(freqs, 20 * np.log10(np.maximum(abs(L), 1e-6)), "o-", ms=3, color=col,
                         label="%s: open loop L (GM %.1f dB, PM %.0f deg)" % (lab, gm, pm))
-        axs[0].semilogx(freqs, 20 * np.log10(mag), "--", color=col, label="%s: closed loop fb/cmd" % lab)
+        axs[0].semilogx(freqs, 20 * np.log10(np.maximum(mag, 1e-6)), "--", color=col,
+                        label="%s: closed loop fb/cmd" % lab)
         axs[1].semilogx(freqs, lph, "o-", ms=3, color=col, label="%s: open loop L" % lab)
         axs[1].semilogx(freqs, np.degrees(np.unwrap(np.radians(ph))), "--", color=col, label="%s: closed loop" % lab)
     axs[0].axhline(0, color="k", lw=0.5)
