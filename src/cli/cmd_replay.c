@@ -48,8 +48,9 @@ static void replay_usage(void)
             "       hexaglide replay --list-columns   (the record pin set)\n"
             "FILE: a record of tools/hg_record.py (docs/replay.md). Without --set, --model,\n"
             "--substeps, --integrator: replays and compares, exit 0 only if bit-exact.\n"
-            "With them (what-if): the same inputs into the changed board; --set takes the\n"
-            "parameter's spec name and SI unit (hexaglide sim --list-params).\n");
+            "With them (what-if): the same inputs into the changed board (written to\n"
+            "FILE.whatif.png.csv and plotted to FILE.whatif.png unless --csv/--plot say\n"
+            "otherwise); --set takes the spec name and SI unit (hexaglide sim --list-params).\n");
 }
 
 /* Whole file into a malloc'd buffer; 0 or -1 with a message. */
@@ -291,7 +292,7 @@ int cmd_replay(int argc, char **argv, const char *self)
     int nf, i, k, rc, whatif, kind = -1, status = 0;
     long period = 0;
     FILE *csv = 0;
-    char csv_auto[4096];
+    char csv_auto[4096], png_auto[4000];
     const char *csv_path;
 
     rc = parse_opts(argc, argv, &o);
@@ -337,6 +338,11 @@ int cmd_replay(int argc, char **argv, const char *self)
     }
     col_count[6] = hg_record_column(&r, "out.fault-code");
 
+    if (whatif && !o.csv && !o.plot) { /* a what-if always leaves its run and plot */
+        snprintf(png_auto, sizeof png_auto, "%s.whatif.png", o.file);
+        o.plot = png_auto;
+        fprintf(stderr, "hexaglide replay: what-if: writing %s.csv and %s\n", png_auto, png_auto);
+    }
     csv_path = o.csv;
     if (!csv_path && o.plot) {         /* the plot needs the CSV: put it beside the PNG */
         snprintf(csv_auto, sizeof csv_auto, "%s.csv", o.plot);
