@@ -15,10 +15,11 @@ ifeq ($(SANITIZE),1)
 BUILD   := build/asan
 SANFLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 endif
-# -ffp-contract=off here and in src/Makefile.modules: no fused multiply-add in
-# either build, so the host (replay, sim) and the realtime module round alike
-# (docs/replay.md)
-CFLAGS_HOST := -std=gnu99 -O2 -g -ffp-contract=off -Wall -Wextra -Werror -Isrc -Isrc/generated $(SANFLAGS)
+# The floating-point flags of src/Makefile.modules, so that the host (replay,
+# sim) and the realtime module round alike (docs/replay.md): no fused
+# multiply-add, sin and cos called as such (never merged into sincos)
+FPFLAGS := -ffp-contract=off -fno-builtin-sin -fno-builtin-cos -fno-builtin-sincos
+CFLAGS_HOST := -std=gnu99 -O2 -g $(FPFLAGS) -Wall -Wextra -Werror -Isrc -Isrc/generated $(SANFLAGS)
 LDLIBS_HOST := -lm $(SANFLAGS)
 
 # pure math, no LinuxCNC dependency: every src/hg_*.c and src/generated/*.c

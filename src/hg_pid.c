@@ -1,5 +1,5 @@
 /* hg_pid.c - position PID with velocity feed-forward (LinuxCNC pid semantics). */
-#include <math.h>
+#include "hg_math.h"
 #include "hg_pid.h"
 
 void hg_pid_reset(hg_pid_state *s)
