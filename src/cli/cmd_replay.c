@@ -101,7 +101,9 @@ static void list_columns(void)
     for (i = 0; i < n; i++)
         printf("%-28s %-5s %s%s\n", f[i].name, type[f[i].type],
                f[i].side == HG_BRS_OUT ? "output, compared" : "input of hg_board_step",
-               f[i].type == HG_BRF_PACK ? ", bits packed" : f[i].nonfinite ? ", nan/inf allowed" : "");
+               f[i].type == HG_BRF_PACK ? ", bits packed"
+               : f[i].nonfinite ? ", 0 when NaN/inf (then in in.nonfinite-*)"
+               : f[i].side == HG_BRS_NFMASK ? ", 2 bits per NaN/inf-capable input" : "");
 }
 
 /* Parse the options; 0, 2 (usage error, message printed), -1 (done: listed). */
@@ -315,8 +317,7 @@ int cmd_replay(int argc, char **argv, const char *self)
         if (col[i] < 0)
             rc = e.code;
         else
-            hg_record_set_kind(&r, col[i], fld[i].nonfinite ? HG_REC_ANY
-                               : fld[i].type == HG_BRF_F64 ? HG_REC_F64
+            hg_record_set_kind(&r, col[i], fld[i].type == HG_BRF_F64 ? HG_REC_F64
                                : fld[i].type == HG_BRF_S32 ? HG_REC_S32
                                : fld[i].type == HG_BRF_BIT ? HG_REC_BIT : HG_REC_U32);
     }
@@ -378,7 +379,7 @@ int cmd_replay(int argc, char **argv, const char *self)
             hg_board_inputs_default(&b, &in);
         }
         for (i = 0; i < nf; i++)
-            hg_board_rec_set(&fld[i], &in, row[col[i]]);
+            hg_board_rec_set(fld, nf, i, &in, row[col[i]]);
         period = (long)row[col[0]];
         if (whatif) {                  /* the recorded block with the user's changes on top */
             for (k = 0; k < o.nset; k++)
@@ -409,7 +410,7 @@ int cmd_replay(int argc, char **argv, const char *self)
             if (fld[i].side != HG_BRS_OUT)
                 continue;
             rec = row[col[i]];
-            rep = hg_board_rec_get(&fld[i], &in, &out, period, kind);
+            rep = hg_board_rec_get(fld, nf, i, &in, &out, period, kind);
             if (!bits_differ(rec, rep))
                 continue;
             d = fabs(rep - rec);
