@@ -11,6 +11,7 @@ int cmd_fk(int argc, char **argv);   /* fk J0..J5 [--guess X Y Z A B C] */
 int cmd_sim(int argc, char **argv);  /* sim --model ... (offline simulator) */
 int cmd_soak(int argc, char **argv); /* soak [--hours H] (long closed-loop run) */
 int cmd_replay(int argc, char **argv, const char *self); /* replay FILE ... (self: argv[0]) */
+int cmd_tune(int argc, char **argv); /* tune [--trajectory FILE] (runs tools/hexaglide_tune.py) */
 
 #include "hg_board.h"
 

@@ -3,7 +3,8 @@
  *   hexaglide fk J0..J5 [--guess ...]   joints (mm) -> pose (mm, deg)
  *   hexaglide sim [options]             offline dynamics simulation (CSV)
  *   hexaglide soak [--hours H]          hours of closed-loop motion, health report
- *   hexaglide replay FILE [options]     re-run a recorded LinuxCNC run, compare (docs/replay.md) */
+ *   hexaglide replay FILE [options]     re-run a recorded LinuxCNC run, compare (docs/replay.md)
+ *   hexaglide tune [--trajectory FILE]  PID gains tuned against the model (docs/tuning.md) */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +20,7 @@ static void usage(FILE *f)
             "       hexaglide soak [--hours H] [--model NAME] [--seed N] [--dt S]\n"
             "       hexaglide replay FILE [--csv OUT] [--plot PNG] [--set name=value]...\n"
             "                        [--model NAME] [--substeps N] [--integrator NAME]\n"
+            "       hexaglide tune [--trajectory FILE] [--output FILE] [--plots DIR] [--help]\n"
             "units: X Y Z and joints in mm, A B C in degrees (see README.md)\n");
 }
 
@@ -38,6 +40,8 @@ int main(int argc, char **argv)
         return cmd_soak(argc - 2, argv + 2);
     if (strcmp(argv[1], "replay") == 0)
         return cmd_replay(argc - 2, argv + 2, argv[0]);
+    if (strcmp(argv[1], "tune") == 0)
+        return cmd_tune(argc - 2, argv + 2);
     if (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
         usage(stdout);
         return 0;
