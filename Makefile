@@ -16,7 +16,12 @@ ifeq ($(SANITIZE),1)
 BUILD   := build/asan
 SANFLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 endif
-CFLAGS_HOST := -std=gnu99 -O2 -g -Wall -Wextra -Werror -Isrc -Isrc/generated -MMD -MP $(SANFLAGS)
+# -ffp-contract=off here and in src/Makefile.modules: no fused multiply-add in
+# either build, so the host (replay, sim) and the realtime module round alike
+# (docs/replay.md); and the same -fno-builtin-sin/cos/sincos as the realtime
+# build (rtapi_math has no sincos), so both call the same libm functions
+RT_SAME_FLAGS := -ffp-contract=off -fno-builtin-sin -fno-builtin-cos -fno-builtin-sincos
+CFLAGS_HOST := -std=gnu99 -O2 -g $(RT_SAME_FLAGS) -Wall -Wextra -Werror -Isrc -Isrc/generated -MMD -MP $(SANFLAGS)
 LDLIBS_HOST := -lm $(SANFLAGS)
 
 # pure math, no LinuxCNC dependency: every src/hg_*.c and src/generated/*.c
@@ -33,14 +38,23 @@ BENCH_BINS := $(patsubst bench/%.c,$(BUILD)/bench/%,$(BENCH_SRCS))
 MANDIR  ?= /usr/local/share/man
 MAN9    := $(wildcard docs/man/man9/*.9)
 
-.PHONY: all deps modules host install uninstall test check fuzz soak demo run bench clean unit-tests
+.PHONY: all deps modules host lib install uninstall test check fuzz soak demo run bench clean unit-tests
 
 all: deps host modules
 
 deps:
 	@tools/install-deps.sh build
 
-host: $(BUILD)/hexaglide $(UNIT_BINS)
+host: $(BUILD)/hexaglide $(UNIT_BINS) $(if $(SANFLAGS),,$(BUILD)/libhexaglide.so)
+
+# the core as a shared library for Python (tools/hexaglide.py, docs/python.md)
+PIC_OBJS := $(patsubst src/%.c,$(BUILD)/pic/%.o,$(CORE_SRCS))
+lib: $(BUILD)/libhexaglide.so
+$(BUILD)/libhexaglide.so: $(PIC_OBJS)
+	$(CC) -shared -o $@ $^ $(LDLIBS_HOST)
+$(BUILD)/pic/%.o: src/%.c $(wildcard src/*.h src/generated/*.h)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_HOST) -fPIC -c -o $@ $<
 
 # header dependencies from the compiler (-MMD): build/host/**/*.d
 $(BUILD)/host/%.o: src/%.c

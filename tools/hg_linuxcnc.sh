@@ -8,9 +8,11 @@
 # Environment HG_* is passed on to the headless front end
 # (tools/headless/hexaglide_headless.py). Exit code: LinuxCNC's, i.e. the display's.
 # LinuxCNC runs from a run directory (HG_RUN_DIR, default out/run/NAME-PID,
-# removed afterwards unless HG_KEEP_RUN=1) of symbolic links to configs/*,
-# tools/headless/* and the files beside the given ini (those win), so what a
-# run writes into its config directory (the .var parameter file,
+# removed afterwards unless HG_KEEP_RUN=1) whose configs/ holds symbolic
+# links to configs/*, tools/headless/* and the files beside the given ini
+# (those win), and whose tools/ links to the repository's tools/ (so a path
+# like ../tools/hg_record.tcl in the ini means the same as from configs/);
+# what a run writes into its config directory (the .var parameter file,
 # INI.expanded from #INCLUDE) lands there and configs/ stays as in git.
 # HG_SHARED_HAL=1: no namespaces, so halcmd/halscope started from another
 # terminal can attach to this session (docs/linuxcnc.md).
@@ -23,8 +25,10 @@ ini=${1:-tools/headless/hexaglide_headless.ini}
 case $ini in /*) ;; *) ini=$PWD/$ini ;; esac
 [ -f "$ini" ] || { echo "hg_linuxcnc.sh: no such config $ini" >&2; exit 2; }
 export HG_OUT=${HG_OUT:-$ROOT/out}
-run=${HG_RUN_DIR:-$ROOT/out/run/$(basename "$ini" .ini)-$$}
-rm -rf "$run" && mkdir -p "$run" || { echo "hg_linuxcnc.sh: cannot create run directory $run" >&2; exit 2; }
+base=${HG_RUN_DIR:-$ROOT/out/run/$(basename "$ini" .ini)-$$}
+run=$base/configs
+rm -rf "$base" && mkdir -p "$run" && ln -sfn "$ROOT/tools" "$base/tools" ||
+    { echo "hg_linuxcnc.sh: cannot create run directory $base" >&2; exit 2; }
 for d in "$ROOT/configs" "$ROOT/tools/headless" "$(dirname "$ini")"; do
     for f in "$d"/*; do
         case $f in *.var|*.expanded|*.var.bak|*"*") continue ;; esac
@@ -61,5 +65,5 @@ wait $pid
 rc=$?
 if kill -0 $pid 2>/dev/null; then wait $pid; rc=$?; fi
 rm -f "$RTAPI_FIFO_PATH"
-[ -n "$HG_KEEP_RUN" ] || [ -n "$HG_RUN_DIR" ] || rm -rf "$run"
+[ -n "$HG_KEEP_RUN" ] || [ -n "$HG_RUN_DIR" ] || rm -rf "$base"
 exit $rc

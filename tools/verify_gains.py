@@ -1,0 +1,153 @@
+#!/usr/bin/python3
+"""verify_gains.py - run LinuxCNC with gains suggested by `hexaglide tune`
+and compare the measured peak following error per joint with the prediction.
+
+    tools/verify_gains.py GAINS_FILE [--program NGC] [--tolerance 0.10]
+
+GAINS_FILE is tune's stdout (or --output): [JOINT_N] sections with
+P I D FF0 FF1 FF2 FF3 BIAS ... and the "# joint N: peak |f-error| ..." lines;
+or any INI (configs/hexaglide.ini: its [JOINT_N] gains). Without predicted
+lines the prediction is tune's, made offline on this run's own joint
+commands (motion's commands do not depend on the gains).
+The gains are set with halcmd over configs/hexaglide.ini's (HG_SETP of
+configs/hexaglide_headless.py), the program runs headless
+(tools/hg_linuxcnc.sh), every servo period is sampled, and the peaks over the
+program are compared. It also predicts again offline on the commands of this
+very run (the same closed loop as tune) and prints that beside.
+On this shared host, run it under the install lock (docs/tuning.md).
+Exit: 0 all joints within the tolerance, 1 not, 2 bad input or LinuxCNC failed.
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, ".."))
+sys.path.insert(0, HERE)
+
+PIN = {"P": "Pgain", "I": "Igain", "D": "Dgain", "FF0": "FF0", "FF1": "FF1", "FF2": "FF2", "FF3": "FF3",
+       "BIAS": "bias", "DEADBAND": "deadband", "MAX_OUTPUT": "maxoutput", "MAX_ERROR_I": "maxerrorI"}
+
+
+def parse_gains(path):
+    """([six {KEY: value}], {joint: predicted peak mm} or {})."""
+    gains = [dict() for _ in range(6)]
+    pred = {}
+    sec = None
+    with open(path) as f:
+        for no, line in enumerate(f, 1):
+            s = line.strip()
+            m = re.match(r"#\s*joint (\d): peak \|f-error\| ([0-9.eE+-]+) mm", s)
+            if m:
+                pred[int(m.group(1))] = float(m.group(2))
+                continue
+            if not s or s.startswith("#"):
+                continue
+            m = re.match(r"\[JOINT_(\d+)\]$", s)
+            if m:
+                sec = int(m.group(1))
+                if sec > 5:
+                    raise ValueError("%s line %d: [JOINT_%d]: the Hexaglide has joints 0..5" % (path, no, sec))
+                continue
+            if s.startswith("["):
+                sec = None
+                continue
+            if sec is None:
+                continue                       # other sections of an INI
+            k, eq, v = s.partition("=")
+            k = k.strip()
+            if not eq:
+                raise ValueError("%s line %d: not KEY = value: %r" % (path, no, s))
+            if k in PIN:
+                try:
+                    val = float(v)
+                except ValueError:
+                    raise ValueError("%s line %d: %s = %r is not a number" % (path, no, k, v.strip()))
+                if not np.isfinite(val):
+                    raise ValueError("%s line %d: %s is not finite" % (path, no, k))
+                gains[sec][k] = val
+    if not all(gains):
+        raise ValueError("%s: needs [JOINT_0]..[JOINT_5] with gains" % path)
+    return gains, pred
+
+
+def run_linuxcnc(gains, program, out, tag):
+    """Headless LinuxCNC run with the gains; the sampled CSV's path."""
+    setp = ";".join("pid.%d.%s %.17g" % (j, PIN[k], v) for j, g in enumerate(gains) for k, v in g.items())
+    env = dict(os.environ, HG_SETP=setp, HG_SCENARIO="run", HG_TAG=tag, HG_OUT=out, HG_PROGRAM=program)
+    csv = os.path.join(out, tag + ".csv")
+    if os.path.exists(csv):
+        os.unlink(csv)
+    with open(os.path.join(out, tag + ".log"), "w") as log:
+        rc = subprocess.call(["timeout", "-k", "20", "300", os.path.join(ROOT, "tools", "hg_linuxcnc.sh"),
+                              os.path.join(ROOT, "configs", "hexaglide_headless.ini")],
+                             env=env, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT)
+    if rc != 0 or not os.path.exists(csv):
+        raise RuntimeError("LinuxCNC run failed (exit %d); see %s" % (rc, os.path.join(out, tag + ".log")))
+    return csv
+
+
+def measured(csv):
+    """Peak |f-error| (mm) and peak |pid output| (V) per joint while the program ran."""
+    names = open(csv).readline().strip().split(",")
+    d = np.loadtxt(csv, delimiter=",", skiprows=1, ndmin=2)
+    run = d[:, names.index("halui.program.is-running")] > 0.5
+    if not run.any():
+        raise RuntimeError("%s: the program never ran" % csv)
+    fe = np.array([np.abs(d[run, names.index("joint.%d.f-error" % j)]).max() for j in range(6)])
+    v = np.array([np.abs(d[run, names.index("pid.%d.output" % j)]).max() for j in range(6)])
+    return fe, v
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("gains", help="tune's output: [JOINT_N] sections + predicted peaks")
+    ap.add_argument("--program", default=os.path.join(ROOT, "configs", "nc_files", "hexaglide_logo.ngc"))
+    ap.add_argument("--tolerance", type=float, default=0.10, help="allowed |measured/predicted - 1|")
+    ap.add_argument("--out", default=os.path.join(ROOT, "out", "verify"))
+    ap.add_argument("--tag", default="verify")
+    ap.add_argument("--csv", help="use this sampled run instead of starting LinuxCNC")
+    a = ap.parse_args()
+    try:
+        gains, pred = parse_gains(a.gains)
+    except (OSError, ValueError) as ex:
+        print("verify_gains: %s" % ex, file=sys.stderr)
+        return 2
+    os.makedirs(a.out, exist_ok=True)
+    try:
+        csv = a.csv or run_linuxcnc(gains, os.path.abspath(a.program), a.out, a.tag)
+        fe, volts = measured(csv)
+    except RuntimeError as ex:
+        print("verify_gains: %s" % ex, file=sys.stderr)
+        return 2
+    import hexaglide_tune as tune
+    cmd = tune.load_trajectory(csv)
+    prob = {"cmd": cmd, "ferror_limit": 2.0}
+    again, why = tune.predict(gains, prob, [tune.SETTLE + 97 * i for i in range(7)])
+    print("# %s with %s" % (os.path.basename(a.program), a.gains))
+    print("%-6s %12s %12s %8s %22s %10s %10s" % ("joint", "measured_mm", "predicted_mm", "ratio",
+                                                  "offline_this_run_mm", "meas_V", "offline_V"))
+    ok = True
+    for j in range(6):
+        p = pred.get(j, again["ferror"][j] if again else np.nan)
+        r = fe[j] / p if p > 0 else np.inf
+        good = abs(r - 1) <= a.tolerance
+        ok &= good
+        print("%-6d %12.5f %12.5f %8.3f %10.5f..%-10.5f %10.3f %10.3f%s"
+              % (j, fe[j], p, r, again["ferror_lo"][j] if again else np.nan,
+                 again["ferror_hi"][j] if again else np.nan, volts[j],
+                 again["volts"][j] if again else np.nan, "" if good else "   <-- off by more than %.0f%%" % (100 * a.tolerance)))
+    print("# peak over joints: measured %.5f mm at %.3f V; predicted %.5f mm"
+          % (fe.max(), volts.max(), max(pred.values()) if pred else again["ferror"].max()))
+    print("VERIFY %s max_ferror_mm=%.5f max_volts=%.3f worst_ratio=%.3f"
+          % ("ok" if ok else "off", fe.max(), volts.max(),
+             max(fe[j] / pred.get(j, again["ferror"][j] if again else np.nan) for j in range(6))))
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
