@@ -10,7 +10,7 @@ or any INI (configs/hexaglide.ini: its [JOINT_N] gains). Without predicted
 lines the prediction is tune's, made offline on this run's own joint
 commands (motion's commands do not depend on the gains).
 The gains are set with halcmd over configs/hexaglide.ini's (HG_SETP of
-configs/hexaglide_headless.py), the program runs headless
+tools/headless/hexaglide_headless.py), the program runs headless
 (tools/hg_linuxcnc.sh), every servo period is sampled, and the peaks over the
 program are compared. It also predicts again offline on the commands of this
 very run (the same closed loop as tune) and prints that beside.
@@ -84,7 +84,7 @@ def run_linuxcnc(gains, program, out, tag):
         os.unlink(csv)
     with open(os.path.join(out, tag + ".log"), "w") as log:
         rc = subprocess.call(["timeout", "-k", "20", "300", os.path.join(ROOT, "tools", "hg_linuxcnc.sh"),
-                              os.path.join(ROOT, "configs", "hexaglide_headless.ini")],
+                              os.path.join(ROOT, "tools", "headless", "hexaglide_headless.ini")],
                              env=env, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT)
     if rc != 0 or not os.path.exists(csv):
         raise RuntimeError("LinuxCNC run failed (exit %d); see %s" % (rc, os.path.join(out, tag + ".log")))
