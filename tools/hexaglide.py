@@ -418,7 +418,8 @@ def pid_gains(gains):
     g = PidGains()
     _pid_defaults(C.byref(g))
     for key, v in gains.items():
-        setattr(g, GAIN_KEYS[key], float(v))
+        if key in GAIN_KEYS:
+            setattr(g, GAIN_KEYS[key], float(v))
     return g
 
 

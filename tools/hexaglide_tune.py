@@ -27,6 +27,7 @@ ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
 PERIOD_S = 0.001
 MIN_SAMPLES = 200          # a trajectory shorter than this is refused (0.2 s)
 SETTLE = 1500              # periods at the first command before the trajectory
+RAMP = 500                 # periods of the smooth move from HOME to the first command
 LEAD_IN = 300              # rows kept before the program starts (recorded runs)
 KEYS = ["P", "I", "D", "FF0", "FF1", "FF2", "FF3", "BIAS"]
 
@@ -237,12 +238,20 @@ def gains_from_x(x, prob=None):
     return out
 
 
+def lead_in(cmd, settle):
+    """(commands, index where cmd starts): from HOME at rest a smooth move to
+    cmd's first row (RAMP periods), settle periods there, then cmd."""
+    c0 = cmd[:1]
+    ramp = (0.5 - 0.5 * np.cos(np.pi * np.arange(RAMP) / RAMP))[:, None] * c0
+    return np.vstack([ramp, np.repeat(c0, settle, 0), cmd]), RAMP + settle
+
+
 def trajectory_runs(gains, prob, settles, keep=False):
     """Closed-loop runs over the trajectory after different settle times (the
     encoder and DAC quantization make single runs differ by about a count)."""
     res = []
-    for s in settles:
-        seq = np.vstack([np.repeat(prob["cmd"][:1], s, 0), prob["cmd"]])
+    for settle in settles:
+        seq, s = lead_in(prob["cmd"], settle)
         loop = hg.Loop(gains, ferror_limit_mm=prob["ferror_limit"])
         r = loop.run(seq, start=s, keep=keep)
         if keep and r.ferror_mm is not None:

@@ -17,7 +17,8 @@ errors). LinuxCNC's planner does not give the same commands twice here
 two logo runs lasted 43.5 and 45.0 s), so the prediction of the gains file,
 made on an earlier recording, is printed beside as an estimate.
 On this shared host, run it under the install lock (docs/tuning.md).
-Exit: 0 all joints within the tolerance, 1 not, 2 bad input or LinuxCNC failed.
+Exit: 0 when every joint is within the tolerance of the prediction (or
+inside the spread of its 7 offline runs), 1 not, 2 bad input or LinuxCNC failed.
 """
 import argparse
 import os
@@ -113,6 +114,8 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "verify"))
     ap.add_argument("--tag", default="verify")
     ap.add_argument("--csv", help="use this sampled run instead of starting LinuxCNC")
+    ap.add_argument("--ini", default=os.path.join(ROOT, "configs", "hexaglide.ini"),
+                    help="the INI LinuxCNC runs (its pid settings under the file's gains)")
     a = ap.parse_args()
     try:
         gains, pred = parse_gains(a.gains)
@@ -126,7 +129,11 @@ def main():
     except RuntimeError as ex:
         print("verify_gains: %s" % ex, file=sys.stderr)
         return 2
+    import hexaglide as hg
     import hexaglide_tune as tune
+    # as in the LinuxCNC run: the INI's pid settings, the file's gains set over them
+    ini = [tune.pid_keys(g) for g in hg.read_ini(a.ini)[0]]
+    gains = [dict(i, **g) for i, g in zip(ini, gains)]
     cmd = tune.load_trajectory(csv)
     prob = {"cmd": cmd, "ferror_limit": 2.0}
     again, why = tune.predict(gains, prob, [tune.SETTLE + 97 * i for i in range(7)])
@@ -144,7 +151,9 @@ def main():
         p = again["ferror"][j]
         r = fe[j] / p if p > 0 else np.inf
         ratios.append(r)
-        good = abs(r - 1) <= a.tolerance
+        # within the tolerance of the median, or inside the spread of the 7 offline runs
+        # (the encoder's 1 um counts make single runs differ by up to a count)
+        good = abs(r - 1) <= a.tolerance or again["ferror_lo"][j] <= fe[j] <= again["ferror_hi"][j]
         ok &= good
         print("%-6d %12.5f %12.5f %8.3f %10.5f..%-10.5f %12s %8.3f %8.3f%s"
               % (j, fe[j], p, r, again["ferror_lo"][j], again["ferror_hi"][j],
