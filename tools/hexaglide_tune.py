@@ -402,7 +402,7 @@ def ini_text(gains, pred, source):
     for j, g in enumerate(gains):
         out.append("[JOINT_%d]" % j)
         for k in KEYS:
-            out.append("%s = %.6g" % (k, g[k]))
+            out.append("%s = %.6g" % (k, g.get(k, 0.0)))
         out.append("")
     out.append("# predicted with these gains on %s (%d closed-loop runs through the board model):" % (source, pred["runs"]))
     for j in range(6):
@@ -497,6 +497,50 @@ def plots(outdir, cur, sug, prob, source):
     return paths
 
 
+def search(a, prob, joints, cmd):
+    """Model start + differential evolution on all cores; the best six gain dicts."""
+    start = model_start(cmd)
+    P, I, D = pid_from_bandwidth(start, a.bandwidth, a.damping)
+    prob["base"] = {"P": P, "I": I, "D": D, "FF1": start["FF1"], "FF2": start["FF2"], "BIAS": start["BIAS"]}
+    prob["fixed"] = [{k: g[k] for k in ("DEADBAND", "MAX_OUTPUT", "MAX_ERROR_I", "INPUT_SCALE", "OUTPUT_SCALE",
+                                        "OUTPUT_OFFSET") if k in g} for g in joints]
+    log("model start (%.0f Hz, damping %.2f): P %.3g I %.3g D %.3g FF1 %.4g FF2 %.4g BIAS %.4g (joint 0); "
+        "effective mass %.1f-%.1f kg" % (a.bandwidth, a.damping, P[0], I[0], D[0], start["FF1"][0],
+                                         start["FF2"][0], start["BIAS"][0], start["mass_kg"].min(),
+                                         start["mass_kg"].max()))
+    init_worker(prob)
+    x0 = np.array([0.0, 0.0, 0.0, 1.0, 1.0])
+    log("model start: cost %.5f" % cost(x0))
+    from scipy.optimize import differential_evolution
+    bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)]
+    jobs = max(1, a.jobs)
+    evals = [0]
+    t0 = time.time()
+
+    def progress(xk, convergence):
+        evals[0] += 1
+        log("generation %d: best cost %.5f (%.0f s)" % (evals[0], cost(xk), time.time() - t0))
+
+    if jobs > 1:
+        ctx = multiprocessing.get_context("fork")
+        pool = ctx.Pool(jobs, initializer=init_worker, initargs=(prob,))
+        workers = pool.map
+    else:
+        pool, workers = None, 1
+    try:
+        res = differential_evolution(cost, bounds, x0=x0, maxiter=a.maxiter, popsize=a.popsize,
+                                     seed=a.seed, polish=False, tol=1e-3, updating="deferred",
+                                     workers=workers, callback=progress, init="sobol")
+    finally:
+        if pool:
+            pool.close()
+            pool.join()
+    took = time.time() - t0
+    log("sweep: %d closed-loop evaluations in %.1f s on %d process%s (%.0f per second)"
+        % (res.nfev, took, jobs, "es" if jobs > 1 else "", res.nfev / max(took, 1e-9)))
+    return gains_from_x(res.x)
+
+
 # ------------------------------------------------------------------ main
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="hexaglide tune", description=__doc__.split("\n\n")[0])
@@ -506,6 +550,8 @@ def main(argv=None):
                     help="config with the current gains and limits (default configs/hexaglide.ini)")
     ap.add_argument("--evaluate", action="store_true",
                     help="no search: predict the INI's gains on the trajectory (exit 1 if unstable)")
+    ap.add_argument("--gains", metavar="FILE",
+                    help="no search: predict and plot these gains (a tune output or INI) against the INI's")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=V",
                     help="with --evaluate: override a gain on all joints, e.g. P=20")
     ap.add_argument("--max-volts", type=float, default=None,
@@ -570,46 +616,16 @@ def main(argv=None):
             % (cur_pred["ferror"].max(), vcur))
     vmax_dac = min(g.get("MAX_OUTPUT", 10.0) or 10.0 for g in joints)
     prob["vmax"] = a.max_volts if a.max_volts is not None else min(vmax_dac, vcur if vcur else vmax_dac)
-    start = model_start(cmd)
-    P, I, D = pid_from_bandwidth(start, a.bandwidth, a.damping)
-    prob["base"] = {"P": P, "I": I, "D": D, "FF1": start["FF1"], "FF2": start["FF2"], "BIAS": start["BIAS"]}
-    prob["fixed"] = [{k: g[k] for k in ("DEADBAND", "MAX_OUTPUT", "MAX_ERROR_I", "INPUT_SCALE", "OUTPUT_SCALE",
-                                        "OUTPUT_OFFSET") if k in g} for g in joints]
-    log("model start (%.0f Hz, damping %.2f): P %.3g I %.3g D %.3g FF1 %.4g FF2 %.4g BIAS %.4g (joint 0); "
-        "effective mass %.1f-%.1f kg" % (a.bandwidth, a.damping, P[0], I[0], D[0], start["FF1"][0],
-                                         start["FF2"][0], start["BIAS"][0], start["mass_kg"].min(),
-                                         start["mass_kg"].max()))
-    init_worker(prob)
-    x0 = np.array([0.0, 0.0, 0.0, 1.0, 1.0])
-    log("model start: cost %.5f" % cost(x0))
-    from scipy.optimize import differential_evolution
-    bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)]
-    jobs = max(1, a.jobs)
-    evals = [0]
-    t0 = time.time()
-
-    def progress(xk, convergence):
-        evals[0] += 1
-        log("generation %d: best cost %.5f (%.0f s)" % (evals[0], cost(xk), time.time() - t0))
-
-    if jobs > 1:
-        ctx = multiprocessing.get_context("fork")
-        pool = ctx.Pool(jobs, initializer=init_worker, initargs=(prob,))
-        workers = pool.map
+    if a.gains:
+        try:
+            given, _ = hg.read_gains(a.gains)
+        except (OSError, ValueError) as ex:
+            log(ex)
+            return 2
+        sug = [dict(c, **g) for c, g in zip(cur, given)]
+        log("gains of %s (no search)" % a.gains)
     else:
-        pool, workers = None, 1
-    try:
-        res = differential_evolution(cost, bounds, x0=x0, maxiter=a.maxiter, popsize=a.popsize,
-                                     seed=a.seed, polish=False, tol=1e-3, updating="deferred",
-                                     workers=workers, callback=progress, init="sobol")
-    finally:
-        if pool:
-            pool.close()
-            pool.join()
-    took = time.time() - t0
-    log("sweep: %d closed-loop evaluations in %.1f s on %d process%s (%.0f per second)"
-        % (res.nfev, took, jobs, "es" if jobs > 1 else "", res.nfev / max(took, 1e-9)))
-    sug = gains_from_x(res.x)
+        sug = search(a, prob, joints, cmd)
     pred, why = predict(sug, prob, settles)
     if pred is None:
         log("no stable gains found: %s" % why)

@@ -22,7 +22,6 @@ inside the spread of its 7 offline runs), 1 not, 2 bad input or LinuxCNC failed.
 """
 import argparse
 import os
-import re
 import subprocess
 import sys
 
@@ -31,51 +30,11 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, ".."))
 sys.path.insert(0, HERE)
+import hexaglide as hg  # noqa: E402
 
 PIN = {"P": "Pgain", "I": "Igain", "D": "Dgain", "FF0": "FF0", "FF1": "FF1", "FF2": "FF2", "FF3": "FF3",
        "BIAS": "bias", "DEADBAND": "deadband", "MAX_OUTPUT": "maxoutput", "MAX_ERROR_I": "maxerrorI"}
-
-
-def parse_gains(path):
-    """([six {KEY: value}], {joint: predicted peak mm} or {})."""
-    gains = [dict() for _ in range(6)]
-    pred = {}
-    sec = None
-    with open(path) as f:
-        for no, line in enumerate(f, 1):
-            s = line.strip()
-            m = re.match(r"#\s*joint (\d): peak \|f-error\| ([0-9.eE+-]+) mm", s)
-            if m:
-                pred[int(m.group(1))] = float(m.group(2))
-                continue
-            if not s or s.startswith("#"):
-                continue
-            m = re.match(r"\[JOINT_(\d+)\]$", s)
-            if m:
-                sec = int(m.group(1))
-                if sec > 5:
-                    raise ValueError("%s line %d: [JOINT_%d]: the Hexaglide has joints 0..5" % (path, no, sec))
-                continue
-            if s.startswith("["):
-                sec = None
-                continue
-            if sec is None:
-                continue                       # other sections of an INI
-            k, eq, v = s.partition("=")
-            k = k.strip()
-            if not eq:
-                raise ValueError("%s line %d: not KEY = value: %r" % (path, no, s))
-            if k in PIN:
-                try:
-                    val = float(v)
-                except ValueError:
-                    raise ValueError("%s line %d: %s = %r is not a number" % (path, no, k, v.strip()))
-                if not np.isfinite(val):
-                    raise ValueError("%s line %d: %s is not finite" % (path, no, k))
-                gains[sec][k] = val
-    if not all(gains):
-        raise ValueError("%s: needs [JOINT_0]..[JOINT_5] with gains" % path)
-    return gains, pred
+assert set(PIN) == set(hg.GAIN_KEYS)
 
 
 def run_linuxcnc(gains, program, out, tag):
@@ -118,7 +77,7 @@ def main():
                     help="the INI LinuxCNC runs (its pid settings under the file's gains)")
     a = ap.parse_args()
     try:
-        gains, pred = parse_gains(a.gains)
+        gains, pred = hg.read_gains(a.gains)
     except (OSError, ValueError) as ex:
         print("verify_gains: %s" % ex, file=sys.stderr)
         return 2
@@ -129,7 +88,6 @@ def main():
     except RuntimeError as ex:
         print("verify_gains: %s" % ex, file=sys.stderr)
         return 2
-    import hexaglide as hg
     import hexaglide_tune as tune
     # as in the LinuxCNC run: the INI's pid settings, the file's gains set over them
     ini = [tune.pid_keys(g) for g in hg.read_ini(a.ini)[0]]
