@@ -14,6 +14,7 @@ import argparse
 import ctypes as C
 import multiprocessing
 import os
+import re
 import sys
 import tempfile
 import time
@@ -76,8 +77,11 @@ def load_trajectory(path):
     rows = []
     for no, line in enumerate(lines, 1):
         s = line.strip()
-        if not s or s.startswith("#") or s == "overrun":
+        if not s or s.startswith("#"):
             continue
+        if s == "overrun":
+            raise BadInput("%s line %d: 'overrun': halsampler lost samples here; record again with a "
+                           "deeper FIFO (loadrt sampler depth=...)" % (path, no))
         fields = [x for x in s.replace(",", " ").split()]
         if header is None and not rows and any("motor-pos-cmd" in x for x in fields):
             header = s.split(",")
@@ -99,7 +103,7 @@ def load_trajectory(path):
             if name not in header:
                 raise BadInput("%s: column %s missing (need joints 0..5)" % (path, name))
             cols.append(header.index(name))
-        extra = [c for c in header if c.startswith("joint.") and c.endswith(".motor-pos-cmd")
+        extra = [c for c in header if re.fullmatch(r"joint\.(\d+)\.motor-pos-cmd", c)
                  and int(c.split(".")[1]) >= hg.JOINTS]
         if extra:
             raise BadInput("%s: %d joints, the Hexaglide has 6" % (path, hg.JOINTS + len(extra)))
@@ -108,6 +112,11 @@ def load_trajectory(path):
                 raise BadInput("%s line %d has %d fields, the header %d" % (path, no, len(v), len(header)))
         data = np.array([v for _, v in rows]) if rows else np.zeros((0, len(header)))
         cmd = data[:, cols]
+        if "t_s" in header and len(data) > 1:
+            gap = np.where(np.diff(data[:, header.index("t_s")]) > 1.5 * PERIOD_S)[0]
+            if len(gap):
+                raise BadInput("%s line %d: samples missing after t = %.3f s (a gap in the recording); "
+                               "record again" % (path, rows[gap[0] + 1][0], data[gap[0], header.index("t_s")]))
         if "halui.program.is-running" in header and len(data):
             run = data[:, header.index("halui.program.is-running")] > 0.5
             if run.any():
@@ -124,6 +133,13 @@ def load_trajectory(path):
             raise BadInput("%s: %d values per line; need 6 joint commands (mm), optionally after a "
                            "sample number: the Hexaglide has 6 joints" % (path, width))
         cmd = np.array([v[-6:] for _, v in rows]).reshape(-1, 6)
+        if width == 7 and len(rows) > 1:
+            n = np.array([v[0] for _, v in rows])
+            step = n[1] - n[0]
+            bad = np.where(np.abs(np.diff(n) - step) > 0.25 * abs(step))[0] if step > 0 else [0]
+            if len(bad):
+                raise BadInput("%s line %d: the first column (sample number or time) does not advance "
+                               "evenly: samples lost?" % (path, rows[bad[0] + 1][0]))
     if len(cmd) < MIN_SAMPLES:
         raise BadInput("%s: %d samples; need at least %d (%.1f s of servo periods)"
                        % (path, len(cmd), MIN_SAMPLES, MIN_SAMPLES * PERIOD_S))
