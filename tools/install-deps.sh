@@ -1,14 +1,15 @@
 #!/bin/sh
 # install-deps.sh - install the Debian 12 packages this project needs, once.
-# Usage: tools/install-deps.sh [build|test|demo|bench]
+# Usage: tools/install-deps.sh [build|test|demo|bench|run|tune]
 # Installs only what is missing; uses sudo when not root.
 set -e
-need="linuxcnc-uspace linuxcnc-uspace-dev build-essential"
+need="linuxcnc-uspace linuxcnc-uspace-dev build-essential man-db"
 case "$1" in
-  test)  need="$need libmujoco-dev python3-sympy python3-numpy python3-matplotlib cppcheck clang clang-tidy libclang-rt-14-dev bc xvfb imagemagick" ;;
+  test)  need="$need libmujoco-dev python3-sympy python3-numpy python3-matplotlib python3-scipy cppcheck clang clang-tidy libclang-rt-14-dev bc xvfb imagemagick" ;;
   demo)  need="$need python3-matplotlib python3-numpy xvfb" ;;
   bench) need="$need libmujoco-dev valgrind" ;;
   run)   need="$need xvfb" ;;
+  tune)  need="$need python3-numpy python3-scipy python3-matplotlib" ;;
 esac
 missing=""
 for p in $need; do

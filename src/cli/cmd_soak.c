@@ -58,20 +58,21 @@ static void trajectory_pose(const soak_trajectory *tr, double t, double pose[6])
     }
 }
 
-/* PID gains for this machine: about 20 Hz position bandwidth on ~60 kg per axis. */
+/* PID gains for this machine (LinuxCNC pid units: mm in, volts out):
+ * about 20 Hz position bandwidth on ~60 kg per axis. */
 static void soak_gains(const hg_model *m, hg_pid_gains *g)
 {
     double mass = m->rotor_mass_kg + m->p.m_carriage_kg + m->p.m_bar_kg + m->p.m_head_kg / 6;
     double w = 2 * HG_PI * 20.0, fpv = m->force_per_volt_n;
-    g->p_v_per_m = mass * w * w / fpv;
-    g->d_v_s_per_m = (2 * 0.7 * mass * w - m->p.c_visc_ns_per_m) / fpv;
-    if (g->d_v_s_per_m < 0)
-        g->d_v_s_per_m = 0;
-    g->i_v_per_ms = g->p_v_per_m * w / 8;
-    g->ff1_v_s_per_m = m->p.c_visc_ns_per_m / fpv;
-    g->bias_v = 0;
-    g->max_out_v = 10.0;
-    g->max_integral_ms = 10.0 / (g->i_v_per_ms > 0 ? g->i_v_per_ms : 1);
+    hg_pid_defaults(g);
+    g->pgain = mass * w * w / fpv / HG_MM_PER_M;
+    g->dgain = (2 * 0.7 * mass * w - m->p.c_visc_ns_per_m) / fpv / HG_MM_PER_M;
+    if (g->dgain < 0)
+        g->dgain = 0;
+    g->igain = g->pgain * w / 8;
+    g->ff1 = m->p.c_visc_ns_per_m / fpv / HG_MM_PER_M;
+    g->maxoutput = 10.0;
+    g->maxerror_i = 10.0 / (g->igain > 0 ? g->igain : 1);
 }
 
 static double now_s(void)
@@ -155,7 +156,8 @@ int cmd_soak(int argc, char **argv)
             double fe = fabs(cmd_prev[k] - out.z_m[k]);
             if (fe > ferr_max && t > 2.5)
                 ferr_max = fe;
-            in.dac_v[k] = hg_pid_update(&gains, &pid[k], cmd[k], (cmd[k] - cmd_prev[k]) / dt, out.z_m[k], dt);
+            in.dac_v[k] = hg_pid_calc(&gains, &pid[k], cmd[k] * HG_MM_PER_M, out.z_m[k] * HG_MM_PER_M, 1, 0,
+                                      period_ns);
             cmd_prev[k] = cmd[k];
             z_prev[k] = out.z_m[k];
         }

@@ -1,0 +1,150 @@
+/* hg_loop.c - six LinuxCNC pid loops around the virtual board, one servo period at a time. */
+#include "hg_loop.h"
+#include "hg_errors.h"
+#include "hg_math.h"
+
+void hg_loop_config_default(hg_loop_config *c)
+{
+    int k;
+    *c = (hg_loop_config){0};
+    for (k = 0; k < HG_LOOP_JOINTS; k++) {
+        hg_pid_defaults(&c->pid[k]);
+        c->input_scale[k] = 1000.0;
+        c->output_scale[k] = 1.0;
+    }
+    c->period_ns = 1000000;
+    c->model_kind = HG_MODEL_REDUCED_CARTESIAN;
+}
+
+int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p)
+{
+    int k, rc;
+    if (c->period_ns <= 0 || c->period_ns > HG_PERIOD_MAX_NS)
+        return HG_ERR_BAD_DT;
+    if (c->model_kind < 0 || c->model_kind >= HG_MODEL_COUNT)
+        return HG_ERR_BAD_PARAM;
+    for (k = 0; k < HG_LOOP_JOINTS; k++)
+        if (!isfinite(c->input_scale[k]) || c->input_scale[k] == 0.0)
+            return HG_ERR_BAD_PARAM;
+    L->cfg = *c;
+    rc = hg_board_init(&L->board, (hg_model_kind)c->model_kind, p);
+    if (rc)
+        return rc;
+    hg_board_inputs_default(&L->board, &L->in);
+    L->in.dout_values |= 1u << 7;      /* iocontrol's user-enable-out closes the E-STOP loop (out-07) */
+    L->in.dac_written = 1;
+    for (k = 0; k < HG_LOOP_JOINTS; k++)
+        L->in.enc_scale[k] = c->input_scale[k];
+    hg_board_peek(&L->board, &L->out);
+    for (k = 0; k < HG_LOOP_JOINTS; k++) {
+        hg_pid_reset(&L->pid[k]);
+        L->prev_cmd_mm[k] = 0.0;
+    }
+    L->periods = 0;
+    return 0;
+}
+
+/* The plant: the board's dac-write + dynamics (+ encoders) for one period
+ * with the pid outputs as DAC values, through hg_board_step as LinuxCNC's
+ * motenc.0.dac-write and motenc.0.dynamics run it. 0 or the fault code. */
+static int plant_step(hg_loop *L, const double dac_value[HG_LOOP_JOINTS])
+{
+    int k;
+    for (k = 0; k < HG_LOOP_JOINTS; k++)
+        L->in.dac_v[k] = (dac_value[k] - L->cfg.output_offset[k]) * L->cfg.output_scale[k];
+    hg_board_step(&L->board, &L->in, &L->out, L->cfg.period_ns);
+    if (!L->out.fault)
+        return 0;
+    return L->out.fault_code ? L->out.fault_code : HG_ERR_STATE_NONFINITE;
+}
+
+/* The board's encoder-read: the position the last period left on the counter (mm). */
+static double plant_position_mm(const hg_loop *L, int k)
+{
+    return L->out.position[k];
+}
+
+int hg_loop_step(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], hg_loop_sample *out)
+{
+    double fb[HG_LOOP_JOINTS], dac[HG_LOOP_JOINTS];
+    int k, rc;
+    for (k = 0; k < HG_LOOP_JOINTS; k++)
+        if (!isfinite(cmd_mm[k]))
+            return HG_ERR_NONFINITE_INPUT;
+    for (k = 0; k < HG_LOOP_JOINTS; k++) {
+        fb[k] = plant_position_mm(L, k);
+        if (out) {
+            out->fb_mm[k] = fb[k];
+            out->ferror_mm[k] = L->prev_cmd_mm[k] - fb[k];
+        }
+        dac[k] = hg_pid_calc(&L->cfg.pid[k], &L->pid[k], cmd_mm[k], fb[k], 1, 0, L->cfg.period_ns);
+        if (out)
+            out->output_v[k] = dac[k];
+    }
+    rc = plant_step(L, dac);
+    for (k = 0; k < HG_LOOP_JOINTS; k++)
+        L->prev_cmd_mm[k] = cmd_mm[k];
+    L->periods++;
+    return rc;
+}
+
+int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
+                double *output_v, hg_loop_summary *sum)
+{
+    hg_loop_sample s;
+    double sq[HG_LOOP_JOINTS] = {0};
+    long i, counted = 0;
+    int k, rc = 0;
+    *sum = (hg_loop_summary){0};
+    sum->tripped_at = -1;
+    for (i = 0; i < n; i++) {
+        rc = hg_loop_step(L, cmd_mm + 6 * i, &s);
+        if (rc)
+            break;
+        for (k = 0; k < HG_LOOP_JOINTS; k++) {
+            double fe = fabs(s.ferror_mm[k]), v = fabs(s.output_v[k]);
+            if (ferror_mm)
+                ferror_mm[6 * i + k] = s.ferror_mm[k];
+            if (output_v)
+                output_v[6 * i + k] = s.output_v[k];
+            if (i < from)
+                continue;
+            if (fe > sum->peak_ferror_mm[k] || !isfinite(fe))
+                sum->peak_ferror_mm[k] = fe;
+            if (v > sum->peak_output_v[k] || !isfinite(v))
+                sum->peak_output_v[k] = v;
+            sq[k] += fe * fe;
+            if (L->cfg.ferror_limit_mm > 0 && !(fe <= L->cfg.ferror_limit_mm) && sum->tripped_at < 0)
+                sum->tripped_at = i;
+        }
+        if (i >= from)
+            counted++;
+        if (sum->tripped_at >= 0) {
+            i++;
+            break;
+        }
+    }
+    sum->periods = i;
+    for (k = 0; k < HG_LOOP_JOINTS; k++)
+        sum->rms_ferror_mm[k] = counted ? sqrt(sq[k] / counted) : 0.0;
+    return rc;
+}
+
+unsigned long hg_loop_sizeof(int which)
+{
+    switch (which) {
+    case 0: return sizeof(hg_loop);
+    case 1: return sizeof(hg_loop_config);
+    case 2: return sizeof(hg_loop_summary);
+    case 3: return sizeof(hg_pid_gains);
+    case 4: return sizeof(hg_model);
+    case 5: return sizeof(hg_data);
+    case 6: return sizeof(hg_params);
+    case 7: return sizeof(hg_board_params);
+    case 8: return sizeof(hg_board);
+    case 9: return sizeof(hg_board_inputs);
+    case 10: return sizeof(hg_board_outputs);
+    case 11: return sizeof(hg_pid_state);
+    default: return 0;
+    }
+}

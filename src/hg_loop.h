@@ -1,0 +1,89 @@
+/* hg_loop.h - the Hexaglide's six servo loops offline: joint commands in,
+ * following errors and DAC volts out, one servo period per call, in the
+ * order of configs/hexaglide.hal's servo thread:
+ *   encoder-read -> motion (command, f-error) -> pid.0..5 -> dac-write -> dynamics
+ * with LinuxCNC's pid (hg_pid) and the virtual board's core (the plant), so
+ * that what `hexaglide tune` predicts is what LinuxCNC runs.
+ *
+ * Units: the config's (joint commands and feedback in mm, output in volts,
+ * INPUT_SCALE counts per mm). f-error is motion's: the previous period's
+ * command minus this period's encoder position.
+ * Pure C, no allocation, no stdio; hg_loop is large (it holds the model):
+ * allocate it, don't put it on a realtime stack. */
+#ifndef HG_LOOP_H
+#define HG_LOOP_H
+
+#include "hg_board.h"
+#include "hg_pid.h"
+
+#define HG_LOOP_JOINTS 6
+
+/* What configs/hexaglide.ini sets per joint, plus the servo period. */
+typedef struct {
+    hg_pid_gains pid[HG_LOOP_JOINTS];  /* pid.N pins */
+    double input_scale[HG_LOOP_JOINTS];   /* INPUT_SCALE: encoder counts per mm */
+    double output_scale[HG_LOOP_JOINTS];  /* OUTPUT_SCALE: DAC gain */
+    double output_offset[HG_LOOP_JOINTS]; /* OUTPUT_OFFSET (V) */
+    double ferror_limit_mm;            /* stop a run when |f-error| exceeds it (0: never) */
+    long period_ns;                    /* servo period */
+    int model_kind;                    /* hg_model_kind of the board (reduced-cartesian as HAL) */
+} hg_loop_config;
+
+/* The closed loop: board (plant) + six PID states + motion's memory. */
+typedef struct {
+    hg_loop_config cfg;
+    hg_board board;                    /* the plant: the virtual board and its machine */
+    hg_board_inputs in;                /* what the HAL glue would copy in each period */
+    hg_board_outputs out;              /* the board's outputs after the last period */
+    hg_pid_state pid[HG_LOOP_JOINTS];
+    double prev_cmd_mm[HG_LOOP_JOINTS]; /* motion's command of the previous period */
+    long periods;                      /* periods run since hg_loop_init */
+} hg_loop;
+
+/* One period's outputs. */
+typedef struct {
+    double fb_mm[HG_LOOP_JOINTS];      /* encoder position read this period */
+    double ferror_mm[HG_LOOP_JOINTS];  /* motion's f-error */
+    double output_v[HG_LOOP_JOINTS];   /* pid.N.output */
+} hg_loop_sample;
+
+/* Summary of a run. */
+typedef struct {
+    double peak_ferror_mm[HG_LOOP_JOINTS]; /* max |f-error| */
+    double peak_output_v[HG_LOOP_JOINTS];  /* max |pid output| */
+    double rms_ferror_mm[HG_LOOP_JOINTS];
+    long periods;                      /* periods run */
+    long tripped_at;                   /* first period with |f-error| > ferror_limit_mm, or -1 */
+} hg_loop_summary;
+
+/* Config with pid.c's load-time gains (hg_pid_defaults: Pgain 1, the rest 0),
+ * configs/hexaglide.ini's scales (1000 counts/mm, DAC gain 1, offset 0), a
+ * 1 ms period, the board's default model (reduced-cartesian), no trip limit. */
+void hg_loop_config_default(hg_loop_config *c);
+
+/* Machine at HOME at rest, counters at 0, amplifiers on (E-STOP loop closed),
+ * PIDs reset, motion's command 0. p: the board's parameter block (model
+ * parameters, substeps, integrator; 0: the spec's defaults as on HAL load).
+ * 0, or a negative code (bad parameters or period: HG_ERR_BAD_PARAM / BAD_DT). */
+int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p);
+
+/* One servo period with motion's joint commands cmd_mm; out may be 0.
+ * 0, or the board's fault code (latched: the board stays faulted),
+ * or HG_ERR_NONFINITE_INPUT for a non-finite command (nothing run). */
+int hg_loop_step(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], hg_loop_sample *out);
+
+/* Run n periods of commands cmd_mm[n][6] (row-major); per-period f-errors and
+ * outputs into ferror_mm[n][6] / output_v[n][6] when not 0; summary over the
+ * periods from `from` on. Stops early at a trip (see ferror_limit_mm).
+ * 0 or the first step's negative code. */
+int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
+                double *output_v, hg_loop_summary *sum);
+
+/* sizeof the structs, for bindings that mirror them (tools/hexaglide.py). */
+unsigned long hg_loop_sizeof(int which);   /* 0 hg_loop, 1 config, 2 summary, 3 pid gains,
+                                             4 hg_model, 5 hg_data, 6 hg_params,
+                                             7 hg_board_params, 8 hg_board,
+                                             9 hg_board_inputs, 10 hg_board_outputs,
+                                             11 hg_pid_state; else 0 */
+
+#endif

@@ -1,0 +1,494 @@
+"""hexaglide.py - the virtual Hexaglide's C core from Python (ctypes).
+
+The same code the LinuxCNC modules run, built as build/libhexaglide.so
+(`make lib`; `make` builds it too). See docs/python.md.
+
+    import hexaglide as hg
+    z = hg.ik([0, 0, -50, 8, -6, 10])             # joints (mm) of a pose (mm, deg)
+    pose = hg.fk(z)                               # and back
+    m = hg.Model("reduced-cartesian")             # the dynamics, SI inside
+    m.step([1.0] * 6, 0.001)                      # one step with six DAC volts
+    loop = hg.Loop()                              # six LinuxCNC pids + the board
+    res = loop.run(cmd_mm)                        # cmd_mm: (n, 6) joint commands
+    res.ferror_mm, res.output_v, res.peak_ferror_mm
+
+Units at this interface are the user's (mm, degrees, volts) except Model,
+which is the core's own (m, rad, s) as in src/hg_dynamics.h.
+"""
+import configparser
+import ctypes as C
+import os
+import re
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DEFAULT_INI = os.path.normpath(os.path.join(HERE, "..", "configs", "hexaglide.ini"))
+LIB_PATH = os.environ.get("HEXAGLIDE_LIB", os.path.join(HERE, "..", "build", "libhexaglide.so"))
+JOINTS = 6
+MODELS = ["standard", "reduced-joints", "reduced-cartesian", "fused-cartesian"]
+
+try:
+    _lib = C.CDLL(LIB_PATH)
+except OSError as ex:  # pragma: no cover - a message the user can act on
+    raise ImportError("cannot load %s (%s): run `make lib` first, or set HEXAGLIDE_LIB" % (LIB_PATH, ex))
+
+_d6 = C.c_double * 6
+_P = C.c_void_p
+
+
+class HexaglideError(RuntimeError):
+    """A core function returned a negative code (src/hg_errors.h)."""
+
+    def __init__(self, what, code):
+        self.code = code
+        super().__init__("%s: %s (code %d)" % (what, strerror(code), code))
+
+
+def _sig(name, res, *args):
+    f = getattr(_lib, name)
+    f.restype = res
+    f.argtypes = list(args)
+    return f
+
+
+_strerror = _sig("hg_strerror", C.c_char_p, C.c_int)
+
+
+def strerror(code):
+    """Text of an error code."""
+    return _strerror(code).decode()
+
+
+class PidGains(C.Structure):
+    """hg_pid_gains: the pid.N pins (names as LinuxCNC's, units mm and V)."""
+    _fields_ = [(n, C.c_double) for n in
+                ("pgain", "igain", "dgain", "bias", "ff0", "ff1", "ff2", "ff3", "deadband",
+                 "maxerror", "maxerror_i", "maxerror_d", "maxcmd_d", "maxcmd_dd", "maxcmd_ddd",
+                 "maxoutput")] + [("error_previous_target", C.c_int)]
+
+
+class LoopConfig(C.Structure):
+    """hg_loop_config."""
+    _fields_ = [("pid", PidGains * 6), ("input_scale", _d6), ("output_scale", _d6),
+                ("output_offset", _d6), ("ferror_limit_mm", C.c_double), ("period_ns", C.c_long),
+                ("model_kind", C.c_int)]
+
+
+class LoopSummary(C.Structure):
+    """hg_loop_summary."""
+    _fields_ = [("peak_ferror_mm", _d6), ("peak_output_v", _d6), ("rms_ferror_mm", _d6),
+                ("periods", C.c_long), ("tripped_at", C.c_long)]
+
+
+_sizeof = _sig("hg_loop_sizeof", C.c_ulong, C.c_int)
+
+_DATA_STATE = [("t_s", C.c_double), ("z_m", _d6), ("zd_mps", _d6), ("zdd_mps2", _d6),
+               ("pose", _d6), ("posed", _d6), ("bar_rad", C.c_double * 12),
+               ("bar_radps", C.c_double * 12), ("current_a", _d6), ("force_n", _d6),
+               ("residual_m", C.c_double), ("last_error", C.c_int), ("broken_bars", C.c_uint),
+               ("trig_key_rad", C.c_double * 3), ("trig_sc", _d6), ("trig_valid", C.c_int)]
+
+
+class _DataState(C.Structure):
+    _fields_ = _DATA_STATE
+
+
+class Data(C.Structure):
+    """hg_data: the dynamics state (SI), then hg_step's scratch (opaque, hg_work)."""
+    _fields_ = _DATA_STATE + [("work", C.c_double * max(0, (_sizeof(5) - C.sizeof(_DataState)) // 8))]
+
+
+for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data)):
+    if _sizeof(_i) != C.sizeof(_s):
+        raise ImportError("%s: layout differs from the library's (%d vs %d bytes): rebuild both"
+                          % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
+
+_NP = _sizeof(6) // 8          # doubles in hg_params
+
+
+class BoardParams(C.Structure):
+    """hg_board_params: model parameters (SI, as hg_params), substeps, integrator."""
+    _fields_ = [("model", C.c_double * _NP), ("substeps", C.c_uint), ("integrator", C.c_uint)]
+
+
+_e8i, _e8d = C.c_int * 8, C.c_double * 8
+_j6i, _j6u = C.c_int * 6, C.c_uint * 6
+
+
+class BoardInputs(C.Structure):
+    """hg_board_inputs: one servo period's inputs (src/hg_board.h)."""
+    _fields_ = [("dac_v", _e8d), ("dac_written", C.c_int), ("dout_values", C.c_uint),
+                ("dout_inverts", C.c_uint), ("estop_loop_out", C.c_int), ("estop_button", C.c_int),
+                ("reset", C.c_int), ("watchdog_control", C.c_uint), ("watchdog_reset", C.c_int),
+                ("index_enable", _e8i), ("enc_reset", _e8i), ("enc_scale", _e8d), ("adc_read", C.c_int),
+                ("adc_gain", _e8d), ("adc_offset", _e8d), ("adc_volts_per_amp", C.c_double),
+                ("amp_fail", _j6i), ("stuck", _j6u), ("tripped", _j6u), ("index_lost", _j6i),
+                ("enc_glitch", _j6i), ("bar_broken", _j6i), ("params", BoardParams)]
+
+
+class BoardOutputs(C.Structure):
+    """hg_board_outputs: one servo period's outputs (src/hg_board.h)."""
+    _fields_ = [("count", _e8i), ("position", _e8d), ("index", _e8i), ("index_latched", _e8i),
+                ("enc_scale", _e8d), ("in_", C.c_ubyte * 68), ("dout_word", C.c_uint), ("estop_in", C.c_int),
+                ("adc", _e8d), ("pose", _d6), ("z_m", _d6), ("zd_mps", _d6), ("volts", _d6),
+                ("current_a", _d6), ("force_n", _d6), ("sim_time_s", C.c_double), ("residual_m", C.c_double),
+                ("steps", C.c_uint), ("bars_broken", C.c_uint), ("fault", C.c_int), ("fault_code", C.c_int),
+                ("amps_on", C.c_int), ("watchdog_expired", C.c_int), ("param_error", C.c_int),
+                ("dac_nan", C.c_int), ("params", BoardParams), ("events", C.c_uint),
+                ("refused_mask", C.c_ulonglong), ("param_rc", C.c_int), ("reset_refused_joint", C.c_int),
+                ("fault_cause", C.c_int), ("bars_newly_broken", C.c_uint), ("dac_nan_new", C.c_uint),
+                ("enc_scale_bad", C.c_uint)]
+
+
+for _i, _s in ((7, BoardParams), (9, BoardInputs), (10, BoardOutputs)):
+    if _sizeof(_i) != C.sizeof(_s):
+        raise ImportError("%s: layout differs from the library's (%d vs %d bytes): rebuild both"
+                          % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
+
+_board_init = _sig("hg_board_init", C.c_int, _P, C.c_int, _P)
+_board_inputs_default = _sig("hg_board_inputs_default", None, _P, C.POINTER(BoardInputs))
+_board_peek = _sig("hg_board_peek", None, _P, C.POINTER(BoardOutputs))
+_board_step = _sig("hg_board_step", None, _P, C.POINTER(BoardInputs), C.POINTER(BoardOutputs), C.c_long)
+_params_default = _sig("hg_params_default", None, _P)
+_params_set = _sig("hg_params_set", C.c_int, _P, C.c_char_p, C.c_double)
+_params_field = _sig("hg_params_field", C.POINTER(C.c_double), _P, C.c_char_p)
+_model_init = _sig("hg_model_init", C.c_int, _P, _P, C.c_int, C.POINTER(C.c_char_p), C.POINTER(C.c_char_p))
+_model_from_name = _sig("hg_model_from_name", C.c_int, C.c_char_p)
+_data_reset = _sig("hg_data_reset", C.c_int, _P, _P)
+_step = _sig("hg_step", C.c_int, _P, _P, _d6, C.c_double)
+_energy = _sig("hg_energy", None, _P, _P, C.POINTER(C.c_double), C.POINTER(C.c_double))
+_ik = _sig("hg_inverse_kinematics", C.c_int, _P, _d6, _d6)
+_fk = _sig("hg_forward_kinematics", C.c_int, _P, _d6, _d6, _P, _P)
+_loop_default = _sig("hg_loop_config_default", None, C.POINTER(LoopConfig))
+_loop_init = _sig("hg_loop_init", C.c_int, _P, C.POINTER(LoopConfig), _P)
+_params_copy_sz = _sizeof(6)
+_loop_step = _sig("hg_loop_step", C.c_int, _P, _d6, _P)
+_dp = np.ctypeslib.ndpointer(dtype=np.float64, flags="C_CONTIGUOUS")
+_loop_run = _sig("hg_loop_run", C.c_int, _P, _dp, C.c_long, C.c_long, _P, _P, C.POINTER(LoopSummary))
+
+
+class Params:
+    """hg_params: the machine's parameter set, by spec name (SI), e.g. p["c_visc"]."""
+
+    def __init__(self, **values):
+        self.buf = C.create_string_buffer(_sizeof(6))
+        _params_default(self.buf)
+        for k, v in values.items():
+            self[k] = v
+
+    def __getitem__(self, name):
+        f = _params_field(self.buf, name.encode())
+        if not f:
+            raise KeyError(name)
+        return f[0]
+
+    def __setitem__(self, name, value):
+        if _params_set(self.buf, name.encode(), float(value)):
+            raise KeyError("unknown parameter or bad value: %s=%r" % (name, value))
+
+    def board_params(self, substeps=1, integrator=0):
+        """hg_board_params: these model parameters + the board's substeps and integrator."""
+        buf = C.create_string_buffer(_sizeof(7))
+        C.memmove(buf, self.buf, _params_copy_sz)
+        extra = (C.c_uint * 2)(substeps, integrator)
+        C.memmove(C.byref(buf, _params_copy_sz), extra, C.sizeof(extra))
+        return buf
+
+
+def _geometry(params):
+    return (params or Params()).buf  # hg_geometry is the first member of hg_params
+
+
+def ik(pose_user, params=None):
+    """Joints (mm) of a pose (X Y Z mm, A B C deg)."""
+    pose = _d6(*[v / 1000.0 for v in pose_user[:3]], *[np.radians(v) for v in pose_user[3:]])
+    z = _d6()
+    rc = _ik(_geometry(params), pose, z)
+    if rc:
+        raise HexaglideError("ik", rc)
+    return np.array(z[:]) * 1000.0
+
+
+def fk(joints_mm, guess_user=(0, 0, 0, 0, 0, 0), params=None):
+    """Pose (mm, deg) of six joint positions (mm), Newton from guess."""
+    z = _d6(*[v / 1000.0 for v in joints_mm])
+    pose = _d6(*[v / 1000.0 for v in guess_user[:3]], *[np.radians(v) for v in guess_user[3:]])
+    rc = _fk(_geometry(params), z, pose, None, None)
+    if rc:
+        raise HexaglideError("fk", rc)
+    return np.concatenate([np.array(pose[:3]) * 1000.0, np.degrees(pose[3:])])
+
+
+class Model:
+    """hg_model + hg_data: the machine's dynamics (SI units, src/hg_dynamics.h)."""
+
+    def __init__(self, kind="reduced-cartesian", params=None):
+        k = _model_from_name(kind.encode())
+        if k < 0:
+            raise ValueError("unknown model %r; one of %s" % (kind, MODELS))
+        self.params = params or Params()
+        self.m = C.create_string_buffer(_sizeof(4))
+        self.d = Data()
+        bad, why = C.c_char_p(), C.c_char_p()
+        rc = _model_init(self.m, self.params.buf, k, C.byref(bad), C.byref(why))
+        if rc:
+            raise HexaglideError("model: %s %s" % ((bad.value or b"").decode(), (why.value or b"").decode()), rc)
+        self.reset()
+
+    def reset(self):
+        """HOME at rest."""
+        rc = _data_reset(self.m, C.byref(self.d))
+        if rc:
+            raise HexaglideError("reset", rc)
+
+    def step(self, volts, dt_s):
+        """One integration step with six DAC volts; returns self.d."""
+        rc = _step(self.m, C.byref(self.d), _d6(*volts), dt_s)
+        if rc:
+            raise HexaglideError("step", rc)
+        return self.d
+
+    def energy(self):
+        """(kinetic, potential) J."""
+        k, p = C.c_double(), C.c_double()
+        _energy(self.m, C.byref(self.d), C.byref(k), C.byref(p))
+        return k.value, p.value
+
+    @property
+    def z_m(self):
+        return np.array(self.d.z_m[:])
+
+    @property
+    def zdd_mps2(self):
+        return np.array(self.d.zdd_mps2[:])
+
+
+class Board:
+    """hg_board: the virtual MOTENC-100 with the machine behind it (src/hg_board.h),
+    the very function LinuxCNC's motenc.0.dynamics runs. SI inside, as the core.
+
+        b = Board()                      # power-up: HOME at rest, E-STOP loop closed here
+        out = b.step([0.3] * 6)          # DAC volts of joints 0..5 for one 1 ms period
+        out.z_m[:], out.position[:6], out.count[:6], out.amps_on
+    b.inputs is the full hg_board_inputs record (fault injection, index-enable, ...)."""
+
+    def __init__(self, kind="reduced-cartesian", params=None, substeps=1, integrator=0, period_ns=1000000,
+                 estop_closed=True):
+        k = _model_from_name(kind.encode())
+        if k < 0:
+            raise ValueError("unknown model %r; one of %s" % (kind, MODELS))
+        self.params = params or Params()
+        self.buf = C.create_string_buffer(_sizeof(8))
+        rc = _board_init(self.buf, k, self.params.board_params(substeps, integrator))
+        if rc:
+            raise HexaglideError("board init", rc)
+        self.inputs = BoardInputs()
+        _board_inputs_default(self.buf, C.byref(self.inputs))
+        if estop_closed:
+            self.inputs.dout_values |= 1 << 7   # out-07 closes the E-STOP loop: amplifiers on
+        self.inputs.dac_written = 1
+        self.outputs = BoardOutputs()
+        _board_peek(self.buf, C.byref(self.outputs))
+        self.period_ns = period_ns
+
+    def step(self, dac_volts=None):
+        """One servo period; dac_volts (up to 8) replaces inputs.dac_v. Returns self.outputs."""
+        if dac_volts is not None:
+            for i, v in enumerate(dac_volts):
+                self.inputs.dac_v[i] = v
+        _board_step(self.buf, C.byref(self.inputs), C.byref(self.outputs), self.period_ns)
+        return self.outputs
+
+
+class RunResult:
+    """What Loop.run returns: per-period f-errors and outputs (n, 6), and the summary."""
+
+    def __init__(self, ferror, output, summ, rc):
+        self.ferror_mm, self.output_v, self.rc = ferror, output, rc
+        self.peak_ferror_mm = np.array(summ.peak_ferror_mm[:])
+        self.peak_output_v = np.array(summ.peak_output_v[:])
+        self.rms_ferror_mm = np.array(summ.rms_ferror_mm[:])
+        self.periods = summ.periods
+        self.tripped_at = summ.tripped_at
+
+    @property
+    def ok(self):
+        return self.rc == 0 and self.tripped_at < 0
+
+
+def read_ini(path=DEFAULT_INI):
+    """[JOINT_0..5] and [AXIS_X..C] of a LinuxCNC INI as ([six {KEY: float}], {axis: {KEY: float}});
+    ValueError naming the file, section and key when something is missing or not a number."""
+    if not os.path.isfile(path):
+        raise ValueError("no such INI file: %s" % path)
+    cp = configparser.ConfigParser(strict=False, interpolation=None, comment_prefixes=("#", ";"))
+    cp.optionxform = str.upper
+    try:
+        with open(path) as f:
+            cp.read_string("".join(l for l in f if not l.startswith("#INCLUDE")))
+    except configparser.Error as ex:
+        raise ValueError("%s does not parse as an INI file: %s" % (path, ex))
+
+    def numbers(sec):
+        out = {}
+        for k, v in cp.items(sec):
+            try:
+                out[k] = float(v)
+            except ValueError:
+                pass                     # words (TYPE = LINEAR, HOME_USE_INDEX = YES)
+        return out
+    joints = []
+    for j in range(JOINTS):
+        if not cp.has_section("JOINT_%d" % j):
+            raise ValueError("%s has no [JOINT_%d] section" % (path, j))
+        joints.append(numbers("JOINT_%d" % j))
+        for k in ("P", "I", "D", "FF0", "FF1", "FF2", "FF3", "BIAS"):
+            if cp.has_option("JOINT_%d" % j, k) and k not in joints[-1]:
+                raise ValueError("%s [JOINT_%d] %s = %r is not a number" % (path, j, k, cp.get("JOINT_%d" % j, k)))
+    axes = {a: numbers("AXIS_" + a) if cp.has_section("AXIS_" + a) else {} for a in "XYZABC"}
+    return joints, axes
+
+
+GAIN_KEYS = {"P": "pgain", "I": "igain", "D": "dgain", "BIAS": "bias", "FF0": "ff0", "FF1": "ff1",
+             "FF2": "ff2", "FF3": "ff3", "DEADBAND": "deadband", "MAX_OUTPUT": "maxoutput",
+             "MAX_ERROR_I": "maxerror_i"}
+
+
+def read_gains(path):
+    """Gains of a tune output or INI: ([six {KEY: value}], {joint: predicted peak mm} or {}).
+    [JOINT_N] sections with KEY = value (only pid keys kept, other sections skipped) and
+    tune's "# joint N: peak |f-error| X mm" lines; ValueError naming file and line."""
+    gains = [dict() for _ in range(6)]
+    pred = {}
+    sec = None
+    with open(path) as f:
+        for no, line in enumerate(f, 1):
+            s = line.strip()
+            m = re.match(r"#\s*joint (\d): peak \|f-error\| ([0-9.eE+-]+) mm", s)
+            if m:
+                pred[int(m.group(1))] = float(m.group(2))
+                continue
+            if not s or s.startswith("#"):
+                continue
+            m = re.match(r"\[JOINT_(\d+)\]$", s)
+            if m:
+                sec = int(m.group(1))
+                if sec > 5:
+                    raise ValueError("%s line %d: [JOINT_%d]: the Hexaglide has joints 0..5" % (path, no, sec))
+                continue
+            if s.startswith("["):
+                sec = None
+                continue
+            if sec is None:
+                continue                       # other sections of an INI
+            k, eq, v = s.partition("=")
+            k = k.strip()
+            if not eq:
+                raise ValueError("%s line %d: not KEY = value: %r" % (path, no, s))
+            if k in GAIN_KEYS:
+                try:
+                    val = float(v)
+                except ValueError:
+                    raise ValueError("%s line %d: %s = %r is not a number" % (path, no, k, v.strip()))
+                if not np.isfinite(val):
+                    raise ValueError("%s line %d: %s is not finite" % (path, no, k))
+                gains[sec][k] = val
+    if not all(gains):
+        raise ValueError("%s: needs [JOINT_0]..[JOINT_5] with gains" % path)
+    return gains, pred
+
+
+class Loop:
+    """Six LinuxCNC pid loops around the virtual board (src/hg_loop.h), mm and volts.
+
+    gains: a list of six dicts of INI keys (P, I, D, FF0, FF1, FF2, FF3, BIAS,
+    DEADBAND, MAX_OUTPUT, MAX_ERROR_I); keys not given keep pid.c's load-time
+    values (Pgain 1, the rest 0). None: configs/hexaglide.ini's gains."""
+
+    def __init__(self, gains=None, params=None, ferror_limit_mm=0.0, period_ns=1000000,
+                 model="reduced-cartesian", substeps=1, integrator=0):
+        self.cfg = LoopConfig()
+        _loop_default(C.byref(self.cfg))
+        self.cfg.ferror_limit_mm = ferror_limit_mm
+        self.cfg.period_ns = period_ns
+        self.cfg.model_kind = MODELS.index(model)
+        if gains is None:
+            gains = read_ini()[0]
+        for j, g in enumerate(gains):
+            for key, v in g.items():
+                if key in GAIN_KEYS:
+                    setattr(self.cfg.pid[j], GAIN_KEYS[key], float(v))
+            if "INPUT_SCALE" in g:
+                self.cfg.input_scale[j] = g["INPUT_SCALE"]
+            if "OUTPUT_SCALE" in g:
+                self.cfg.output_scale[j] = g["OUTPUT_SCALE"]
+            if "OUTPUT_OFFSET" in g:
+                self.cfg.output_offset[j] = g["OUTPUT_OFFSET"]
+        self.params = params or Params()
+        self.board_params = self.params.board_params(substeps, integrator)
+        self.buf = C.create_string_buffer(_sizeof(0))
+        self.reset()
+
+    def reset(self):
+        """Machine at HOME at rest, PIDs reset."""
+        rc = _loop_init(self.buf, C.byref(self.cfg), self.board_params)
+        if rc:
+            raise HexaglideError("loop init", rc)
+
+    def run(self, cmd_mm, start=0, keep=True):
+        """Run the commands (n, 6) from the current state; summary over rows >= start."""
+        cmd = np.ascontiguousarray(cmd_mm, dtype=np.float64)
+        if cmd.ndim != 2 or cmd.shape[1] != JOINTS:
+            raise ValueError("commands must be an (n, 6) array, got %s" % (cmd.shape,))
+        n = cmd.shape[0]
+        fe = np.zeros((n, JOINTS)) if keep else None
+        out = np.zeros((n, JOINTS)) if keep else None
+        summ = LoopSummary()
+        rc = _loop_run(self.buf, cmd, n, start,
+                       fe.ctypes.data_as(_P) if keep else None,
+                       out.ctypes.data_as(_P) if keep else None, C.byref(summ))
+        if keep and summ.periods < n:
+            fe, out = fe[:summ.periods], out[:summ.periods]
+        return RunResult(fe, out, summ, rc)
+
+
+class PidState(C.Structure):
+    """hg_pid_state: one pid's memory and output pins."""
+    _fields_ = [(n, C.c_double) for n in ("error_i", "error_d", "prev_error", "prev_cmd", "prev_fb",
+                                          "limit_state", "cmd_d", "cmd_dd", "cmd_ddd", "cmd_v", "fb_v")] + \
+        [("prev_ie", C.c_int), ("error", C.c_double), ("output", C.c_double), ("saturated", C.c_int),
+         ("saturated_s", C.c_double), ("saturated_count", C.c_int)]
+
+
+_pid_calc = _sig("hg_pid_calc", C.c_double, C.POINTER(PidGains), C.POINTER(PidState), C.c_double, C.c_double,
+                 C.c_int, C.c_int, C.c_long)
+_pid_defaults = _sig("hg_pid_defaults", None, C.POINTER(PidGains))
+
+
+def pid_gains(gains):
+    """PidGains from INI keys (pid.c's defaults for the others)."""
+    g = PidGains()
+    _pid_defaults(C.byref(g))
+    for key, v in gains.items():
+        if key in GAIN_KEYS:
+            setattr(g, GAIN_KEYS[key], float(v))
+    return g
+
+
+def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000, state=None):
+    """LinuxCNC's pid (src/hg_pid.c) on recorded pins: outputs for arrays of
+    command and feedback (and enable, default 1), from `state` (a dict of
+    PidState fields; default the load-time state, all zero)."""
+    g = pid_gains(gains)
+    st = PidState()
+    for k, v in (state or {}).items():
+        setattr(st, k, v)
+    n = len(command)
+    en = np.ones(n, dtype=int) if enable is None else np.asarray(enable, dtype=int)
+    return np.array([_pid_calc(C.byref(g), C.byref(st), float(command[i]), float(feedback[i]), int(en[i]), 0,
+                               period_ns) for i in range(n)])
+
+
+if _sizeof(11) != C.sizeof(PidState):
+    raise ImportError("PidState: layout differs from the library's: rebuild both")

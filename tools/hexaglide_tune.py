@@ -1,0 +1,677 @@
+#!/usr/bin/python3
+"""hexaglide_tune.py - PID + feed-forward gains for the Hexaglide's six
+joints, tuned against the model: the closed loop of LinuxCNC's pid and the
+virtual board runs in C (build/libhexaglide.so, src/hg_loop.c), the search is
+scipy's differential evolution on all cores, the plots are matplotlib's.
+Normally started as `build/hexaglide tune ...` (src/cli/cmd_tune.c); see
+docs/tuning.md.
+
+stdout: ready-to-paste [JOINT_0]..[JOINT_5] sections, then the predicted
+peak following error per joint (comment lines). stderr: progress.
+Exit codes: 0 ok, 1 no stable gains / unstable gains given, 2 bad input.
+"""
+import argparse
+import ctypes as C
+import multiprocessing
+import os
+import re
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import hexaglide as hg  # noqa: E402
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+PERIOD_S = 0.001
+MIN_SAMPLES = 200          # a trajectory shorter than this is refused (0.2 s)
+SETTLE = 1500              # periods at the first command before the trajectory
+RAMP = 500                 # periods of the smooth move from HOME to the first command
+LEAD_IN = 300              # rows kept before the program starts (recorded runs)
+KEYS = ["P", "I", "D", "FF0", "FF1", "FF2", "FF3", "BIAS"]
+
+
+class BadInput(Exception):
+    """A user error: exit 2 with the message."""
+
+
+def log(*a):
+    print("hexaglide tune:", *a, file=sys.stderr, flush=True)
+
+
+# ------------------------------------------------------------------ INI
+def read_ini(path):
+    """hg.read_ini with BadInput for what the user must fix."""
+    try:
+        return hg.read_ini(path)
+    except ValueError as ex:
+        raise BadInput(str(ex))
+
+
+def pid_keys(g):
+    """What hg.Loop takes of an INI joint dict: the pid gains and limits, the scales."""
+    return {k: v for k, v in g.items() if k in hg.GAIN_KEYS or k in ("INPUT_SCALE", "OUTPUT_SCALE", "OUTPUT_OFFSET")}
+
+
+# ------------------------------------------------------------------ trajectories
+def load_trajectory(path):
+    """Joint commands (n, 6) in mm from a recorded run.
+
+    Accepted: the CSV of tools/headless/hexaglide_headless.py (columns
+    joint.N.motor-pos-cmd; cropped to the program when halui.program.is-running
+    is there), or plain rows of 6 numbers (or 7: a sample number / time first,
+    as `halsampler -t` prints), separated by spaces or commas; lines starting
+    with # are comments. .gz files are read too."""
+    if not os.path.isfile(path):
+        raise BadInput("no such trajectory file: %s" % path)
+    import gzip
+    opener = gzip.open if path.endswith(".gz") else open
+    try:
+        with opener(path, "rt") as f:
+            lines = f.read().splitlines()
+    except (OSError, UnicodeDecodeError) as ex:
+        raise BadInput("%s: cannot read it as text: %s" % (path, ex))
+    header = None
+    rows = []
+    for no, line in enumerate(lines, 1):
+        s = line.strip()
+        if not s or s.startswith("#"):
+            continue
+        if s == "overrun":
+            raise BadInput("%s line %d: 'overrun': halsampler lost samples here; record again with a "
+                           "deeper FIFO (loadrt sampler depth=...)" % (path, no))
+        fields = [x for x in s.replace(",", " ").split()]
+        if header is None and not rows and any("motor-pos-cmd" in x for x in fields):
+            header = s.split(",")
+            continue
+        try:
+            vals = [float(x) for x in fields]
+        except ValueError:
+            if header is None and not rows and "," in s and not any(c.isdigit() for c in fields[0][:1]):
+                raise BadInput("%s line %d is a header without joint.N.motor-pos-cmd columns: record "
+                               "motion's joint commands (docs/tuning.md)" % (path, no))
+            raise BadInput("%s line %d does not parse as numbers: %r" % (path, no, s[:80]))
+        if not np.all(np.isfinite(vals)):
+            raise BadInput("%s line %d holds a NaN or infinite value" % (path, no))
+        rows.append((no, vals))
+    if header is not None:
+        cols = []
+        for j in range(hg.JOINTS):
+            name = "joint.%d.motor-pos-cmd" % j
+            if name not in header:
+                raise BadInput("%s: column %s missing (need joints 0..5)" % (path, name))
+            cols.append(header.index(name))
+        extra = [c for c in header if re.fullmatch(r"joint\.(\d+)\.motor-pos-cmd", c)
+                 and int(c.split(".")[1]) >= hg.JOINTS]
+        if extra:
+            raise BadInput("%s: %d joints, the Hexaglide has 6" % (path, hg.JOINTS + len(extra)))
+        for no, v in rows:
+            if len(v) != len(header):
+                raise BadInput("%s line %d has %d fields, the header %d" % (path, no, len(v), len(header)))
+        data = np.array([v for _, v in rows]) if rows else np.zeros((0, len(header)))
+        cmd = data[:, cols]
+        if "t_s" in header and len(data) > 1:
+            gap = np.where(np.diff(data[:, header.index("t_s")]) > 1.5 * PERIOD_S)[0]
+            if len(gap):
+                raise BadInput("%s line %d: samples missing after t = %.3f s (a gap in the recording); "
+                               "record again" % (path, rows[gap[0] + 1][0], data[gap[0], header.index("t_s")]))
+        if "halui.program.is-running" in header and len(data):
+            run = data[:, header.index("halui.program.is-running")] > 0.5
+            if run.any():
+                i0 = max(0, int(np.argmax(run)) - LEAD_IN)
+                i1 = len(run) - int(np.argmax(run[::-1]))
+                cmd = cmd[i0:i1]
+    else:
+        widths = {len(v) for _, v in rows}
+        if len(widths) > 1:
+            no, v = next((no, v) for no, v in rows if len(v) != len(rows[0][1]))
+            raise BadInput("%s line %d: %d values, line %d has %d" % (path, no, len(v), rows[0][0], len(rows[0][1])))
+        width = widths.pop() if widths else 6
+        if width not in (6, 7):
+            raise BadInput("%s: %d values per line; need 6 joint commands (mm), optionally after a "
+                           "sample number: the Hexaglide has 6 joints" % (path, width))
+        cmd = np.array([v[-6:] for _, v in rows]).reshape(-1, 6)
+        if width == 7 and len(rows) > 1:
+            n = np.array([v[0] for _, v in rows])
+            step = n[1] - n[0]
+            bad = np.where(np.abs(np.diff(n) - step) > 0.25 * abs(step))[0] if step > 0 else [0]
+            if len(bad):
+                raise BadInput("%s line %d: the first column (sample number or time) does not advance "
+                               "evenly: samples lost?" % (path, rows[bad[0] + 1][0]))
+    if len(cmd) < MIN_SAMPLES:
+        raise BadInput("%s: %d samples; need at least %d (%.1f s of servo periods)"
+                       % (path, len(cmd), MIN_SAMPLES, MIN_SAMPLES * PERIOD_S))
+    if np.abs(cmd).max() > 1000:
+        raise BadInput("%s: a joint command beyond 1000 mm: not joint commands in mm?" % path)
+    return np.ascontiguousarray(cmd)
+
+
+def s_curve(dist, vmax, amax, jerk_time=0.02):
+    """Positions (per period) of a rest-to-rest move of dist with velocity
+    vmax and acceleration amax, the acceleration ramped over jerk_time."""
+    dist = abs(dist)
+    ta = vmax / amax
+    if amax * ta * ta > dist:                  # no cruise: triangle
+        ta = np.sqrt(dist / amax)
+        vmax = amax * ta
+    tc = max(0.0, (dist - amax * ta * ta) / vmax)
+    T = 2 * ta + tc + jerk_time
+    t = np.arange(0, T + 0.2, PERIOD_S)
+    acc = np.where(t < ta, amax, 0.0) - np.where((t >= ta + tc) & (t < 2 * ta + tc), amax, 0.0)
+    n = max(1, int(jerk_time / PERIOD_S))
+    acc = np.convolve(acc, np.ones(n) / n)[:len(t)]   # jerk-limited (S-curve)
+    pos = np.cumsum(np.cumsum(acc) * PERIOD_S) * PERIOD_S
+    return pos * (dist / pos[-1]) if pos[-1] > 0 else pos
+
+
+def generated_move(axes, params=None):
+    """Joint commands of a default test move: each world axis out and back
+    on an S-curve at its MAX_VELOCITY / MAX_ACCELERATION, then all together."""
+    amp = {"X": 40.0, "Y": 40.0, "Z": 40.0, "A": 8.0, "B": 8.0, "C": 10.0}
+    poses = [np.zeros(6)]
+    for i, a in enumerate("XYZABC"):
+        lim = axes.get(a, {})
+        v, acc = lim.get("MAX_VELOCITY", 20.0), lim.get("MAX_ACCELERATION", 200.0)
+        for sign in (1, -1):
+            prof = s_curve(amp[a], v, acc) * sign
+            seg = np.repeat(poses[-1][None, :], len(prof), 0)
+            seg[:, i] += prof
+            poses.extend(seg)
+    poses = np.array(poses)
+    return np.ascontiguousarray([hg.ik(p, params) for p in poses])
+
+
+# ------------------------------------------------------------------ model-based start
+def model_start(cmd, params=None):
+    """Per joint: FF1 (viscous), FF2 (inertia), BIAS (gravity) and the mass for P/I/D, from
+    the dynamics at poses along the trajectory."""
+    m = hg.Model("reduced-cartesian", params)
+    fpv = m.params["ka"] * m.params["kt"] * 2 * np.pi / m.params["lead"]
+    idx = np.linspace(0, len(cmd) - 1, 12).astype(int)
+    guess = [0, 0, 0, 0, 0, 0]
+    diag, rows, holds = [], [], []
+    for i in idx:
+        try:
+            pose = hg.fk(cmd[i], guess, params)
+        except hg.HexaglideError:
+            continue
+        guess = pose
+
+        def accel(volts):
+            d = hg.Data()
+            C.memmove(C.byref(d), C.byref(m.d), C.sizeof(d))
+            p_si = list(np.array(pose[:3]) / 1000.0) + list(np.radians(pose[3:]))
+            for k in range(6):
+                d.z_m[k], d.zd_mps[k], d.pose[k], d.posed[k] = cmd[i][k] / 1000.0, 0.0, p_si[k], 0.0
+            d.trig_valid = 0
+            rc = hg._step(m.m, C.byref(d), hg._d6(*volts), 1e-5)
+            if rc:
+                raise hg.HexaglideError("model step", rc)
+            return np.array(d.zdd_mps2[:])
+        a0 = accel([0.0] * 6)
+        B = np.array([accel([1.0 if i2 == k else 0.0 for i2 in range(6)]) - a0 for k in range(6)]).T
+        M = np.linalg.inv(B)                       # V per m/s^2
+        diag.append(np.diag(M))
+        rows.append(M.sum(1))
+        holds.append(-M @ a0)
+    if not diag:
+        raise BadInput("no pose along the trajectory solves the forward kinematics")
+    diag, rows, holds = np.mean(diag, 0), np.mean(rows, 0), np.mean(holds, 0)
+    ff2 = 0.5 * (diag + rows) / 1000.0              # V per mm/s^2
+    ff1 = np.full(6, m.params["c_visc"] / fpv / 1000.0)
+    return {"FF1": ff1, "FF2": ff2, "BIAS": holds, "mass_kg": ff2 * 1000.0 * fpv,
+            "c_visc": m.params["c_visc"], "fpv": fpv}
+
+
+def pid_from_bandwidth(start, hz, zeta):
+    """P, I, D (per joint) placing the closed-loop poles of m s^3 + (c + D) s^2 + P s + I at
+    (s + w)(s^2 + 2 zeta w s + w^2), w = 2 pi hz (SI, then mm and volts)."""
+    w = 2 * np.pi * hz
+    m, c, fpv = start["mass_kg"], start["c_visc"], start["fpv"]
+    P = m * (1 + 2 * zeta) * w * w / fpv / 1000.0
+    D = np.maximum(m * (2 * zeta + 1) * w - c, 0.0) / fpv / 1000.0
+    I = m * w ** 3 / fpv / 1000.0
+    return P, I, D
+
+
+# ------------------------------------------------------------------ evaluation (runs in workers)
+PROBLEM = {}
+
+
+def gains_from_x(x, prob=None):
+    """Search vector -> six INI gain dicts: x = log10 of multipliers of the model's P, I, D,
+    and multipliers of FF1, FF2."""
+    prob = prob or PROBLEM
+    b = prob["base"]
+    out = []
+    for j in range(6):
+        g = dict(prob["fixed"][j])
+        g.update(P=b["P"][j] * 10 ** x[0], I=b["I"][j] * 10 ** x[1], D=b["D"][j] * 10 ** x[2],
+                 FF1=b["FF1"][j] * x[3], FF2=b["FF2"][j] * x[4], FF0=0.0, FF3=0.0, BIAS=b["BIAS"][j])
+        out.append(g)
+    return out
+
+
+def lead_in(cmd, settle):
+    """(commands, index where cmd starts): from HOME at rest a smooth move to
+    cmd's first row (RAMP periods), settle periods there, then cmd."""
+    c0 = cmd[:1]
+    ramp = (0.5 - 0.5 * np.cos(np.pi * np.arange(RAMP) / RAMP))[:, None] * c0
+    return np.vstack([ramp, np.repeat(c0, settle, 0), cmd]), RAMP + settle
+
+
+def trajectory_runs(gains, prob, settles, keep=False):
+    """Closed-loop runs over the trajectory after different settle times (the
+    encoder and DAC quantization make single runs differ by about a count)."""
+    res = []
+    for settle in settles:
+        seq, s = lead_in(prob["cmd"], settle)
+        loop = hg.Loop(gains, ferror_limit_mm=prob["ferror_limit"])
+        r = loop.run(seq, start=s, keep=keep)
+        if keep and r.ferror_mm is not None:
+            r.ferror_mm, r.output_v = r.ferror_mm[s:], r.output_v[s:]
+        res.append(r)
+    return res
+
+
+def step_response(gains, prob, joint=0, step_mm=0.05, gain_factor=1.0, n=600):
+    """Feedback (mm) of joint `joint` after a command step (others hold), after settling;
+    P, I, D scaled by gain_factor (gain-margin test). None when the loop tripped."""
+    g = [dict(x) for x in gains]
+    for x in g:
+        for k in ("P", "I", "D"):
+            x[k] *= gain_factor
+    loop = hg.Loop(g, ferror_limit_mm=prob["ferror_limit"])
+    pre = np.zeros((SETTLE, 6))
+    r0 = loop.run(pre, keep=False)
+    if not r0.ok:
+        return None
+    cmd = np.zeros((n, 6))
+    cmd[:, joint] = step_mm
+    r = loop.run(cmd)
+    if not r.ok:
+        return None
+    fb = cmd[:, joint] - np.r_[r.ferror_mm[1:, joint], r.ferror_mm[-1, joint]]
+    return fb
+
+
+def step_metrics(fb, step_mm=0.05):
+    """(overshoot fraction, settled?) of a step response."""
+    if fb is None or not np.all(np.isfinite(fb)):
+        return np.inf, False
+    over = max(0.0, (fb.max() - step_mm) / step_mm)
+    tail = fb[-150:]
+    settled = np.abs(tail - step_mm).max() < 0.2 * step_mm
+    return over, settled
+
+
+def gain_margin_ok(gains, prob):
+    """The loop still settles with P, I, D doubled (gain margin >= 6 dB)."""
+    fb = step_response(gains, prob, gain_factor=prob["gm_factor"], n=800)
+    over, settled = step_metrics(fb)
+    return settled and over < 1.0
+
+
+def cost(x):
+    """What the search minimizes: worst peak |f-error| over joints and runs (mm),
+    plus penalties for voltage above the limit, step overshoot and gain margin."""
+    prob = PROBLEM
+    gains = gains_from_x(x)
+    runs = trajectory_runs(gains, prob, prob["search_settles"])
+    if not all(r.ok for r in runs):
+        return 1.0 + np.sum([r.periods for r in runs]) * -1e-9
+    peak = max(r.peak_ferror_mm.max() for r in runs)
+    rms = max(r.rms_ferror_mm.max() for r in runs)
+    volts = max(r.peak_output_v.max() for r in runs)
+    c = peak + 0.2 * rms
+    c += 1.0 * max(0.0, volts - prob["vmax"])      # 1 mm per volt over: a hard limit in effect
+    over, settled = step_metrics(step_response(gains, prob))
+    if not settled:
+        return 0.5 + c
+    c += 1.0 * max(0.0, over - prob["max_overshoot"])  # 0.01 mm per % over: hard in effect
+    if not gain_margin_ok(gains, prob):
+        c += 0.05
+    return c
+
+
+def init_worker(prob):
+    PROBLEM.clear()
+    PROBLEM.update(prob)
+
+
+# ------------------------------------------------------------------ frequency response
+def sine_sweep(gains, prob, freqs, joint=0, amp_mm=0.02):
+    """Closed-loop gain and phase (deg) from command to feedback of one joint,
+    by correlating the feedback with the commanded sine over the second half
+    of the run. Feedback of period k is the encoder position read at its start
+    (time k T), the command the one motion issues then."""
+    mags, phases = [], []
+    for f in freqs:
+        loop = hg.Loop(gains, ferror_limit_mm=prob["ferror_limit"])
+        loop.run(np.zeros((SETTLE, 6)), keep=False)
+        cycles = max(4, int(np.ceil(f * 0.3)))
+        n = int(round(cycles / f / PERIOD_S))
+        t = np.arange(n) * PERIOD_S
+        cmd = np.zeros((n, 6))
+        cmd[:, joint] = amp_mm * np.sin(2 * np.pi * f * t)
+        r = loop.run(cmd)
+        if not r.ok:
+            mags.append(np.nan)
+            phases.append(np.nan)
+            continue
+        fb = np.r_[0.0, cmd[:-1, joint] - r.ferror_mm[1:, joint]]   # f-error = previous command - position
+        kk = np.arange(n // 2, n)
+        ref = np.exp(-2j * np.pi * f * t[kk])
+        h = np.sum(fb[kk] * ref) / np.sum(cmd[kk, joint] * ref)
+        mags.append(abs(h))
+        phases.append(np.degrees(np.angle(h)))
+    return np.array(mags), np.array(phases)
+
+
+def loop_margins(gains, prob, freqs):
+    """Open-loop response L = T / (1 - T) from a sweep with the feed-forward
+    terms off (then T = L / (1 + L)); gain margin (dB) at the phase crossover,
+    phase margin (deg) at the gain crossover; nan where none is in the range."""
+    g0 = [dict(g, FF0=0.0, FF1=0.0, FF2=0.0, FF3=0.0) for g in gains]
+    mag, ph = sine_sweep(g0, prob, freqs)
+    T = mag * np.exp(1j * np.radians(ph))
+    L = T / (1 - T)
+    phase = np.degrees(np.unwrap(np.angle(L)))
+    gm = pm = np.nan
+    k = np.where((phase[:-1] > -180) & (phase[1:] <= -180))[0]
+    if len(k):
+        i = k[0]
+        w = (-180 - phase[i]) / (phase[i + 1] - phase[i])
+        gm = -20 * np.log10(np.exp(np.log(abs(L[i])) * (1 - w) + np.log(abs(L[i + 1])) * w))
+    k = np.where((abs(L[:-1]) >= 1) & (abs(L[1:]) < 1))[0]
+    if len(k):
+        i = k[0]
+        w = np.log(abs(L[i])) / (np.log(abs(L[i])) - np.log(abs(L[i + 1])))
+        pm = 180 + phase[i] + w * (phase[i + 1] - phase[i])
+    return L, phase, gm, pm
+
+
+# ------------------------------------------------------------------ output
+def atomic_write(path, write):
+    """write(file) into a temporary beside path, then rename: never a half file."""
+    d = os.path.dirname(os.path.abspath(path)) or "."
+    os.makedirs(d, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=d, prefix=".tmp-", suffix=os.path.splitext(path)[1])
+    try:
+        with os.fdopen(fd, "wb") as f:
+            write(f)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)            # mkstemp made it 0600
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+MARGIN_FREQS = np.logspace(np.log10(5), np.log10(450), 30)
+
+
+def ini_text(gains, pred, source):
+    """The suggestion as INI sections + predicted peaks (comment lines)."""
+    out = []
+    for j, g in enumerate(gains):
+        out.append("[JOINT_%d]" % j)
+        for k in KEYS:
+            out.append("%s = %.6g" % (k, g.get(k, 0.0)))
+        out.append("")
+    out.append("# predicted with these gains on %s (%d closed-loop runs through the board model):" % (source, pred["runs"]))
+    for j in range(6):
+        out.append("# joint %d: peak |f-error| %.5f mm (%.5f..%.5f), peak output %.3f V"
+                   % (j, pred["ferror"][j], pred["ferror_lo"][j], pred["ferror_hi"][j], pred["volts"][j]))
+    if "gm" in pred:
+        out.append("# joint 0 loop margins (sine sweep, feed-forward off): gain margin %.1f dB, phase margin %.0f deg"
+                   % (pred["gm"], pred["pm"]))
+    return "\n".join(out) + "\n"
+
+
+def predict(gains, prob, settles):
+    runs = trajectory_runs(gains, prob, settles)
+    if not all(r.ok for r in runs):
+        bad = next(r for r in runs if not r.ok)
+        at = bad.tripped_at if bad.tripped_at >= 0 else bad.periods
+        return None, "the loop is unstable: |f-error| exceeds %.3g mm (FERROR) %.3f s into the trajectory%s" % (
+            prob["ferror_limit"], at * PERIOD_S,
+            "" if bad.rc == 0 else " (board: %s)" % hg.strerror(bad.rc))
+    fe = np.array([r.peak_ferror_mm for r in runs])
+    return {"ferror": np.median(fe, 0), "ferror_lo": fe.min(0), "ferror_hi": fe.max(0),
+            "volts": np.max([r.peak_output_v for r in runs], 0), "runs": len(runs)}, None
+
+
+def plots(outdir, cur, sug, prob, source):
+    """step.png, ferror.png, bode.png in outdir (each written to a temp, then renamed)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    paths = []
+
+    def save(fig, name):
+        p = os.path.join(outdir, name)
+        atomic_write(p, lambda f: fig.savefig(f, format="png", dpi=100))
+        plt.close(fig)
+        paths.append(p)
+
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for lab, g, st in (("current", cur, "-"), ("suggested", sug, "-")):
+        fb = step_response(g, prob)
+        if fb is not None:
+            ax.plot(np.arange(len(fb)) * PERIOD_S * 1000, fb * 1000, st, label=lab)
+    ax.axhline(50, color="k", lw=0.5)
+    ax.set_xlabel("time (ms)")
+    ax.set_ylabel("joint 0 feedback (um)")
+    ax.set_title("Step response: 0.05 mm command step on joint 0 (model)")
+    ax.set_xlim(0, 300)
+    ax.legend()
+    ax.grid(alpha=0.3)
+    save(fig, "tune_step.png")
+
+    fig, axs = plt.subplots(2, 1, figsize=(10, 6), sharex=True)
+    for lab, g in (("current", cur), ("suggested", sug)):
+        r = trajectory_runs(g, prob, [SETTLE], keep=True)[0]
+        if r.ferror_mm is None or not len(r.ferror_mm):
+            continue
+        t = np.arange(len(r.ferror_mm)) * PERIOD_S
+        j = int(np.argmax(np.abs(r.ferror_mm).max(0)))
+        axs[0].plot(t, r.ferror_mm[:, j] * 1000, lw=0.6,
+                    label="%s (joint %d, peak %.2f um)" % (lab, j, np.abs(r.ferror_mm).max() * 1000))
+        axs[1].plot(t, np.abs(r.output_v).max(1), lw=0.6, label=lab)
+    axs[0].set_ylabel("f-error (um)")
+    axs[0].set_title("Following error over %s (model)" % os.path.basename(source))
+    axs[0].legend(fontsize=8)
+    axs[1].set_ylabel("max |output| (V)")
+    axs[1].set_xlabel("time (s)")
+    for a in axs:
+        a.grid(alpha=0.3)
+    save(fig, "tune_ferror.png")
+
+    freqs = np.logspace(0, np.log10(450), 36)
+    fig, axs = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
+    for (lab, g), col in zip((("current", cur), ("suggested", sug)), ("C0", "C1")):
+        mag, ph = sine_sweep(g, prob, freqs)
+        L, lph, gm, pm = loop_margins(g, prob, freqs)
+        axs[0].semilogx(freqs, 20 * np.log10(np.maximum(abs(L), 1e-6)), "o-", ms=3, color=col,
+                        label="%s: open loop L (GM %.1f dB, PM %.0f deg)" % (lab, gm, pm))
+        axs[0].semilogx(freqs, 20 * np.log10(np.maximum(mag, 1e-6)), "--", color=col,
+                        label="%s: closed loop fb/cmd" % lab)
+        axs[1].semilogx(freqs, lph, "o-", ms=3, color=col, label="%s: open loop L" % lab)
+        axs[1].semilogx(freqs, np.degrees(np.unwrap(np.radians(ph))), "--", color=col, label="%s: closed loop" % lab)
+    axs[0].axhline(0, color="k", lw=0.5)
+    axs[1].axhline(-180, color="k", lw=0.5)
+    axs[0].set_ylabel("gain (dB)")
+    axs[0].set_title("Sine sweep, joint 0, 0.02 mm (model); L from the sweep without feed-forward")
+    axs[1].set_ylabel("phase (deg)")
+    axs[1].set_xlabel("frequency (Hz)")
+    for a in axs:
+        a.grid(alpha=0.3, which="both")
+        a.legend(fontsize=7)
+    save(fig, "tune_bode.png")
+    return paths
+
+
+def search(a, prob, joints, cmd):
+    """Model start + differential evolution on all cores; the best six gain dicts."""
+    start = model_start(cmd)
+    P, I, D = pid_from_bandwidth(start, a.bandwidth, a.damping)
+    prob["base"] = {"P": P, "I": I, "D": D, "FF1": start["FF1"], "FF2": start["FF2"], "BIAS": start["BIAS"]}
+    prob["fixed"] = [{k: g[k] for k in ("DEADBAND", "MAX_OUTPUT", "MAX_ERROR_I", "INPUT_SCALE", "OUTPUT_SCALE",
+                                        "OUTPUT_OFFSET") if k in g} for g in joints]
+    log("model start (%.0f Hz, damping %.2f): P %.3g I %.3g D %.3g FF1 %.4g FF2 %.4g BIAS %.4g (joint 0); "
+        "effective mass %.1f-%.1f kg" % (a.bandwidth, a.damping, P[0], I[0], D[0], start["FF1"][0],
+                                         start["FF2"][0], start["BIAS"][0], start["mass_kg"].min(),
+                                         start["mass_kg"].max()))
+    init_worker(prob)
+    x0 = np.array([0.0, 0.0, 0.0, 1.0, 1.0])
+    log("model start: cost %.5f" % cost(x0))
+    from scipy.optimize import differential_evolution
+    bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)]
+    jobs = max(1, a.jobs)
+    evals = [0]
+    t0 = time.time()
+
+    def progress(xk, convergence):
+        evals[0] += 1
+        log("generation %d: best cost %.5f (%.0f s)" % (evals[0], cost(xk), time.time() - t0))
+
+    if jobs > 1:
+        ctx = multiprocessing.get_context("fork")
+        pool = ctx.Pool(jobs, initializer=init_worker, initargs=(prob,))
+        workers = pool.map
+    else:
+        pool, workers = None, 1
+    try:
+        res = differential_evolution(cost, bounds, x0=x0, maxiter=a.maxiter, popsize=a.popsize,
+                                     seed=a.seed, polish=False, tol=1e-3, updating="deferred",
+                                     workers=workers, callback=progress, init="sobol")
+    finally:
+        if pool:
+            pool.close()
+            pool.join()
+    took = time.time() - t0
+    log("sweep: %d closed-loop evaluations in %.1f s on %d process%s (%.0f per second)"
+        % (res.nfev, took, jobs, "es" if jobs > 1 else "", res.nfev / max(took, 1e-9)))
+    return gains_from_x(res.x)
+
+
+# ------------------------------------------------------------------ main
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="hexaglide tune", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--trajectory", help="recorded joint commands (see docs/tuning.md); "
+                    "default: a generated S-curve move of every axis")
+    ap.add_argument("--ini", default=os.path.join(ROOT, "configs", "hexaglide.ini"),
+                    help="config with the current gains and limits (default configs/hexaglide.ini)")
+    ap.add_argument("--evaluate", action="store_true",
+                    help="no search: predict the INI's gains on the trajectory (exit 1 if unstable)")
+    ap.add_argument("--gains", metavar="FILE",
+                    help="no search: predict and plot these gains (a tune output or INI) against the INI's")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=V",
+                    help="with --evaluate: override a gain on all joints, e.g. P=20")
+    ap.add_argument("--max-volts", type=float, default=None,
+                    help="peak output allowed on the trajectory (default: the current gains' peak, "
+                    "at most MAX_OUTPUT)")
+    ap.add_argument("--max-overshoot", type=float, default=0.15, help="step overshoot allowed (fraction)")
+    ap.add_argument("--bandwidth", type=float, default=25.0, help="start bandwidth, Hz")
+    ap.add_argument("--damping", type=float, default=0.7, help="start damping ratio")
+    ap.add_argument("--maxiter", type=int, default=25, help="generations of differential evolution")
+    ap.add_argument("--popsize", type=int, default=8, help="population per search variable")
+    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="processes (default: all cores)")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--output", help="also write the suggestion to this file")
+    ap.add_argument("--plots", help="directory for tune_step.png, tune_ferror.png, tune_bode.png")
+    a = ap.parse_args(argv)
+
+    try:
+        joints, axes = read_ini(a.ini)
+        if a.trajectory:
+            cmd = load_trajectory(a.trajectory)
+            source = a.trajectory
+        else:
+            cmd = generated_move(axes)
+            source = "the generated move"
+        sets = {}
+        for s in a.set:
+            k, _, v = s.partition("=")
+            if k not in hg.GAIN_KEYS:
+                raise BadInput("--set %s: unknown gain (one of %s)" % (s, " ".join(hg.GAIN_KEYS)))
+            try:
+                sets[k] = float(v)
+            except ValueError:
+                raise BadInput("--set %s: not a number" % s)
+            if not np.isfinite(sets[k]):
+                raise BadInput("--set %s: not a finite number" % s)
+    except BadInput as ex:
+        log(ex)
+        return 2
+    log("trajectory: %s, %d samples (%.1f s)" % (source, len(cmd), len(cmd) * PERIOD_S))
+    cur = [dict(pid_keys(g), **sets) for g in joints]
+    ferror_limit = min(g.get("FERROR", 2.0) for g in joints)
+    prob = {"cmd": cmd, "ferror_limit": ferror_limit, "gm_factor": 2.0,
+            "max_overshoot": a.max_overshoot, "search_settles": [SETTLE, SETTLE + 137]}
+    settles = [SETTLE + 97 * i for i in range(7)]
+
+    cur_pred, why = predict(cur, prob, settles)
+    if a.evaluate:
+        if cur_pred is None:
+            log("gains of %s%s: %s" % (a.ini, " with " + " ".join(a.set) if a.set else "", why))
+            return 1
+        text = ini_text([dict({k: 0.0 for k in KEYS}, **g) for g in cur], cur_pred, source)
+        if a.output:
+            atomic_write(a.output, lambda f: f.write(text.encode()))
+        sys.stdout.write(text)
+        return 0
+    if cur_pred is None:
+        log("current gains: %s (tuning from the model's gains instead)" % why)
+        vcur = None
+    else:
+        vcur = max(r.peak_output_v.max() for r in trajectory_runs(cur, prob, prob["search_settles"]))
+        log("current gains: peak |f-error| %.5f mm, peak output %.3f V"
+            % (cur_pred["ferror"].max(), vcur))
+    vmax_dac = min(g.get("MAX_OUTPUT", 10.0) or 10.0 for g in joints)
+    prob["vmax"] = a.max_volts if a.max_volts is not None else min(vmax_dac, vcur if vcur else vmax_dac)
+    if a.gains:
+        try:
+            given, _ = hg.read_gains(a.gains)
+        except (OSError, ValueError) as ex:
+            log(ex)
+            return 2
+        sug = [dict(c, **g) for c, g in zip(cur, given)]
+        log("gains of %s (no search)" % a.gains)
+    else:
+        sug = search(a, prob, joints, cmd)
+    pred, why = predict(sug, prob, settles)
+    if pred is None:
+        log("no stable gains found: %s" % why)
+        return 1
+    over, settled = step_metrics(step_response(sug, prob))
+    _, _, pred["gm"], pred["pm"] = loop_margins(sug, prob, MARGIN_FREQS)
+    if not settled or not gain_margin_ok(sug, prob) or over > a.max_overshoot + 0.02:
+        log("the best gains found do not meet the stability margins (overshoot %.0f%%, settled %s, "
+            "gain margin 6 dB %s): nothing suggested" % (100 * over, settled, gain_margin_ok(sug, prob)))
+        return 1
+    log("suggested: peak |f-error| %.5f mm (current %s), peak output %.3f V (limit %.3f V), "
+        "step overshoot %.0f%%, stable with P I D doubled; sweep: gain margin %.1f dB, phase margin %.0f deg"
+        % (pred["ferror"].max(), "%.5f mm" % cur_pred["ferror"].max() if cur_pred else "unstable",
+           pred["volts"].max(), prob["vmax"], 100 * over, pred["gm"], pred["pm"]))
+    if cur_pred is not None and pred["ferror"].max() >= cur_pred["ferror"].max():
+        log("note: the suggestion is not better than the current gains on this trajectory "
+            "(%.5f vs %.5f mm): the current gains are already at the encoder's resolution or the "
+            "limits (--max-volts, --max-overshoot) bind" % (pred["ferror"].max(), cur_pred["ferror"].max()))
+    text = ini_text(sug, pred, source)
+    if a.output:
+        atomic_write(a.output, lambda f: f.write(text.encode()))
+    if a.plots:
+        for p in plots(a.plots, cur if cur_pred else sug, sug, prob, source):
+            log("wrote", p)
+    sys.stdout.write(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
