@@ -721,12 +721,17 @@ def gen_fused(u, m, names):
             mcc[i][j] = mcc[j][i]
     qz = [S("qz%d" % i, Q[i]) for i in range(6)]
     qc = [S("qc%d" % i, Q[6 + i]) for i in range(6)]
-    pz = [S("pz%d" % i, Jq[i, i]) for i in range(6)]
-    pc = [[S("pc%d_%d" % (i, j), Jq[i, 6 + j]) for j in range(6)] for i in range(6)]
-    gm = [S("gm%d" % i, gamma[i]) for i in range(6)]
+    # Phi_z is diagonal with Phi_z,k = c_k s_k (a number times an atom: 2 d_k,z),
+    # so A_k = -Phi_c,k / Phi_z,k and b_k = -gamma_k / Phi_z,k are formed with
+    # c_k cancelled symbolically: A_k,Z = 1 exactly, the rest one product by
+    # 1/s_k each (bit-identical to dividing by Phi_z,k when c_k is a power of 2)
+    pivc, pivs = zip(*[Jq[i, i].as_coeff_Mul() for i in range(6)])
+    assert all(x.is_Symbol for x in pivs), pivs
+    gm = [S("gm%d" % i, sp.expand(gamma[i] / pivc[i])) for i in range(6)]
+    Araw = [[sp.expand(-Jq[i, 6 + j] / Jq[i, i]).subs(u.trig) for j in range(6)] for i in range(6)]
     levels = [[(sy, x.subs(u.trig)) for sy, x in lev] for lev in m["levels"]]
     prim = [(sy, sp.sympify(x).subs(u.trig)) for sy, x in prim]
-    levels = prune(levels, [x for _, x in prim])
+    levels = prune(levels, [x for _, x in prim] + [x for row in Araw for x in row])
     hl = [[(sy, hoist(x)) for sy, x in lev] for lev in levels]
     # primitives: hoisted + CSE'd; then the algebra on their symbols
     hp = [(s, hoist(x)) for s, x in prim]
@@ -741,14 +746,16 @@ def gen_fused(u, m, names):
     fz = sp.symbols("fz0:6")
 
     def T(name, expr):
-        expr = hoist(sp.sympify(expr))
-        if expr.is_Number:
-            return expr
+        expr = sp.sympify(expr)
+        if expr.is_Number or expr.free_symbols <= PARAMS:
+            return expr         # constants stay symbolic until used (hoisted there)
+        expr = hoist(expr)
         s = sp.Symbol(name)
         seq.append((s, expr))
         return s
-    ipz = [T("ipz%d" % i, 1 / pz[i]) for i in range(6)]
-    A = [[T("A%d_%d" % (i, j), -pc[i][j] * ipz[i]) for j in range(6)] for i in range(6)]
+    ipz = [T("ipz%d" % i, 1 / pivs[i]) for i in range(6)]
+    A = [[T("A%d_%d" % (i, j), Araw[i][j].subs(pivs[i], 1 / ipz[i])) for j in range(6)]
+         for i in range(6)]
     b = [T("b%d" % i, -gm[i] * ipz[i]) for i in range(6)]
     fq = [T("fq%d" % i, qz[i] + fz[i]) for i in range(6)]
     # T1 = M_cz + A^T M_zz  (6 c-rows x 6 z-cols)
@@ -816,7 +823,7 @@ def gen_fused(u, m, names):
     phi1, pz1, vc1 = outs_s[:6], outs_s[6:12], outs_s[12:]
     ipz1 = [T("ipz1_%d" % k, 1 / pz1[k]) for k in range(6)]
     dl = [T("dl%d" % k, phi1[k] * ipz1[k]) for k in range(6)]
-    rl = T("rl", 1 / (2 * P["l"]))
+    rl = hoist(1 / (2 * P["l"]))
     outs = [("qdd[%d]" % i, qdd_s[i]) for i in range(12)]
     outs += [("q1[%d]" % k, q1[k] - dl[k]) for k in range(6)]
     outs += [("q1[%d]" % i, q1[i]) for i in range(6, 12)]
@@ -854,7 +861,7 @@ def gen_fused(u, m, names):
     # largest bar-length error after the Newton step: Phi is quadratic in
     # z_k, so bar k is left with delta_k^2 (m^2), i.e. delta_k^2 / (2 l) (m)
     lines.append("    {")
-    lines.append("        const double e[6] = {%s};" % ", ".join("%s*%s*rl" % (d.name, d.name) for d in dl))
+    lines.append("        const double e[6] = {%s};" % ", ".join("%s*%s*%s" % (d.name, d.name, pr.doprint(rl)) for d in dl))
     lines.append("        double worst = 0.0;")
     lines.append("        int i;")
     lines.append("        for (i = 0; i < 6; i++)")
