@@ -758,15 +758,25 @@ def gen_fused(u, m, names):
          for i in range(6)]
     b = [T("b%d" % i, -gm[i] * ipz[i]) for i in range(6)]
     fq = [T("fq%d" % i, qz[i] + fz[i]) for i in range(6)]
-    # T1 = M_cz + A^T M_zz  (6 c-rows x 6 z-cols)
-    T1 = [[T("t%d_%d" % (i, kk), mzc[kk][i] + A[kk][i] * mzz[kk]) for kk in range(6)]
-          for i in range(6)]
+    # Eq. 13's M_cc + M_cz A + A^T M_zc + A^T M_zz A with M_zz = m_z I (a
+    # parameter-only scalar, checked) as one Gram matrix plus a sparse
+    # correction: with G = A + M_zc / m_z,
+    #   M_hat = M_cc - M_cz M_zc / m_z + m_z G^T G
+    # (M_zc has two state-dependent columns and one constant one: G's
+    # Z column is constant, the correction a 3x3 block); the right-hand
+    # side Q_c + A^T (Q_z + f_z) - (M_cz + A^T M_zz) b likewise as
+    #   Q_c + A^T (Q_z + f_z - m_z b) - M_cz b.
+    mz = mzz[0]
+    assert all(x == mz for x in mzz) and mz.free_symbols <= PARAMS, mzz
+    G = [[T("g%d_%d" % (kk, i), A[kk][i] + mzc[kk][i] / mz) for i in range(6)] for kk in range(6)]
     Mh = [[None] * 6 for _ in range(6)]
     for i in range(6):
         for j in range(i + 1):
-            e = mcc[i][j] + sum(T1[i][kk] * A[kk][j] + mzc[kk][j] * A[kk][i] for kk in range(6))
+            e = mcc[i][j] - sum(mzc[kk][i] * mzc[kk][j] for kk in range(6)) / mz \
+                + mz * sp.factor_terms(sum(G[kk][i] * G[kk][j] for kk in range(6)))
             Mh[i][j] = T("mh%d_%d" % (i, j), e)
-    rhs = [T("r%d" % i, qc[i] + sum(A[kk][i] * fq[kk] - T1[i][kk] * b[kk] for kk in range(6)))
+    h = [T("h%d" % kk, fq[kk] - mz * b[kk]) for kk in range(6)]
+    rhs = [T("r%d" % i, qc[i] + sum(A[kk][i] * h[kk] - mzc[kk][i] * b[kk] for kk in range(6)))
            for i in range(6)]
     # unrolled LDL^T (M = L D L^T, unit L, reciprocal pivots: no square
     # roots); pivot checks inserted by the printer
