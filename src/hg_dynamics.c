@@ -76,22 +76,16 @@ int hg_model_set_integrator(hg_model *m, int which)
 /* hg_data -> state vectors of m's parametrization. */
 static void pack(const hg_model *m, const hg_data *d, double *q, double *qd)
 {
-    int i, off = 6;
-    for (i = 0; i < 6; i++) {
-        q[i] = d->z_m[i];
-        qd[i] = d->zd_mps[i];
-    }
+    int off = 6;
+    memcpy(q, d->z_m, sizeof d->z_m);  /* memcpy: no aliasing, whole-vector moves */
+    memcpy(qd, d->zd_mps, sizeof d->zd_mps);
     if (m->kind == HG_MODEL_STANDARD) {
-        for (i = 0; i < 12; i++) {
-            q[6 + i] = d->bar_rad[i];
-            qd[6 + i] = d->bar_radps[i];
-        }
+        memcpy(q + 6, d->bar_rad, sizeof d->bar_rad);
+        memcpy(qd + 6, d->bar_radps, sizeof d->bar_radps);
         off = 18;
     }
-    for (i = 0; i < 6; i++) {
-        q[off + i] = d->pose[i];
-        qd[off + i] = d->posed[i];
-    }
+    memcpy(q + off, d->pose, sizeof d->pose);
+    memcpy(qd + off, d->posed, sizeof d->posed);
 }
 
 /* hg_data -> q = [z, c], qd of the lumped-bar model (broken-bar step). */
@@ -107,23 +101,20 @@ static void lumped_pack(const hg_data *d, double *q, double *qd)
 static void unpack(const hg_model *m, const double *q, const double *qd, const double *qdd,
                    hg_data *d)
 {
-    int i, off = 6;
-    for (i = 0; i < 6; i++) {
-        d->z_m[i] = q[i];
-        d->zd_mps[i] = qd[i];
-        d->zdd_mps2[i] = qdd ? qdd[i] : 0.0;
-    }
+    int off = 6;
+    memcpy(d->z_m, q, sizeof d->z_m);
+    memcpy(d->zd_mps, qd, sizeof d->zd_mps);
+    if (qdd)
+        memcpy(d->zdd_mps2, qdd, sizeof d->zdd_mps2);
+    else
+        memset(d->zdd_mps2, 0, sizeof d->zdd_mps2);
     if (m->kind == HG_MODEL_STANDARD) {
-        for (i = 0; i < 12; i++) {
-            d->bar_rad[i] = q[6 + i];
-            d->bar_radps[i] = qd[6 + i];
-        }
+        memcpy(d->bar_rad, q + 6, sizeof d->bar_rad);
+        memcpy(d->bar_radps, qd + 6, sizeof d->bar_radps);
         off = 18;
     }
-    for (i = 0; i < 6; i++) {
-        d->pose[i] = q[off + i];
-        d->posed[i] = qd[off + i];
-    }
+    memcpy(d->pose, q + off, sizeof d->pose);
+    memcpy(d->posed, qd + off, sizeof d->posed);
 }
 
 /* The state at HOME at rest in m's vectors: z = 0, dependent positions by
