@@ -261,13 +261,22 @@ def reduced_atomized(q, qd):
     sW = sp.simplify(P["g"] * (P["m_head"] * s_head + (me + mm / 2) * sum(pts, sp.zeros(3, 1))) / WH)
     s = atoms.vec("sg", R * sG)
     sw = atoms.vec("sw", R * sW)
-    Iw_flat = R * IG * R.T
-    Iw_s = {}
-    for i in range(3):
-        for j in range(i, 3):
-            Iw_s[(i, j)] = atoms.vec("iw%d%d_" % (i, j), [Iw_flat[i, j]])[0]
-            Iw_s[(j, i)] = Iw_s[(i, j)]
-    Iw = sp.Matrix(3, 3, lambda i, j: Iw_s[(i, j)])
+    # rotation in the head frame, where the composite inertia IG is
+    # parameter-only: body angular velocity wb = Eb c_ang' (Eb = R^T E needs
+    # only products of the angles' sin/cos) and its velocity-product rate
+    # Eb' c_ang'; E^T Iw E = Eb^T IG Eb and E^T (Iw alpha + w x Iw w) =
+    # Eb^T (IG alb + wb x IG wb) since w = R wb and alpha = R alb
+    ca, cda = q[9:12, 0], qd[9:12, 0]
+    Rd = sp.zeros(3, 3)
+    for a, ad in zip(ca, cda):
+        Rd += R.diff(a) * ad
+    Wb = sp.simplify(R.T * Rd)
+    wb_flat = sp.Matrix([Wb[2, 1], Wb[0, 2], Wb[1, 0]])
+    Eb_flat = wb_flat.jacobian(cda)
+    alb_flat = (Eb_flat * sp.Matrix(cda)).jacobian(ca) * sp.Matrix(cda)
+    Eb = [atoms.vec("eb%d_" % j, Eb_flat[:, j]) for j in range(3)]
+    wb = atoms.vec("wb", wb_flat)
+    alb = atoms.vec("alb", alb_flat)
     # level 2: per joint and head vectors
     atoms.level()
     ez = sp.Matrix([0, 0, 1])
@@ -282,9 +291,9 @@ def reduced_atomized(q, qd):
     vs = atoms.vec("vs", w.cross(s))
     agb = atoms.vec("ag", alpha.cross(s) + w.cross(vs))
     f = [atoms.vec("f%d_" % j, s.cross(E[j])) for j in range(3)]
-    Iww = atoms.vec("iww", Iw * w)
-    gyro = atoms.vec("gy", Iw * alpha + w.cross(Iww))
-    IE = [atoms.vec("ie%d_" % j, Iw * E[j]) for j in range(3)]
+    Iww = atoms.vec("iww", IG * wb)
+    gyro = atoms.vec("gy", IG * alb + wb.cross(Iww))
+    IE = [atoms.vec("ie%d_" % j, IG * Eb[j]) for j in range(3)]
     # outputs
     M = sp.zeros(12, 12)
     Q = sp.zeros(12, 1)
@@ -309,9 +318,9 @@ def reduced_atomized(q, qd):
         M[6 + i, 6 + i] = mH
         for j in range(3):
             M[6 + i, 9 + j] = M[9 + j, 6 + i] = -mH * f[j][i]
-            M[9 + i, 9 + j] = mH * (f[i].T * f[j])[0] + (E[i].T * IE[j])[0]
+            M[9 + i, 9 + j] = mH * (f[i].T * f[j])[0] + (Eb[i].T * IE[j])[0]
         Q[6 + i] = -mH * agb[i]
-        Q[9 + i] = mH * (f[i].T * agb)[0] - (E[i].T * gyro)[0] \
+        Q[9 + i] = mH * (f[i].T * agb)[0] - (Eb[i].T * gyro)[0] \
             - WH * (E[i][0] * sw[1] - E[i][1] * sw[0])
     Q[8] -= WH
     V += WH * (Pp[2] + sw[2])

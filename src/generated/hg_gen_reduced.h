@@ -9,17 +9,17 @@
 #include "hg_params.h"
 
 #define HG_GEN_REDUCED_NCONST 36  /* length of the constant table k[] */
-#define HG_GEN_REDUCED_TERMS_FLOPS 949
+#define HG_GEN_REDUCED_TERMS_FLOPS 864
 #define HG_GEN_REDUCED_CONSTRAINTS_FLOPS 395
 #define HG_GEN_REDUCED_POTENTIAL_FLOPS 17
 #define HG_GEN_REDUCED_STABILIZE_FLOPS 269
-#define HG_GEN_FUSED_STEP_FLOPS 1980
-#define HG_GEN_FUSED_ACCEL_FLOPS 1579
+#define HG_GEN_FUSED_STEP_FLOPS 1906
+#define HG_GEN_FUSED_ACCEL_FLOPS 1505
 
 /* Fill k[HG_GEN_REDUCED_NCONST] with the parameter-only subexpressions (129 flops). */
 void hg_gen_reduced_init(const hg_params *p, double *k);
 
-/* Mass matrix blocks (M_zz diagonal), Q = gravity - velocity terms, constraint Jacobian (Phi_z diagonal) and gamma = (Phi_q q')_q q' (949 flops) */
+/* Mass matrix blocks (M_zz diagonal), Q = gravity - velocity terms, constraint Jacobian (Phi_z diagonal) and gamma = (Phi_q q')_q q' (864 flops) */
 void hg_gen_reduced_terms(const double *k, const double q[12], const double qd[12],
                           const double sc[6],
                           double Mzz[6], double Mzc[36], double Mcc[36], double Q[12],
@@ -39,11 +39,11 @@ void hg_gen_reduced_stabilize(const double *k, const double q[12], const double 
 void hg_gen_reduced_potential(const double *k, const double q[12], const double sc[6],
                               double *v);
 
-/* The Reduced Cartesian accelerations in one function (the first part of hg_gen_fused_step, for the stages of higher-order schemes): with carriage forces fz, qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T). 0 or HG_ERR_SINGULAR_MASS (1579 flops) */
+/* The Reduced Cartesian accelerations in one function (the first part of hg_gen_fused_step, for the stages of higher-order schemes): with carriage forces fz, qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T). 0 or HG_ERR_SINGULAR_MASS (1505 flops) */
 int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],
                        const double sc[6], const double fz[6], double qdd[12]);
 
-/* The whole Reduced Cartesian step in one function (the paper's future work): with carriage forces fz, the accelerations qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T), improved Euler over dt, one Newton step on z and z' = A c' at the predicted state; sc1 = sin/cos of q1's head angles, residual_m the largest bar-length error left (m). 0 or HG_ERR_SINGULAR_MASS (1980 flops, sin/cos not counted) */
+/* The whole Reduced Cartesian step in one function (the paper's future work): with carriage forces fz, the accelerations qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T), improved Euler over dt, one Newton step on z and z' = A c' at the predicted state; sc1 = sin/cos of q1's head angles, residual_m the largest bar-length error left (m). 0 or HG_ERR_SINGULAR_MASS (1906 flops, sin/cos not counted) */
 int hg_gen_fused_step(const double *k, const double q[12], const double qd[12],
                       const double sc[6], const double fz[6], double dt,
                       double q1[12], double qd1[12], double qdd[12], double sc1[6],
