@@ -737,10 +737,10 @@ def gen_fused(u, m, names):
     pivc, pivs = zip(*[Jq[i, i].as_coeff_Mul() for i in range(6)])
     assert all(x.is_Symbol for x in pivs), pivs
     gm = [S("gm%d" % i, sp.expand(gamma[i] / pivc[i])) for i in range(6)]
-    Araw = [[sp.expand(-Jq[i, 6 + j] / Jq[i, i]).subs(u.trig) for j in range(6)] for i in range(6)]
+    Anum = [[sp.expand(-Jq[i, 6 + j] / pivc[i]).subs(u.trig) for j in range(6)] for i in range(6)]
     levels = [[(sy, x.subs(u.trig)) for sy, x in lev] for lev in m["levels"]]
     prim = [(sy, sp.sympify(x).subs(u.trig)) for sy, x in prim]
-    levels = prune(levels, [x for _, x in prim] + [x for row in Araw for x in row])
+    levels = prune(levels, [x for _, x in prim] + [x for row in Anum for x in row])
     hl = [[(sy, hoist(x)) for sy, x in lev] for lev in levels]
     # primitives: hoisted + CSE'd; then the algebra on their symbols
     hp = [(s, hoist(x)) for s, x in prim]
@@ -763,8 +763,8 @@ def gen_fused(u, m, names):
         seq.append((s, expr))
         return s
     ipz = [T("ipz%d" % i, 1 / pivs[i]) for i in range(6)]
-    A = [[T("A%d_%d" % (i, j), Araw[i][j].subs(pivs[i], 1 / ipz[i])) for j in range(6)]
-         for i in range(6)]
+    A = [[T("A%d_%d" % (i, j), 1 if Anum[i][j] == pivs[i] else Anum[i][j] * ipz[i])
+          for j in range(6)] for i in range(6)]
     b = [T("b%d" % i, -gm[i] * ipz[i]) for i in range(6)]
     fq = [T("fq%d" % i, qz[i] + fz[i]) for i in range(6)]
     # Eq. 13's M_cc + M_cz A + A^T M_zc + A^T M_zz A with M_zz = m_z I (a
@@ -840,13 +840,15 @@ def gen_fused(u, m, names):
         lreps, lred = sp.cse(hx, symbols=sp.numbered_symbols("cs%d_" % li), optimizations="basic")
         seq += list(lreps) + [(sy, x) for (sy, _), x in zip(lev, lred)]
     phi1, pz1, vc1 = outs_s[:6], outs_s[6:12], outs_s[12:]
-    ipz1 = [T("ipz1_%d" % k, 1 / pz1[k]) for k in range(6)]
-    dl = [T("dl%d" % k, phi1[k] * ipz1[k]) for k in range(6)]
+    # Phi_z,k = c_k s_k again: one division by the atom s_k, c_k folded in
+    pz1c, pz1s = zip(*[x.as_coeff_Mul() for x in pz1])
+    ipz1 = [T("ipz1_%d" % k, 1 / pz1s[k]) for k in range(6)]
+    dl = [T("dl%d" % k, phi1[k] * ipz1[k] / pz1c[k]) for k in range(6)]
     rl = hoist(1 / (2 * P["l"]))
     outs = [("qdd[%d]" % i, qdd_s[i]) for i in range(12)]
     outs += [("q1[%d]" % k, q1[k] - dl[k]) for k in range(6)]
     outs += [("q1[%d]" % i, q1[i]) for i in range(6, 12)]
-    outs += [("qd1[%d]" % k, -vc1[k] * ipz1[k]) for k in range(6)]
+    outs += [("qd1[%d]" % k, (-vc1[k] / pz1c[k]) * ipz1[k]) for k in range(6)]
     outs += [("qd1[%d]" % i, qd1[i]) for i in range(6, 12)]
     pr = Printer({**names, **u.kmap(), **{s: "fz[%d]" % i for i, s in enumerate(fz)},
                   **{s: "sc1[%d]" % i for i, s in enumerate(sc1)}})

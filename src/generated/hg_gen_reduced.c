@@ -674,7 +674,7 @@ void hg_gen_reduced_potential(const double *k, const double q[12], const double 
     *v = k[29]*(q[8] + sw2) + k[31]*q[0] + k[31]*q[1] + k[31]*q[2] + k[31]*q[3] + k[31]*q[4] + k[31]*q[5];
 }
 
-/* The Reduced Cartesian accelerations in one function (the first part of hg_gen_fused_step, for the stages of higher-order schemes): with carriage forces fz, qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T). 0 or HG_ERR_SINGULAR_MASS (1505 flops) */
+/* The Reduced Cartesian accelerations in one function (the first part of hg_gen_fused_step, for the stages of higher-order schemes): with carriage forces fz, qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T). 0 or HG_ERR_SINGULAR_MASS (1487 flops) */
 int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],
                        const double sc[6], const double fz[6], double qdd[12])
 {
@@ -926,33 +926,33 @@ int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],
     const double ipz5 = 1.0/(d5_2);
     const double A0_0 = d0_0*ipz0;
     const double A0_1 = d0_1*ipz0;
-    const double A0_3 = e0_0*ipz0*n0_0 + e0_1*ipz0*n0_1 + e0_2*ipz0*n0_2;
-    const double A0_4 = e1_0*ipz0*n0_0 + e1_1*ipz0*n0_1;
+    const double A0_3 = ipz0*(e0_0*n0_0 + e0_1*n0_1 + e0_2*n0_2);
+    const double A0_4 = ipz0*(e1_0*n0_0 + e1_1*n0_1);
     const double A0_5 = ipz0*n0_2;
     const double A1_0 = d1_0*ipz1;
     const double A1_1 = d1_1*ipz1;
-    const double A1_3 = e0_0*ipz1*n1_0 + e0_1*ipz1*n1_1 + e0_2*ipz1*n1_2;
-    const double A1_4 = e1_0*ipz1*n1_0 + e1_1*ipz1*n1_1;
+    const double A1_3 = ipz1*(e0_0*n1_0 + e0_1*n1_1 + e0_2*n1_2);
+    const double A1_4 = ipz1*(e1_0*n1_0 + e1_1*n1_1);
     const double A1_5 = ipz1*n1_2;
     const double A2_0 = d2_0*ipz2;
     const double A2_1 = d2_1*ipz2;
-    const double A2_3 = e0_0*ipz2*n2_0 + e0_1*ipz2*n2_1 + e0_2*ipz2*n2_2;
-    const double A2_4 = e1_0*ipz2*n2_0 + e1_1*ipz2*n2_1;
+    const double A2_3 = ipz2*(e0_0*n2_0 + e0_1*n2_1 + e0_2*n2_2);
+    const double A2_4 = ipz2*(e1_0*n2_0 + e1_1*n2_1);
     const double A2_5 = ipz2*n2_2;
     const double A3_0 = d3_0*ipz3;
     const double A3_1 = d3_1*ipz3;
-    const double A3_3 = e0_0*ipz3*n3_0 + e0_1*ipz3*n3_1 + e0_2*ipz3*n3_2;
-    const double A3_4 = e1_0*ipz3*n3_0 + e1_1*ipz3*n3_1;
+    const double A3_3 = ipz3*(e0_0*n3_0 + e0_1*n3_1 + e0_2*n3_2);
+    const double A3_4 = ipz3*(e1_0*n3_0 + e1_1*n3_1);
     const double A3_5 = ipz3*n3_2;
     const double A4_0 = d4_0*ipz4;
     const double A4_1 = d4_1*ipz4;
-    const double A4_3 = e0_0*ipz4*n4_0 + e0_1*ipz4*n4_1 + e0_2*ipz4*n4_2;
-    const double A4_4 = e1_0*ipz4*n4_0 + e1_1*ipz4*n4_1;
+    const double A4_3 = ipz4*(e0_0*n4_0 + e0_1*n4_1 + e0_2*n4_2);
+    const double A4_4 = ipz4*(e1_0*n4_0 + e1_1*n4_1);
     const double A4_5 = ipz4*n4_2;
     const double A5_0 = d5_0*ipz5;
     const double A5_1 = d5_1*ipz5;
-    const double A5_3 = e0_0*ipz5*n5_0 + e0_1*ipz5*n5_1 + e0_2*ipz5*n5_2;
-    const double A5_4 = e1_0*ipz5*n5_0 + e1_1*ipz5*n5_1;
+    const double A5_3 = ipz5*(e0_0*n5_0 + e0_1*n5_1 + e0_2*n5_2);
+    const double A5_4 = ipz5*(e1_0*n5_0 + e1_1*n5_1);
     const double A5_5 = ipz5*n5_2;
     const double b0 = -gm0*ipz0;
     const double b1 = -gm1*ipz1;
@@ -1109,7 +1109,7 @@ int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],
     return 0;
 }
 
-/* The whole Reduced Cartesian step in one function (the paper's future work): with carriage forces fz, the accelerations qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T), improved Euler over dt, one Newton step on z and z' = A c' at the predicted state; sc1 = sin/cos of q1's head angles, residual_m the largest bar-length error left (m). 0 or HG_ERR_SINGULAR_MASS (1906 flops, sin/cos not counted) */
+/* The whole Reduced Cartesian step in one function (the paper's future work): with carriage forces fz, the accelerations qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T), improved Euler over dt, one Newton step on z and z' = A c' at the predicted state; sc1 = sin/cos of q1's head angles, residual_m the largest bar-length error left (m). 0 or HG_ERR_SINGULAR_MASS (1870 flops, sin/cos not counted) */
 int hg_gen_fused_step(const double *k, const double q[12], const double qd[12],
                       const double sc[6], const double fz[6], double dt,
                       double q1[12], double qd1[12], double qdd[12], double sc1[6],
@@ -1363,33 +1363,33 @@ int hg_gen_fused_step(const double *k, const double q[12], const double qd[12],
     const double ipz5 = 1.0/(d5_2);
     const double A0_0 = d0_0*ipz0;
     const double A0_1 = d0_1*ipz0;
-    const double A0_3 = e0_0*ipz0*n0_0 + e0_1*ipz0*n0_1 + e0_2*ipz0*n0_2;
-    const double A0_4 = e1_0*ipz0*n0_0 + e1_1*ipz0*n0_1;
+    const double A0_3 = ipz0*(e0_0*n0_0 + e0_1*n0_1 + e0_2*n0_2);
+    const double A0_4 = ipz0*(e1_0*n0_0 + e1_1*n0_1);
     const double A0_5 = ipz0*n0_2;
     const double A1_0 = d1_0*ipz1;
     const double A1_1 = d1_1*ipz1;
-    const double A1_3 = e0_0*ipz1*n1_0 + e0_1*ipz1*n1_1 + e0_2*ipz1*n1_2;
-    const double A1_4 = e1_0*ipz1*n1_0 + e1_1*ipz1*n1_1;
+    const double A1_3 = ipz1*(e0_0*n1_0 + e0_1*n1_1 + e0_2*n1_2);
+    const double A1_4 = ipz1*(e1_0*n1_0 + e1_1*n1_1);
     const double A1_5 = ipz1*n1_2;
     const double A2_0 = d2_0*ipz2;
     const double A2_1 = d2_1*ipz2;
-    const double A2_3 = e0_0*ipz2*n2_0 + e0_1*ipz2*n2_1 + e0_2*ipz2*n2_2;
-    const double A2_4 = e1_0*ipz2*n2_0 + e1_1*ipz2*n2_1;
+    const double A2_3 = ipz2*(e0_0*n2_0 + e0_1*n2_1 + e0_2*n2_2);
+    const double A2_4 = ipz2*(e1_0*n2_0 + e1_1*n2_1);
     const double A2_5 = ipz2*n2_2;
     const double A3_0 = d3_0*ipz3;
     const double A3_1 = d3_1*ipz3;
-    const double A3_3 = e0_0*ipz3*n3_0 + e0_1*ipz3*n3_1 + e0_2*ipz3*n3_2;
-    const double A3_4 = e1_0*ipz3*n3_0 + e1_1*ipz3*n3_1;
+    const double A3_3 = ipz3*(e0_0*n3_0 + e0_1*n3_1 + e0_2*n3_2);
+    const double A3_4 = ipz3*(e1_0*n3_0 + e1_1*n3_1);
     const double A3_5 = ipz3*n3_2;
     const double A4_0 = d4_0*ipz4;
     const double A4_1 = d4_1*ipz4;
-    const double A4_3 = e0_0*ipz4*n4_0 + e0_1*ipz4*n4_1 + e0_2*ipz4*n4_2;
-    const double A4_4 = e1_0*ipz4*n4_0 + e1_1*ipz4*n4_1;
+    const double A4_3 = ipz4*(e0_0*n4_0 + e0_1*n4_1 + e0_2*n4_2);
+    const double A4_4 = ipz4*(e1_0*n4_0 + e1_1*n4_1);
     const double A4_5 = ipz4*n4_2;
     const double A5_0 = d5_0*ipz5;
     const double A5_1 = d5_1*ipz5;
-    const double A5_3 = e0_0*ipz5*n5_0 + e0_1*ipz5*n5_1 + e0_2*ipz5*n5_2;
-    const double A5_4 = e1_0*ipz5*n5_0 + e1_1*ipz5*n5_1;
+    const double A5_3 = ipz5*(e0_0*n5_0 + e0_1*n5_1 + e0_2*n5_2);
+    const double A5_4 = ipz5*(e1_0*n5_0 + e1_1*n5_1);
     const double A5_5 = ipz5*n5_2;
     const double b0 = -gm0*ipz0;
     const double b1 = -gm1*ipz1;
@@ -1614,18 +1614,18 @@ int hg_gen_fused_step(const double *k, const double q[12], const double qd[12],
     const double s_d5_0 = -cs1_2 - s_r5_0;
     const double s_d5_1 = k[18] - q1_7 - s_r5_1;
     const double s_d5_2 = cs1_1 + q1_5 - s_r5_2;
-    const double ipz1_0 = (1.0/2.0)/s_d0_2;
-    const double ipz1_1 = (1.0/2.0)/s_d1_2;
-    const double ipz1_2 = (1.0/2.0)/s_d2_2;
-    const double ipz1_3 = (1.0/2.0)/s_d3_2;
-    const double ipz1_4 = (1.0/2.0)/s_d4_2;
-    const double ipz1_5 = (1.0/2.0)/s_d5_2;
-    const double dl0 = ipz1_0*(k[30] + (s_d0_0*s_d0_0) + (s_d0_1*s_d0_1) + (s_d0_2*s_d0_2));
-    const double dl1 = ipz1_1*(k[30] + (s_d1_0*s_d1_0) + (s_d1_1*s_d1_1) + (s_d1_2*s_d1_2));
-    const double dl2 = ipz1_2*(k[30] + (s_d2_0*s_d2_0) + (s_d2_1*s_d2_1) + (s_d2_2*s_d2_2));
-    const double dl3 = ipz1_3*(k[30] + (s_d3_0*s_d3_0) + (s_d3_1*s_d3_1) + (s_d3_2*s_d3_2));
-    const double dl4 = ipz1_4*(k[30] + (s_d4_0*s_d4_0) + (s_d4_1*s_d4_1) + (s_d4_2*s_d4_2));
-    const double dl5 = ipz1_5*(k[30] + (s_d5_0*s_d5_0) + (s_d5_1*s_d5_1) + (s_d5_2*s_d5_2));
+    const double ipz1_0 = 1.0/(s_d0_2);
+    const double ipz1_1 = 1.0/(s_d1_2);
+    const double ipz1_2 = 1.0/(s_d2_2);
+    const double ipz1_3 = 1.0/(s_d3_2);
+    const double ipz1_4 = 1.0/(s_d4_2);
+    const double ipz1_5 = 1.0/(s_d5_2);
+    const double dl0 = (1.0/2.0)*ipz1_0*(k[30] + (s_d0_0*s_d0_0) + (s_d0_1*s_d0_1) + (s_d0_2*s_d0_2));
+    const double dl1 = (1.0/2.0)*ipz1_1*(k[30] + (s_d1_0*s_d1_0) + (s_d1_1*s_d1_1) + (s_d1_2*s_d1_2));
+    const double dl2 = (1.0/2.0)*ipz1_2*(k[30] + (s_d2_0*s_d2_0) + (s_d2_1*s_d2_1) + (s_d2_2*s_d2_2));
+    const double dl3 = (1.0/2.0)*ipz1_3*(k[30] + (s_d3_0*s_d3_0) + (s_d3_1*s_d3_1) + (s_d3_2*s_d3_2));
+    const double dl4 = (1.0/2.0)*ipz1_4*(k[30] + (s_d4_0*s_d4_0) + (s_d4_1*s_d4_1) + (s_d4_2*s_d4_2));
+    const double dl5 = (1.0/2.0)*ipz1_5*(k[30] + (s_d5_0*s_d5_0) + (s_d5_1*s_d5_1) + (s_d5_2*s_d5_2));
     qdd[0] = zdd0;
     qdd[1] = zdd1;
     qdd[2] = zdd2;
@@ -1650,12 +1650,12 @@ int hg_gen_fused_step(const double *k, const double q[12], const double qd[12],
     q1[9] = q1_9;
     q1[10] = q1_10;
     q1[11] = q1_11;
-    qd1[0] = ipz1_0*(2*s_d0_0*(qd1_6 - s_r0_1*s_w2 + s_r0_2*s_w1) + 2*s_d0_1*(qd1_7 + s_r0_0*s_w2 - s_r0_2*s_w0) + 2*s_d0_2*(qd1_8 - s_r0_0*s_w1 + s_r0_1*s_w0));
-    qd1[1] = ipz1_1*(2*s_d1_0*(qd1_6 - s_r1_1*s_w2 + s_r1_2*s_w1) + 2*s_d1_1*(qd1_7 + s_r1_0*s_w2 - s_r1_2*s_w0) + 2*s_d1_2*(qd1_8 - s_r1_0*s_w1 + s_r1_1*s_w0));
-    qd1[2] = ipz1_2*(2*s_d2_0*(qd1_6 - s_r2_1*s_w2 + s_r2_2*s_w1) + 2*s_d2_1*(qd1_7 + s_r2_0*s_w2 - s_r2_2*s_w0) + 2*s_d2_2*(qd1_8 - s_r2_0*s_w1 + s_r2_1*s_w0));
-    qd1[3] = ipz1_3*(2*s_d3_0*(qd1_6 - s_r3_1*s_w2 + s_r3_2*s_w1) + 2*s_d3_1*(qd1_7 + s_r3_0*s_w2 - s_r3_2*s_w0) + 2*s_d3_2*(qd1_8 - s_r3_0*s_w1 + s_r3_1*s_w0));
-    qd1[4] = ipz1_4*(2*s_d4_0*(qd1_6 - s_r4_1*s_w2 + s_r4_2*s_w1) + 2*s_d4_1*(qd1_7 + s_r4_0*s_w2 - s_r4_2*s_w0) + 2*s_d4_2*(qd1_8 - s_r4_0*s_w1 + s_r4_1*s_w0));
-    qd1[5] = ipz1_5*(2*s_d5_0*(qd1_6 - s_r5_1*s_w2 + s_r5_2*s_w1) + 2*s_d5_1*(qd1_7 + s_r5_0*s_w2 - s_r5_2*s_w0) + 2*s_d5_2*(qd1_8 - s_r5_0*s_w1 + s_r5_1*s_w0));
+    qd1[0] = ipz1_0*(s_d0_0*(qd1_6 - s_r0_1*s_w2 + s_r0_2*s_w1) + s_d0_1*(qd1_7 + s_r0_0*s_w2 - s_r0_2*s_w0) + s_d0_2*(qd1_8 - s_r0_0*s_w1 + s_r0_1*s_w0));
+    qd1[1] = ipz1_1*(s_d1_0*(qd1_6 - s_r1_1*s_w2 + s_r1_2*s_w1) + s_d1_1*(qd1_7 + s_r1_0*s_w2 - s_r1_2*s_w0) + s_d1_2*(qd1_8 - s_r1_0*s_w1 + s_r1_1*s_w0));
+    qd1[2] = ipz1_2*(s_d2_0*(qd1_6 - s_r2_1*s_w2 + s_r2_2*s_w1) + s_d2_1*(qd1_7 + s_r2_0*s_w2 - s_r2_2*s_w0) + s_d2_2*(qd1_8 - s_r2_0*s_w1 + s_r2_1*s_w0));
+    qd1[3] = ipz1_3*(s_d3_0*(qd1_6 - s_r3_1*s_w2 + s_r3_2*s_w1) + s_d3_1*(qd1_7 + s_r3_0*s_w2 - s_r3_2*s_w0) + s_d3_2*(qd1_8 - s_r3_0*s_w1 + s_r3_1*s_w0));
+    qd1[4] = ipz1_4*(s_d4_0*(qd1_6 - s_r4_1*s_w2 + s_r4_2*s_w1) + s_d4_1*(qd1_7 + s_r4_0*s_w2 - s_r4_2*s_w0) + s_d4_2*(qd1_8 - s_r4_0*s_w1 + s_r4_1*s_w0));
+    qd1[5] = ipz1_5*(s_d5_0*(qd1_6 - s_r5_1*s_w2 + s_r5_2*s_w1) + s_d5_1*(qd1_7 + s_r5_0*s_w2 - s_r5_2*s_w0) + s_d5_2*(qd1_8 - s_r5_0*s_w1 + s_r5_1*s_w0));
     qd1[6] = qd1_6;
     qd1[7] = qd1_7;
     qd1[8] = qd1_8;
