@@ -109,7 +109,7 @@ def main():
         p = again["ferror"][j]
         r = fe[j] / p if p > 0 else np.inf
         ratios.append(r)
-        # within the tolerance of the median, or inside the spread of the 7 offline runs
+        # within the tolerance of the median, or inside the spread of the offline runs
         # (the encoder's 1 um counts make single runs differ by up to a count)
         good = abs(r - 1) <= a.tolerance or again["ferror_lo"][j] <= fe[j] <= again["ferror_hi"][j]
         ok &= good
