@@ -1,6 +1,7 @@
 # Virtual Hexaglide for LinuxCNC - top-level build.
 #   make          build the realtime modules and the host tool build/hexaglide
-#   make install  put the modules in LinuxCNC's module directory (root)
+#   make install  put the modules in LinuxCNC's module directory and the
+#                 man pages in $(MANDIR)/man9 (root); make uninstall removes them
 #   make test     all tests; ends with "N passed, N failed"
 #   make demo     the virtual machine: home, run G-code, plots in out/
 #   make run      the same machine in AXIS
@@ -15,7 +16,12 @@ ifeq ($(SANITIZE),1)
 BUILD   := build/asan
 SANFLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 endif
-CFLAGS_HOST := -std=gnu99 -O2 -g -Wall -Wextra -Werror -Isrc -Isrc/generated $(SANFLAGS)
+# -ffp-contract=off here and in src/Makefile.modules: no fused multiply-add in
+# either build, so the host (replay, sim) and the realtime module round alike
+# (docs/replay.md); and the same -fno-builtin-sin/cos/sincos as the realtime
+# build (rtapi_math has no sincos), so both call the same libm functions
+RT_SAME_FLAGS := -ffp-contract=off -fno-builtin-sin -fno-builtin-cos -fno-builtin-sincos
+CFLAGS_HOST := -std=gnu99 -O2 -g $(RT_SAME_FLAGS) -Wall -Wextra -Werror -Isrc -Isrc/generated -MMD -MP $(SANFLAGS)
 LDLIBS_HOST := -lm $(SANFLAGS)
 
 # pure math, no LinuxCNC dependency: every src/hg_*.c and src/generated/*.c
@@ -28,7 +34,11 @@ UNIT_BINS := $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(UNIT_SRCS))
 BENCH_SRCS := $(sort $(wildcard bench/bench_*.c))
 BENCH_BINS := $(patsubst bench/%.c,$(BUILD)/bench/%,$(BENCH_SRCS))
 
-.PHONY: all deps modules host lib install test check fuzz soak demo run bench clean unit-tests
+# man pages: `man 9 hexaglidekins` after make install
+MANDIR  ?= /usr/local/share/man
+MAN9    := $(wildcard docs/man/man9/*.9)
+
+.PHONY: all deps modules host lib install uninstall test check fuzz soak demo run bench clean unit-tests
 
 all: deps host modules
 
@@ -46,7 +56,8 @@ $(BUILD)/pic/%.o: src/%.c $(wildcard src/*.h src/generated/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_HOST) -fPIC -c -o $@ $<
 
-$(BUILD)/host/%.o: src/%.c $(wildcard src/*.h src/generated/*.h src/cli/*.h)
+# header dependencies from the compiler (-MMD): build/host/**/*.d
+$(BUILD)/host/%.o: src/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_HOST) -c -o $@ $<
 
@@ -66,6 +77,14 @@ modules: deps
 
 install: modules
 	$(MAKE) -s -C $(BUILD)/rt -f $(CURDIR)/src/Makefile.modules SRC=$(CURDIR)/src install
+	install -d $(DESTDIR)$(MANDIR)/man9
+	$(if $(MAN9),install -m 644 $(MAN9) $(DESTDIR)$(MANDIR)/man9/)
+	-mandb -q $(DESTDIR)$(MANDIR) >/dev/null 2>&1
+
+uninstall:
+	@mkdir -p $(BUILD)/rt
+	$(MAKE) -s -C $(BUILD)/rt -f $(CURDIR)/src/Makefile.modules SRC=$(CURDIR)/src uninstall
+	rm -f $(addprefix $(DESTDIR)$(MANDIR)/man9/,$(notdir $(MAN9)))
 
 test:
 	@tools/install-deps.sh test
@@ -109,3 +128,5 @@ run: all
 
 clean:
 	rm -rf $(BUILD)
+
+-include $(shell find $(BUILD)/host $(BUILD)/tests -name '*.d' 2>/dev/null)

@@ -307,7 +307,7 @@ static int project_run(const hg_params *p, hg_model_kind kind, const double volt
  * it is within 0.08 um and 1.1 urad of itself at 0.1 ms and 0.2 ms time
  * constant, i.e. of the hard-constraint solution. The project runs twice:
  * at the servo period and at a tenth of it. Its integrator (improved
- * Euler, src/hg_step.h) is first order, so its difference to MuJoCo must
+ * Euler, src/hg_integrate.h) is first order, so its difference to MuJoCo must
  * shrink about tenfold: then the difference is integration error, not a
  * difference in the machine. Bounds are about 2.5 to 3 times the
  * differences measured when hg_dynamics landed (e.g. (a) at 1 ms: 6.0 um,

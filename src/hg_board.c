@@ -216,14 +216,14 @@ static int integrate(hg_board *b, const double volts[6], double dt)
     unsigned i, n = b->substeps;
     double h = dt / (double)n;
     int rc = 0;
-    b->d_saved = b->d;
+    memcpy(&b->d_saved, &b->d, HG_DATA_STATE_BYTES); /* the state, not the step's scratch */
     for (i = 0; i < n && rc == 0; i++) {
         rc = hg_step(&b->m, &b->d, volts, h);
         if (rc == 0 && !state_finite(&b->d))
             rc = HG_ERR_STATE_NONFINITE;
     }
     if (rc)
-        b->d = b->d_saved;
+        memcpy(&b->d, &b->d_saved, HG_DATA_STATE_BYTES);
     return rc;
 }
 

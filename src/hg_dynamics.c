@@ -1,10 +1,16 @@
 /* hg_dynamics.c - the public dynamics API: model names, model
- * construction, reset at HOME and one checked integration step that
- * dispatches to the parametrization's step (hg_step_*.c). */
-#include <math.h>
-#include <string.h>
+ * construction, reset at HOME and one checked integration step: the
+ * model's scheme (hg_integrate.c) on the parametrization's accelerations
+ * and stabilization (hg_step_*.c). */
+#include "hg_math.h"
+#include "hg_string.h"
 #include "hg_dynamics.h"
-#include "hg_step.h"
+#include "hg_system.h"
+#include "hg_integrate.h"
+#include "hg_step_joints.h"
+#include "hg_step_standard.h"
+#include "hg_step_cartesian.h"
+#include "hg_step_broken.h"
 #include "hg_forces.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
@@ -120,44 +126,30 @@ static void unpack(const hg_model *m, const double *q, const double *qd, const d
     }
 }
 
-/* Bar angles (phi, theta) of u = (A - B)/l = Rx(phi) Ry(theta) (0,0,-1). */
-static void bar_angles(const hg_params *p, const double *z, const double *c, double *a)
+/* The state at HOME at rest in m's vectors: z = 0, dependent positions by
+ * full Newton-Raphson, z' = 0 so d' = A z' = 0. 0 or a negative code. */
+static int home_state(const hg_model *m, double *q, double *qd)
 {
-    double B[6][3], A[6][3];
-    int k;
-    hg_joint_points(&p->geo, z, c, B, A);
-    for (k = 0; k < 6; k++) {
-        double u[3], n;
-        int r;
-        for (r = 0; r < 3; r++)
-            u[r] = A[k][r] - B[k][r];
-        n = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-        if (!(n > 0.0))                /* a broken bar's ends can meet */
-            continue;
-        a[2 * k] = atan2(u[1], -u[2]);
-        a[2 * k + 1] = asin(fmax(-1.0, fmin(1.0, -u[0] / n)));
-    }
+    int rc;
+    memset(q, 0, HG_NQ_MAX * sizeof(double));
+    memset(qd, 0, HG_NQ_MAX * sizeof(double));
+    rc = hg_solve_positions(m, q);
+    if (rc)
+        return rc;
+    if (!(hg_bar_length_error(&m->p.geo, q, q + hg_system_nq(m) - 6) <= HG_STAB_MAX_RESIDUAL_M))
+        return HG_ERR_NO_CONVERGENCE;
+    return 0;
 }
 
 int hg_data_reset(const hg_model *m, hg_data *d)
 {
     double q[HG_NQ_MAX], qd[HG_NQ_MAX];
-    hg_data nd;
-    int rc;
-    memset(&nd, 0, sizeof nd);
-    memset(q, 0, sizeof q);
-    memset(qd, 0, sizeof qd);
-    if (m->kind == HG_MODEL_STANDARD)
-        bar_angles(&m->p, q, q + 18, q + 6);   /* guess at z = 0, c = 0 */
-    rc = hg_solve_positions(m, q);
+    int rc = home_state(m, q, qd);
     if (rc)
         return rc;
-    /* z' = 0, so the velocity problem d' = A z' gives d' = 0 */
-    unpack(m, q, qd, 0, &nd);
-    nd.residual_m = hg_bar_length_error(&m->p.geo, nd.z_m, nd.pose);
-    if (!(nd.residual_m <= HG_STAB_MAX_RESIDUAL_M))
-        return HG_ERR_NO_CONVERGENCE;
-    *d = nd;
+    memset(d, 0, HG_DATA_STATE_BYTES);
+    unpack(m, q, qd, 0, d);
+    d->residual_m = hg_bar_length_error(&m->p.geo, d->z_m, d->pose);
     return 0;
 }
 
@@ -165,7 +157,6 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
                   const char **bad_field, const char **why)
 {
     const double screw = 2.0 * HG_PI / p->lead_m;
-    hg_data d;
     double q[HG_NQ_MAX], qd[HG_NQ_MAX], t;
     int rc;
     if ((int)kind < 0 || kind >= HG_MODEL_COUNT) {
@@ -181,8 +172,8 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
     memset(m, 0, sizeof *m);
     m->p = *p;
     m->kind = kind;
-    m->force_per_volt_n = p->ka_a_per_v * p->kt_nm_per_a * screw;
-    m->force_max_n = p->i_max_a * p->kt_nm_per_a * screw;
+    m->force_per_amp_n = p->kt_nm_per_a * screw;
+    m->force_per_volt_n = p->ka_a_per_v * m->force_per_amp_n;
     m->rotor_mass_kg = p->j_rotor_kgm2 * screw * screw;
     if (kind == HG_MODEL_STANDARD)
         hg_gen_standard_init(p, m->k);
@@ -196,7 +187,7 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
             *why = "the model's constants are not finite";
         return HG_ERR_BAD_PARAM;
     }
-    rc = hg_data_reset(m, &d);
+    rc = home_state(m, q, qd);
     if (rc) {
         if (bad_field)
             *bad_field = "h";
@@ -204,23 +195,28 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
             *why = "HOME (all carriages at 0) cannot be assembled with this geometry";
         return rc;
     }
-    pack(m, &d, q, qd);
     hg_model_energy(m, q, qd, &t, &m->potential_home_j);
-    lumped_pack(&d, q, qd);
+    if (kind == HG_MODEL_STANDARD) {   /* [z, c] of the lumped-bar model */
+        int i;
+        for (i = 0; i < 6; i++)
+            q[6 + i] = q[18 + i];
+    }
     hg_lumped_energy(m->k_lumped, q, qd, &t, &m->potential_lumped_home_j);
     return 0;
 }
 
-/* The broken-bar step on d's [z, c]: 0 with q1 (n of m's kind, standard
- * bar angles from the geometry, rates 0), qd1, qdd filled, or a code. */
-static int step_broken(const hg_model *m, const hg_data *d, const double fz[6], double dt_s,
-                       double *q1, double *qd1, double *qdd, double *res)
+/* The broken-bar step on d's [z, c] with m's scheme: 0 with q1 (n of m's
+ * kind, standard bar angles from the geometry, rates 0), qd1, qdd
+ * filled, or a code. */
+static int step_broken(const hg_model *m, hg_data *d, const double volts[6], const double fz[6],
+                       double dt_s, double *q1, double *qd1, double *qdd, double *res)
 {
     double q0[HG_NQ_REDUCED], qd0[HG_NQ_REDUCED], ql[HG_NQ_REDUCED], qdl[HG_NQ_REDUCED];
     double qddl[HG_NQ_REDUCED];
     int rc;
     lumped_pack(d, q0, qd0);
-    rc = hg_step_broken(m, d->broken_bars, q0, qd0, fz, dt_s, ql, qdl, qddl, res);
+    rc = hg_integrate(m, m->integrator, &hg_broken_dae, d, q0, qd0, volts, fz, dt_s, ql, qdl,
+                      qddl, res);
     if (rc)
         return rc;
     if (m->kind != HG_MODEL_STANDARD) {
@@ -234,7 +230,7 @@ static int step_broken(const hg_model *m, const hg_data *d, const double fz[6], 
     memcpy(q1, ql, 6 * sizeof(double));
     memcpy(q1 + 6, d->bar_rad, sizeof d->bar_rad);
     memcpy(q1 + 18, ql + 6, 6 * sizeof(double));
-    bar_angles(&m->p, ql, ql + 6, q1 + 6);
+    hg_bar_angles(&m->p, ql, ql + 6, q1 + 6);
     memcpy(qd1, qdl, 6 * sizeof(double));
     memcpy(qd1 + 18, qdl + 6, 6 * sizeof(double));
     memcpy(qdd, qddl, 6 * sizeof(double));
@@ -245,33 +241,43 @@ static int step_broken(const hg_model *m, const hg_data *d, const double fz[6], 
 int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
 {
     double q0[HG_NQ_MAX], qd0[HG_NQ_MAX], q1[HG_NQ_MAX], qd1[HG_NQ_MAX], qdd[HG_NQ_MAX];
-    double fz[6], cur[6], res = 0.0, sc0[6], sc1[6];
+    double fz[6], cur[6], res = 0.0;
     int n = hg_system_nq(m), rc, trig = 0;
     if (!(isfinite(dt_s) && dt_s > 0.0 && dt_s <= HG_DT_MAX_S)) {
         d->last_error = HG_ERR_BAD_DT;
         return HG_ERR_BAD_DT;
     }
     pack(m, d, q0, qd0);
-    hg_carriage_forces(&m->p, d->z_m, d->zd_mps, volts, fz, cur);
+    hg_carriage_forces(m, d->z_m, d->zd_mps, volts, fz, cur);
     switch (d->broken_bars & HG_BARS_ALL ? HG_MODEL_COUNT : m->kind) {
     case HG_MODEL_COUNT:               /* a bar broken: any kind */
-        rc = step_broken(m, d, fz, dt_s, q1, qd1, qdd, &res);
+        rc = step_broken(m, d, volts, fz, dt_s, q1, qd1, qdd, &res);
         break;
     case HG_MODEL_STANDARD:
-        rc = hg_step_standard(m, q0, qd0, fz, dt_s, q1, qd1, qdd, &res);
+        rc = hg_integrate(m, m->integrator, &hg_standard_dae, d, q0, qd0, volts, fz, dt_s, q1, qd1,
+                          qdd, &res);
         break;
     case HG_MODEL_REDUCED_JOINTS:
-        rc = hg_step_joints(m, q0, qd0, fz, dt_s, q1, qd1, qdd, &res);
+        rc = hg_integrate(m, m->integrator, &hg_joints_dae, d, q0, qd0, volts, fz, dt_s, q1, qd1,
+                          qdd, &res);
         break;
-    case HG_MODEL_REDUCED_CARTESIAN:
     case HG_MODEL_FUSED_CARTESIAN:
-        if (!(d->trig_valid && d->trig_key_rad[0] == d->pose[3] &&
-              d->trig_key_rad[1] == d->pose[4] && d->trig_key_rad[2] == d->pose[5]))
-            hg_head_trig(d->pose, sc0);
-        else
-            memcpy(sc0, d->trig_sc, sizeof sc0);
-        rc = (m->kind == HG_MODEL_FUSED_CARTESIAN ? hg_step_fused : hg_step_cartesian)(
-            m, q0, qd0, sc0, fz, dt_s, q1, qd1, qdd, sc1, &res);
+        if (m->integrator == HG_INTEGRATOR_IMPROVED_EULER) {
+            double sc0[6];
+            if (d->trig_valid && d->trig_key_rad[0] == d->pose[3] &&
+                d->trig_key_rad[1] == d->pose[4] && d->trig_key_rad[2] == d->pose[5])
+                memcpy(sc0, d->trig_sc, sizeof sc0);
+            else
+                hg_head_trig(d->pose, sc0);
+            rc = hg_fused_step(m, d, q0, qd0, sc0, fz, dt_s, q1, qd1, qdd, &res);
+            trig = 1;
+            break;
+        }
+        /* other schemes: the Reduced Cartesian functions, stage by stage */
+        /* fall through */
+    case HG_MODEL_REDUCED_CARTESIAN:
+        rc = hg_integrate(m, m->integrator, &hg_cartesian_dae, d, q0, qd0, volts, fz, dt_s, q1,
+                          qd1, qdd, &res);
         trig = 1;
         break;
     default:
@@ -289,7 +295,7 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
     d->trig_valid = trig;
     if (trig) {
         memcpy(d->trig_key_rad, d->pose + 3, sizeof d->trig_key_rad);
-        memcpy(d->trig_sc, sc1, sizeof sc1);
+        memcpy(d->trig_sc, d->work.sc1, sizeof d->trig_sc);
     }
     memcpy(d->current_a, cur, sizeof cur);
     memcpy(d->force_n, fz, sizeof fz);

@@ -1,6 +1,6 @@
 /* hg_kinematics.c - Hexaglide frames, closed-form inverse kinematics and
  * Newton-Raphson forward kinematics with the analytic Jacobian. */
-#include <math.h>
+#include "hg_math.h"
 #include "hg_kinematics.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"

@@ -1,5 +1,5 @@
 /* hg_linalg.c - bounded LU for n <= HG_LINALG_MAX_N. */
-#include <math.h>
+#include "hg_math.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
 

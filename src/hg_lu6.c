@@ -1,5 +1,5 @@
 /* hg_lu6.c - unrolled 6x6 LU with partial pivoting. */
-#include <math.h>
+#include "hg_math.h"
 #include "hg_lu6.h"
 #include "hg_errors.h"
 #include "hg_unroll.h"

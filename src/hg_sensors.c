@@ -1,6 +1,6 @@
 /* hg_sensors.c - converters, encoders, switches and watchdog of the
  * virtual MOTENC-100 board (contracts in hg_sensors.h). */
-#include <math.h>
+#include "hg_math.h"
 #include "hg_sensors.h"
 
 #define RAW_LIMIT 4503599627370496.0 /* 2^52: counts stay exact in a double */

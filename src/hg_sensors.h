@@ -25,7 +25,7 @@
 #define HG_BOARD_JOINTS 6            /* DACs, encoders and ADCs 0..5 serve joints 0..5 */
 
 /* DAC: +-10 V, 13 bits; counts = (u32)(volts * -8191/20 + 4096) as hal_motenc. */
-#define HG_DAC_VOLTS_MAX 10.0
+#include "hg_forces.h"          /* HG_DAC_VOLTS_MAX: the +-10 V DAC range */
 #define HG_DAC_COUNT_ZERO 4096.0
 #define HG_DAC_COUNTS_PER_VOLT (8191.0 / 20.0)
 /* ADC: +-5 V, 14 bits, 16384 counts over 10 V. */

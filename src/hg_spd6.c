@@ -1,5 +1,5 @@
 /* hg_spd6.c - 6x6 LDL^T solve for the reduced mass matrices. */
-#include <math.h>
+#include "hg_math.h"
 #include "hg_spd6.h"
 #include "hg_errors.h"
 #include "hg_unroll.h"

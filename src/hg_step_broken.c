@@ -3,14 +3,13 @@
  * independent-coordinate split, so the lumped-bar model is integrated in
  * full coordinates q = [z(6), c(6)]: accelerations from the augmented
  * (KKT) system [M J^T; J 0] [q''; lambda] = [Q + f; -gamma] with J the
- * intact bars' rows of Phi_q, improved Euler, then an M-weighted Newton
- * projection of q and a projection of q' onto the remaining constraints. */
-#ifndef _GNU_SOURCE
-#define _GNU_SOURCE   /* sincos in hg_head_trig's callers; Makefile.modinc defines it */
-#endif
-#include <math.h>
-#include <string.h>
-#include "hg_step.h"
+ * intact bars' rows of Phi_q, integrated by hg_integrate, then an
+ * M-weighted Newton projection of q and a projection of q' onto the
+ * remaining constraints. */
+#include "hg_math.h"
+#include "hg_string.h"
+#include "hg_step_broken.h"
+#include "hg_system.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
 #include "hg_gen_reduced.h"
@@ -20,6 +19,16 @@
 #define BROKEN_NR_TOL_M2 1e-13      /* |B-A|^2 - l^2 small enough to stop (m^2) */
 
 typedef char hg_lumped_consts_fit[HG_GEN_REDUCED_NCONST <= HG_MAX_LUMPED_CONSTS ? 1 : -1];
+
+/* Scratch laid over d->work.step. */
+typedef struct {
+    double K[HG_LINALG_MAX_N * HG_LINALG_MAX_N], b[HG_LINALG_MAX_N]; /* KKT system */
+    int piv[HG_LINALG_MAX_N];
+    double M[NQ * NQ], J[6 * NQ];                                     /* mass matrix, intact rows */
+    double mzz[6], Mzc[36], Mcc[36], Q[NQ], pz[6], pc[36], gm[6], sc[6], rhs[6];
+    double phi[6], dq[NQ], Mv[NQ], neg[6];
+} broken_ws;
+typedef char hg_broken_ws_fits[sizeof(broken_ws) <= sizeof(((hg_work *)0)->step) ? 1 : -1];
 
 /* Dense symmetric 12 x 12 M from the generated blocks (M_zz diagonal). */
 static void mass_matrix(const double mzz[6], const double Mzc[36], const double Mcc[36],
@@ -59,12 +68,12 @@ static int intact_rows(unsigned broken, const double pz[6], const double pc[36],
 
 /* Solve [M J^T; J 0] [x; mu] = [top; bot] for x (12); nc <= 6 rows.
  * 0 or HG_ERR_SINGULAR_JACOBIAN (dependent constraints, singular M). */
-static int kkt_solve(const double *M, int nc, const double *J, const double *top,
+static int kkt_solve(broken_ws *w, const double *M, int nc, const double *J, const double *top,
                      const double *bot, double *x)
 {
-    double K[HG_LINALG_MAX_N * HG_LINALG_MAX_N], b[HG_LINALG_MAX_N];
-    int piv[HG_LINALG_MAX_N], n = NQ + nc, i, j, rc;
-    memset(K, 0, sizeof K);
+    double *K = w->K, *b = w->b;
+    int *piv = w->piv, n = NQ + nc, i, j, rc;
+    memset(K, 0, sizeof w->K);
     for (i = 0; i < NQ; i++) {
         for (j = 0; j < NQ; j++)
             K[i * n + j] = M[i * NQ + j];
@@ -86,14 +95,14 @@ static int kkt_solve(const double *M, int nc, const double *J, const double *top
 }
 
 /* Intact-bar constraints at q: phi (nc, m^2) and J; returns max |phi|. */
-static double constraints(const hg_model *m, unsigned broken, const double *q, double *phi,
-                          double *J, int *nc)
+static double constraints(const hg_model *m, broken_ws *w, unsigned broken, const double *q,
+                          double *phi, double *J, int *nc)
 {
-    double sc[6], all[6], pz[6], pc[36], worst = 0.0;
+    double all[6], worst = 0.0;
     int r;
-    hg_head_trig(q + 6, sc);
-    hg_gen_reduced_constraints(m->k_lumped, q, sc, all, pz, pc);
-    *nc = intact_rows(broken, pz, pc, all, J, phi);
+    hg_head_trig(q + 6, w->sc);
+    hg_gen_reduced_constraints(m->k_lumped, q, w->sc, all, w->pz, w->pc);
+    *nc = intact_rows(broken, w->pz, w->pc, all, J, phi);
     for (r = 0; r < *nc; r++)
         if (!(fabs(phi[r]) <= worst))
             worst = fabs(phi[r]);
@@ -103,15 +112,16 @@ static double constraints(const hg_model *m, unsigned broken, const double *q, d
 /* Newton projection of q1 onto the intact constraints, minimum M-norm
  * corrections, then q1' projected (M-weighted) onto J q' = 0 at the
  * final q1. Returns 0 or a code; *residual_m the largest bar-length error. */
-static int project(const hg_model *m, unsigned broken, const double *M, double *q1,
+static int project(const hg_model *m, broken_ws *w, unsigned broken, const double *M, double *q1,
                    double *qd1, double *residual_m)
 {
     static const double zero[NQ] = {0};
-    double phi[6], J[6 * NQ], dq[NQ], Mv[NQ], neg[6], prev = INFINITY, worst = 0.0;
+    double *phi = w->phi, *J = w->J, *dq = w->dq, *Mv = w->Mv, *neg = w->neg;
+    double prev = INFINITY, worst = 0.0;
     const double l = m->p.geo.l_m;
     int it, r, i, j, nc = 0, rc;
     for (it = 0; it <= BROKEN_NR_MAX_ITER; it++) {
-        double now = constraints(m, broken, q1, phi, J, &nc);
+        double now = constraints(m, w, broken, q1, phi, J, &nc);
         if (!isfinite(now))
             return HG_ERR_STABILIZATION;
         if (now <= BROKEN_NR_TOL_M2 || it == BROKEN_NR_MAX_ITER)
@@ -121,7 +131,7 @@ static int project(const hg_model *m, unsigned broken, const double *M, double *
         prev = now;
         for (r = 0; r < nc; r++)
             neg[r] = -phi[r];
-        rc = kkt_solve(M, nc, J, zero, neg, dq);
+        rc = kkt_solve(w, M, nc, J, zero, neg, dq);
         if (rc)
             return rc;
         for (i = 0; i < NQ; i++)
@@ -140,7 +150,7 @@ static int project(const hg_model *m, unsigned broken, const double *M, double *
             v += M[i * NQ + j] * qd1[j];
         Mv[i] = v;
     }
-    return kkt_solve(M, nc, J, Mv, neg, qd1);
+    return kkt_solve(w, M, nc, J, Mv, neg, qd1);
 }
 
 /* 0, or OUT_OF_VOLUME for a state the model no longer represents
@@ -156,32 +166,37 @@ static int check_volume(const double *q)
     return in ? 0 : HG_ERR_OUT_OF_VOLUME;
 }
 
-int hg_step_broken(const hg_model *m, unsigned broken, const double *q0, const double *qd0,
-                   const double fz[6], double dt, double *q1, double *qd1, double *qdd,
-                   double *residual_m)
+int hg_broken_accel(const hg_model *m, hg_data *d, const double *q, const double *qd,
+                    const double fz[6], double *qdd)
 {
-    double mzz[6], Mzc[36], Mcc[36], Q[NQ], pz[6], pc[36], gm[6], sc[6];
-    double M[NQ * NQ], J[6 * NQ], rhs[6];
-    int k, nc, rc;
-    broken &= HG_BARS_ALL;
-    hg_head_trig(q0 + 6, sc);
-    hg_gen_reduced_terms(m->k_lumped, q0, qd0, sc, mzz, Mzc, Mcc, Q, pz, pc, gm);
-    mass_matrix(mzz, Mzc, Mcc, M);
+    broken_ws *w = (broken_ws *)d->work.step;
+    int k, nc;
+    hg_head_trig(q + 6, w->sc);
+    hg_gen_reduced_terms(m->k_lumped, q, qd, w->sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->pz, w->pc,
+                         w->gm);
+    mass_matrix(w->mzz, w->Mzc, w->Mcc, w->M);
     for (k = 0; k < 6; k++) {
-        Q[k] += fz[k];
-        gm[k] = -gm[k];
+        w->Q[k] += fz[k];
+        w->gm[k] = -w->gm[k];
     }
-    nc = intact_rows(broken, pz, pc, gm, J, rhs);
-    rc = kkt_solve(M, nc, J, Q, rhs, qdd);
-    if (rc)
-        return rc;
-    hg_improved_euler(NQ, q0, qd0, qdd, dt, q1, qd1);
+    nc = intact_rows(d->broken_bars & HG_BARS_ALL, w->pz, w->pc, w->gm, w->J, w->rhs);
+    return kkt_solve(w, w->M, nc, w->J, w->Q, w->rhs, qdd);
+}
+
+int hg_broken_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd1,
+                        double *residual_m)
+{
+    broken_ws *w = (broken_ws *)d->work.step;
+    int rc;
     /* the projection's metric: M at the predicted state */
-    hg_head_trig(q1 + 6, sc);
-    hg_gen_reduced_terms(m->k_lumped, q1, qd1, sc, mzz, Mzc, Mcc, Q, pz, pc, gm);
-    mass_matrix(mzz, Mzc, Mcc, M);
-    rc = project(m, broken, M, q1, qd1, residual_m);
+    hg_head_trig(q1 + 6, w->sc);
+    hg_gen_reduced_terms(m->k_lumped, q1, qd1, w->sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->pz, w->pc,
+                         w->gm);
+    mass_matrix(w->mzz, w->Mzc, w->Mcc, w->M);
+    rc = project(m, w, d->broken_bars & HG_BARS_ALL, w->M, q1, qd1, residual_m);
     if (rc)
         return rc;
     return check_volume(q1);
 }
+
+const hg_dae hg_broken_dae = {NQ, hg_broken_accel, hg_broken_stabilize};

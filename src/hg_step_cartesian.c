@@ -1,10 +1,10 @@
-/* hg_step_cartesian.c - one step of the Reduced Cartesian parametrization
+/* hg_step_cartesian.c - the Reduced Cartesian parametrization
  * (head pose c independent, carriage heights z dependent): Phi_z is
  * diagonal, so A = -Phi_z^-1 Phi_c costs 36 products and the position
  * stabilization is one diagonal Newton step per carriage. The fused
- * variant gets its accelerations from one generated function. */
-#include "hg_step.h"
-#include "hg_linalg.h"
+ * variant is the whole improved-Euler step as one generated function. */
+#include "hg_step_cartesian.h"
+#include "hg_system.h"
 #include "hg_spd6.h"
 #include "hg_errors.h"
 #include "hg_unroll.h"
@@ -15,10 +15,11 @@
  * z' = A c' = -Phi_z^-1 (Phi_c c'). Phi is exactly quadratic in z_k
  * (d^2 Phi_k / dz_k^2 = 2), so the bar's residual after the step is
  * delta^2 (m^2): the bar-length error delta^2 / (2 l) needs no new
- * evaluation. Returns that error (m). */
-static double stabilize(const hg_model *m, double *q1, double *qd1, double sc1[6])
+ * evaluation: *residual_m is that error (m). */
+int hg_cartesian_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd1,
+                           double *residual_m)
 {
-    double phi[6], pz[6], vc[6], worst = 0.0;
+    double phi[6], pz[6], vc[6], worst = 0.0, *sc1 = d->work.sc1;
     int k;
     hg_head_trig(q1 + 6, sc1);
     hg_gen_reduced_stabilize(m->k, q1, qd1, sc1, phi, pz, vc);
@@ -31,17 +32,33 @@ static double stabilize(const hg_model *m, double *q1, double *qd1, double sc1[6
         if (!(e <= worst))
             worst = e;
     }
-    return worst;
+    *residual_m = worst;
+    return 0;
 }
 
-int hg_step_cartesian(const hg_model *m, const double *q0, const double *qd0,
-                      const double sc0[6], const double fz[6], double dt, double *q1,
-                      double *qd1, double *qdd, double sc1[6], double *residual_m)
+/* Scratch laid over d->work.step: the generated terms (the algebra's
+ * temporaries stay on the stack, where the compiler knows they alias
+ * nothing: 1.3 KB). */
+typedef struct {
+    double mzz[6], Mzc[36], Mcc[36], Q[12], pz[6], pc[36], gm[6], sc[6];
+} cartesian_ws;
+typedef char hg_cartesian_ws_fits[sizeof(cartesian_ws) <= sizeof(((hg_work *)0)->step) ? 1 : -1];
+
+int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const double *qd,
+                       const double fz[6], double *qdd)
 {
-    double mzz[6], Mzc[36], Mcc[36], Q[12], pz[6], pc[36], gm[6];
+    cartesian_ws *w = (cartesian_ws *)d->work.step;
+    const double *mzz = w->mzz, *Mzc = w->Mzc, *Mcc = w->Mcc, *Q = w->Q, *pz = w->pz;
+    const double *pc = w->pc, *gm = w->gm;
     double A[36], b[6], W[36], P[36], Mh[36], rhs[6];
+    const double *sc = w->sc;
     int i, j, k, rc;
-    hg_gen_reduced_terms(m->k, q0, qd0, sc0, mzz, Mzc, Mcc, Q, pz, pc, gm);
+    if (d->trig_valid && d->trig_key_rad[0] == q[9] && d->trig_key_rad[1] == q[10] &&
+        d->trig_key_rad[2] == q[11])
+        sc = d->trig_sc;               /* the last stabilization's */
+    else
+        hg_head_trig(q + 6, w->sc);
+    hg_gen_reduced_terms(m->k, q, qd, sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->pz, w->pc, w->gm);
     /* Eq. 13 with z dependent, as sums of outer products over the carriages
      * (rows of A): with W_k = M_zc,k + M_zz,k A_k / 2 and P = A^T W,
      *   M_cc + M_cz A + (M_cz A)^T + A^T M_zz A = M_cc + P + P^T,
@@ -87,14 +104,14 @@ int hg_step_cartesian(const hg_model *m, const double *q0, const double *qd0,
         qdd[k] = v;
         qdd[6 + k] = rhs[k];
     }
-    hg_improved_euler(HG_NQ_REDUCED, q0, qd0, qdd, dt, q1, qd1);
-    *residual_m = stabilize(m, q1, qd1, sc1);
     return 0;
 }
 
-int hg_step_fused(const hg_model *m, const double *q0, const double *qd0,
+const hg_dae hg_cartesian_dae = {HG_NQ_REDUCED, hg_cartesian_accel, hg_cartesian_stabilize};
+
+int hg_fused_step(const hg_model *m, hg_data *d, const double *q0, const double *qd0,
                   const double sc0[6], const double fz[6], double dt, double *q1,
-                  double *qd1, double *qdd, double sc1[6], double *residual_m)
+                  double *qd1, double *qdd, double *residual_m)
 {
-    return hg_gen_fused_step(m->k, q0, qd0, sc0, fz, dt, q1, qd1, qdd, sc1, residual_m);
+    return hg_gen_fused_step(m->k, q0, qd0, sc0, fz, dt, q1, qd1, qdd, d->work.sc1, residual_m);
 }

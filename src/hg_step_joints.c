@@ -1,127 +1,96 @@
-/* hg_step_joints.c - one step of the z-independent parametrizations
- * (Standard, Reduced Joints): the paper's Eq. 13 reduced to z'', improved
- * Euler on the full state, one Newton-Raphson position iteration on the
- * dependent coordinates and the velocity projection d' = A z'. */
-#include <string.h>
-#include "hg_step.h"
-#include "hg_linalg.h"
+/* hg_step_joints.c - the Reduced Joints parametrization (z independent):
+ * the paper's Eq. 13 reduced to z'' with A = -Phi_c^-1 Phi_z (Phi_z
+ * diagonal), one Newton-Raphson position iteration on the head pose and
+ * the velocity projection c' = A z'. */
+#include "hg_step_joints.h"
+#include "hg_system.h"
+#include "hg_kinematics.h"
 #include "hg_spd6.h"
 #include "hg_lu6.h"
-#include "hg_errors.h"
+#include "hg_unroll.h"
+#include "hg_gen_reduced.h"
 
-void hg_improved_euler(int n, const double *q0, const double *qd0, const double *qdd,
-                       double dt, double *q1, double *qd1)
-{
-    int i;
-    double h2 = 0.5 * dt * dt;
-    for (i = 0; i < n; i++) {
-        q1[i] = q0[i] + qd0[i] * dt + qdd[i] * h2;
-        qd1[i] = qd0[i] + qdd[i] * dt;
-    }
-}
+/* Scratch laid over d->work.step. */
+typedef struct {
+    double mzz[6], Mzc[36], Mcc[36], Q[12], pz[6], pc[36], gm[6], sc[6];
+    double X[6 * 7], phi[6];
+    int piv[6];
+} joints_ws;
+typedef char hg_joints_ws_fits[sizeof(joints_ws) <= sizeof(((hg_work *)0)->step) ? 1 : -1];
 
-/* LU of Phi_d (nd x nd): the unrolled 6x6 one for the reduced model. */
-static int factor(int nd, double *Phi_d, int *piv)
+/* X = Phi_c^-1 [diag(pz) | v] (6 x 7) with Phi_c (w->pc) factored in place. */
+static int solve_a_b(joints_ws *w, const double *v)
 {
-    return nd == 6 ? hg_lu6_factor(Phi_d, piv) : hg_lu_factor(nd, Phi_d, piv);
-}
-
-void hg_stabilize_dependent(int nd, const double *X, double *q1, double *qd1)
-{
-    int r, j;
-    for (r = 0; r < nd; r++) {
-        double v = 0.0;
-        q1[6 + r] -= X[r * 7 + 6];
+    int r, j, rc = hg_lu6_factor(w->pc, w->piv);
+    if (rc)
+        return rc;
+    HG_UNROLL
+    for (r = 0; r < 6; r++) {
+        HG_UNROLL
         for (j = 0; j < 6; j++)
-            v -= X[r * 7 + j] * qd1[j];
-        qd1[6 + r] = v;
+            w->X[r * 7 + j] = r == j ? w->pz[r] : 0.0;
+        w->X[r * 7 + 6] = v[r];
     }
+    hg_lu6_solve(w->pc, w->piv, 7, w->X);
+    return 0;
 }
 
-/* X = Phi_d^-1 [Phi_z | v] (nd x 7) from a factored Phi_d. */
-static void solve_a_b(int nd, const double *lu, const int *piv, const double *Phi_z,
-                      const double *v, double *X)
+int hg_joints_accel(const hg_model *m, hg_data *d, const double *q, const double *qd,
+                    const double fz[6], double *qdd)
 {
-    int r, j;
-    for (r = 0; r < nd; r++) {
-        for (j = 0; j < 6; j++)
-            X[r * 7 + j] = Phi_z[r * 6 + j];
-        X[r * 7 + 6] = v[r];
-    }
-    if (nd == 6)
-        hg_lu6_solve(lu, piv, 7, X);
-    else
-        hg_lu_solve(nd, lu, piv, 7, X);
-}
-
-/* z'' from Eq. 13: (M_zz + M_zd A + (M_zd A)^T + A^T M_dd A) z''
- *   = Q_z + A^T Q_d - (M_zd + A^T M_dd) b,  A = -X[:, :6], b = -X[:, 6]. */
-static inline __attribute__((always_inline)) int
-reduced_accelerations(const int nd, const hg_system *s, const double *X, const double fz[6],
-                      double *qdd)
-{
+    joints_ws *w = (joints_ws *)d->work.step;
+    const double *X = w->X;
+    double T1[36], Mh[36], rhs[6];     /* on the stack: they alias nothing */
     int i, j, r, t, rc;
-    double T1[6 * 18], Mh[36], rhs[6];
-    for (i = 0; i < 6; i++)            /* T1 = M_zd + A^T M_dd (6 x nd) */
-        for (r = 0; r < nd; r++) {
-            double acc = s->Mzd[i * nd + r];
-            for (t = 0; t < nd; t++)
-                acc -= X[t * 7 + i] * s->Mdd[t * nd + r];
-            T1[i * nd + r] = acc;
+    hg_head_trig(q + 6, w->sc);
+    hg_gen_reduced_terms(m->k, q, qd, w->sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->pz, w->pc, w->gm);
+    if ((rc = solve_a_b(w, w->gm)))
+        return rc;
+    /* (M_zz + M_zc A + (M_zc A)^T + A^T M_cc A) z'' = Q_z + A^T Q_c - (M_zc + A^T M_cc) b,
+     * A = -X[:, :6], b = -X[:, 6] */
+    for (i = 0; i < 6; i++)            /* T1 = M_zc + A^T M_cc */
+            for (r = 0; r < 6; r++) {
+            double acc = w->Mzc[i * 6 + r];
+                    for (t = 0; t < 6; t++)
+                acc -= X[t * 7 + i] * w->Mcc[t * 6 + r];
+            T1[i * 6 + r] = acc;
         }
     for (i = 0; i < 6; i++) {
-        double acc = s->Q[i] + fz[i];
-        for (r = 0; r < nd; r++)
-            acc += -X[r * 7 + i] * s->Q[6 + r] + T1[i * nd + r] * X[r * 7 + 6];
+        double acc = w->Q[i] + fz[i];
+            for (r = 0; r < 6; r++)
+            acc += -X[r * 7 + i] * w->Q[6 + r] + T1[i * 6 + r] * X[r * 7 + 6];
         rhs[i] = acc;
-        for (j = 0; j <= i; j++) {     /* T1 A + (M_zd A)^T, lower triangle */
-            double v = (i == j) ? s->mzz[i] : 0.0;
-            for (r = 0; r < nd; r++)
-                v -= T1[i * nd + r] * X[r * 7 + j] + s->Mzd[j * nd + r] * X[r * 7 + i];
+        for (j = 0; j <= i; j++) {     /* T1 A + (M_zc A)^T, lower triangle */
+            double v = (i == j) ? w->mzz[i] : 0.0;
+                    for (r = 0; r < 6; r++)
+                v -= T1[i * 6 + r] * X[r * 7 + j] + w->Mzc[j * 6 + r] * X[r * 7 + i];
             Mh[i * 6 + j] = v;
         }
     }
-    rc = hg_spd6_solve(Mh, rhs);
-    if (rc)
+    if ((rc = hg_spd6_solve(Mh, rhs)))
         return rc;
-    for (i = 0; i < 6; i++)
-        qdd[i] = rhs[i];
-    for (r = 0; r < nd; r++) {         /* d'' = A z'' + b */
+    for (r = 0; r < 6; r++) {          /* c'' = A z'' + b */
         double acc = -X[r * 7 + 6];
-        for (j = 0; j < 6; j++)
+            for (j = 0; j < 6; j++)
             acc -= X[r * 7 + j] * rhs[j];
+        qdd[r] = rhs[r];
         qdd[6 + r] = acc;
     }
     return 0;
 }
 
-int hg_step_joints(const hg_model *m, const double *q0, const double *qd0,
-                   const double fz[6], double dt, double *q1, double *qd1, double *qdd,
-                   double *residual_m)
+int hg_joints_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd1,
+                        double *residual_m)
 {
-    hg_system s;
-    double X[18 * 7], phi[18];
-    int piv[18], rc, nd, n;
-    hg_system_terms(m, q0, qd0, &s);
-    nd = s.nd;
-    n = 6 + nd;
-    rc = factor(nd, s.Phi_d, piv);
-    if (rc)
+    joints_ws *w = (joints_ws *)d->work.step;
+    int rc;
+    hg_head_trig(q1 + 6, w->sc);
+    hg_gen_reduced_constraints(m->k, q1, w->sc, w->phi, w->pz, w->pc);
+    if ((rc = solve_a_b(w, w->phi)))
         return rc;
-    solve_a_b(nd, s.Phi_d, piv, s.Phi_z, s.gamma, X);
-    /* nd as a constant lets the compiler unroll the 6-coordinate case */
-    rc = nd == 6 ? reduced_accelerations(6, &s, X, fz, qdd) : reduced_accelerations(18, &s, X, fz, qdd);
-    if (rc)
-        return rc;
-    hg_improved_euler(n, q0, qd0, qdd, dt, q1, qd1);
-    /* stabilization: Jacobians at the predicted state, one NR iteration,
-     * then d' = A z' */
-    hg_system_constraints(m, q1, phi, s.Phi_d, s.Phi_z);
-    rc = factor(nd, s.Phi_d, piv);
-    if (rc)
-        return rc;
-    solve_a_b(nd, s.Phi_d, piv, s.Phi_z, phi, X);
-    hg_stabilize_dependent(nd, X, q1, qd1);
-    *residual_m = hg_bar_length_error(&m->p.geo, q1, q1 + n - 6);
+    hg_stabilize_dependent(6, w->X, q1, qd1);
+    *residual_m = hg_bar_length_error(&m->p.geo, q1, q1 + 6);
     return 0;
 }
+
+const hg_dae hg_joints_dae = {HG_NQ_REDUCED, hg_joints_accel, hg_joints_stabilize};

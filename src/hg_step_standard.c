@@ -1,14 +1,14 @@
-/* hg_step_standard.c - one step of the Standard parametrization
- * (q = [z, a, c], z independent) exploiting the structure of the bar
+/* hg_step_standard.c - the Standard parametrization (q = [z, a, c], z
+ * independent) for hg_integrate, exploiting the structure of the bar
  * constraints B_k + l u_k - A_k = 0: Phi_d = [blockdiag(P_k) | C] with P_k
  * the 3x2 Jacobian of bar k's end in its two angles. Projecting bar k's
  * three rows on n_k = P_k(:,0) x P_k(:,1) removes its angles, so
  * Phi_d x = y is a 6x6 solve for x_c plus a 2x2 least-squares solve per
- * bar; the mass matrix is block diagonal in d. Same algorithm and results
- * as the dense hg_step_joints (Eq. 13), a fraction of the work. */
-#include <string.h>
-#include "hg_step.h"
-#include "hg_linalg.h"
+ * bar; the mass matrix is block diagonal in d. Eq. 13 as in the dense
+ * formulation, a fraction of the work. */
+#include "hg_step_standard.h"
+#include "hg_system.h"
+#include "hg_kinematics.h"
 #include "hg_spd6.h"
 #include "hg_lu6.h"
 #include "hg_errors.h"
@@ -86,66 +86,81 @@ static void solve7(const std_factor *f, const double v[18], double X[18 * 7])
             X[(12 + k) * 7 + s] = xc[7 * k + s];
 }
 
-int hg_step_standard(const hg_model *m, const double *q0, const double *qd0,
-                     const double fz[6], double dt, double *q1, double *qd1, double *qdd,
-                     double *residual_m)
-{
+/* Scratch laid over d->work.step. */
+typedef struct {
     double mzz[6], Mza[12], Maa[24], Mcc[36], Q[24], Pa[36], Pc[108], gm[18];
     double A[18 * 6], b[18], T1[6 * 18], Mh[36], rhs[6], phi[18], X[18 * 7];
     std_factor f;
+} standard_ws;
+typedef char hg_standard_ws_fits[sizeof(standard_ws) <= sizeof(((hg_work *)0)->step) ? 1 : -1];
+
+int hg_standard_accel(const hg_model *m, hg_data *d, const double *q, const double *qd,
+                      const double fz[6], double *qdd)
+{
+    standard_ws *w = (standard_ws *)d->work.step;
+    double *A = w->A, *b = w->b, *T1 = w->T1;
     int i, j, k, r, s, rc;
-    hg_gen_standard_terms(m->k, q0, qd0, mzz, Mza, Maa, Mcc, Q, Pa, Pc, gm);
-    if ((rc = factor(Pa, Pc, &f)))
+    hg_gen_standard_terms(m->k, q, qd, w->mzz, w->Mza, w->Maa, w->Mcc, w->Q, w->Pa, w->Pc, w->gm);
+    if ((rc = factor(w->Pa, w->Pc, &w->f)))
         return rc;
-    solve7(&f, gm, X);
+    solve7(&w->f, w->gm, w->X);
     for (r = 0; r < 18; r++) {         /* A = -X(:, 0:6), b = -X(:, 6) */
         for (j = 0; j < 6; j++)
-            A[r * 6 + j] = -X[r * 7 + j];
-        b[r] = -X[r * 7 + 6];
+            A[r * 6 + j] = -w->X[r * 7 + j];
+        b[r] = -w->X[r * 7 + 6];
     }
     for (i = 0; i < 6; i++) {          /* T1 = M_zd + A^T M_dd, M_dd block diagonal */
         for (k = 0; k < 6; k++)
             for (s = 0; s < 2; s++)
-                T1[i * 18 + 2 * k + s] = (k == i ? Mza[2 * k + s] : 0.0) +
-                                         A[(2 * k) * 6 + i] * Maa[4 * k + s] +
-                                         A[(2 * k + 1) * 6 + i] * Maa[4 * k + 2 + s];
+                T1[i * 18 + 2 * k + s] = (k == i ? w->Mza[2 * k + s] : 0.0) +
+                                         A[(2 * k) * 6 + i] * w->Maa[4 * k + s] +
+                                         A[(2 * k + 1) * 6 + i] * w->Maa[4 * k + 2 + s];
         for (j = 0; j < 6; j++) {
             double v = 0.0;
             for (r = 0; r < 6; r++)
-                v += A[(12 + r) * 6 + i] * Mcc[6 * r + j];
+                v += A[(12 + r) * 6 + i] * w->Mcc[6 * r + j];
             T1[i * 18 + 12 + j] = v;
         }
     }
     for (i = 0; i < 6; i++) {
-        double acc = Q[i] + fz[i];
+        double acc = w->Q[i] + fz[i];
         for (r = 0; r < 18; r++)
-            acc += A[r * 6 + i] * Q[6 + r] - T1[i * 18 + r] * b[r];
-        rhs[i] = acc;
+            acc += A[r * 6 + i] * w->Q[6 + r] - T1[i * 18 + r] * b[r];
+        w->rhs[i] = acc;
         for (j = 0; j <= i; j++) {     /* M_zz + T1 A + (M_zd A)^T */
-            double v = (i == j ? mzz[i] : 0.0) + Mza[2 * j] * A[(2 * j) * 6 + i] +
-                       Mza[2 * j + 1] * A[(2 * j + 1) * 6 + i];
+            double v = (i == j ? w->mzz[i] : 0.0) + w->Mza[2 * j] * A[(2 * j) * 6 + i] +
+                       w->Mza[2 * j + 1] * A[(2 * j + 1) * 6 + i];
             for (r = 0; r < 18; r++)
                 v += T1[i * 18 + r] * A[r * 6 + j];
-            Mh[6 * i + j] = v;
+            w->Mh[6 * i + j] = v;
         }
     }
-    if ((rc = hg_spd6_solve(Mh, rhs)))
+    if ((rc = hg_spd6_solve(w->Mh, w->rhs)))
         return rc;
     for (i = 0; i < 6; i++)
-        qdd[i] = rhs[i];
+        qdd[i] = w->rhs[i];
     for (r = 0; r < 18; r++) {         /* d'' = A z'' + b */
         double v = b[r];
         for (j = 0; j < 6; j++)
-            v += A[r * 6 + j] * rhs[j];
+            v += A[r * 6 + j] * w->rhs[j];
         qdd[6 + r] = v;
     }
-    hg_improved_euler(HG_NQ_STANDARD, q0, qd0, qdd, dt, q1, qd1);
-    /* stabilization at the predicted state: one NR iteration, d' = A z' */
-    hg_gen_standard_constraints(m->k, q1, phi, Pa, Pc);
-    if ((rc = factor(Pa, Pc, &f)))
+    return 0;
+}
+
+int hg_standard_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd1,
+                          double *residual_m)
+{
+    standard_ws *w = (standard_ws *)d->work.step;
+    int rc;
+    /* Jacobians at the predicted state: one NR iteration, d' = A z' */
+    hg_gen_standard_constraints(m->k, q1, w->phi, w->Pa, w->Pc);
+    if ((rc = factor(w->Pa, w->Pc, &w->f)))
         return rc;
-    solve7(&f, phi, X);
-    hg_stabilize_dependent(18, X, q1, qd1);
+    solve7(&w->f, w->phi, w->X);
+    hg_stabilize_dependent(18, w->X, q1, qd1);
     *residual_m = hg_bar_length_error(&m->p.geo, q1, q1 + 18);
     return 0;
 }
+
+const hg_dae hg_standard_dae = {HG_NQ_STANDARD, hg_standard_accel, hg_standard_stabilize};

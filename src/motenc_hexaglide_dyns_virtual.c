@@ -19,6 +19,7 @@
 
 #include "hg_errors.h"
 #include "hg_board.h"
+#include "hg_board_rec.h"
 #include "hg_units.h"
 
 MODULE_AUTHOR("Virtual Hexaglide project");
@@ -46,6 +47,8 @@ typedef struct {
     hal_s32_t *enc_glitch;
 } joint_hal;
 
+typedef union { hal_float_t *f; hal_s32_t *s; hal_u32_t *u; hal_bit_t *b; } rec_pin;
+
 typedef struct {
     enc_hal enc[HG_BOARD_ENCODERS];
     analog_hal dac[HG_BOARD_DACS], adc[HG_BOARD_ADCS];
@@ -68,6 +71,10 @@ typedef struct {
     hg_board_inputs ins;
     hg_board_outputs o;
     int id;
+    hg_board_rec_field rec[HG_BOARD_REC_MAX]; /* the record pin set (docs/replay.md) */
+    rec_pin rec_pin[HG_BOARD_REC_MAX]; /* XP.<board>.rec.<name>, type as rec[i].type */
+    int nrec;
+    int model;                        /* hg_model_kind loaded */
 } board_t;
 
 static int comp_id;
@@ -266,6 +273,21 @@ static void publish(board_t *b)
     *b->dac_nan = o->dac_nan;
 }
 
+/* The record pins: this step's inputs, period and outputs, exactly. */
+static void write_rec(board_t *b, long period)
+{
+    int i;
+    for (i = 0; i < b->nrec; i++) {
+        double v = hg_board_rec_get(b->rec, b->nrec, i, &b->ins, &b->o, period, b->model);
+        switch (b->rec[i].type) {
+        case HG_BRF_F64: *b->rec_pin[i].f = v; break;
+        case HG_BRF_S32: *b->rec_pin[i].s = (hal_s32_t)v; break;
+        case HG_BRF_BIT: *b->rec_pin[i].b = v != 0.0; break;
+        default: *b->rec_pin[i].u = (hal_u32_t)v; break;
+        }
+    }
+}
+
 static void dynamics(void *arg, long period)
 {
     board_t *b = arg;
@@ -304,6 +326,7 @@ static void dynamics(void *arg, long period)
     read_params(b);
 
     hg_board_step(&b->b, in, &b->o, period);
+    write_rec(b, period);
 
     in->dac_written = in->adc_read = 0;
     for (k = 0; k < HG_BOARD_JOINTS; k++)
@@ -389,6 +412,26 @@ static int export_motenc(board_t *b)
     return 0;
 }
 
+/* One OUT pin XP.<board>.rec.<name> per record field (hg_board_rec.h). */
+static int export_rec(board_t *b)
+{
+    int rc, i;
+    b->nrec = hg_board_rec_fields(b->rec, HG_BOARD_REC_MAX);
+    if (b->nrec < 0)
+        return -EINVAL;
+    for (i = 0; i < b->nrec; i++) {
+        const char *n = b->rec[i].name;
+        rec_pin *p = &b->rec_pin[i];
+        switch (b->rec[i].type) {
+        case HG_BRF_F64: TRY(hal_pin_float_newf(HAL_OUT, &p->f, comp_id, XP ".%d.rec.%s", b->id, n)); break;
+        case HG_BRF_S32: TRY(hal_pin_s32_newf(HAL_OUT, &p->s, comp_id, XP ".%d.rec.%s", b->id, n)); break;
+        case HG_BRF_BIT: TRY(hal_pin_bit_newf(HAL_OUT, &p->b, comp_id, XP ".%d.rec.%s", b->id, n)); break;
+        default: TRY(hal_pin_u32_newf(HAL_OUT, &p->u, comp_id, XP ".%d.rec.%s", b->id, n)); break;
+        }
+    }
+    return 0;
+}
+
 /* The extra pins, the parameters (hg_params_table: HAL name and unit) and dynamics. */
 static int export_extra(board_t *b)
 {
@@ -441,6 +484,7 @@ static int export_extra(board_t *b)
     PAR(u32, &b->integrator, XP ".%d.integrator", id);
     b->substeps = b->o.params.substeps;
     b->integrator = b->o.params.integrator;
+    TRY(export_rec(b));
     TRY(export_funct(b, "dynamics", dynamics, 1));
     return 0;
 }
@@ -472,6 +516,7 @@ int rtapi_app_main(void)
     }
     memset(b, 0, sizeof *b);
     b->id = board;
+    b->model = kind;
     rc = hg_board_init(&b->b, (hg_model_kind)kind, 0);
     if (rc) {
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": default model refused: %s\n", hg_strerror(rc));

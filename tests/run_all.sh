@@ -3,7 +3,8 @@
 # Each test prints TAP-style lines "ok - what" / "not ok - what"; a test
 # that exits non-zero without printing "not ok" counts as one failure.
 #   tiers: unit (host C), generator (freshness, SymPy), engine (MuJoCo
-#          cross-check), cli, hal (halrun),
+#          cross-check), cli, hal (halrun), lcnc (HAL component tests in
+#          LinuxCNC's tests/NAME/ layout, tests/lcnc/runtests),
 #          linuxcnc (full stack), check (sanitizers, static analysis)
 # TESTS_ONLY=tier[,tier] runs a subset.
 cd "$(dirname "$0")/.." || exit 1
@@ -34,8 +35,9 @@ want() { [ -z "$TESTS_ONLY" ] || echo ",$TESTS_ONLY," | grep -q ",$1,"; }
 if want unit; then
     for t in build/tests/test_*; do [ -x "$t" ] && run_one "unit/$(basename "$t")" "$t"; done
 fi
-for tier in generator engine cli hal linuxcnc check; do
+for tier in generator engine cli hal lcnc linuxcnc check; do
     want $tier || continue
+    if [ $tier = lcnc ]; then run_one lcnc/runtests tests/lcnc/runtests; continue; fi
     for t in tests/$tier/test_*; do
         [ -x "$t" ] || continue
         run_one "$tier/$(basename "$t")" "$t"

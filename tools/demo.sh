@@ -1,6 +1,6 @@
 #!/bin/sh
 # demo.sh - make demo: the virtual Hexaglide machining its logo, headless.
-# Installs the modules, starts LinuxCNC with configs/hexaglide_headless.ini
+# Installs the modules, starts LinuxCNC with tools/headless/hexaglide_headless.ini
 # (no X display), resets estop, homes all six joints (home switch + encoder
 # index), runs configs/nc_files/hexaglide_logo.ngc (X Y Z A B C), samples the
 # servo thread, writes out/demo.{csv,json}, plots out/demo_*.png and prints a
@@ -11,7 +11,7 @@ mkdir -p out
 echo "demo: starting LinuxCNC headless (log: out/demo.log)"
 HG_SCENARIO=run HG_TAG=demo HG_OUT=$PWD/out \
 HG_PROGRAM=$PWD/configs/nc_files/hexaglide_logo.ngc \
-    timeout 600 tools/hg_linuxcnc.sh configs/hexaglide_headless.ini >out/demo.log 2>&1
+    timeout 600 tools/hg_linuxcnc.sh tools/headless/hexaglide_headless.ini >out/demo.log 2>&1
 rc=$?
 grep -a '^hexaglide_headless' out/demo.log | sed 's/^/  /'
 if [ -s out/demo.csv ]; then

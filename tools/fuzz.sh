@@ -1,6 +1,7 @@
 #!/bin/sh
 # fuzz.sh - bounded-time fuzzing of the kinematics, the parameter set, the
-# command-line arguments, the dynamics step and the board (tests/fuzz/fuzz_*.c).
+# command-line arguments, the dynamics step, the board and the record reader
+# (tests/fuzz/fuzz_*.c).
 # fuzz_dynamics and fuzz_board share one target's budget (RUNS/2 each).
 # With clang: libFuzzer + ASan + UBSan. Without: gcc, ASan + UBSan and a
 # seeded random driver (tests/fuzz/standalone_driver.c).

@@ -602,8 +602,7 @@ def write_unit(unit, outdir):
         h.append("/* %s */" % doc)
         h.append(proto + ";")
     h += ["", "#endif", ""]
-    c = [stamp(sp.__version__), "#ifndef _GNU_SOURCE", "#define _GNU_SOURCE  /* sincos */",
-         "#endif", '#include <math.h>',
+    c = [stamp(sp.__version__), '#include "hg_math.h"  /* rtapi_math.h in realtime builds */',
          '#include "hg_errors.h"',
          '#include "%s.h"' % unit.name, ""]
     c.append("void %s_init(const hg_params *p, double *k)" % unit.name)
@@ -789,7 +788,8 @@ def gen_fused(u, m, names):
     qd1 = [None] * 6 + [T("qd1_%d" % i, qd[i] + qdd_s[i] * dt) for i in range(6, 12)]
     # ... sin/cos of the new head angles (returned for the next step) ...
     for i in range(3):
-        seq.append((None, "sincos(%s, &sc1[%d], &sc1[%d]);" % (q1[9 + i].name, 2 * i, 2 * i + 1)))
+        seq.append((None, "sc1[%d] = sin(%s);" % (2 * i, q1[9 + i].name)))
+        seq.append((None, "sc1[%d] = cos(%s);" % (2 * i + 1, q1[9 + i].name)))
     # ... one Newton step on z and the velocity projection z' = A c' at
     # the predicted state (the atoms of reduced_stabilize_atomized there)
     ms = reduced_stabilize_atomized(sp.Matrix(q), sp.Matrix(qd))

@@ -81,16 +81,24 @@ class LoopSummary(C.Structure):
                 ("periods", C.c_long), ("tripped_at", C.c_long)]
 
 
-class Data(C.Structure):
-    """hg_data: the dynamics state (SI)."""
-    _fields_ = [("t_s", C.c_double), ("z_m", _d6), ("zd_mps", _d6), ("zdd_mps2", _d6),
-                ("pose", _d6), ("posed", _d6), ("bar_rad", C.c_double * 12),
-                ("bar_radps", C.c_double * 12), ("current_a", _d6), ("force_n", _d6),
-                ("residual_m", C.c_double), ("last_error", C.c_int), ("broken_bars", C.c_uint),
-                ("trig_key_rad", C.c_double * 3), ("trig_sc", _d6), ("trig_valid", C.c_int)]
-
-
 _sizeof = _sig("hg_loop_sizeof", C.c_ulong, C.c_int)
+
+_DATA_STATE = [("t_s", C.c_double), ("z_m", _d6), ("zd_mps", _d6), ("zdd_mps2", _d6),
+               ("pose", _d6), ("posed", _d6), ("bar_rad", C.c_double * 12),
+               ("bar_radps", C.c_double * 12), ("current_a", _d6), ("force_n", _d6),
+               ("residual_m", C.c_double), ("last_error", C.c_int), ("broken_bars", C.c_uint),
+               ("trig_key_rad", C.c_double * 3), ("trig_sc", _d6), ("trig_valid", C.c_int)]
+
+
+class _DataState(C.Structure):
+    _fields_ = _DATA_STATE
+
+
+class Data(C.Structure):
+    """hg_data: the dynamics state (SI), then hg_step's scratch (opaque, hg_work)."""
+    _fields_ = _DATA_STATE + [("work", C.c_double * max(0, (_sizeof(5) - C.sizeof(_DataState)) // 8))]
+
+
 for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data)):
     if _sizeof(_i) != C.sizeof(_s):
         raise ImportError("%s: layout differs from the library's (%d vs %d bytes): rebuild both"

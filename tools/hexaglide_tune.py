@@ -60,7 +60,7 @@ def pid_keys(g):
 def load_trajectory(path):
     """Joint commands (n, 6) in mm from a recorded run.
 
-    Accepted: the CSV of configs/hexaglide_headless.py (columns
+    Accepted: the CSV of tools/headless/hexaglide_headless.py (columns
     joint.N.motor-pos-cmd; cropped to the program when halui.program.is-running
     is there), or plain rows of 6 numbers (or 7: a sample number / time first,
     as `halsampler -t` prints), separated by spaces or commas; lines starting

@@ -3,7 +3,7 @@
 # Usage: tools/install-deps.sh [build|test|demo|bench|run|tune]
 # Installs only what is missing; uses sudo when not root.
 set -e
-need="linuxcnc-uspace linuxcnc-uspace-dev build-essential"
+need="linuxcnc-uspace linuxcnc-uspace-dev build-essential man-db"
 case "$1" in
   test)  need="$need libmujoco-dev python3-sympy python3-numpy python3-matplotlib python3-scipy cppcheck clang clang-tidy libclang-rt-14-dev bc xvfb imagemagick" ;;
   demo)  need="$need python3-matplotlib python3-numpy xvfb" ;;

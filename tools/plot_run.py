@@ -2,7 +2,7 @@
 """plot_run.py - plots and a summary of a sampled Hexaglide run.
 
 Usage: tools/plot_run.py RUN.csv [OUTDIR]
-Reads the CSV written by configs/hexaglide_headless.py (one row per servo
+Reads the CSV written by tools/headless/hexaglide_headless.py (one row per servo
 period) and writes, in the spirit of Fig. 6 of Ros et al. 2011:
   <stem>_z11_z12.png   commanded vs actual z11 and z12 while the program runs
   <stem>_ferror.png    following error of every joint (LinuxCNC's joint.N.f-error)

@@ -8,7 +8,7 @@ GAINS_FILE is tune's stdout (or --output): [JOINT_N] sections with
 P I D FF0 FF1 FF2 FF3 BIAS ... and the "# joint N: peak |f-error| ..." lines;
 or any INI (configs/hexaglide.ini: its [JOINT_N] gains).
 The gains are set with halcmd over configs/hexaglide.ini's (HG_SETP of
-configs/hexaglide_headless.py), the program runs headless
+tools/headless/hexaglide_headless.py), the program runs headless
 (tools/hg_linuxcnc.sh), every servo period is sampled, and the measured peak
 |f-error| per joint is compared with tune's prediction made offline from
 this run's own joint commands (motion's output only, never the measured
@@ -46,7 +46,7 @@ def run_linuxcnc(gains, program, out, tag):
         os.unlink(csv)
     with open(os.path.join(out, tag + ".log"), "w") as log:
         rc = subprocess.call(["timeout", "-k", "20", "300", os.path.join(ROOT, "tools", "hg_linuxcnc.sh"),
-                              os.path.join(ROOT, "configs", "hexaglide_headless.ini")],
+                              os.path.join(ROOT, "tools", "headless", "hexaglide_headless.ini")],
                              env=env, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT)
     if rc != 0 or not os.path.exists(csv):
         raise RuntimeError("LinuxCNC run failed (exit %d); see %s" % (rc, os.path.join(out, tag + ".log")))

@@ -4,10 +4,13 @@
 #ifndef HG_CLI_H
 #define HG_CLI_H
 
+#include "hg_params.h"
+
 int cmd_ik(int argc, char **argv);   /* ik X Y Z A B C */
 int cmd_fk(int argc, char **argv);   /* fk J0..J5 [--guess X Y Z A B C] */
 int cmd_sim(int argc, char **argv);  /* sim --model ... (offline simulator) */
 int cmd_soak(int argc, char **argv); /* soak [--hours H] (long closed-loop run) */
+int cmd_replay(int argc, char **argv, const char *self); /* replay FILE ... (self: argv[0]) */
 int cmd_tune(int argc, char **argv); /* tune [--trajectory FILE] (runs tools/hexaglide_tune.py) */
 
 #include "hg_board.h"
@@ -21,5 +24,9 @@ int cli_parse_period(const char *cmd, double dt, long *period_ns);
 
 /* Parse a finite double; 0 on success, -1 (and a message naming what) otherwise. */
 int cli_parse_double(const char *text, const char *what, double *out);
+
+/* Apply "name=value" (spec name, SI unit) to p; 0, or -1 with a message
+ * "hexaglide CMD: --set: ..." naming the problem. */
+int cli_parse_set(const char *cmd, const char *text, hg_params *p);
 
 #endif

@@ -1,5 +1,5 @@
 """hg_check.py - helpers of the tests/linuxcnc checks: TAP lines and the
-front end's outputs (TAG.json, TAG.csv written by configs/hexaglide_headless.py)."""
+front end's outputs (TAG.json, TAG.csv written by tools/headless/hexaglide_headless.py)."""
 import json
 import sys
 
@@ -35,7 +35,7 @@ def samples(stem):
 
 
 def fault_checks(r, joint, says, end_pose, mdi_pose, rc):
-    """Checks of a scenario-fault report (configs/hexaglide_headless.py):
+    """Checks of a scenario-fault report (tools/headless/hexaglide_headless.py):
     LinuxCNC says "joint <joint> <says>", trips (motion and every drive off),
     aborts the program before its end pose, and after the fault is cleared
     the machine switches on, homes and does the MDI move to mdi_pose; rc is

@@ -203,7 +203,7 @@ static void test_failure_leaves_state(hg_model_kind kind)
         finite &= hg_all_finite(6, d.z_m) && hg_all_finite(6, d.pose) && hg_all_finite(6, d.zd_mps);
     }
     d.last_error = before.last_error;
-    CHECK(rc < 0 && finite && memcmp(&d, &before, sizeof d) == 0,
+    CHECK(rc < 0 && finite && memcmp(&d, &before, HG_DATA_STATE_BYTES) == 0,
           "%s: unstable run fails at t = %.2f s with '%s', state untouched and finite",
           hg_model_name(kind), before.t_s, hg_strerror(rc));
 }
@@ -239,7 +239,7 @@ static void test_refused(void)
     before = d;
     rc = hg_step(&m, &d, v, 0.0);
     d.last_error = before.last_error;
-    CHECK(rc == HG_ERR_BAD_DT && memcmp(&d, &before, sizeof d) == 0, "dt = 0 refused, state untouched");
+    CHECK(rc == HG_ERR_BAD_DT && memcmp(&d, &before, HG_DATA_STATE_BYTES) == 0, "dt = 0 refused, state untouched");
     rc = hg_step(&m, &d, v, -1e-3);
     CHECK(rc == HG_ERR_BAD_DT && d.last_error == HG_ERR_BAD_DT, "dt < 0 refused and latched");
     rc = hg_step(&m, &d, v, NAN);

@@ -3,13 +3,16 @@
  * by Koenig's theorem (bar: COM at mid-length, inertia i_bar - m_bar l^2/4
  * about it; head: COM velocity and body angular velocity from finite
  * differences of the rotation), velocities by finite differences of the
- * closed-form inverse kinematics. Also the structured Standard step against
- * the dense generic one. */
+ * closed-form inverse kinematics. Also the structured Standard
+ * accelerations against the dense augmented (KKT) system solved here, and
+ * its stabilization against the constraints it must restore. */
 #include <math.h>
 #include <string.h>
 #include "hg_test.h"
 #include "hg_dynamics.h"
-#include "hg_step.h"
+#include "hg_integrate.h"
+#include "hg_step_standard.h"
+#include "hg_gen_standard.h"
 #include "hg_errors.h"
 
 #define EPS 1e-6
@@ -157,19 +160,69 @@ static void test_energies(void)
     }
 }
 
-/* The structured Standard step and the dense generic one give the same state. */
-static void test_standard_dense(void)
+/* Solve the n x n system a x = b (row-major) in place by Gaussian
+ * elimination with partial pivoting; b receives x. */
+static void dense_solve(int n, double *a, double *b)
+{
+    int i, j, k;
+    for (k = 0; k < n; k++) {
+        int p = k;
+        for (i = k + 1; i < n; i++)
+            if (fabs(a[i * n + k]) > fabs(a[p * n + k]))
+                p = i;
+        for (j = 0; j < n; j++) {
+            double t = a[k * n + j];
+            a[k * n + j] = a[p * n + j];
+            a[p * n + j] = t;
+        }
+        { double t = b[k]; b[k] = b[p]; b[p] = t; }
+        for (i = k + 1; i < n; i++) {
+            double f = a[i * n + k] / a[k * n + k];
+            for (j = k; j < n; j++)
+                a[i * n + j] -= f * a[k * n + j];
+            b[i] -= f * b[k];
+        }
+    }
+    for (k = n - 1; k >= 0; k--) {
+        for (j = k + 1; j < n; j++)
+            b[k] -= a[k * n + j] * b[j];
+        b[k] /= a[k * n + k];
+    }
+}
+
+/* Dense Phi_q (18 x 24) of the standard model from the generated blocks. */
+static void standard_jacobian(const double Pa[36], const double Pc[108], double *J)
+{
+    int k, r, c;
+    memset(J, 0, 18 * 24 * sizeof(double));
+    for (k = 0; k < 6; k++)
+        for (r = 0; r < 3; r++) {
+            J[(3 * k + r) * 24 + k] = r == 2 ? 1.0 : 0.0;  /* B_k moves with z_k along +z */
+            for (c = 0; c < 2; c++)
+                J[(3 * k + r) * 24 + 6 + 2 * k + c] = Pa[6 * k + 2 * r + c];
+            for (c = 0; c < 6; c++)
+                J[(3 * k + r) * 24 + 18 + c] = Pc[6 * (3 * k + r) + c];
+        }
+}
+
+/* The structured Standard accelerations equal the dense KKT solution of
+ * [M Phi_q^T; Phi_q 0] [q''; lambda] = [Q + f; -gamma] (a second
+ * formulation of Eq. 13), and its stabilization leaves the constraints
+ * and the velocity constraints at rounding level. */
+static void test_standard_kkt(void)
 {
     hg_params p;
-    hg_model m;
-    hg_data d;
+    static hg_model m;
+    static hg_data d;
+    static double K[42 * 42], J[18 * 24];
     double v[6] = {1, -2, 0.5, 2, -1, 0.3}, fz[6], q0[24], qd0[24], q1[24], qd1[24], qdd[24];
-    double q2[24], qd2[24], qdd2[24], r1, r2, worst = 0;
-    int i, s, rc1 = 0, rc2 = 0;
+    double mzz[6], Mza[12], Maa[24], Mcc[36], Q[24], Pa[36], Pc[108], gm[18], phi[18], b[42];
+    double worst = 0, scale = 0, res, pworst = 0, vworst = 0;
+    int i, j, k, r, c, rc;
     hg_params_default(&p);
     hg_model_init(&m, &p, HG_MODEL_STANDARD, 0, 0);
     hg_data_reset(&m, &d);
-    for (s = 0; s < 100; s++)
+    for (i = 0; i < 100; i++)
         hg_step(&m, &d, v, 1e-3);
     for (i = 0; i < 6; i++) {
         q0[i] = d.z_m[i]; qd0[i] = d.zd_mps[i];
@@ -180,17 +233,56 @@ static void test_standard_dense(void)
         q0[6 + i] = d.bar_rad[i];
         qd0[6 + i] = d.bar_radps[i];
     }
-    rc1 = hg_step_standard(&m, q0, qd0, fz, 1e-3, q1, qd1, qdd, &r1);
-    rc2 = hg_step_joints(&m, q0, qd0, fz, 1e-3, q2, qd2, qdd2, &r2);
+    rc = hg_standard_accel(&m, &d, q0, qd0, fz, qdd);
+    hg_gen_standard_terms(m.k, q0, qd0, mzz, Mza, Maa, Mcc, Q, Pa, Pc, gm);
+    standard_jacobian(Pa, Pc, J);
+    memset(K, 0, sizeof K);
+    for (k = 0; k < 6; k++) {          /* M: z diagonal, z_k with bar k's angles, 2x2 per bar, c */
+        K[k * 42 + k] = mzz[k];
+        for (c = 0; c < 2; c++) {
+            K[k * 42 + 6 + 2 * k + c] = K[(6 + 2 * k + c) * 42 + k] = Mza[2 * k + c];
+            for (r = 0; r < 2; r++)
+                K[(6 + 2 * k + r) * 42 + 6 + 2 * k + c] = Maa[4 * k + 2 * r + c];
+        }
+        for (c = 0; c < 6; c++)
+            K[(18 + k) * 42 + 18 + c] = Mcc[6 * k + c];
+    }
+    for (r = 0; r < 18; r++)
+        for (j = 0; j < 24; j++)
+            K[(24 + r) * 42 + j] = K[j * 42 + 24 + r] = J[r * 24 + j];
     for (i = 0; i < 24; i++)
-        worst = fmax(worst, fabs(qdd[i] - qdd2[i]) + fabs(q1[i] - q2[i]) + fabs(qd1[i] - qd2[i]));
-    CHECK(rc1 == 0 && rc2 == 0 && worst < 1e-9,
-          "standard: structured step = dense 18x18 step (max difference %.1e)", worst);
+        b[i] = Q[i] + (i < 6 ? fz[i] : 0.0);
+    for (r = 0; r < 18; r++)
+        b[24 + r] = -gm[r];
+    dense_solve(42, K, b);
+    for (i = 0; i < 24; i++) {
+        worst = fmax(worst, fabs(qdd[i] - b[i]));
+        scale = fmax(scale, fabs(b[i]));
+    }
+    CHECK(rc == 0 && worst <= 1e-9 * scale,
+          "standard: structured Eq. 13 accelerations = dense KKT solution (max difference %.1e, "
+          "largest q'' %.2f)", worst, scale);
+    for (i = 0; i < 24; i++) {         /* improved Euler, then the stabilization */
+        q1[i] = q0[i] + qd0[i] * 1e-3 + 0.5e-6 * qdd[i];
+        qd1[i] = qd0[i] + qdd[i] * 1e-3;
+    }
+    rc = hg_standard_stabilize(&m, &d, q1, qd1, &res);
+    hg_gen_standard_constraints(m.k, q1, phi, Pa, Pc);
+    standard_jacobian(Pa, Pc, J);
+    for (r = 0; r < 18; r++) {
+        double vc = 0;
+        for (j = 0; j < 24; j++)
+            vc += J[r * 24 + j] * qd1[j];
+        pworst = fmax(pworst, fabs(phi[r]));
+        vworst = fmax(vworst, fabs(vc));
+    }
+    CHECK(rc == 0 && pworst < 1e-11 && vworst < 1e-9,
+          "standard: after the stabilization |Phi| = %.1e m, |Phi_q q'| = %.1e m/s", pworst, vworst);
 }
 
 int main(void)
 {
     test_energies();
-    test_standard_dense();
+    test_standard_kkt();
     return hg_test_exit();
 }

@@ -17,7 +17,8 @@ Settings (environment):
                 fault   home, run, set HG_FAULT HG_FAULT_AFTER s into the program,
                         wait for LinuxCNC to trip, clear the fault, machine on,
                         home again, one MDI move (docs/reliability.md)
-  HG_SAMPLE     1: sample HAL pins to HG_OUT/HG_TAG.csv (default 1)
+  HG_SAMPLE     1: sample HAL pins to HG_OUT/HG_TAG.csv (default 1; 0 when
+                HG_RECORD is set: the replay recorder has `sampler`)
   HG_TAG        file name stem of outputs (default: the scenario)
   HG_TIMEOUT    seconds allowed for the program (default 300)
   HG_SETP       "pin value;pin value..." set with halcmd before estop reset
@@ -378,7 +379,9 @@ def main():
     program = os.path.abspath(os.environ.get(
         "HG_PROGRAM", os.path.join(here, "nc_files", "hexaglide_logo.ngc")))
     timeout = float(os.environ.get("HG_TIMEOUT", "300"))
-    sample = os.environ.get("HG_SAMPLE", "1") == "1"
+    # sampler loads once per HAL session: with the replay recorder
+    # (HG_RECORD, tools/hg_record.tcl) it is taken, so no sampling by default
+    sample = os.environ.get("HG_SAMPLE", "0" if os.environ.get("HG_RECORD") else "1") == "1"
 
     def on_term(signum, frame):
         raise KeyboardInterrupt("signal %d" % signum)

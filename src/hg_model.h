@@ -1,0 +1,97 @@
+/* hg_model.h - the dynamics' data types, MuJoCo-style: hg_model is
+ * constant after hg_model_init (parameters and the parameter-only
+ * subexpressions of the generated code); hg_data is the mutable state and
+ * its scratch. Both are plain structs without pointers, so the HAL driver
+ * can place them in hal_malloc'd memory. Functions: hg_dynamics.h.
+ *
+ * Units: SI and radians. z = carriage heights relative to HOME (m, up),
+ * pose = X Y Z (m) A B C (rad) of the head reference point, as in
+ * hg_kinematics.h. */
+#ifndef HG_MODEL_H
+#define HG_MODEL_H
+
+#include <stddef.h>
+#include "hg_params.h"
+
+/* The parametrizations of the paper's section 7, plus the fused one. */
+typedef enum {
+    HG_MODEL_STANDARD = 0,          /* q = [z, 12 bar angles, c], z independent */
+    HG_MODEL_REDUCED_JOINTS = 1,    /* bars lumped, q = [z, c], z independent */
+    HG_MODEL_REDUCED_CARTESIAN = 2, /* bars lumped, q = [z, c], c independent */
+    HG_MODEL_FUSED_CARTESIAN = 3,   /* reduced Cartesian, whole step generated as one function */
+    HG_MODEL_COUNT = 4
+} hg_model_kind;
+
+/* Time integration scheme of one step (hg_integrate.[ch] holds the schemes). */
+typedef enum {
+    HG_INTEGRATOR_IMPROVED_EULER = 0, /* the paper's: q += qd dt + qdd dt^2/2, qd += qdd dt (default) */
+    HG_INTEGRATOR_HEUN = 1,           /* second order (RK2), then the same stabilization */
+    HG_INTEGRATOR_RK4 = 2,            /* classical fourth order, then the same stabilization */
+    HG_INTEGRATOR_COUNT = 3
+} hg_integrator;
+
+#define HG_MAX_CONSTS 256   /* room for hoisted parameter-only subexpressions */
+#define HG_MAX_LUMPED_CONSTS 64 /* room for the lumped-bar model's */
+
+typedef struct {
+    hg_params p;                 /* the parameter set this model was built from */
+    hg_model_kind kind;
+    hg_integrator integrator;    /* scheme of hg_step (hg_model_init: improved Euler) */
+    double force_per_amp_n;      /* kt 2 pi / lead: carriage force per motor ampere (N/A) */
+    double force_per_volt_n;     /* ka kt 2 pi / lead (N/V) */
+    double rotor_mass_kg;        /* j_rotor (2 pi / lead)^2, inertia without weight */
+    double potential_home_j;     /* gravity potential at HOME (energies are relative to it) */
+    double k[HG_MAX_CONSTS];     /* generated init: parameter-only subexpressions */
+    double k_lumped[HG_MAX_LUMPED_CONSTS]; /* the lumped-bar model's (broken-bar step), any kind */
+    double potential_lumped_home_j; /* lumped-bar gravity potential at HOME */
+} hg_model;
+
+#define HG_DT_MAX_S 0.01              /* hg_step refuses longer steps (HG_ERR_BAD_DT) */
+#define HG_STAB_MAX_RESIDUAL_M 1e-6   /* bar-length error after stabilization that counts as diverged */
+#define HG_BARS_ALL 0x3fu             /* broken_bars: bit k is bar k (joint k) */
+#define HG_BROKEN_HEAD_Z_MIN_M (-0.6) /* broken machine: head Z below this is out of volume */
+#define HG_BROKEN_REACH_M 1.0         /* broken machine: |X|, |Y| or a |z_k| above this is out of volume */
+#define HG_BROKEN_ROT_MAX_RAD 0.3490658503988659 /* broken machine: |A|, |B| or |C| above 20 deg is out of volume */
+
+/* Preallocated scratch for one hg_step: the integrator's stage vectors
+ * and the parametrization's 6x6 (and 18x7) temporaries, so that no
+ * realtime stack frame exceeds 2560 bytes (kernel/RTAI modules). Each
+ * user lays its own struct over these arrays (sizes checked at compile
+ * time). */
+#define HG_WORK_STAGE 128
+#define HG_WORK_STEP 800    /* the largest user: the Standard step, 778 */
+typedef struct {
+    double stage[HG_WORK_STAGE]; /* hg_integrate's stage states and sums */
+    double step[HG_WORK_STEP];   /* the parametrization's accelerations/stabilization */
+    double sc1[6];               /* Reduced Cartesian: sin/cos of the stabilized head angles */
+} hg_work;
+
+typedef struct {
+    double t_s;                  /* simulated time since reset */
+    double z_m[6];               /* carriage heights relative to HOME */
+    double zd_mps[6];            /* carriage velocities */
+    double zdd_mps2[6];          /* carriage accelerations of the last step */
+    double pose[6];              /* head pose: X Y Z (m) A B C (rad) */
+    double posed[6];             /* its time derivative */
+    double bar_rad[12];          /* bar angles (standard model only) */
+    double bar_radps[12];        /* their rates (standard model only) */
+    double current_a[6];         /* motor currents after the amplifier clamp */
+    double force_n[6];           /* net non-inertial force on each carriage (drive+friction+stop) */
+    double residual_m;           /* max bar-length error after the last stabilization */
+    int last_error;              /* code of the last failed step, 0 if none */
+    unsigned broken_bars;        /* fault injection: bit k set = bar k removed (HG_BARS_ALL);
+                                    hg_data_reset clears it (all bars intact) */
+    /* internal cache of the Reduced Cartesian steps: sin/cos of the head
+     * angles of pose[3..5] (the stabilization's are the next step's) */
+    double trig_key_rad[3];      /* the angles trig_sc belongs to */
+    double trig_sc[6];           /* sin A, cos A, sin B, cos B, sin C, cos C */
+    int trig_valid;              /* 0: recompute */
+    /* scratch of hg_step (contents undefined between calls; last, so that a
+     * copy of the state alone is memcpy(dst, src, HG_DATA_STATE_BYTES)) */
+    hg_work work;
+} hg_data;
+
+/* Bytes of hg_data before the scratch: the whole state. */
+#define HG_DATA_STATE_BYTES offsetof(hg_data, work)
+
+#endif
