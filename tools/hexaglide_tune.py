@@ -413,7 +413,7 @@ def atomic_write(path, write):
         raise
 
 
-MARGIN_FREQS = np.logspace(np.log10(5), np.log10(450), 30)
+MARGIN_FREQS = np.logspace(0, np.log10(400), 36)   # sine sweep: 1-400 Hz (Nyquist 500 Hz)
 
 
 def ini_text(gains, pred, source):
@@ -494,7 +494,7 @@ def plots(outdir, cur, sug, prob, source):
         a.grid(alpha=0.3)
     save(fig, "tune_ferror.png")
 
-    freqs = np.logspace(0, np.log10(450), 36)
+    freqs = MARGIN_FREQS
     fig, axs = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
     for (lab, g), col in zip((("current", cur), ("suggested", sug)), ("C0", "C1")):
         mag, ph = sine_sweep(g, prob, freqs)
