@@ -54,8 +54,10 @@ typedef struct {
     int reset;                        /* motenc-hexaglide.B.reset (rising edge acts) */
     unsigned watchdog_control;        /* motenc.B.watchdog-control */
     int watchdog_reset;               /* motenc.B.watchdog-reset (the glue clears the pin) */
-    int index_enable[HG_BOARD_ENCODERS]; /* motenc.B.enc-CC-index-enable */
-    int enc_reset[HG_BOARD_ENCODERS];    /* motenc.B.enc-CC-reset */
+    int index_enable[HG_BOARD_ENCODERS]; /* motenc.B.enc-CC-index-enable: arms the index latch
+                                             (after index_latched the driver clears it; if it
+                                             stays set, the latch re-arms for the next index) */
+    int enc_reset[HG_BOARD_ENCODERS];    /* motenc.B.enc-CC-reset: counter reads 0 while set */
     double enc_scale[HG_BOARD_ENCODERS]; /* motenc.B.enc-CC-scale */
     int adc_read;                     /* 1 if motenc.B.adc-read ran since the last step */
     double adc_gain[HG_BOARD_ADCS];   /* motenc.B.adc-CC-gain */
@@ -66,10 +68,13 @@ typedef struct {
     unsigned stuck[HG_BOARD_JOINTS];  /* HG_SW_* bits: stuck-min, stuck-max, stuck-home */
     unsigned tripped[HG_BOARD_JOINTS]; /* HG_SW_* bits: tripped-min, tripped-max, tripped-home */
     int index_lost[HG_BOARD_JOINTS];  /* index-lost */
-    int enc_glitch[HG_BOARD_JOINTS];  /* enc-glitch (counts; the glue clears the pin after a step) */
+    int enc_glitch[HG_BOARD_JOINTS];  /* enc-glitch: counts added in every step it is non-zero
+                                         (the glue clears the pin after the step: added once) */
     int bar_broken[HG_BOARD_JOINTS];  /* bar-broken */
-    /* the parameter block as HAL shows it (converted to SI); a change is
-     * tried when it differs from the block of the previous step */
+    /* the parameter block as HAL shows it (converted to SI: HAL value /
+     * hg_param_info.hal_scale), .substeps, .integrator; a change is tried
+     * when it differs (bitwise) from the block of the previous step, so a
+     * refused block held in the inputs is refused once */
     hg_board_params params;
 } hg_board_inputs;
 

@@ -1,17 +1,18 @@
 /* hg_board_rec.c - the record pin set of the virtual board (hg_board_rec.h). */
 #include <stddef.h>
+#include "hg_math.h"
 #include "hg_string.h"
 #include "hg_board_rec.h"
 
 /* Table macros: n is a string literal pasted to a suffix, f a member
  * designator for offsetof; neither can take parentheses. */
 /* NOLINTBEGIN(bugprone-macro-parentheses) */
-#define IN(n, t, f, nf) { n, t, HG_BRS_IN, nf, 0, 0, 0, offsetof(hg_board_inputs, f) }
-#define OUT(n, t, f) { n, t, HG_BRS_OUT, 0, 0, 0, 0, offsetof(hg_board_outputs, f) }
+#define IN(n, t, f, nf) { n, t, HG_BRS_IN, nf, 0, 0, 0, offsetof(hg_board_inputs, f), 0 }
+#define OUT(n, t, f) { n, t, HG_BRS_OUT, 0, 0, 0, 0, offsetof(hg_board_outputs, f), 0 }
 #define INPACK(n, f, cnt, bits) \
-    { n, HG_BRF_PACK, HG_BRS_IN, 0, cnt, bits, sizeof(int), offsetof(hg_board_inputs, f) }
+    { n, HG_BRF_PACK, HG_BRS_IN, 0, cnt, bits, sizeof(int), offsetof(hg_board_inputs, f), 0 }
 #define OUTPACK(n, f, cnt, bits, elem) \
-    { n, HG_BRF_PACK, HG_BRS_OUT, 0, cnt, bits, elem, offsetof(hg_board_outputs, f) }
+    { n, HG_BRF_PACK, HG_BRS_OUT, 0, cnt, bits, elem, offsetof(hg_board_outputs, f), 0 }
 #define IN8(n, t, f, nf) IN(n "-00", t, f[0], nf), IN(n "-01", t, f[1], nf), IN(n "-02", t, f[2], nf), \
     IN(n "-03", t, f[3], nf), IN(n "-04", t, f[4], nf), IN(n "-05", t, f[5], nf), \
     IN(n "-06", t, f[6], nf), IN(n "-07", t, f[7], nf)
@@ -30,8 +31,8 @@ typedef char hg_board_rec_8_channels[(HG_BOARD_DACS == 8 && HG_BOARD_ENCODERS ==
 
 /* Every field of hg_board_inputs, in its order, then the outputs compared. */
 static const hg_board_rec_field fixed[] = {
-    {"in.period-ns", HG_BRF_S32, HG_BRS_PERIOD, 0, 0, 0, 0, 0},
-    {"in.model", HG_BRF_U32, HG_BRS_MODEL, 0, 0, 0, 0, 0},
+    {"in.period-ns", HG_BRF_S32, HG_BRS_PERIOD, 0, 0, 0, 0, 0, 0},
+    {"in.model", HG_BRF_U32, HG_BRS_MODEL, 0, 0, 0, 0, 0, 0},
     IN8("in.dac-v", HG_BRF_F64, dac_v, 1),
     IN("in.dac-written", HG_BRF_BIT, dac_written, 0),
     IN("in.dout-values", HG_BRF_U32, dout_values, 0),
@@ -84,6 +85,10 @@ static const hg_board_rec_field fixed[] = {
     OUT("out.events", HG_BRF_U32, events),
 };
 
+static const char *const mask_name[HG_BOARD_REC_NF_WORDS] = {
+    "in.nonfinite-0", "in.nonfinite-1", "in.nonfinite-2", "in.nonfinite-3", "in.nonfinite-4",
+};
+
 /* dst = a then b, truncated to HG_BOARD_REC_NAME - 1 characters. */
 static void join(char *dst, const char *a, const char *b)
 {
@@ -97,9 +102,9 @@ static void join(char *dst, const char *a, const char *b)
 
 int hg_board_rec_fields(hg_board_rec_field *f, int max)
 {
-    int n = (int)(sizeof fixed / sizeof fixed[0]), np = 0, k;
+    int n = (int)(sizeof fixed / sizeof fixed[0]), np = 0, k, nf = 0;
     const hg_param_info *t = hg_params_table(&np);
-    if (n + np > max)
+    if (n + np + HG_BOARD_REC_NF_WORDS > max)
         return -1;
     memcpy(f, fixed, sizeof fixed);
     for (k = 0; k < np; k++) {
@@ -111,7 +116,31 @@ int hg_board_rec_fields(hg_board_rec_field *f, int max)
         e->nonfinite = 1;
         e->offset = offsetof(hg_board_inputs, params.model) + t[k].offset;
     }
-    return n + np;
+    n += np;
+    for (k = 0; k < n; k++)
+        if (f[k].nonfinite)
+            f[k].nf_index = (unsigned)nf++;
+    if (nf > 16 * HG_BOARD_REC_NF_WORDS)
+        return -1;
+    for (k = 0; k < HG_BOARD_REC_NF_WORDS; k++) {
+        hg_board_rec_field *e = &f[n + k];
+        memset(e, 0, sizeof *e);
+        join(e->name, mask_name[k], "");
+        e->type = HG_BRF_U32;
+        e->side = HG_BRS_NFMASK;
+        e->offset = (unsigned long)k;
+    }
+    return n + HG_BOARD_REC_NF_WORDS;
+}
+
+/* 2-bit state of a double: 0 finite, 1 NaN, 2 +inf, 3 -inf. */
+static unsigned nf_code(double d)
+{
+    if (isfinite(d))
+        return 0u;
+    if (d != d)
+        return 1u;
+    return d > 0 ? 2u : 3u;
 }
 
 /* Element k of a packed array at p. */
@@ -126,35 +155,46 @@ static unsigned elem_at(const hg_board_rec_field *f, const char *p, int k)
     }
 }
 
-double hg_board_rec_get(const hg_board_rec_field *f, const hg_board_inputs *in,
+double hg_board_rec_get(const hg_board_rec_field *t, int n, int i, const hg_board_inputs *in,
                         const hg_board_outputs *out, long period_ns, int model)
 {
+    const hg_board_rec_field *f = &t[i];
     const char *p;
     double d;
-    int i;
+    int v, k;
     unsigned u;
     if (f->side == HG_BRS_PERIOD)
         return (double)(period_ns > 2147483647L ? 2147483647L : period_ns < -2147483647L ? -2147483647L
                                                                                           : period_ns);
     if (f->side == HG_BRS_MODEL)
         return (double)model;
+    if (f->side == HG_BRS_NFMASK) {
+        unsigned word = 0;
+        for (k = 0; k < n; k++) {
+            unsigned slot = t[k].nf_index - 16u * (unsigned)f->offset;
+            if (!t[k].nonfinite || t[k].side != HG_BRS_IN || slot >= 16u)
+                continue;
+            memcpy(&d, (const char *)in + t[k].offset, sizeof d);
+            word |= nf_code(d) << (2u * slot);
+        }
+        return (double)word;
+    }
     p = (f->side == HG_BRS_IN ? (const char *)in : (const char *)out) + f->offset;
     switch (f->type) {
     case HG_BRF_F64:
         memcpy(&d, p, sizeof d);
-        return d;
+        return isfinite(d) ? d : 0.0;
     case HG_BRF_S32:
-        memcpy(&i, p, sizeof i);
-        return (double)i;
+        memcpy(&v, p, sizeof v);
+        return (double)v;
     case HG_BRF_U32:
         memcpy(&u, p, sizeof u);
         return (double)u;
     case HG_BRF_BIT:
-        memcpy(&i, p, sizeof i);
-        return i ? 1.0 : 0.0;
+        memcpy(&v, p, sizeof v);
+        return v ? 1.0 : 0.0;
     default: {
         unsigned word = 0, mask = (1u << f->pack_bits) - 1u;
-        int k;
         for (k = 0; k < f->pack_n && k < 32; k++)
             word |= (elem_at(f, p, k) & mask) << (k * f->pack_bits);
         return (double)word;
@@ -162,11 +202,27 @@ double hg_board_rec_get(const hg_board_rec_field *f, const hg_board_inputs *in,
     }
 }
 
-void hg_board_rec_set(const hg_board_rec_field *f, hg_board_inputs *in, double v)
+void hg_board_rec_set(const hg_board_rec_field *t, int n, int i, hg_board_inputs *in, double v)
 {
+    const hg_board_rec_field *f = &t[i];
     char *p = (char *)in + f->offset;
-    int i;
+    int iv, k;
     unsigned u;
+    if (f->side == HG_BRS_NFMASK) {
+        unsigned word = (v >= 0.0 && v <= 4294967295.0) ? (unsigned)v : 0u;
+        for (k = 0; k < n; k++) {
+            unsigned slot = t[k].nf_index - 16u * (unsigned)f->offset, code;
+            double d;
+            if (!t[k].nonfinite || t[k].side != HG_BRS_IN || slot >= 16u)
+                continue;
+            code = (word >> (2u * slot)) & 3u;
+            if (code == 0u)
+                continue;
+            d = code == 1u ? (double)NAN : code == 2u ? (double)INFINITY : -(double)INFINITY;
+            memcpy((char *)in + t[k].offset, &d, sizeof d);
+        }
+        return;
+    }
     if (f->side != HG_BRS_IN)
         return;
     switch (f->type) {
@@ -175,8 +231,8 @@ void hg_board_rec_set(const hg_board_rec_field *f, hg_board_inputs *in, double v
         break;
     case HG_BRF_S32:
     case HG_BRF_BIT:
-        i = (v >= -2147483648.0 && v <= 2147483647.0) ? (int)v : 0;
-        memcpy(p, &i, sizeof i);
+        iv = (v >= -2147483648.0 && v <= 2147483647.0) ? (int)v : 0;
+        memcpy(p, &iv, sizeof iv);
         break;
     case HG_BRF_U32:
         u = (v >= 0.0 && v <= 4294967295.0) ? (unsigned)v : 0u;
@@ -185,7 +241,6 @@ void hg_board_rec_set(const hg_board_rec_field *f, hg_board_inputs *in, double v
     default: {
         unsigned word = (v >= 0.0 && v <= 4294967295.0) ? (unsigned)v : 0u;
         unsigned mask = (1u << f->pack_bits) - 1u;
-        int k;
         for (k = 0; k < f->pack_n && k < 32; k++) {
             unsigned e = (word >> (k * f->pack_bits)) & mask;
             if (f->pack_elem == 1)

@@ -59,7 +59,7 @@ typedef struct {
  * user lays its own struct over these arrays (sizes checked at compile
  * time). */
 #define HG_WORK_STAGE 128
-#define HG_WORK_STEP 1024
+#define HG_WORK_STEP 800    /* the largest user: the Standard step, 778 */
 typedef struct {
     double stage[HG_WORK_STAGE]; /* hg_integrate's stage states and sums */
     double step[HG_WORK_STEP];   /* the parametrization's accelerations/stabilization */

@@ -48,38 +48,30 @@ int hg_joints_accel(const hg_model *m, hg_data *d, const double *q, const double
         return rc;
     /* (M_zz + M_zc A + (M_zc A)^T + A^T M_cc A) z'' = Q_z + A^T Q_c - (M_zc + A^T M_cc) b,
      * A = -X[:, :6], b = -X[:, 6] */
-    HG_UNROLL
     for (i = 0; i < 6; i++)            /* T1 = M_zc + A^T M_cc */
-        HG_UNROLL
-        for (r = 0; r < 6; r++) {
+            for (r = 0; r < 6; r++) {
             double acc = w->Mzc[i * 6 + r];
-            HG_UNROLL
-            for (t = 0; t < 6; t++)
+                    for (t = 0; t < 6; t++)
                 acc -= X[t * 7 + i] * w->Mcc[t * 6 + r];
             T1[i * 6 + r] = acc;
         }
-    HG_UNROLL
     for (i = 0; i < 6; i++) {
         double acc = w->Q[i] + fz[i];
-        HG_UNROLL
-        for (r = 0; r < 6; r++)
+            for (r = 0; r < 6; r++)
             acc += -X[r * 7 + i] * w->Q[6 + r] + T1[i * 6 + r] * X[r * 7 + 6];
         rhs[i] = acc;
         for (j = 0; j <= i; j++) {     /* T1 A + (M_zc A)^T, lower triangle */
             double v = (i == j) ? w->mzz[i] : 0.0;
-            HG_UNROLL
-            for (r = 0; r < 6; r++)
+                    for (r = 0; r < 6; r++)
                 v -= T1[i * 6 + r] * X[r * 7 + j] + w->Mzc[j * 6 + r] * X[r * 7 + i];
             Mh[i * 6 + j] = v;
         }
     }
     if ((rc = hg_spd6_solve(Mh, rhs)))
         return rc;
-    HG_UNROLL
     for (r = 0; r < 6; r++) {          /* c'' = A z'' + b */
         double acc = -X[r * 7 + 6];
-        HG_UNROLL
-        for (j = 0; j < 6; j++)
+            for (j = 0; j < 6; j++)
             acc -= X[r * 7 + j] * rhs[j];
         qdd[r] = rhs[r];
         qdd[6 + r] = acc;

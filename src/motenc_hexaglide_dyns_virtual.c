@@ -278,7 +278,7 @@ static void write_rec(board_t *b, long period)
 {
     int i;
     for (i = 0; i < b->nrec; i++) {
-        double v = hg_board_rec_get(&b->rec[i], &b->ins, &b->o, period, b->model);
+        double v = hg_board_rec_get(b->rec, b->nrec, i, &b->ins, &b->o, period, b->model);
         switch (b->rec[i].type) {
         case HG_BRF_F64: *b->rec_pin[i].f = v; break;
         case HG_BRF_S32: *b->rec_pin[i].s = (hal_s32_t)v; break;

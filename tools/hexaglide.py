@@ -18,6 +18,7 @@ which is the core's own (m, rad, s) as in src/hg_dynamics.h.
 import configparser
 import ctypes as C
 import os
+import re
 
 import numpy as np
 
@@ -354,6 +355,50 @@ GAIN_KEYS = {"P": "pgain", "I": "igain", "D": "dgain", "BIAS": "bias", "FF0": "f
              "MAX_ERROR_I": "maxerror_i"}
 
 
+def read_gains(path):
+    """Gains of a tune output or INI: ([six {KEY: value}], {joint: predicted peak mm} or {}).
+    [JOINT_N] sections with KEY = value (only pid keys kept, other sections skipped) and
+    tune's "# joint N: peak |f-error| X mm" lines; ValueError naming file and line."""
+    gains = [dict() for _ in range(6)]
+    pred = {}
+    sec = None
+    with open(path) as f:
+        for no, line in enumerate(f, 1):
+            s = line.strip()
+            m = re.match(r"#\s*joint (\d): peak \|f-error\| ([0-9.eE+-]+) mm", s)
+            if m:
+                pred[int(m.group(1))] = float(m.group(2))
+                continue
+            if not s or s.startswith("#"):
+                continue
+            m = re.match(r"\[JOINT_(\d+)\]$", s)
+            if m:
+                sec = int(m.group(1))
+                if sec > 5:
+                    raise ValueError("%s line %d: [JOINT_%d]: the Hexaglide has joints 0..5" % (path, no, sec))
+                continue
+            if s.startswith("["):
+                sec = None
+                continue
+            if sec is None:
+                continue                       # other sections of an INI
+            k, eq, v = s.partition("=")
+            k = k.strip()
+            if not eq:
+                raise ValueError("%s line %d: not KEY = value: %r" % (path, no, s))
+            if k in GAIN_KEYS:
+                try:
+                    val = float(v)
+                except ValueError:
+                    raise ValueError("%s line %d: %s = %r is not a number" % (path, no, k, v.strip()))
+                if not np.isfinite(val):
+                    raise ValueError("%s line %d: %s is not finite" % (path, no, k))
+                gains[sec][k] = val
+    if not all(gains):
+        raise ValueError("%s: needs [JOINT_0]..[JOINT_5] with gains" % path)
+    return gains, pred
+
+
 class Loop:
     """Six LinuxCNC pid loops around the virtual board (src/hg_loop.h), mm and volts.
 
@@ -426,7 +471,8 @@ def pid_gains(gains):
     g = PidGains()
     _pid_defaults(C.byref(g))
     for key, v in gains.items():
-        setattr(g, GAIN_KEYS[key], float(v))
+        if key in GAIN_KEYS:
+            setattr(g, GAIN_KEYS[key], float(v))
     return g
 
 

@@ -14,6 +14,7 @@ import argparse
 import ctypes as C
 import multiprocessing
 import os
+import re
 import sys
 import tempfile
 import time
@@ -27,6 +28,7 @@ ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
 PERIOD_S = 0.001
 MIN_SAMPLES = 200          # a trajectory shorter than this is refused (0.2 s)
 SETTLE = 1500              # periods at the first command before the trajectory
+RAMP = 500                 # periods of the smooth move from HOME to the first command
 LEAD_IN = 300              # rows kept before the program starts (recorded runs)
 KEYS = ["P", "I", "D", "FF0", "FF1", "FF2", "FF3", "BIAS"]
 
@@ -75,8 +77,11 @@ def load_trajectory(path):
     rows = []
     for no, line in enumerate(lines, 1):
         s = line.strip()
-        if not s or s.startswith("#") or s == "overrun":
+        if not s or s.startswith("#"):
             continue
+        if s == "overrun":
+            raise BadInput("%s line %d: 'overrun': halsampler lost samples here; record again with a "
+                           "deeper FIFO (loadrt sampler depth=...)" % (path, no))
         fields = [x for x in s.replace(",", " ").split()]
         if header is None and not rows and any("motor-pos-cmd" in x for x in fields):
             header = s.split(",")
@@ -98,7 +103,7 @@ def load_trajectory(path):
             if name not in header:
                 raise BadInput("%s: column %s missing (need joints 0..5)" % (path, name))
             cols.append(header.index(name))
-        extra = [c for c in header if c.startswith("joint.") and c.endswith(".motor-pos-cmd")
+        extra = [c for c in header if re.fullmatch(r"joint\.(\d+)\.motor-pos-cmd", c)
                  and int(c.split(".")[1]) >= hg.JOINTS]
         if extra:
             raise BadInput("%s: %d joints, the Hexaglide has 6" % (path, hg.JOINTS + len(extra)))
@@ -107,6 +112,11 @@ def load_trajectory(path):
                 raise BadInput("%s line %d has %d fields, the header %d" % (path, no, len(v), len(header)))
         data = np.array([v for _, v in rows]) if rows else np.zeros((0, len(header)))
         cmd = data[:, cols]
+        if "t_s" in header and len(data) > 1:
+            gap = np.where(np.diff(data[:, header.index("t_s")]) > 1.5 * PERIOD_S)[0]
+            if len(gap):
+                raise BadInput("%s line %d: samples missing after t = %.3f s (a gap in the recording); "
+                               "record again" % (path, rows[gap[0] + 1][0], data[gap[0], header.index("t_s")]))
         if "halui.program.is-running" in header and len(data):
             run = data[:, header.index("halui.program.is-running")] > 0.5
             if run.any():
@@ -123,6 +133,13 @@ def load_trajectory(path):
             raise BadInput("%s: %d values per line; need 6 joint commands (mm), optionally after a "
                            "sample number: the Hexaglide has 6 joints" % (path, width))
         cmd = np.array([v[-6:] for _, v in rows]).reshape(-1, 6)
+        if width == 7 and len(rows) > 1:
+            n = np.array([v[0] for _, v in rows])
+            step = n[1] - n[0]
+            bad = np.where(np.abs(np.diff(n) - step) > 0.25 * abs(step))[0] if step > 0 else [0]
+            if len(bad):
+                raise BadInput("%s line %d: the first column (sample number or time) does not advance "
+                               "evenly: samples lost?" % (path, rows[bad[0] + 1][0]))
     if len(cmd) < MIN_SAMPLES:
         raise BadInput("%s: %d samples; need at least %d (%.1f s of servo periods)"
                        % (path, len(cmd), MIN_SAMPLES, MIN_SAMPLES * PERIOD_S))
@@ -237,12 +254,20 @@ def gains_from_x(x, prob=None):
     return out
 
 
+def lead_in(cmd, settle):
+    """(commands, index where cmd starts): from HOME at rest a smooth move to
+    cmd's first row (RAMP periods), settle periods there, then cmd."""
+    c0 = cmd[:1]
+    ramp = (0.5 - 0.5 * np.cos(np.pi * np.arange(RAMP) / RAMP))[:, None] * c0
+    return np.vstack([ramp, np.repeat(c0, settle, 0), cmd]), RAMP + settle
+
+
 def trajectory_runs(gains, prob, settles, keep=False):
     """Closed-loop runs over the trajectory after different settle times (the
     encoder and DAC quantization make single runs differ by about a count)."""
     res = []
-    for s in settles:
-        seq = np.vstack([np.repeat(prob["cmd"][:1], s, 0), prob["cmd"]])
+    for settle in settles:
+        seq, s = lead_in(prob["cmd"], settle)
         loop = hg.Loop(gains, ferror_limit_mm=prob["ferror_limit"])
         r = loop.run(seq, start=s, keep=keep)
         if keep and r.ferror_mm is not None:
@@ -377,6 +402,9 @@ def atomic_write(path, write):
     try:
         with os.fdopen(fd, "wb") as f:
             write(f)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)            # mkstemp made it 0600
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
@@ -393,7 +421,7 @@ def ini_text(gains, pred, source):
     for j, g in enumerate(gains):
         out.append("[JOINT_%d]" % j)
         for k in KEYS:
-            out.append("%s = %.6g" % (k, g[k]))
+            out.append("%s = %.6g" % (k, g.get(k, 0.0)))
         out.append("")
     out.append("# predicted with these gains on %s (%d closed-loop runs through the board model):" % (source, pred["runs"]))
     for j in range(6):
@@ -488,6 +516,50 @@ def plots(outdir, cur, sug, prob, source):
     return paths
 
 
+def search(a, prob, joints, cmd):
+    """Model start + differential evolution on all cores; the best six gain dicts."""
+    start = model_start(cmd)
+    P, I, D = pid_from_bandwidth(start, a.bandwidth, a.damping)
+    prob["base"] = {"P": P, "I": I, "D": D, "FF1": start["FF1"], "FF2": start["FF2"], "BIAS": start["BIAS"]}
+    prob["fixed"] = [{k: g[k] for k in ("DEADBAND", "MAX_OUTPUT", "MAX_ERROR_I", "INPUT_SCALE", "OUTPUT_SCALE",
+                                        "OUTPUT_OFFSET") if k in g} for g in joints]
+    log("model start (%.0f Hz, damping %.2f): P %.3g I %.3g D %.3g FF1 %.4g FF2 %.4g BIAS %.4g (joint 0); "
+        "effective mass %.1f-%.1f kg" % (a.bandwidth, a.damping, P[0], I[0], D[0], start["FF1"][0],
+                                         start["FF2"][0], start["BIAS"][0], start["mass_kg"].min(),
+                                         start["mass_kg"].max()))
+    init_worker(prob)
+    x0 = np.array([0.0, 0.0, 0.0, 1.0, 1.0])
+    log("model start: cost %.5f" % cost(x0))
+    from scipy.optimize import differential_evolution
+    bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)]
+    jobs = max(1, a.jobs)
+    evals = [0]
+    t0 = time.time()
+
+    def progress(xk, convergence):
+        evals[0] += 1
+        log("generation %d: best cost %.5f (%.0f s)" % (evals[0], cost(xk), time.time() - t0))
+
+    if jobs > 1:
+        ctx = multiprocessing.get_context("fork")
+        pool = ctx.Pool(jobs, initializer=init_worker, initargs=(prob,))
+        workers = pool.map
+    else:
+        pool, workers = None, 1
+    try:
+        res = differential_evolution(cost, bounds, x0=x0, maxiter=a.maxiter, popsize=a.popsize,
+                                     seed=a.seed, polish=False, tol=1e-3, updating="deferred",
+                                     workers=workers, callback=progress, init="sobol")
+    finally:
+        if pool:
+            pool.close()
+            pool.join()
+    took = time.time() - t0
+    log("sweep: %d closed-loop evaluations in %.1f s on %d process%s (%.0f per second)"
+        % (res.nfev, took, jobs, "es" if jobs > 1 else "", res.nfev / max(took, 1e-9)))
+    return gains_from_x(res.x)
+
+
 # ------------------------------------------------------------------ main
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="hexaglide tune", description=__doc__.split("\n\n")[0])
@@ -497,6 +569,8 @@ def main(argv=None):
                     help="config with the current gains and limits (default configs/hexaglide.ini)")
     ap.add_argument("--evaluate", action="store_true",
                     help="no search: predict the INI's gains on the trajectory (exit 1 if unstable)")
+    ap.add_argument("--gains", metavar="FILE",
+                    help="no search: predict and plot these gains (a tune output or INI) against the INI's")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=V",
                     help="with --evaluate: override a gain on all joints, e.g. P=20")
     ap.add_argument("--max-volts", type=float, default=None,
@@ -561,46 +635,16 @@ def main(argv=None):
             % (cur_pred["ferror"].max(), vcur))
     vmax_dac = min(g.get("MAX_OUTPUT", 10.0) or 10.0 for g in joints)
     prob["vmax"] = a.max_volts if a.max_volts is not None else min(vmax_dac, vcur if vcur else vmax_dac)
-    start = model_start(cmd)
-    P, I, D = pid_from_bandwidth(start, a.bandwidth, a.damping)
-    prob["base"] = {"P": P, "I": I, "D": D, "FF1": start["FF1"], "FF2": start["FF2"], "BIAS": start["BIAS"]}
-    prob["fixed"] = [{k: g[k] for k in ("DEADBAND", "MAX_OUTPUT", "MAX_ERROR_I", "INPUT_SCALE", "OUTPUT_SCALE",
-                                        "OUTPUT_OFFSET") if k in g} for g in joints]
-    log("model start (%.0f Hz, damping %.2f): P %.3g I %.3g D %.3g FF1 %.4g FF2 %.4g BIAS %.4g (joint 0); "
-        "effective mass %.1f-%.1f kg" % (a.bandwidth, a.damping, P[0], I[0], D[0], start["FF1"][0],
-                                         start["FF2"][0], start["BIAS"][0], start["mass_kg"].min(),
-                                         start["mass_kg"].max()))
-    init_worker(prob)
-    x0 = np.array([0.0, 0.0, 0.0, 1.0, 1.0])
-    log("model start: cost %.5f" % cost(x0))
-    from scipy.optimize import differential_evolution
-    bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)]
-    jobs = max(1, a.jobs)
-    evals = [0]
-    t0 = time.time()
-
-    def progress(xk, convergence):
-        evals[0] += 1
-        log("generation %d: best cost %.5f (%.0f s)" % (evals[0], cost(xk), time.time() - t0))
-
-    if jobs > 1:
-        ctx = multiprocessing.get_context("fork")
-        pool = ctx.Pool(jobs, initializer=init_worker, initargs=(prob,))
-        workers = pool.map
+    if a.gains:
+        try:
+            given, _ = hg.read_gains(a.gains)
+        except (OSError, ValueError) as ex:
+            log(ex)
+            return 2
+        sug = [dict(c, **g) for c, g in zip(cur, given)]
+        log("gains of %s (no search)" % a.gains)
     else:
-        pool, workers = None, 1
-    try:
-        res = differential_evolution(cost, bounds, x0=x0, maxiter=a.maxiter, popsize=a.popsize,
-                                     seed=a.seed, polish=False, tol=1e-3, updating="deferred",
-                                     workers=workers, callback=progress, init="sobol")
-    finally:
-        if pool:
-            pool.close()
-            pool.join()
-    took = time.time() - t0
-    log("sweep: %d closed-loop evaluations in %.1f s on %d process%s (%.0f per second)"
-        % (res.nfev, took, jobs, "es" if jobs > 1 else "", res.nfev / max(took, 1e-9)))
-    sug = gains_from_x(res.x)
+        sug = search(a, prob, joints, cmd)
     pred, why = predict(sug, prob, settles)
     if pred is None:
         log("no stable gains found: %s" % why)

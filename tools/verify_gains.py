@@ -6,20 +6,22 @@ and compare the measured peak following error per joint with the prediction.
 
 GAINS_FILE is tune's stdout (or --output): [JOINT_N] sections with
 P I D FF0 FF1 FF2 FF3 BIAS ... and the "# joint N: peak |f-error| ..." lines;
-or any INI (configs/hexaglide.ini: its [JOINT_N] gains). Without predicted
-lines the prediction is tune's, made offline on this run's own joint
-commands (motion's commands do not depend on the gains).
+or any INI (configs/hexaglide.ini: its [JOINT_N] gains).
 The gains are set with halcmd over configs/hexaglide.ini's (HG_SETP of
 tools/headless/hexaglide_headless.py), the program runs headless
-(tools/hg_linuxcnc.sh), every servo period is sampled, and the peaks over the
-program are compared. It also predicts again offline on the commands of this
-very run (the same closed loop as tune) and prints that beside.
+(tools/hg_linuxcnc.sh), every servo period is sampled, and the measured peak
+|f-error| per joint is compared with tune's prediction made offline from
+this run's own joint commands (motion's output only, never the measured
+errors). LinuxCNC's planner does not give the same commands twice here
+(the interpreter feeds its queue in wall-clock time on a non-realtime host:
+two logo runs lasted 43.5 and 45.0 s), so the prediction of the gains file,
+made on an earlier recording, is printed beside as an estimate.
 On this shared host, run it under the install lock (docs/tuning.md).
-Exit: 0 all joints within the tolerance, 1 not, 2 bad input or LinuxCNC failed.
+Exit: 0 when every joint is within the tolerance of the prediction (or
+inside the spread of its 7 offline runs), 1 not, 2 bad input or LinuxCNC failed.
 """
 import argparse
 import os
-import re
 import subprocess
 import sys
 
@@ -28,51 +30,11 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, ".."))
 sys.path.insert(0, HERE)
+import hexaglide as hg  # noqa: E402
 
 PIN = {"P": "Pgain", "I": "Igain", "D": "Dgain", "FF0": "FF0", "FF1": "FF1", "FF2": "FF2", "FF3": "FF3",
        "BIAS": "bias", "DEADBAND": "deadband", "MAX_OUTPUT": "maxoutput", "MAX_ERROR_I": "maxerrorI"}
-
-
-def parse_gains(path):
-    """([six {KEY: value}], {joint: predicted peak mm} or {})."""
-    gains = [dict() for _ in range(6)]
-    pred = {}
-    sec = None
-    with open(path) as f:
-        for no, line in enumerate(f, 1):
-            s = line.strip()
-            m = re.match(r"#\s*joint (\d): peak \|f-error\| ([0-9.eE+-]+) mm", s)
-            if m:
-                pred[int(m.group(1))] = float(m.group(2))
-                continue
-            if not s or s.startswith("#"):
-                continue
-            m = re.match(r"\[JOINT_(\d+)\]$", s)
-            if m:
-                sec = int(m.group(1))
-                if sec > 5:
-                    raise ValueError("%s line %d: [JOINT_%d]: the Hexaglide has joints 0..5" % (path, no, sec))
-                continue
-            if s.startswith("["):
-                sec = None
-                continue
-            if sec is None:
-                continue                       # other sections of an INI
-            k, eq, v = s.partition("=")
-            k = k.strip()
-            if not eq:
-                raise ValueError("%s line %d: not KEY = value: %r" % (path, no, s))
-            if k in PIN:
-                try:
-                    val = float(v)
-                except ValueError:
-                    raise ValueError("%s line %d: %s = %r is not a number" % (path, no, k, v.strip()))
-                if not np.isfinite(val):
-                    raise ValueError("%s line %d: %s is not finite" % (path, no, k))
-                gains[sec][k] = val
-    if not all(gains):
-        raise ValueError("%s: needs [JOINT_0]..[JOINT_5] with gains" % path)
-    return gains, pred
+assert set(PIN) == set(hg.GAIN_KEYS)
 
 
 def run_linuxcnc(gains, program, out, tag):
@@ -111,9 +73,11 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "verify"))
     ap.add_argument("--tag", default="verify")
     ap.add_argument("--csv", help="use this sampled run instead of starting LinuxCNC")
+    ap.add_argument("--ini", default=os.path.join(ROOT, "configs", "hexaglide.ini"),
+                    help="the INI LinuxCNC runs (its pid settings under the file's gains)")
     a = ap.parse_args()
     try:
-        gains, pred = parse_gains(a.gains)
+        gains, pred = hg.read_gains(a.gains)
     except (OSError, ValueError) as ex:
         print("verify_gains: %s" % ex, file=sys.stderr)
         return 2
@@ -125,27 +89,40 @@ def main():
         print("verify_gains: %s" % ex, file=sys.stderr)
         return 2
     import hexaglide_tune as tune
+    # as in the LinuxCNC run: the INI's pid settings, the file's gains set over them
+    ini = [tune.pid_keys(g) for g in hg.read_ini(a.ini)[0]]
+    gains = [dict(i, **g) for i, g in zip(ini, gains)]
     cmd = tune.load_trajectory(csv)
     prob = {"cmd": cmd, "ferror_limit": 2.0}
     again, why = tune.predict(gains, prob, [tune.SETTLE + 97 * i for i in range(7)])
+    if again is None:
+        print("verify_gains: offline on this run's commands: %s" % why, file=sys.stderr)
+        return 1
     print("# %s with %s" % (os.path.basename(a.program), a.gains))
-    print("%-6s %12s %12s %8s %22s %10s %10s" % ("joint", "measured_mm", "predicted_mm", "ratio",
-                                                  "offline_this_run_mm", "meas_V", "offline_V"))
+    print("# predicted = tune's prediction from this run's joint commands (median of 7 offline runs);")
+    print("# file = the prediction in the gains file (from the trajectory tune was given)")
+    print("%-6s %12s %12s %8s %22s %12s %8s %8s" % ("joint", "measured_mm", "predicted_mm", "ratio",
+                                                  "7 runs: min..max", "file_mm", "meas_V", "pred_V"))
     ok = True
+    ratios = []
     for j in range(6):
-        p = pred.get(j, again["ferror"][j] if again else np.nan)
+        p = again["ferror"][j]
         r = fe[j] / p if p > 0 else np.inf
-        good = abs(r - 1) <= a.tolerance
+        ratios.append(r)
+        # within the tolerance of the median, or inside the spread of the 7 offline runs
+        # (the encoder's 1 um counts make single runs differ by up to a count)
+        good = abs(r - 1) <= a.tolerance or again["ferror_lo"][j] <= fe[j] <= again["ferror_hi"][j]
         ok &= good
-        print("%-6d %12.5f %12.5f %8.3f %10.5f..%-10.5f %10.3f %10.3f%s"
-              % (j, fe[j], p, r, again["ferror_lo"][j] if again else np.nan,
-                 again["ferror_hi"][j] if again else np.nan, volts[j],
-                 again["volts"][j] if again else np.nan, "" if good else "   <-- off by more than %.0f%%" % (100 * a.tolerance)))
-    print("# peak over joints: measured %.5f mm at %.3f V; predicted %.5f mm"
-          % (fe.max(), volts.max(), max(pred.values()) if pred else again["ferror"].max()))
+        print("%-6d %12.5f %12.5f %8.3f %10.5f..%-10.5f %12s %8.3f %8.3f%s"
+              % (j, fe[j], p, r, again["ferror_lo"][j], again["ferror_hi"][j],
+                 "%.5f" % pred[j] if j in pred else "-", volts[j], again["volts"][j],
+                 "" if good else "   <-- off by more than %.0f%%" % (100 * a.tolerance)))
+    worst = max(ratios, key=lambda r: abs(r - 1))
+    print("# peak over joints: measured %.5f mm at %.3f V; predicted %.5f mm at %.3f V%s"
+          % (fe.max(), volts.max(), again["ferror"].max(), again["volts"].max(),
+             "; gains file: %.5f mm" % max(pred.values()) if pred else ""))
     print("VERIFY %s max_ferror_mm=%.5f max_volts=%.3f worst_ratio=%.3f"
-          % ("ok" if ok else "off", fe.max(), volts.max(),
-             max(fe[j] / pred.get(j, again["ferror"][j] if again else np.nan) for j in range(6))))
+          % ("ok" if ok else "off", fe.max(), volts.max(), worst))
     return 0 if ok else 1
 
 

@@ -48,8 +48,9 @@ static void replay_usage(void)
             "       hexaglide replay --list-columns   (the record pin set)\n"
             "FILE: a record of tools/hg_record.py (docs/replay.md). Without --set, --model,\n"
             "--substeps, --integrator: replays and compares, exit 0 only if bit-exact.\n"
-            "With them (what-if): the same inputs into the changed board; --set takes the\n"
-            "parameter's spec name and SI unit (hexaglide sim --list-params).\n");
+            "With them (what-if): the same inputs into the changed board (written to\n"
+            "FILE.whatif.png.csv and plotted to FILE.whatif.png unless --csv/--plot say\n"
+            "otherwise); --set takes the spec name and SI unit (hexaglide sim --list-params).\n");
 }
 
 /* Whole file into a malloc'd buffer; 0 or -1 with a message. */
@@ -100,7 +101,9 @@ static void list_columns(void)
     for (i = 0; i < n; i++)
         printf("%-28s %-5s %s%s\n", f[i].name, type[f[i].type],
                f[i].side == HG_BRS_OUT ? "output, compared" : "input of hg_board_step",
-               f[i].type == HG_BRF_PACK ? ", bits packed" : f[i].nonfinite ? ", nan/inf allowed" : "");
+               f[i].type == HG_BRF_PACK ? ", bits packed"
+               : f[i].nonfinite ? ", 0 when NaN/inf (then in in.nonfinite-*)"
+               : f[i].side == HG_BRS_NFMASK ? ", 2 bits per NaN/inf-capable input" : "");
 }
 
 /* Parse the options; 0, 2 (usage error, message printed), -1 (done: listed). */
@@ -291,7 +294,7 @@ int cmd_replay(int argc, char **argv, const char *self)
     int nf, i, k, rc, whatif, kind = -1, status = 0;
     long period = 0;
     FILE *csv = 0;
-    char csv_auto[4096];
+    char csv_auto[4096], png_auto[4000];
     const char *csv_path;
 
     rc = parse_opts(argc, argv, &o);
@@ -314,8 +317,7 @@ int cmd_replay(int argc, char **argv, const char *self)
         if (col[i] < 0)
             rc = e.code;
         else
-            hg_record_set_kind(&r, col[i], fld[i].nonfinite ? HG_REC_ANY
-                               : fld[i].type == HG_BRF_F64 ? HG_REC_F64
+            hg_record_set_kind(&r, col[i], fld[i].type == HG_BRF_F64 ? HG_REC_F64
                                : fld[i].type == HG_BRF_S32 ? HG_REC_S32
                                : fld[i].type == HG_BRF_BIT ? HG_REC_BIT : HG_REC_U32);
     }
@@ -337,6 +339,11 @@ int cmd_replay(int argc, char **argv, const char *self)
     }
     col_count[6] = hg_record_column(&r, "out.fault-code");
 
+    if (whatif && !o.csv && !o.plot) { /* a what-if always leaves its run and plot */
+        snprintf(png_auto, sizeof png_auto, "%s.whatif.png", o.file);
+        o.plot = png_auto;
+        fprintf(stderr, "hexaglide replay: what-if: writing %s.csv and %s\n", png_auto, png_auto);
+    }
     csv_path = o.csv;
     if (!csv_path && o.plot) {         /* the plot needs the CSV: put it beside the PNG */
         snprintf(csv_auto, sizeof csv_auto, "%s.csv", o.plot);
@@ -372,7 +379,7 @@ int cmd_replay(int argc, char **argv, const char *self)
             hg_board_inputs_default(&b, &in);
         }
         for (i = 0; i < nf; i++)
-            hg_board_rec_set(&fld[i], &in, row[col[i]]);
+            hg_board_rec_set(fld, nf, i, &in, row[col[i]]);
         period = (long)row[col[0]];
         if (whatif) {                  /* the recorded block with the user's changes on top */
             for (k = 0; k < o.nset; k++)
@@ -403,7 +410,7 @@ int cmd_replay(int argc, char **argv, const char *self)
             if (fld[i].side != HG_BRS_OUT)
                 continue;
             rec = row[col[i]];
-            rep = hg_board_rec_get(&fld[i], &in, &out, period, kind);
+            rep = hg_board_rec_get(fld, nf, i, &in, &out, period, kind);
             if (!bits_differ(rec, rep))
                 continue;
             d = fabs(rep - rec);

@@ -53,30 +53,11 @@ static int parse_volts(const char *text, double volts[6])
     return 0;
 }
 
-/* Apply "name=value" to p; 0 or -1 with a message. */
+/* Apply "name=value" to p (h follows the geometry unless the user sets it);
+ * 0 or -1 with a message. */
 static int parse_set(const char *text, hg_params *p)
 {
-    char name[64];
-    const char *eq = strchr(text, '=');
-    double v;
-    if (!eq || eq == text || (size_t)(eq - text) >= sizeof name) {
-        fprintf(stderr, "hexaglide sim: --set: expected name=value, got '%s'\n", text);
-        return -1;
-    }
-    memcpy(name, text, (size_t)(eq - text));
-    name[eq - text] = '\0';
-    if (!hg_params_field(p, name)) {
-        fprintf(stderr, "hexaglide sim: --set: unknown parameter '%s' (see --list-params)\n", name);
-        return -1;
-    }
-    if (cli_parse_double(eq + 1, name, &v))
-        return -1;
-    if (hg_params_set(p, name, v)) {
-        fprintf(stderr, "hexaglide sim: --set: cannot set '%s' to '%s'\n", name, eq + 1);
-        return -1;
-    }
-    /* h follows the geometry unless the user sets it */
-    return 0;
+    return cli_parse_set("sim", text, p);
 }
 
 static void list_params(void)

@@ -1,7 +1,7 @@
 /* main.c - build/hexaglide: the project's math on the command line.
  *   hexaglide ik X Y Z A B C            pose (mm, deg) -> joints (mm)
  *   hexaglide fk J0..J5 [--guess ...]   joints (mm) -> pose (mm, deg)
- *   hexaglide sim [options]             offline dynamics simulation (CSV)
+ *   hexaglide sim [options]             offline simulation of the virtual board (CSV)
  *   hexaglide soak [--hours H]          hours of closed-loop motion, health report
  *   hexaglide replay FILE [options]     re-run a recorded LinuxCNC run, compare (docs/replay.md)
  *   hexaglide tune [--trajectory FILE]  PID gains tuned against the model (docs/tuning.md) */
@@ -15,8 +15,9 @@ static void usage(FILE *f)
     fprintf(f,
             "usage: hexaglide ik X Y Z A B C\n"
             "       hexaglide fk J0 J1 J2 J3 J4 J5 [--guess X Y Z A B C]\n"
-            "       hexaglide sim [--model standard|reduced-joints|reduced-cartesian]\n"
-            "                     [--time S] [--dt S] [--volts V0,..,V5] [--set name=value]... [--csv FILE]\n"
+            "       hexaglide sim [--model standard|reduced-joints|reduced-cartesian|fused-cartesian]\n"
+            "                     [--time S] [--dt S] [--volts V0,..,V5] [--substeps N]\n"
+            "                     [--integrator improved-euler|heun|rk4] [--set name=value]... [--csv FILE]\n"
             "       hexaglide soak [--hours H] [--model NAME] [--seed N] [--dt S]\n"
             "       hexaglide replay FILE [--csv OUT] [--plot PNG] [--set name=value]...\n"
             "                        [--model NAME] [--substeps N] [--integrator NAME]\n"

@@ -45,9 +45,13 @@ lt() { awk -v a="$1" -v b="$2" 'BEGIN{exit !(a+0<b+0)}'; }
 # calc EXPR: awk arithmetic
 calc() { awk "BEGIN{printf \"%.10g\", $1}"; }
 
-# no_nonfinite PREFIX: no output (OUT or I/O) pin under PREFIX shows nan or inf
+# no_nonfinite PREFIX: no output (OUT or I/O) pin under PREFIX shows nan or
+# inf, except the record pins rec.in.* (docs/replay.md): they echo the raw
+# inputs the board was given, a NaN DAC value included, so replay can feed
+# the same NaN again
 no_nonfinite() {
-    ! h show pin "$1" | awk 'NR>2 && ($3 == "OUT" || $3 == "I/O") {print $4}' | grep -qiE 'nan|inf'
+    ! h show pin "$1" | awk 'NR>2 && ($3 == "OUT" || $3 == "I/O") && $5 !~ /[.]rec[.]in[.]/ {print $4}' |
+        grep -qiE 'nan|inf'
 }
 
 # set_dacs VOLTS: the first six DAC values

@@ -20,6 +20,7 @@
 static hg_board_rec_field f[HG_BOARD_REC_MAX];
 static hg_board ba, bb;
 static char text[4 << 20];
+static int nonfinite_pins;            /* pin values that were NaN/inf (must stay 0) */
 
 /* Field size in bytes in its struct. */
 static size_t field_size(const hg_board_rec_field *e)
@@ -84,13 +85,13 @@ static void test_pack(int n)
     a.dout_values = 0x80000081u;
     for (k = 0; k < n; k++)
         if (f[k].side == HG_BRS_IN)
-            hg_board_rec_set(&f[k], &b, hg_board_rec_get(&f[k], &a, &o, 1000000, 2));
+            hg_board_rec_set(f, n, k, &b, hg_board_rec_get(f, n, k, &a, &o, 1000000, 2));
     bad = memcmp(a.stuck, b.stuck, sizeof a.stuck) || memcmp(a.index_enable, b.index_enable, sizeof a.index_enable) ||
           memcmp(a.bar_broken, b.bar_broken, sizeof a.bar_broken) || b.enc_glitch[2] != -123456 ||
           b.dout_values != 0x80000081u;
     for (k = 0; k < n; k++)
         if (strcmp(f[k].name, "in.stuck") == 0)
-            bad |= hg_board_rec_get(&f[k], &a, &o, 0, 0) != (double)(HG_SW_MIN | ((HG_SW_MAX | HG_SW_HOME) << 15));
+            bad |= hg_board_rec_get(f, n, k, &a, &o, 0, 0) != (double)(HG_SW_MIN | ((HG_SW_MAX | HG_SW_HOME) << 15));
     CHECK(!bad, "packed bit arrays, s32 and u32 fields round-trip through their column values");
 }
 
@@ -101,7 +102,11 @@ static void random_inputs(hg_board_inputs *in, int s)
     for (k = 0; k < HG_BOARD_DACS; k++)
         in->dac_v[k] = hg_test_uniform(-3.0, 3.0);
     if (s == 50)
-        in->dac_v[2] = (double)NAN;  /* a NaN product: 0 V, recorded as nan */
+        in->dac_v[2] = (double)NAN;  /* a NaN product: 0 V; pin 0, state in in.nonfinite-* */
+    if (s == 60)
+        in->dac_v[4] = -(double)INFINITY; /* clamps to -10 V */
+    in->enc_scale[6] = (s >= 90 && s < 95) ? (double)INFINITY : 1.0; /* refused, set to 1.0 */
+    in->params.model.c_visc_ns_per_m = s == 130 ? (double)NAN : 5665.6; /* refused for one period */
     in->dac_written = 1;
     in->dout_values = s < 20 ? 0u : 0x80u; /* E-STOP loop closed after 20 periods */
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
@@ -119,11 +124,10 @@ static size_t write_row(size_t len, int n, int s, const hg_board_inputs *in, con
     int k;
     len += (size_t)snprintf(text + len, sizeof text - len, "%d", s);
     for (k = 0; k < n; k++) {
-        double v = hg_board_rec_get(&f[k], in, o, 1000000, 2);
-        if (v != v)
-            len += (size_t)snprintf(text + len, sizeof text - len, ",nan");
-        else
-            len += (size_t)snprintf(text + len, sizeof text - len, ",%.17g", v);
+        double v = hg_board_rec_get(f, n, k, in, o, 1000000, 2);
+        if (!isfinite(v))
+            nonfinite_pins++;
+        len += (size_t)snprintf(text + len, sizeof text - len, ",%.17g", v);
     }
     len += (size_t)snprintf(text + len, sizeof text - len, "\n");
     return len;
@@ -154,27 +158,27 @@ static void test_round_trip(int n)
     for (k = 0; k < n; k++) {
         col[k] = hg_record_column(&r, f[k].name);
         colmiss += col[k] < 0;
-        if (col[k] > 0 && f[k].nonfinite)
-            hg_record_set_kind(&r, col[k], HG_REC_ANY);
     }
     hg_board_init(&bb, HG_MODEL_REDUCED_CARTESIAN, 0);
     hg_board_inputs_default(&bb, &inb);
     while (colmiss == 0 && (rc = hg_record_next(&r, row, &e)) == 1) {
         for (k = 0; k < n; k++)
-            hg_board_rec_set(&f[k], &inb, row[col[k]]);
+            hg_board_rec_set(f, n, k, &inb, row[col[k]]);
         hg_board_step(&bb, &inb, &ob, (long)row[col[0]]);
         for (k = 0; k < n; k++) {
             double a, b;
             if (f[k].side != HG_BRS_OUT)
                 continue;
             a = row[col[k]];
-            b = hg_board_rec_get(&f[k], &inb, &ob, 0, 0);
+            b = hg_board_rec_get(f, n, k, &inb, &ob, 0, 0);
             diff += memcmp(&a, &b, sizeof a) != 0;
         }
         rows++;
     }
     CHECK(rc == 0 && rows == RUN_STEPS && colmiss == 0, "read back %d of %d rows (%s)", rows, RUN_STEPS,
           rc < 0 ? e.msg : "to the end");
+    CHECK(nonfinite_pins == 0, "every record pin value is finite (NaN DAC, -inf DAC, inf scale, NaN parameter "
+          "encoded in in.nonfinite-*; %d were not)", nonfinite_pins);
     CHECK(diff == 0, "replayed outputs equal the recorded ones to the last bit (%d differ)", diff);
     CHECK(memcmp(&ba.d, &bb.d, sizeof ba.d) == 0 && memcmp(ba.enc, bb.enc, sizeof ba.enc) == 0 &&
               ba.steps == bb.steps && ba.fault == bb.fault && ba.wd.expired == bb.wd.expired,
