@@ -20,6 +20,7 @@ int hg_cartesian_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd
                            double *residual_m)
 {
     double phi[6], pz[6], vc[6], worst = 0.0, *sc1 = d->work.sc1;
+    const double r2l = 1.0 / (2.0 * m->p.geo.l_m);
     int k;
     hg_head_trig(q1 + 6, sc1);
     hg_gen_reduced_stabilize(m->k, q1, qd1, sc1, phi, pz, vc);
@@ -28,7 +29,7 @@ int hg_cartesian_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd
         double ipz = 1.0 / pz[k], delta = phi[k] * ipz, e;
         q1[k] -= delta;
         qd1[k] = -vc[k] * ipz;
-        e = delta * delta / (2.0 * m->p.geo.l_m);
+        e = delta * delta * r2l;
         if (!(e <= worst))
             worst = e;
     }
@@ -69,28 +70,38 @@ int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const dou
      *   M_cc + M_cz A + (M_cz A)^T + A^T M_zz A = M_cc + P + P^T,
      *   Q_c + A^T Q_z - (M_cz + A^T M_zz) b = Q_c + A^T (Q_z - M_zz b) - M_cz b. */
     HG_UNROLL
-    for (i = 0; i < 36; i++)
-        P[i] = 0.0;
-    HG_UNROLL
     for (i = 0; i < 6; i++)
         rhs[i] = Q[6 + i];
     HG_UNROLL
     for (k = 0; k < 6; k++) {
-        double ipz = 1.0 / pz[k], t;
+        const double nipz = -1.0 / pz[k], hm = 0.5 * mzz[k]; /* -pc ipz = pc (-ipz) exactly */
+        double t;
         HG_UNROLL
         for (j = 0; j < 6; j++) {
-            A[6 * k + j] = -pc[6 * k + j] * ipz;
-            W[6 * k + j] = Mzc[6 * k + j] + 0.5 * mzz[k] * A[6 * k + j];
+            A[6 * k + j] = pc[6 * k + j] * nipz;
+            W[6 * k + j] = Mzc[6 * k + j] + hm * A[6 * k + j];
         }
-        b[k] = -gm[k] * ipz;
+        b[k] = gm[k] * nipz;
         t = Q[k] + fz[k] - mzz[k] * b[k];
         HG_UNROLL
-        for (i = 0; i < 6; i++) {
+        for (i = 0; i < 6; i++)
             rhs[i] += A[6 * k + i] * t - Mzc[6 * k + i] * b[k];
+    }
+    /* P[i][j] = sum over k (in k order) of A[k][i] W[k][j], one row at a time */
+    HG_UNROLL
+    for (i = 0; i < 6; i++) {
+        double pr[6];
+        HG_UNROLL
+        for (j = 0; j < 6; j++)
+            pr[j] = A[i] * W[j];
+        HG_UNROLL
+        for (k = 1; k < 6; k++)
             HG_UNROLL
             for (j = 0; j < 6; j++)
-                P[6 * i + j] += A[6 * k + i] * W[6 * k + j];
-        }
+                pr[j] += A[6 * k + i] * W[6 * k + j];
+        HG_UNROLL
+        for (j = 0; j < 6; j++)
+            P[6 * i + j] = pr[j];
     }
     HG_UNROLL
     for (i = 0; i < 6; i++)
