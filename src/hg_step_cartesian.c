@@ -61,7 +61,7 @@ int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const dou
     cartesian_ws *w = (cartesian_ws *)d->work.step;
     const double *mzz = w->mzz, *Mzc = w->Mzc, *Mcc = w->Mcc, *Q = w->Q, *pz = w->pz;
     const double *pc = w->pc, *gm = w->gm;
-    double A[36], b[6], W[36], P[36], Mh[36], rhs[6];
+    double A[36], b[6], W[36], P[36], Mh[36], rhs[6], nipz[6];
     const double *sc = head_trig(d, q, w->sc); /* the last stabilization's, if q is its state */
     int i, j, k, rc;
     hg_gen_reduced_terms(m->k, q, qd, sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->pz, w->pc, w->gm);
@@ -73,15 +73,19 @@ int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const dou
     for (i = 0; i < 6; i++)
         rhs[i] = Q[6 + i];
     HG_UNROLL
+    for (k = 0; k < 6; k++)
+        nipz[k] = -1.0 / pz[k];         /* -pc ipz = pc (-ipz) exactly */
+    HG_UNROLL
     for (k = 0; k < 6; k++) {
-        const double nipz = -1.0 / pz[k], hm = 0.5 * mzz[k]; /* -pc ipz = pc (-ipz) exactly */
+        const double hm = 0.5 * mzz[k];
         double t;
         HG_UNROLL
-        for (j = 0; j < 6; j++) {
-            A[6 * k + j] = pc[6 * k + j] * nipz;
+        for (j = 0; j < 6; j++)
+            A[6 * k + j] = pc[6 * k + j] * nipz[k];
+        HG_UNROLL
+        for (j = 0; j < 6; j++)
             W[6 * k + j] = Mzc[6 * k + j] + hm * A[6 * k + j];
-        }
-        b[k] = gm[k] * nipz;
+        b[k] = gm[k] * nipz[k];
         t = Q[k] + fz[k] - mzz[k] * b[k];
         HG_UNROLL
         for (i = 0; i < 6; i++)
