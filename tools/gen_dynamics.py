@@ -881,16 +881,17 @@ def gen_fused(u, m, names):
     lines, flops = emit(seq, outs)
     # largest bar-length error after the Newton step: Phi is quadratic in
     # z_k, so bar k is left with delta_k^2 (m^2), i.e. delta_k^2 / (2 l) (m)
+    # (straight-line: the largest delta_k^2, times 1/(2 l) once, which
+    # rounding preserves as the largest of delta_k^2 / (2 l))
     lines.append("    {")
-    lines.append("        const double e[6] = {%s};" % ", ".join("%s*%s*%s" % (d.name, d.name, pr.doprint(rl)) for d in dl))
-    lines.append("        double worst = 0.0;")
-    lines.append("        int i;")
-    lines.append("        for (i = 0; i < 6; i++)")
-    lines.append("            if (!(e[i] <= worst))")
-    lines.append("                worst = e[i];")
-    lines.append("        *residual_m = worst;")
+    lines.append("        double worst = 0.0, e;")
+    for d in dl:
+        lines.append("        e = %s*%s;" % (d.name, d.name))
+        lines.append("        if (!(e <= worst))")
+        lines.append("            worst = e;")
+    lines.append("        *residual_m = worst*%s;" % pr.doprint(rl))
     lines.append("    }")
-    flops += 18
+    flops += 13
     lines.append("    return 0;")
     u.funcs.append((
         "int hg_gen_fused_step(const double *k, const double q[12], const double qd[12],\n"

@@ -1109,7 +1109,7 @@ int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],
     return 0;
 }
 
-/* The whole Reduced Cartesian step in one function (the paper's future work): with carriage forces fz, the accelerations qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T), improved Euler over dt, one Newton step on z and z' = A c' at the predicted state; sc1 = sin/cos of q1's head angles, residual_m the largest bar-length error left (m). 0 or HG_ERR_SINGULAR_MASS (1870 flops, sin/cos not counted) */
+/* The whole Reduced Cartesian step in one function (the paper's future work): with carriage forces fz, the accelerations qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T), improved Euler over dt, one Newton step on z and z' = A c' at the predicted state; sc1 = sin/cos of q1's head angles, residual_m the largest bar-length error left (m). 0 or HG_ERR_SINGULAR_MASS (1865 flops, sin/cos not counted) */
 int hg_gen_fused_step(const double *k, const double q[12], const double qd[12],
                       const double sc[6], const double fz[6], double dt,
                       double q1[12], double qd1[12], double qdd[12], double sc1[6],
@@ -1663,13 +1663,26 @@ int hg_gen_fused_step(const double *k, const double q[12], const double qd[12],
     qd1[10] = qd1_10;
     qd1[11] = qd1_11;
     {
-        const double e[6] = {dl0*dl0*k[35], dl1*dl1*k[35], dl2*dl2*k[35], dl3*dl3*k[35], dl4*dl4*k[35], dl5*dl5*k[35]};
-        double worst = 0.0;
-        int i;
-        for (i = 0; i < 6; i++)
-            if (!(e[i] <= worst))
-                worst = e[i];
-        *residual_m = worst;
+        double worst = 0.0, e;
+        e = dl0*dl0;
+        if (!(e <= worst))
+            worst = e;
+        e = dl1*dl1;
+        if (!(e <= worst))
+            worst = e;
+        e = dl2*dl2;
+        if (!(e <= worst))
+            worst = e;
+        e = dl3*dl3;
+        if (!(e <= worst))
+            worst = e;
+        e = dl4*dl4;
+        if (!(e <= worst))
+            worst = e;
+        e = dl5*dl5;
+        if (!(e <= worst))
+            worst = e;
+        *residual_m = worst*k[35];
     }
     return 0;
 }

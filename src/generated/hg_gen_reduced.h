@@ -13,7 +13,7 @@
 #define HG_GEN_REDUCED_CONSTRAINTS_FLOPS 395
 #define HG_GEN_REDUCED_POTENTIAL_FLOPS 17
 #define HG_GEN_REDUCED_STABILIZE_FLOPS 269
-#define HG_GEN_FUSED_STEP_FLOPS 1870
+#define HG_GEN_FUSED_STEP_FLOPS 1865
 #define HG_GEN_FUSED_ACCEL_FLOPS 1487
 
 /* Fill k[HG_GEN_REDUCED_NCONST] with the parameter-only subexpressions (129 flops). */
@@ -43,7 +43,7 @@ void hg_gen_reduced_potential(const double *k, const double q[12], const double 
 int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],
                        const double sc[6], const double fz[6], double qdd[12]);
 
-/* The whole Reduced Cartesian step in one function (the paper's future work): with carriage forces fz, the accelerations qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T), improved Euler over dt, one Newton step on z and z' = A c' at the predicted state; sc1 = sin/cos of q1's head angles, residual_m the largest bar-length error left (m). 0 or HG_ERR_SINGULAR_MASS (1870 flops, sin/cos not counted) */
+/* The whole Reduced Cartesian step in one function (the paper's future work): with carriage forces fz, the accelerations qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T), improved Euler over dt, one Newton step on z and z' = A c' at the predicted state; sc1 = sin/cos of q1's head angles, residual_m the largest bar-length error left (m). 0 or HG_ERR_SINGULAR_MASS (1865 flops, sin/cos not counted) */
 int hg_gen_fused_step(const double *k, const double q[12], const double qd[12],
                       const double sc[6], const double fz[6], double dt,
                       double q1[12], double qd1[12], double qdd[12], double sc1[6],
