@@ -11,7 +11,7 @@
  *
  * Engines: MuJoCo RK4 (the accurate setting used by tests/engine), MuJoCo
  * Euler (its cheapest), and hg_step of every model kind with the paper's
- * improved Euler (plus Heun for reduced-cartesian). Also prints the largest
+ * improved Euler (plus Heun for reduced- and fused-cartesian). Also prints the largest
  * loop-closure error MuJoCo leaves. Machine lines:
  *   BENCH mujoco median_us=<x> p99_us=<y> iters=<n>
  *   BENCH mujoco_euler median_us=<x> p99_us=<y> iters=<n>
@@ -198,6 +198,8 @@ int main(int argc, char **argv)
             printf("project %-18s not available\n", hg_model_name((hg_model_kind)kind));
     }
     if (engine_project(&eng[ne], &p, HG_MODEL_REDUCED_CARTESIAN, HG_INTEGRATOR_HEUN) == 0)
+        ne++;
+    if (engine_project(&eng[ne], &p, HG_MODEL_FUSED_CARTESIAN, HG_INTEGRATOR_HEUN) == 0)
         ne++;
     for (i = 0; i < ne; i++) {          /* warm up; block sizes from the warm-up's speed */
         double t0 = bench_now_us(), t;

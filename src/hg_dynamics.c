@@ -273,8 +273,11 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
             trig = 1;
             break;
         }
-        /* other schemes: the Reduced Cartesian functions, stage by stage */
-        /* fall through */
+        /* other schemes: the generated accelerations, stage by stage */
+        rc = hg_integrate(m, m->integrator, &hg_fused_dae, d, q0, qd0, volts, fz, dt_s, q1, qd1,
+                          qdd, &res);
+        trig = 1;
+        break;
     case HG_MODEL_REDUCED_CARTESIAN:
         rc = hg_integrate(m, m->integrator, &hg_cartesian_dae, d, q0, qd0, volts, fz, dt_s, q1,
                           qd1, qdd, &res);

@@ -44,6 +44,16 @@ typedef struct {
 } cartesian_ws;
 typedef char hg_cartesian_ws_fits[sizeof(cartesian_ws) <= sizeof(((hg_work *)0)->step) ? 1 : -1];
 
+/* sin/cos of q's head angles: d's cache when it holds them, else computed into buf. */
+static const double *head_trig(const hg_data *d, const double *q, double buf[6])
+{
+    if (d->trig_valid && d->trig_key_rad[0] == q[9] && d->trig_key_rad[1] == q[10] &&
+        d->trig_key_rad[2] == q[11])
+        return d->trig_sc;
+    hg_head_trig(q + 6, buf);
+    return buf;
+}
+
 int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const double *qd,
                        const double fz[6], double *qdd)
 {
@@ -51,13 +61,8 @@ int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const dou
     const double *mzz = w->mzz, *Mzc = w->Mzc, *Mcc = w->Mcc, *Q = w->Q, *pz = w->pz;
     const double *pc = w->pc, *gm = w->gm;
     double A[36], b[6], W[36], P[36], Mh[36], rhs[6];
-    const double *sc = w->sc;
+    const double *sc = head_trig(d, q, w->sc); /* the last stabilization's, if q is its state */
     int i, j, k, rc;
-    if (d->trig_valid && d->trig_key_rad[0] == q[9] && d->trig_key_rad[1] == q[10] &&
-        d->trig_key_rad[2] == q[11])
-        sc = d->trig_sc;               /* the last stabilization's */
-    else
-        hg_head_trig(q + 6, w->sc);
     hg_gen_reduced_terms(m->k, q, qd, sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->pz, w->pc, w->gm);
     /* Eq. 13 with z dependent, as sums of outer products over the carriages
      * (rows of A): with W_k = M_zc,k + M_zz,k A_k / 2 and P = A^T W,
@@ -108,6 +113,15 @@ int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const dou
 }
 
 const hg_dae hg_cartesian_dae = {HG_NQ_REDUCED, hg_cartesian_accel, hg_cartesian_stabilize};
+
+int hg_fused_accel(const hg_model *m, hg_data *d, const double *q, const double *qd,
+                   const double fz[6], double *qdd)
+{
+    double buf[6];
+    return hg_gen_fused_accel(m->k, q, qd, head_trig(d, q, buf), fz, qdd);
+}
+
+const hg_dae hg_fused_dae = {HG_NQ_REDUCED, hg_fused_accel, hg_cartesian_stabilize};
 
 int hg_fused_step(const hg_model *m, hg_data *d, const double *q0, const double *qd0,
                   const double sc0[6], const double fz[6], double dt, double *q1,

@@ -1,7 +1,8 @@
 /* hg_step_cartesian.h - the Reduced Cartesian parametrization (bars
  * lumped, q = [z(6), c(6)], head pose c independent, Phi_z diagonal so
  * A = -Phi_z^-1 Phi_c) for hg_integrate, and the fused variant: the whole
- * improved-Euler step as one generated function. */
+ * improved-Euler step as one generated function, the accelerations as
+ * another for the stages of higher-order schemes. */
 #ifndef HG_STEP_CARTESIAN_H
 #define HG_STEP_CARTESIAN_H
 
@@ -21,6 +22,15 @@ int hg_cartesian_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd
 
 /* The two as an hg_dae. */
 extern const hg_dae hg_cartesian_dae;
+
+/* Accelerations as hg_cartesian_accel, from the generated
+ * hg_gen_fused_accel (Eq. 13 as one function, the first part of the fused
+ * step): the fused kind's stages under Heun and RK4. 0 or HG_ERR_SINGULAR_MASS. */
+int hg_fused_accel(const hg_model *m, hg_data *d, const double *q, const double *qd,
+                   const double fz[6], double *qdd);
+
+/* hg_fused_accel with the Reduced Cartesian stabilization, as an hg_dae. */
+extern const hg_dae hg_fused_dae;
 
 /* The fused improved-Euler step (generated hg_gen_fused_step, same
  * algorithm as improved Euler on hg_cartesian_dae): sin/cos of q0's head

@@ -200,8 +200,9 @@ static void report_refusal(board_t *b)
         else
             hg_board_format_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->ins.params.substeps
                                                                 : b->ins.params.integrator);
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s %s: %s\n", b->id, b->id,
-                        hg_board_param_hal_name(i), v, i < n ? t[i].hal_unit : "", why[i] ? why[i] : "");
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s: %s\n", b->id, b->id,
+                        hg_board_param_hal_name(i), v, i < n ? " " : "", i < n ? t[i].hal_unit : "",
+                        why[i] ? why[i] : "");
     }
 }
 

@@ -684,12 +684,13 @@ def gen_reduced(outdir):
         "Gravity potential (J, up to a constant)", [("*v", m["V"])], names,
         levels=[[(sy, x) for sy, x in m["levels"][0] if str(sy).startswith("sw")]])
     u.q, u.qd = list(q), list(qd)
-    fl_fused = gen_fused(u, m, names)
+    fl_fused, fl_fused_acc = gen_fused(u, m, names)
     u.macros += ["#define HG_GEN_REDUCED_TERMS_FLOPS %d" % fl_terms,
                  "#define HG_GEN_REDUCED_CONSTRAINTS_FLOPS %d" % fl_con,
                  "#define HG_GEN_REDUCED_POTENTIAL_FLOPS %d" % fl_pot,
                  "#define HG_GEN_REDUCED_STABILIZE_FLOPS %d" % fl_stab,
-                 "#define HG_GEN_FUSED_STEP_FLOPS %d" % fl_fused]
+                 "#define HG_GEN_FUSED_STEP_FLOPS %d" % fl_fused,
+                 "#define HG_GEN_FUSED_ACCEL_FLOPS %d" % fl_fused_acc]
     write_unit(u, outdir)
     return m
 
@@ -780,6 +781,8 @@ def gen_fused(u, m, names):
     for i in reversed(range(6)):
         x[i] = T("cdd%d" % i, y[i] * iD[i] - sum(L[kk][i] * x[kk] for kk in range(i + 1, 6)))
     qdd_s = [T("zdd%d" % i, b[i] + sum(A[i][j] * x[j] for j in range(6))) for i in range(6)] + x
+    # the accelerations alone: one stage of a higher-order scheme
+    seq_acc = list(seq)
     # the rest of the step: improved Euler on the full state ...
     q, qd = u.q, u.qd
     dt = sp.Symbol("dt")
@@ -821,19 +824,33 @@ def gen_fused(u, m, names):
     outs += [("qd1[%d]" % i, qd1[i]) for i in range(6, 12)]
     pr = Printer({**names, **u.kmap(), **{s: "fz[%d]" % i for i, s in enumerate(fz)},
                   **{s: "sc1[%d]" % i for i, s in enumerate(sc1)}})
-    lines = []
-    flops = 0
-    for s, e in seq:
-        if s is None:
-            lines.append("    " + e)
-            continue
-        lines.append("    const double %s = %s;" % (s.name, pr.doprint(e)))
-        flops += count_flops([e])
-        if s in checks:
-            lines.append("    if (!(%s > 0.0)) return HG_ERR_SINGULAR_MASS;" % s.name)
-    for lhs, e in outs:
-        lines.append("    %s = %s;" % (lhs, pr.doprint(e)))
-        flops += count_flops([e])
+
+    def emit(sequence, outputs):
+        """C lines and flops of a straight-line sequence and its outputs."""
+        ls, fl = [], 0
+        for s, e in sequence:
+            if s is None:
+                ls.append("    " + e)
+                continue
+            ls.append("    const double %s = %s;" % (s.name, pr.doprint(e)))
+            fl += count_flops([e])
+            if s in checks:
+                ls.append("    if (!(%s > 0.0)) return HG_ERR_SINGULAR_MASS;" % s.name)
+        for lhs, e in outputs:
+            ls.append("    %s = %s;" % (lhs, pr.doprint(e)))
+            fl += count_flops([e])
+        return ls, fl
+    lines_acc, flops_acc = emit(seq_acc, [("qdd[%d]" % i, qdd_s[i]) for i in range(12)])
+    lines_acc.append("    return 0;")
+    u.funcs.append((
+        "int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],\n"
+        "                       const double sc[6], const double fz[6], double qdd[12])",
+        "The Reduced Cartesian accelerations in one function (the first part of "
+        "hg_gen_fused_step, for the stages of higher-order schemes): with carriage forces "
+        "fz, qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T). 0 or "
+        "HG_ERR_SINGULAR_MASS (%d flops)" % flops_acc,
+        lines_acc))
+    lines, flops = emit(seq, outs)
     # largest bar-length error after the Newton step: Phi is quadratic in
     # z_k, so bar k is left with delta_k^2 (m^2), i.e. delta_k^2 / (2 l) (m)
     lines.append("    {")
@@ -859,7 +876,7 @@ def gen_fused(u, m, names):
         "residual_m the largest bar-length error left (m). 0 or HG_ERR_SINGULAR_MASS "
         "(%d flops, sin/cos not counted)" % flops,
         lines))
-    return flops
+    return flops, flops_acc
 
 
 def gen_standard(outdir):

@@ -14,6 +14,7 @@
 #define HG_GEN_REDUCED_POTENTIAL_FLOPS 17
 #define HG_GEN_REDUCED_STABILIZE_FLOPS 269
 #define HG_GEN_FUSED_STEP_FLOPS 2213
+#define HG_GEN_FUSED_ACCEL_FLOPS 1812
 
 /* Fill k[HG_GEN_REDUCED_NCONST] with the parameter-only subexpressions (110 flops). */
 void hg_gen_reduced_init(const hg_params *p, double *k);
@@ -37,6 +38,10 @@ void hg_gen_reduced_stabilize(const double *k, const double q[12], const double 
 /* Gravity potential (J, up to a constant) (17 flops) */
 void hg_gen_reduced_potential(const double *k, const double q[12], const double sc[6],
                               double *v);
+
+/* The Reduced Cartesian accelerations in one function (the first part of hg_gen_fused_step, for the stages of higher-order schemes): with carriage forces fz, qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T). 0 or HG_ERR_SINGULAR_MASS (1812 flops) */
+int hg_gen_fused_accel(const double *k, const double q[12], const double qd[12],
+                       const double sc[6], const double fz[6], double qdd[12]);
 
 /* The whole Reduced Cartesian step in one function (the paper's future work): with carriage forces fz, the accelerations qdd = [z'', c''] (Eq. 13, c independent, unrolled LDL^T), improved Euler over dt, one Newton step on z and z' = A c' at the predicted state; sc1 = sin/cos of q1's head angles, residual_m the largest bar-length error left (m). 0 or HG_ERR_SINGULAR_MASS (2213 flops, sin/cos not counted) */
 int hg_gen_fused_step(const double *k, const double q[12], const double qd[12],

@@ -213,6 +213,19 @@ static void test_fault_frozen(void)
     in.reset = 1;
     run(1);
     CHECK(!out.fault && out.fault_code == 0 && (out.events & HG_EV_RESET_DONE), "reset edge clears the fault");
+    /* all or nothing: with 8 substeps the failure comes mid-period; the
+     * state must be the previous period's end, not a substep's */
+    fresh();
+    in.params.substeps = 8;
+    in.params.model.g_mps2 = 1e7;
+    for (i = 0; i < 2000 && !out.fault; i++) {
+        before = out;
+        run(1);
+    }
+    CHECK(out.fault && memcmp(out.z_m, before.z_m, sizeof out.z_m) == 0 && out.sim_time_s == before.sim_time_s &&
+          fabs(fmod(out.sim_time_s * 1e3 + 0.5, 1.0) - 0.5) < 1e-9,
+          "8 substeps, failure mid-period: state rolled back to the period's start (t = %.6f s, a whole period)",
+          out.sim_time_s);
 }
 
 static void test_reset_bar_broken(void)

@@ -8,8 +8,8 @@
  * higher-order part that still dominates at these steps, 1.8 instead of
  * 2; the velocity shows the scheme's order from 2 ms on.)
  * Also: the default is the paper's improved Euler, a bad scheme number is
- * refused and changes nothing, the fused kind runs other schemes through
- * the Reduced Cartesian functions (same numbers), and Heun and RK4 meet
+ * refused and changes nothing, the fused kind's generated accelerations
+ * agree with the Reduced Cartesian algebra under Heun and RK4, and Heun and RK4 meet
  * the 1 um goal at the 1 ms servo period. */
 #include <math.h>
 #include <string.h>
@@ -96,9 +96,11 @@ static void test_contract(void)
     for (s = HG_INTEGRATOR_HEUN; s < HG_INTEGRATOR_COUNT; s++) {
         int r1 = run(HG_MODEL_FUSED_CARTESIAN, s, 1e-3, za, pa);
         int r2 = run(HG_MODEL_REDUCED_CARTESIAN, s, 1e-3, zb, pb);
-        CHECK(r1 == 0 && r2 == 0 && maxdiff(za, zb, 12) == 0.0 && maxdiff(pa, pb, 6) == 0.0,
-              "fused-cartesian with %s = reduced-cartesian with %s, bit for bit",
-              hg_integrator_name((hg_integrator)s), hg_integrator_name((hg_integrator)s));
+        double dz = fmax(maxdiff(za, zb, 6), maxdiff(pa, pb, 3));
+        CHECK(r1 == 0 && r2 == 0 && dz < 1e-12,
+              "fused-cartesian with %s (generated accelerations) = reduced-cartesian with %s "
+              "(hand-written algebra) after 0.25 s: %.1e m apart",
+              hg_integrator_name((hg_integrator)s), hg_integrator_name((hg_integrator)s), dz);
     }
 }
 
