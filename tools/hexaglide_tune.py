@@ -30,6 +30,7 @@ MIN_SAMPLES = 200          # a trajectory shorter than this is refused (0.2 s)
 SETTLE = 1500              # periods at the first command before the trajectory
 RAMP = 500                 # periods of the smooth move from HOME to the first command
 LEAD_IN = 300              # rows kept before the program starts (recorded runs)
+PREDICT_SETTLES = [SETTLE + 53 * i for i in range(15)]   # the prediction's 15 runs
 KEYS = ["P", "I", "D", "FF0", "FF1", "FF2", "FF3", "BIAS"]
 
 
@@ -412,7 +413,7 @@ def atomic_write(path, write):
         raise
 
 
-MARGIN_FREQS = np.logspace(np.log10(5), np.log10(450), 30)
+MARGIN_FREQS = np.logspace(0, np.log10(400), 36)   # sine sweep: 1-400 Hz (Nyquist 500 Hz)
 
 
 def ini_text(gains, pred, source):
@@ -442,8 +443,9 @@ def predict(gains, prob, settles):
             prob["ferror_limit"], at * PERIOD_S,
             "" if bad.rc == 0 else " (board: %s)" % hg.strerror(bad.rc))
     fe = np.array([r.peak_ferror_mm for r in runs])
+    v = np.array([r.peak_output_v for r in runs])
     return {"ferror": np.median(fe, 0), "ferror_lo": fe.min(0), "ferror_hi": fe.max(0),
-            "volts": np.max([r.peak_output_v for r in runs], 0), "runs": len(runs)}, None
+            "volts": v.max(0), "volts_median": np.median(v.max(1)), "runs": len(runs)}, None
 
 
 def plots(outdir, cur, sug, prob, source):
@@ -492,7 +494,7 @@ def plots(outdir, cur, sug, prob, source):
         a.grid(alpha=0.3)
     save(fig, "tune_ferror.png")
 
-    freqs = np.logspace(0, np.log10(450), 36)
+    freqs = MARGIN_FREQS
     fig, axs = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
     for (lab, g), col in zip((("current", cur), ("suggested", sug)), ("C0", "C1")):
         mag, ph = sine_sweep(g, prob, freqs)
@@ -574,8 +576,10 @@ def main(argv=None):
     ap.add_argument("--set", action="append", default=[], metavar="KEY=V",
                     help="with --evaluate: override a gain on all joints, e.g. P=20")
     ap.add_argument("--max-volts", type=float, default=None,
-                    help="peak output allowed on the trajectory (default: the current gains' peak, "
-                    "at most MAX_OUTPUT)")
+                    help="peak output allowed on the trajectory in every search run (default: the current "
+                    "gains' median peak over the prediction's runs, at most MAX_OUTPUT)")
+    ap.add_argument("--runs", type=int, default=3,
+                    help="closed-loop runs per candidate in the search (different settling; default 3)")
     ap.add_argument("--max-overshoot", type=float, default=0.15, help="step overshoot allowed (fraction)")
     ap.add_argument("--bandwidth", type=float, default=25.0, help="start bandwidth, Hz")
     ap.add_argument("--damping", type=float, default=0.7, help="start damping ratio")
@@ -613,8 +617,9 @@ def main(argv=None):
     cur = [dict(pid_keys(g), **sets) for g in joints]
     ferror_limit = min(g.get("FERROR", 2.0) for g in joints)
     prob = {"cmd": cmd, "ferror_limit": ferror_limit, "gm_factor": 2.0,
-            "max_overshoot": a.max_overshoot, "search_settles": [SETTLE, SETTLE + 137]}
-    settles = [SETTLE + 97 * i for i in range(7)]
+            "max_overshoot": a.max_overshoot,
+            "search_settles": [SETTLE + 137 * i for i in range(max(1, a.runs))]}
+    settles = PREDICT_SETTLES
 
     cur_pred, why = predict(cur, prob, settles)
     if a.evaluate:
@@ -630,9 +635,9 @@ def main(argv=None):
         log("current gains: %s (tuning from the model's gains instead)" % why)
         vcur = None
     else:
-        vcur = max(r.peak_output_v.max() for r in trajectory_runs(cur, prob, prob["search_settles"]))
-        log("current gains: peak |f-error| %.5f mm, peak output %.3f V"
-            % (cur_pred["ferror"].max(), vcur))
+        vcur = cur_pred["volts_median"]
+        log("current gains: peak |f-error| %.5f mm, peak output %.3f V (median of %d runs; max %.3f V)"
+            % (cur_pred["ferror"].max(), vcur, cur_pred["runs"], cur_pred["volts"].max()))
     vmax_dac = min(g.get("MAX_OUTPUT", 10.0) or 10.0 for g in joints)
     prob["vmax"] = a.max_volts if a.max_volts is not None else min(vmax_dac, vcur if vcur else vmax_dac)
     if a.gains:

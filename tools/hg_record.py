@@ -75,6 +75,12 @@ def main():
         return 2
     prefix = a.prefix or "motenc-hexaglide.%d.rec." % a.board
 
+    try:
+        out = open(a.out, "w")
+    except OSError as ex:
+        log("cannot write the record file: %s; give a writable path in HG_RECORD or "
+            "[HEXAGLIDE]RECORD" % ex)
+        return 1
     comp = hal.component("hg_record")
     pins = sorted((p for p in hal.get_info_pins() if p["NAME"].startswith(prefix)),
                   key=lambda p: p["NAME"])
@@ -105,7 +111,6 @@ def main():
     stop = []
     signal.signal(signal.SIGTERM, lambda s, f: stop.append(s))
     signal.signal(signal.SIGINT, lambda s, f: stop.append(s))
-    out = open(a.out, "w")
     out.write(MAGIC + "\n")
     out.write("# source %s, LinuxCNC HAL sampler FIFOs read with hal.stream\n" % os.path.basename(__file__))
     out.write("# board %d\n" % a.board)

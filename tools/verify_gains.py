@@ -18,7 +18,7 @@ two logo runs lasted 43.5 and 45.0 s), so the prediction of the gains file,
 made on an earlier recording, is printed beside as an estimate.
 On this shared host, run it under the install lock (docs/tuning.md).
 Exit: 0 when every joint is within the tolerance of the prediction (or
-inside the spread of its 7 offline runs), 1 not, 2 bad input or LinuxCNC failed.
+inside the spread of its offline runs), 1 not, 2 bad input or LinuxCNC failed.
 """
 import argparse
 import os
@@ -94,22 +94,22 @@ def main():
     gains = [dict(i, **g) for i, g in zip(ini, gains)]
     cmd = tune.load_trajectory(csv)
     prob = {"cmd": cmd, "ferror_limit": 2.0}
-    again, why = tune.predict(gains, prob, [tune.SETTLE + 97 * i for i in range(7)])
+    again, why = tune.predict(gains, prob, tune.PREDICT_SETTLES)
     if again is None:
         print("verify_gains: offline on this run's commands: %s" % why, file=sys.stderr)
         return 1
     print("# %s with %s" % (os.path.basename(a.program), a.gains))
-    print("# predicted = tune's prediction from this run's joint commands (median of 7 offline runs);")
+    print("# predicted = tune's prediction from this run's joint commands (median of 15 offline runs);")
     print("# file = the prediction in the gains file (from the trajectory tune was given)")
     print("%-6s %12s %12s %8s %22s %12s %8s %8s" % ("joint", "measured_mm", "predicted_mm", "ratio",
-                                                  "7 runs: min..max", "file_mm", "meas_V", "pred_V"))
+                                                  "runs: min..max", "file_mm", "meas_V", "pred_V"))
     ok = True
     ratios = []
     for j in range(6):
         p = again["ferror"][j]
         r = fe[j] / p if p > 0 else np.inf
         ratios.append(r)
-        # within the tolerance of the median, or inside the spread of the 7 offline runs
+        # within the tolerance of the median, or inside the spread of the offline runs
         # (the encoder's 1 um counts make single runs differ by up to a count)
         good = abs(r - 1) <= a.tolerance or again["ferror_lo"][j] <= fe[j] <= again["ferror_hi"][j]
         ok &= good
