@@ -25,44 +25,44 @@ static const char *const model_names[HG_MODEL_COUNT] = {
     "standard", "reduced-joints", "reduced-cartesian", "fused-cartesian",
 };
 
-const char *hg_model_name(hg_model_kind kind)
-{
-    if ((int)kind < 0 || kind >= HG_MODEL_COUNT)
-        return 0;
-    return model_names[kind];
-}
-
-int hg_model_from_name(const char *name)
-{
-    int i;
-    if (!name)
-        return -1;
-    for (i = 0; i < HG_MODEL_COUNT; i++)
-        if (strcmp(name, model_names[i]) == 0)
-            return i;
-    return -1;
-}
-
 static const char *const integrator_names[HG_INTEGRATOR_COUNT] = {
     "improved-euler", "heun", "rk4",
 };
 
+/* names[i] for 0 <= i < n, else 0. */
+static const char *name_of(const char *const *names, int n, int i)
+{
+    return i >= 0 && i < n ? names[i] : 0;
+}
+
+/* Index of name in names[0..n), or -1 (also for a null name). */
+static int index_of(const char *const *names, int n, const char *name)
+{
+    int i;
+    for (i = 0; name && i < n; i++)
+        if (strcmp(name, names[i]) == 0)
+            return i;
+    return -1;
+}
+
+const char *hg_model_name(hg_model_kind kind)
+{
+    return name_of(model_names, HG_MODEL_COUNT, (int)kind);
+}
+
+int hg_model_from_name(const char *name)
+{
+    return index_of(model_names, HG_MODEL_COUNT, name);
+}
+
 const char *hg_integrator_name(hg_integrator which)
 {
-    if ((int)which < 0 || which >= HG_INTEGRATOR_COUNT)
-        return 0;
-    return integrator_names[which];
+    return name_of(integrator_names, HG_INTEGRATOR_COUNT, (int)which);
 }
 
 int hg_integrator_from_name(const char *name)
 {
-    int i;
-    if (!name)
-        return -1;
-    for (i = 0; i < HG_INTEGRATOR_COUNT; i++)
-        if (strcmp(name, integrator_names[i]) == 0)
-            return i;
-    return -1;
+    return index_of(integrator_names, HG_INTEGRATOR_COUNT, name);
 }
 
 int hg_model_set_integrator(hg_model *m, int which)

@@ -284,7 +284,7 @@ int cmd_replay(int argc, char **argv, const char *self)
     static hg_board b;
     static hg_board_rec_field fld[HG_BOARD_REC_MAX];
     static double row[HG_RECORD_MAX_COLS];
-    int col[HG_BOARD_REC_MAX], col_z[6], col_count[7], col_pose[6];
+    int col[HG_BOARD_REC_MAX], col_z[6], col_count[7], col_pose[6], col_period = 0, col_model = 0;
     hg_record_error e;
     hg_board_inputs in;
     hg_board_outputs out;
@@ -338,6 +338,12 @@ int cmd_replay(int argc, char **argv, const char *self)
         col_pose[k] = hg_record_column(&r, text);
     }
     col_count[6] = hg_record_column(&r, "out.fault-code");
+    for (i = 0; i < nf; i++) {         /* the step's other arguments */
+        if (fld[i].side == HG_BRS_PERIOD)
+            col_period = col[i];
+        if (fld[i].side == HG_BRS_MODEL)
+            col_model = col[i];
+    }
 
     if (whatif && !o.csv && !o.plot) { /* a what-if always leaves its run and plot */
         snprintf(png_auto, sizeof png_auto, "%s.whatif.png", o.file);
@@ -363,7 +369,7 @@ int cmd_replay(int argc, char **argv, const char *self)
         long n = (long)row[0];
         int mismatch = 0;
         if (n == 0) {                  /* power-up, as at loadrt: model and defaults */
-            kind = o.model ? hg_model_from_name(o.model) : (int)row[col[1]];
+            kind = o.model ? hg_model_from_name(o.model) : (int)row[col_model];
             if (kind < 0 || kind >= HG_MODEL_COUNT) {
                 fprintf(stderr, "hexaglide replay: %s: line %ld: in.model %d is not a model (0..%d); "
                         "the record is damaged, or give --model\n", o.file, r.line, kind, HG_MODEL_COUNT - 1);
@@ -380,7 +386,7 @@ int cmd_replay(int argc, char **argv, const char *self)
         }
         for (i = 0; i < nf; i++)
             hg_board_rec_set(fld, nf, i, &in, row[col[i]]);
-        period = (long)row[col[0]];
+        period = (long)row[col_period];
         if (whatif) {                  /* the recorded block with the user's changes on top */
             for (k = 0; k < o.nset; k++)
                 memcpy((char *)&in.params.model + set_off[k], &set_val[k], sizeof set_val[k]);

@@ -286,6 +286,18 @@ static void test_index_latch(void)
         run(1000);                                      /* passes more index marks, no re-zero */
         CHECK(out.count[0] - c0 > 5000, "not armed: later index marks leave the counter alone (%d -> %d)", c0, out.count[0]);
     }
+    {
+        int pulses2 = 0, pulses3 = 0;
+        in.index_lost[3] = 1;
+        for (i = 0; i < 1000; i++) {                    /* ~20 mm more: two marks */
+            run(1);
+            pulses2 += out.index[2];
+            pulses3 += out.index[3];
+        }
+        CHECK(pulses2 >= 1 && pulses3 == 0, "index-lost 3: no index pulse on channel 3 (%d), channel 2 saw %d",
+              pulses3, pulses2);
+        in.index_lost[3] = 0;
+    }
     in.enc_reset[1] = 1;
     run(1);
     CHECK(out.count[1] == 0 && out.position[1] == 0, "enc-reset: counter 1 reads 0");
@@ -294,6 +306,32 @@ static void test_index_latch(void)
     run(1);
     CHECK((out.events & HG_EV_ENC_SCALE_BAD) && out.enc_scale_bad == 4 && out.enc_scale[2] == 1.0 && out.param_error,
           "enc-02-scale 0: set to 1.0 as hal_motenc, reported once, param-error");
+}
+
+static void test_switches(void)
+{
+    int k;
+    /* spec: home switch on at or above +5 mm, limits at +-250 mm;
+     * in-(4k+0..3) = limit-, limit+, home, amp fault */
+    fresh();
+    in.tripped[4] = HG_SW_MIN;
+    in.stuck[5] = HG_SW_HOME;
+    in.amp_fail[1] = 1;
+    run(1);
+    CHECK(out.in[16] == 1 && out.in[17] == 0 && out.in[18] == 0 && out.in[7] == 1 && out.in[3] == 0 &&
+          fabs(out.z_m[4]) < 1e-4,
+          "at HOME: tripped-min 4 reads limit- (in-16), home off, amp-fail 1 on in-07 only");
+    for (k = 0; k < 6; k++)
+        in.dac_v[k] = 3.0;
+    while (out.z_m[4] < 0.010 && out.sim_time_s < 2)
+        run(1);
+    CHECK(out.in[18] == 1 && out.in[22] == 0 && out.z_m[5] > 0.005 && out.in[16] == 1,
+          "above +5 mm (z %.2f mm): joint 4's home on (in-18), stuck-home 5 keeps reading off (in-22), tripped stays",
+          out.z_m[5] * 1e3);
+    in.stuck[5] = 0;
+    in.tripped[4] = 0;
+    run(1);
+    CHECK(out.in[22] == 1 && out.in[16] == 0, "released: home 5 reads on, limit- 4 off");
 }
 
 static void test_substeps(void)
@@ -418,6 +456,7 @@ int main(void)
     test_fault_frozen();
     test_reset_bar_broken();
     test_index_latch();
+    test_switches();
     test_substeps();
     test_bad_period();
     test_dac_nan_determinism();
