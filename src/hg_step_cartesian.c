@@ -1,6 +1,7 @@
 /* hg_step_cartesian.c - the Reduced Cartesian parametrization
  * (head pose c independent, carriage heights z dependent): Phi_z is
- * diagonal, so A = -Phi_z^-1 Phi_c costs 36 products and the position
+ * diagonal, so A = -Phi_z^-1 Phi_c comes generated (one reciprocal per
+ * carriage, hg_gen_cartesian_terms) and the position
  * stabilization is one diagonal Newton step per carriage. The fused
  * variant is the whole improved-Euler step as one generated function. */
 #include "hg_step_cartesian.h"
@@ -41,7 +42,7 @@ int hg_cartesian_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd
  * temporaries stay on the stack, where the compiler knows they alias
  * nothing: 1.3 KB). */
 typedef struct {
-    double mzz[6], Mzc[36], Mcc[36], Q[12], pz[6], pc[36], gm[6], sc[6];
+    double mzz[6], Mzc[36], Mcc[36], Q[12], A[36], b[6], sc[6];
 } cartesian_ws;
 typedef char hg_cartesian_ws_fits[sizeof(cartesian_ws) <= sizeof(((hg_work *)0)->step) ? 1 : -1];
 
@@ -59,12 +60,12 @@ int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const dou
                        const double fz[6], double *qdd)
 {
     cartesian_ws *w = (cartesian_ws *)d->work.step;
-    const double *mzz = w->mzz, *Mzc = w->Mzc, *Mcc = w->Mcc, *Q = w->Q, *pz = w->pz;
-    const double *pc = w->pc, *gm = w->gm;
-    double A[36], b[6], W[36], P[36], Mh[36], rhs[6], nipz[6];
+    const double *mzz = w->mzz, *Mzc = w->Mzc, *Mcc = w->Mcc, *Q = w->Q, *A = w->A, *b = w->b;
+    double W[36], P[36], Mh[36], rhs[6];
     const double *sc = head_trig(d, q, w->sc); /* the last stabilization's, if q is its state */
     int i, j, k, rc;
-    hg_gen_reduced_terms(m->k, q, qd, sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->pz, w->pc, w->gm);
+    /* A = -Phi_z^-1 Phi_c and b = -Phi_z^-1 gamma come generated */
+    hg_gen_cartesian_terms(m->k, q, qd, sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->A, w->b);
     /* Eq. 13 with z dependent, as sums of outer products over the carriages
      * (rows of A): with W_k = M_zc,k + M_zz,k A_k / 2 and P = A^T W,
      *   M_cc + M_cz A + (M_cz A)^T + A^T M_zz A = M_cc + P + P^T,
@@ -73,19 +74,12 @@ int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const dou
     for (i = 0; i < 6; i++)
         rhs[i] = Q[6 + i];
     HG_UNROLL
-    for (k = 0; k < 6; k++)
-        nipz[k] = -1.0 / pz[k];         /* -pc ipz = pc (-ipz) exactly */
-    HG_UNROLL
     for (k = 0; k < 6; k++) {
         const double hm = 0.5 * mzz[k];
         double t;
         HG_UNROLL
         for (j = 0; j < 6; j++)
-            A[6 * k + j] = pc[6 * k + j] * nipz[k];
-        HG_UNROLL
-        for (j = 0; j < 6; j++)
             W[6 * k + j] = Mzc[6 * k + j] + hm * A[6 * k + j];
-        b[k] = gm[k] * nipz[k];
         t = Q[k] + fz[k] - mzz[k] * b[k];
         HG_UNROLL
         for (i = 0; i < 6; i++)

@@ -667,6 +667,30 @@ def gen_reduced(outdir):
         "Mass matrix blocks (M_zz diagonal), Q = gravity - velocity terms, constraint "
         "Jacobian (Phi_z diagonal) and gamma = (Phi_q q')_q q'", assigns, names,
         levels=m["levels"])
+    # the Reduced Cartesian kind's terms: A = -Phi_z^-1 Phi_c and
+    # b = -Phi_z^-1 gamma formed here (Phi_z,k = c_k s_k: c_k cancelled
+    # symbolically, one reciprocal of the atom s_k per carriage, A's Z
+    # column exactly 1) instead of Phi_z, Phi_c, gamma
+    pivc, pivs = zip(*[Jq[i, i].as_coeff_Mul() for i in Z])
+    assert all(x.is_Symbol for x in pivs), pivs
+    ipz = sp.symbols("ipz0:6")
+    assigns = [("Mzz[%d]" % i, M[i, i]) for i in Z]
+    assigns += matrix_assigns("Mzc", M, Z, C) + matrix_assigns("Mcc", M, C, C)
+    assigns += [("Q[%d]" % i, Q[i]) for i in range(12)]
+    for i in Z:
+        for j in range(6):
+            an = sp.expand(-Jq[i, 6 + j] / pivc[i])
+            assigns.append(("A[%d]" % (6 * i + j), 1 if an == pivs[i] else an * ipz[i]))
+    assigns += [("b[%d]" % i, -sp.expand(gamma[i] / pivc[i]) * ipz[i]) for i in Z]
+    fl_cterms = u.function(
+        "void hg_gen_cartesian_terms(const double *k, const double q[12], const double qd[12],\n"
+        "                            const double sc[6],\n"
+        "                            double Mzz[6], double Mzc[36], double Mcc[36], double Q[12],\n"
+        "                            double A[36], double b[6])",
+        "For the Reduced Cartesian kind: mass matrix blocks (M_zz diagonal), Q = gravity - "
+        "velocity terms, A = -Phi_z^-1 Phi_c and b = -Phi_z^-1 gamma (z' = A c', "
+        "z'' = A c'' + b)", assigns, names,
+        levels=list(m["levels"]) + [[(ipz[i], 1 / pivs[i]) for i in Z]])
     mc = reduced_constraints_atomized(q)
     assigns = [("phi[%d]" % i, mc["phi"][i]) for i in range(6)]
     assigns += [("Phi_z[%d]" % i, mc["Jq"][i, i]) for i in Z]
@@ -695,6 +719,7 @@ def gen_reduced(outdir):
     u.q, u.qd = list(q), list(qd)
     fl_fused, fl_fused_acc = gen_fused(u, m, names)
     u.macros += ["#define HG_GEN_REDUCED_TERMS_FLOPS %d" % fl_terms,
+                 "#define HG_GEN_CARTESIAN_TERMS_FLOPS %d" % fl_cterms,
                  "#define HG_GEN_REDUCED_CONSTRAINTS_FLOPS %d" % fl_con,
                  "#define HG_GEN_REDUCED_POTENTIAL_FLOPS %d" % fl_pot,
                  "#define HG_GEN_REDUCED_STABILIZE_FLOPS %d" % fl_stab,

@@ -10,6 +10,7 @@
 
 #define HG_GEN_REDUCED_NCONST 36  /* length of the constant table k[] */
 #define HG_GEN_REDUCED_TERMS_FLOPS 864
+#define HG_GEN_CARTESIAN_TERMS_FLOPS 828
 #define HG_GEN_REDUCED_CONSTRAINTS_FLOPS 395
 #define HG_GEN_REDUCED_POTENTIAL_FLOPS 17
 #define HG_GEN_REDUCED_STABILIZE_FLOPS 269
@@ -24,6 +25,12 @@ void hg_gen_reduced_terms(const double *k, const double q[12], const double qd[1
                           const double sc[6],
                           double Mzz[6], double Mzc[36], double Mcc[36], double Q[12],
                           double Phi_z[6], double Phi_c[36], double gamma[6]);
+
+/* For the Reduced Cartesian kind: mass matrix blocks (M_zz diagonal), Q = gravity - velocity terms, A = -Phi_z^-1 Phi_c and b = -Phi_z^-1 gamma (z' = A c', z'' = A c'' + b) (828 flops) */
+void hg_gen_cartesian_terms(const double *k, const double q[12], const double qd[12],
+                            const double sc[6],
+                            double Mzz[6], double Mzc[36], double Mcc[36], double Q[12],
+                            double A[36], double b[6]);
 
 /* Bar constraints |B-A|^2 - l^2 (m^2) and their Jacobian (395 flops) */
 void hg_gen_reduced_constraints(const double *k, const double q[12], const double sc[6],
