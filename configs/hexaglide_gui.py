@@ -4,7 +4,7 @@
 Shows the simulated machine, not the commanded one: carriage heights from
 the virtual board's motenc-hexaglide.0.joint-N.pos and the head pose from
 motenc-hexaglide.0.head-{x,y,z,a,b,c} (hexaglide_postgui.hal connects them).
-Geometry in mm from shared/hexaglide-model.md (the same numbers as the
+Geometry in mm from docs/model.md (the same numbers as the
 hexaglidekins.* and motenc-hexaglide.0.* parameters):
   guide ij on the vertical line through Rz(alpha_i) (lb, s_j e, 0)
   carriage joint B_ij = guide point + (0, 0, h + z_ij)

@@ -1,6 +1,6 @@
 /* hg_dynamics.h - forward dynamics of the whole Hexaglide (head, six bars,
  * six carriages, six drives), one integration step per call, after
- * Ros et al., Multibody Dynamics 2011 (shared/paper).
+ * Ros et al., Multibody Dynamics 2011 (docs/model.md cites it).
  *
  * MuJoCo-style split (types in hg_model.h): hg_model is constant after
  * hg_model_init; hg_data is the mutable state and scratch.

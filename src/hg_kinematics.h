@@ -1,6 +1,6 @@
 /* hg_kinematics.h - Hexaglide geometry, inverse and forward kinematics.
  *
- * Conventions (shared/hexaglide-model.md): SI units and radians inside.
+ * Conventions (docs/model.md): SI units and radians inside.
  *   joints z[6]  = z11 z12 z21 z22 z31 z32, carriage heights relative to
  *                  HOME, metres, positive up (LinuxCNC joints 0..5).
  *   pose c[6]    = X Y Z (m) of the head reference point Op and

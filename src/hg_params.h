@@ -1,6 +1,6 @@
 /* hg_params.h - the Hexaglide parameter set: geometry, masses, drives,
  * friction and strokes, all in SI units (the unit is in each field name).
- * Defaults are the numbers of shared/hexaglide-model.md. Every field can be
+ * Defaults are the numbers of docs/model.md. Every field can be
  * read and set by its spec name ("l", "m_head", "c_visc", ...), so the CLI
  * (--set name=value) and the HAL driver share one table.
  * Pure C, no LinuxCNC dependency, no malloc, no stdio. */
