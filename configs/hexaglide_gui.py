@@ -4,8 +4,9 @@
 Shows the simulated machine, not the commanded one: carriage heights from
 the virtual board's motenc-hexaglide.0.joint-N.pos and the head pose from
 motenc-hexaglide.0.head-{x,y,z,a,b,c} (hexaglide_postgui.hal connects them).
-Geometry in mm from docs/model.md (the same numbers as the
-hexaglidekins.* and motenc-hexaglide.0.* parameters):
+Geometry in mm: L LB E LP H on the command line (hexaglide_postgui.hal
+passes the INI's [HEXAGLIDE] values, the ones both components get), else
+the defaults of docs/model.md:
   guide ij on the vertical line through Rz(alpha_i) (lb, s_j e, 0)
   carriage joint B_ij = guide point + (0, 0, h + z_ij)
   head joint A_ij = P + Rz(C) Ry(B) Rx(A) Rz(alpha_i) (lp, s_j e, 0)
@@ -14,6 +15,7 @@ hexaglidekins.* and motenc-hexaglide.0.* parameters):
 """
 import math
 import os
+import sys
 import tkinter
 
 import hal
@@ -23,7 +25,10 @@ from vismach import (Box, BoxCentered, Capture, Collection, Color, CylinderZ,
                      HalRotate, HalTranslate, Rotate, Track, Translate, main)
 
 L, LB, E, LP, TOOL_D = 1000.0, 484.0, 68.254, 73.085, 90.0
-H = math.sqrt(L * L - (LB - LP) ** 2)
+if len(sys.argv) == 6:
+    L, LB, E, LP, H = (float(v) for v in sys.argv[1:])
+else:
+    H = math.sqrt(L * L - (LB - LP) ** 2)
 POSTS = (0.0, 120.0, -120.0)
 SIGNS = (1.0, -1.0)
 
