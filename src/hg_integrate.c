@@ -14,12 +14,6 @@ typedef struct {
 } stage_ws;
 typedef char hg_stage_ws_fits[sizeof(stage_ws) <= sizeof(((hg_work *)0)->stage) ? 1 : -1];
 
-int hg_integrator_stages(hg_integrator scheme)
-{
-    static const int stages[HG_INTEGRATOR_COUNT] = {1, 2, 4};
-    return (int)scheme >= 0 && scheme < HG_INTEGRATOR_COUNT ? stages[scheme] : 0;
-}
-
 /* The paper's step: q1 = q0 + q0' dt + q0'' dt^2/2, q1' = q0' + q0'' dt
  * (the five vectors must not overlap: restrict lets the compiler pack them). */
 static inline __attribute__((always_inline)) void

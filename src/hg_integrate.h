@@ -45,7 +45,4 @@ int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_da
                  const double fz0[6], double dt, double *q1, double *qd1, double *qdd,
                  double *residual_m);
 
-/* Evaluations of the accelerations per step of a scheme (1, 2, 4; 0 if unknown). */
-int hg_integrator_stages(hg_integrator scheme);
-
 #endif
