@@ -4,7 +4,7 @@
 Shows the simulated machine, not the commanded one: carriage heights from
 the virtual board's motenc-hexaglide.0.joint-N.pos and the head pose from
 motenc-hexaglide.0.head-{x,y,z,a,b,c} (hexaglide_postgui.hal connects them).
-Geometry in mm: L LB E LP H on the command line (hexaglide_postgui.hal
+Geometry in mm: L LB E LP on the command line (hexaglide_postgui.hal
 passes the INI's [HEXAGLIDE] values, the ones both components get), else
 the defaults of docs/model.md:
   guide ij on the vertical line through Rz(alpha_i) (lb, s_j e, 0)
@@ -25,10 +25,9 @@ from vismach import (Box, BoxCentered, Capture, Collection, Color, CylinderZ,
                      HalRotate, HalTranslate, Rotate, Track, Translate, main)
 
 L, LB, E, LP, TOOL_D = 1000.0, 484.0, 68.254, 73.085, 90.0
-if len(sys.argv) == 6:
-    L, LB, E, LP, H = (float(v) for v in sys.argv[1:])
-else:
-    H = math.sqrt(L * L - (LB - LP) ** 2)
+if len(sys.argv) == 5:
+    L, LB, E, LP = (float(v) for v in sys.argv[1:])
+H = math.sqrt(L * L - (LB - LP) ** 2)   # carriage height at HOME: follows from L, LB, LP
 POSTS = (0.0, 120.0, -120.0)
 SIGNS = (1.0, -1.0)
 

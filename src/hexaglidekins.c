@@ -5,7 +5,9 @@
  * world is X Y Z A B C of the head reference point (mm, degrees).
  * Inverse: closed form. Forward: Newton-Raphson from the previous pose.
  *
- * HAL parameters (rw, mm): hexaglidekins.l .lb .e .lp .h  (geometry)
+ * HAL parameters (rw): the geometry of hg_params' table (hg_param_is_geometry),
+ *   by HAL name and HAL unit: hexaglidekins.l .lb .e .lp (mm), .cone-carriage
+ *   .cone-head (deg), .d-bar (mm); h follows from l, lb, lp
  * HAL pins:
  *   hexaglidekins.fk-iterations      s32 out  iterations of the last forward call
  *   hexaglidekins.fk-max-iterations  s32 in   iteration bound (default 30)
@@ -18,6 +20,7 @@
 #include "rtapi.h"
 #include "rtapi_app.h"
 #include "rtapi_math.h"
+#include "rtapi_string.h"
 #include "hal.h"
 #include "kinematics.h"
 
@@ -30,7 +33,7 @@ MODULE_AUTHOR("virtual Hexaglide project");
 MODULE_DESCRIPTION("Kinematics of the UPNa Hexaglide parallel machine");
 
 typedef struct {
-    hal_float_t l_mm, lb_mm, e_mm, lp_mm, h_mm;   /* geometry parameters */
+    hal_float_t geo[HG_PARAMS_MAX];                /* geometry parameters, HAL units, by table index */
     hal_s32_t *fk_iterations;
     hal_s32_t *fk_max_iterations;
     hal_float_t *fk_tolerance_mm;
@@ -40,27 +43,35 @@ typedef struct {
     hal_u32_t *fk_fail_count;
     hal_s32_t *ik_error;
     int geometry_reported_bad;                     /* message already printed */
+    hg_geometry checked;                           /* the geometry last checked ... */
+    int checked_rc, checked_valid;                 /* ... its result; 0: check again */
 } hexaglidekins_hal;
 
 static hexaglidekins_hal *hd; /* the module's one instance, in HAL shared memory */
 static int comp_id;
 
-/* Geometry from the HAL parameters (mm -> m); HG_ERR_BAD_PARAM, reported
- * once on the RTAPI log, when the user set an impossible one. */
+/* Geometry from the HAL parameters (HAL units -> SI); HG_ERR_BAD_PARAM,
+ * reported once on the RTAPI log, when the user set an impossible one. */
 static int current_geometry(hg_geometry *g)
 {
     const char *field = "", *why = "";
-    int rc;
-    g->l_m = hd->l_mm / HG_MM_PER_M;
-    g->lb_m = hd->lb_mm / HG_MM_PER_M;
-    g->e_m = hd->e_mm / HG_MM_PER_M;
-    g->lp_m = hd->lp_mm / HG_MM_PER_M;
-    g->h_m = hd->h_mm / HG_MM_PER_M;
+    hg_params p;
+    int i, n, rc;
+    const hg_param_info *t = hg_params_table(&n);
+    for (i = 0; i < n; i++)
+        if (hg_param_is_geometry(i))
+            *hg_params_at(&p, i) = hd->geo[i] / t[i].hal_scale;
+    *g = p.geo;
+    if (hd->checked_valid && memcmp(g, &hd->checked, sizeof *g) == 0)
+        return hd->checked_rc;           /* unchanged since the last call: same answer */
     rc = hg_geometry_check(g, &field, &why);
+    hd->checked = *g;
+    hd->checked_rc = rc;
+    hd->checked_valid = 1;
     if (rc && !hd->geometry_reported_bad)
         rtapi_print_msg(RTAPI_MSG_ERR,
                         "hexaglidekins: parameter hexaglidekins.%s %s; kinematics refused "
-                        "until it is fixed with setp\n", field, why);
+                        "until it is fixed with setp\n", hg_params_hal_name(field), why);
     hd->geometry_reported_bad = (rc != 0);
     return rc;
 }
@@ -144,14 +155,15 @@ static int export_hal(void)
 {
     hg_params p;
     hg_fk_options o;
-    int r = 0;
+    int r = 0, i, n;
+    const hg_param_info *t = hg_params_table(&n);
     hg_params_default(&p);
     hg_fk_options_default(&o);
-    r |= hal_param_float_newf(HAL_RW, &hd->l_mm, comp_id, "hexaglidekins.l");
-    r |= hal_param_float_newf(HAL_RW, &hd->lb_mm, comp_id, "hexaglidekins.lb");
-    r |= hal_param_float_newf(HAL_RW, &hd->e_mm, comp_id, "hexaglidekins.e");
-    r |= hal_param_float_newf(HAL_RW, &hd->lp_mm, comp_id, "hexaglidekins.lp");
-    r |= hal_param_float_newf(HAL_RW, &hd->h_mm, comp_id, "hexaglidekins.h");
+    for (i = 0; i < n; i++)
+        if (hg_param_is_geometry(i)) {
+            r |= hal_param_float_newf(HAL_RW, &hd->geo[i], comp_id, "hexaglidekins.%s", t[i].hal_name);
+            hd->geo[i] = hg_params_get(&p, i) * t[i].hal_scale;
+        }
     r |= hal_pin_s32_newf(HAL_OUT, &hd->fk_iterations, comp_id, "hexaglidekins.fk-iterations");
     r |= hal_pin_s32_newf(HAL_IN, &hd->fk_max_iterations, comp_id, "hexaglidekins.fk-max-iterations");
     r |= hal_pin_float_newf(HAL_IN, &hd->fk_tolerance_mm, comp_id, "hexaglidekins.fk-tolerance");
@@ -162,11 +174,6 @@ static int export_hal(void)
     r |= hal_pin_s32_newf(HAL_OUT, &hd->ik_error, comp_id, "hexaglidekins.ik-error");
     if (r)
         return r;
-    hd->l_mm = p.geo.l_m * HG_MM_PER_M;
-    hd->lb_mm = p.geo.lb_m * HG_MM_PER_M;
-    hd->e_mm = p.geo.e_m * HG_MM_PER_M;
-    hd->lp_mm = p.geo.lp_m * HG_MM_PER_M;
-    hd->h_mm = p.geo.h_m * HG_MM_PER_M;
     *hd->fk_max_iterations = o.max_iterations;
     *hd->fk_tolerance_mm = o.tolerance_m * HG_MM_PER_M;
     *hd->fk_iterations = 0;

@@ -41,21 +41,6 @@ int hg_board_params_check(const hg_board_params *p, unsigned long long *mask,
     return bad ? HG_ERR_BAD_PARAM : HG_OK;
 }
 
-/* The block the board tries for input want: h follows l, lb, lp unless set. */
-static void candidate(const hg_board *b, const hg_board_params *want, hg_board_params *cand)
-{
-    *cand = *want;
-    hg_params_keep_home(&cand->model, &b->m.p);
-}
-
-int hg_board_explain_refusal(const hg_board *b, const hg_board_params *want,
-                             unsigned long long *mask, const char *why[HG_BOARD_WHY_LEN])
-{
-    hg_board_params cand;
-    candidate(b, want, &cand);
-    return hg_board_params_check(&cand, mask, why);
-}
-
 const char *hg_board_param_hal_name(int bit)
 {
     int n;
@@ -84,6 +69,7 @@ static void reinit_at_home(hg_board *b, hg_board_outputs *out)
     int k, rc = hg_data_reset(&b->m, &b->d);
     b->fault = 0;
     b->fault_code = 0;
+    memset(&b->fault_guard, 0, sizeof b->fault_guard);
     if (rc)
         latch_fault(b, out, rc, HG_FAULT_HOME);
     for (k = 0; k < HG_BOARD_ENCODERS; k++) {
@@ -144,29 +130,33 @@ static int params_differ(const hg_board_params *a, const hg_board_params *c)
            a->substeps != c->substeps || a->integrator != c->integrator;
 }
 
+/* 1 when the machine's shape (l, lb, e, lp: where HOME is) differs; the
+ * joints' ranges and the bar diameter are limits, not shape. */
+static int shape_differs(const hg_geometry *a, const hg_geometry *c)
+{
+    return a->l_m != c->l_m || a->lb_m != c->lb_m || a->e_m != c->e_m || a->lp_m != c->lp_m;
+}
+
 /* Try the input parameter block: apply it, or refuse it naming every
- * invalid field (the set in force stays). h follows l, lb, lp unless it
- * was changed too; new geometry restarts at HOME; a new lead or
- * counts-per-rev rescales the counters without a jump. */
+ * invalid field (the set in force stays). A new shape restarts at HOME; a
+ * new lead or counts-per-rev rescales the counters without a jump. */
 static void apply_params(hg_board *b, const hg_board_params *want, hg_board_outputs *out)
 {
-    hg_board_params cand;
     const char *field, *why;
     double old_lead = b->m.p.lead_m, old_cpr = b->m.p.counts_per_rev;
     int k, rc, geometry_changed;
-    candidate(b, want, &cand);
-    if (hg_board_params_check(&cand, &out->refused_mask, 0)) {
+    if (hg_board_params_check(want, &out->refused_mask, 0)) {
         out->events |= HG_EV_PARAM_REFUSED;
         out->param_rc = HG_ERR_BAD_PARAM;
         b->param_error = 1;
         return;
     }
-    if (memcmp(&cand.model, &b->m.p, sizeof cand.model) == 0 && // NOLINT(bugprone-suspicious-memory-comparison): bitwise
-        cand.substeps == b->substeps && cand.integrator == (unsigned)b->m.integrator)
+    if (memcmp(&want->model, &b->m.p, sizeof want->model) == 0 && // NOLINT(bugprone-suspicious-memory-comparison): bitwise
+        want->substeps == b->substeps && want->integrator == (unsigned)b->m.integrator)
         return;                       /* back to the block in force: nothing to do */
-    rc = hg_model_init(&b->m_new, &cand.model, b->m.kind, &field, &why);
+    rc = hg_model_init(&b->m_new, &want->model, b->m.kind, &field, &why);
     if (rc == 0)
-        rc = hg_model_set_integrator(&b->m_new, (int)cand.integrator);
+        rc = hg_model_set_integrator(&b->m_new, (int)want->integrator);
     if (rc) {                         /* passed the checks, could not be built */
         out->events |= HG_EV_PARAM_REFUSED;
         out->refused_mask = 0;
@@ -174,9 +164,9 @@ static void apply_params(hg_board *b, const hg_board_params *want, hg_board_outp
         b->param_error = 1;
         return;
     }
-    geometry_changed = memcmp(&b->m_new.p.geo, &b->m.p.geo, sizeof b->m.p.geo) != 0; // NOLINT(bugprone-suspicious-memory-comparison): bitwise change test, all doubles
+    geometry_changed = shape_differs(&b->m_new.p.geo, &b->m.p.geo);
     b->m = b->m_new;
-    b->substeps = cand.substeps;
+    b->substeps = want->substeps;
     b->param_error = 0;
     out->events |= HG_EV_PARAM_APPLIED;
     if (geometry_changed) {
@@ -222,8 +212,10 @@ static int integrate(hg_board *b, const double volts[6], double dt)
         if (rc == 0 && !state_finite(&b->d))
             rc = HG_ERR_STATE_NONFINITE;
     }
-    if (rc)
+    if (rc) {
+        b->fault_guard = b->d.guard;  /* what was struck, kept through the rollback */
         memcpy(&b->d, &b->d_saved, HG_DATA_STATE_BYTES);
+    }
     return rc;
 }
 
@@ -329,6 +321,7 @@ static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outpu
     out->bars_broken = b->d.broken_bars;
     out->fault = b->fault;
     out->fault_code = b->fault_code;
+    out->fault_guard = b->fault_guard;
     out->watchdog_expired = b->wd.expired;
     out->param_error = b->param_error;
     out->dac_nan = b->dac_nan != 0;
@@ -435,57 +428,4 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
                                            in->stuck[k]) | in->tripped[k];
     adc(b, in);
     publish(b, in, out, volts);
-}
-
-/* Append the decimal digits of u (no sign) at p; returns the new end. */
-static char *put_uint(char *p, unsigned long long u, int min_digits)
-{
-    char tmp[24];
-    int n = 0;
-    do {
-        tmp[n++] = (char)('0' + (int)(u % 10u));
-        u /= 10u;
-    } while (u && n < 20);
-    while (n < min_digits && n < 20)
-        tmp[n++] = '0';
-    while (n)
-        *p++ = tmp[--n];
-    return p;
-}
-
-void hg_board_format_value(char buf[HG_BOARD_VALUE_LEN], double v)
-{
-    char *p = buf;
-    unsigned long long ip, frac;
-    double a;
-    if (v != v) {
-        memcpy(buf, "nan", 4);
-        return;
-    }
-    if (v < 0 || (v == 0 && 1 / v < 0)) {
-        *p++ = '-';
-        v = -v;
-    }
-    if (v > 1e15) {                   /* inf or beyond 6 decimals' reach */
-        if (v > 1.7976931348623157e308)
-            memcpy(p, "inf", 4);
-        else
-            memcpy(p, "huge", 5);
-        return;
-    }
-    a = floor(v);
-    ip = (unsigned long long)a;
-    frac = (unsigned long long)floor((v - a) * 1e6 + 0.5);
-    if (frac >= 1000000ull) {
-        ip++;
-        frac -= 1000000ull;
-    }
-    p = put_uint(p, ip, 1);
-    if (frac) {
-        *p++ = '.';
-        p = put_uint(p, frac, 6);
-        while (p[-1] == '0')          /* 1.500000 -> 1.5 */
-            p--;
-    }
-    *p = '\0';
 }

@@ -131,6 +131,8 @@ typedef struct {
     unsigned bars_broken;             /* bars-broken */
     int fault;                        /* fault */
     int fault_code;                   /* fault-code (hg_errors.h), 0 if none */
+    hg_guard_report fault_guard;      /* with fault code JOINT_RANGE, BAR_CLEARANCE or
+                                         OUT_OF_VOLUME: the limit crossed (kind 0 otherwise) */
     int amps_on;                      /* amps-on */
     int watchdog_expired;             /* watchdog-expired */
     int param_error;                  /* param-error: the last change was refused (or an enc scale) */
@@ -167,6 +169,7 @@ typedef struct {
     unsigned dac_nan;                 /* bit ch: channel ch's product is NaN */
     int prev_reset;
     int fault, fault_code;
+    hg_guard_report fault_guard;      /* the limit a failed step crossed */
     int param_error;
     unsigned steps;                   /* servo periods integrated since load */
 } hg_board;
@@ -203,17 +206,6 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
 #define HG_BOARD_WHY_LEN 64
 int hg_board_params_check(const hg_board_params *p, unsigned long long *mask,
                           const char *why[HG_BOARD_WHY_LEN]);
-
-/* After a PARAM_REFUSED event: the reasons for the refused input block
- * want (as hg_board_params_check, on the candidate the board tried: h
- * follows l, lb, lp as in apply). Same outputs as hg_board_params_check. */
-int hg_board_explain_refusal(const hg_board *b, const hg_board_params *want,
-                             unsigned long long *mask, const char *why[HG_BOARD_WHY_LEN]);
-
-/* v as text without stdio (rtapi_print_msg formats no floats in kernel
- * builds): "-12.5", up to 6 decimals, "nan", "inf", "huge" (|v| > 1e15). */
-#define HG_BOARD_VALUE_LEN 32
-void hg_board_format_value(char buf[HG_BOARD_VALUE_LEN], double v);
 
 /* HAL name of refused_mask bit i ("c-visc", "substeps", ...), 0 if none. */
 const char *hg_board_param_hal_name(int bit);

@@ -181,7 +181,7 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
     rc = home_state(m, q, qd);
     if (rc) {
         if (bad_field)
-            *bad_field = "h";
+            *bad_field = "l";
         if (why)
             *why = "HOME (all carriages at 0) cannot be assembled with this geometry";
         return rc;
@@ -281,6 +281,8 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
         rc = HG_ERR_STATE_NONFINITE;
     if (rc == 0 && !(res <= HG_STAB_MAX_RESIDUAL_M))
         rc = HG_ERR_STABILIZATION;
+    if (rc == 0)                       /* the machine's mechanical limits, intact or broken */
+        rc = hg_guard_check(&m->p.geo, q1, q1 + n - 6, d->broken_bars, &d->guard);
     if (rc) {
         d->last_error = rc;
         return rc;

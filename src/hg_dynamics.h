@@ -50,15 +50,17 @@ int hg_data_reset(const hg_model *m, hg_data *d);
  * 0, or a negative code (BAD_DT, STATE_NONFINITE, STABILIZATION,
  * SINGULAR_MASS, ...) in which case d's state (the first
  * HG_DATA_STATE_BYTES) is left exactly as it was before the call except
- * last_error; d->work is scratch.
+ * last_error and guard; d->work is scratch. Every new state passes
+ * hg_guard_check (the joints' ranges, the bars' clearance): a step that
+ * would cross a limit fails with JOINT_RANGE or BAR_CLEARANCE and d->guard
+ * names the bar(s), the value and the limit (the machine has struck).
  * With any bit of d->broken_bars set, every kind takes the broken-bar step
  * (lumped bars in q = [z, c], only the intact bars' constraints, see
  * hg_step_broken.h; standard: bar angles follow the geometry,
- * their rates are 0); it also fails with OUT_OF_VOLUME (head Z below
- * HG_BROKEN_HEAD_Z_MIN_M, |X|, |Y| or a |z_k| above HG_BROKEN_REACH_M, a
- * head angle beyond HG_BROKEN_ROT_MAX_RAD: the model has no contacts, and a
- * head swinging further would strike bars that it passes through here),
- * SINGULAR_JACOBIAN or DIVERGED.
+ * their rates are 0); the guard then checks only the intact bars, and the
+ * step also fails with OUT_OF_VOLUME (head Z below HG_BROKEN_HEAD_Z_MIN_M,
+ * |X|, |Y| or a |z_k| above HG_BROKEN_REACH_M, a head angle beyond
+ * HG_BROKEN_ROT_MAX_RAD, hg_guard.h), SINGULAR_JACOBIAN or DIVERGED.
  * Clearing bits again needs hg_data_reset (the broken bar's length is
  * not restored). Substeps: call it n times with dt_s / n. */
 int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s);

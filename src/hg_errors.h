@@ -19,7 +19,9 @@ enum hg_error {
     HG_ERR_SINGULAR_MASS = -11,    /* the reduced mass matrix is not positive definite */
     HG_ERR_DIVERGED = -12,         /* Newton-Raphson step grew instead of shrinking */
     HG_ERR_OUT_OF_VOLUME = -13,    /* a broken machine fell out of the region the model represents */
-    HG_ERR_LAST = HG_ERR_OUT_OF_VOLUME /* the most negative code: keep it the last */
+    HG_ERR_JOINT_RANGE = -14,      /* a bar left the angular range of its carriage or head joint */
+    HG_ERR_BAR_CLEARANCE = -15,    /* two bars came closer than the bar diameter */
+    HG_ERR_LAST = HG_ERR_BAR_CLEARANCE /* the most negative code: keep it the last */
 };
 
 /* A short English description of an hg_error code (static string). */

@@ -72,13 +72,14 @@ static void head_offsets(const hg_geometry *g, const double R[9], double w[6][3]
 void hg_joint_points(const hg_geometry *g, const double z[6], const double pose[6],
                      double B[6][3], double A[6][3])
 {
+    const double h = hg_home_height(g);
     double R[9], w[6][3];
     int k, r;
     hg_rotation(pose[3], pose[4], pose[5], R);
     head_offsets(g, R, w);
     for (k = 0; k < HG_NBARS; k++) {
         hg_guide_point(g, k, B[k]);
-        B[k][2] = g->h_m + z[k];
+        B[k][2] = h + z[k];
         for (r = 0; r < 3; r++)
             A[k][r] = pose[r] + w[k][r];
     }
@@ -99,6 +100,7 @@ void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6
 void hg_constraint_jacobian(const hg_geometry *g, const double z[6], const double pose[6],
                             double jac_pose[36], double dphi_dz[6])
 {
+    const double h = hg_home_height(g);
     double R[9], w[6][3];
     double axis[3][3]; /* d(R r)/d(A,B,C) = axis_m x (R r) */
     int k, m;
@@ -112,7 +114,7 @@ void hg_constraint_jacobian(const hg_geometry *g, const double z[6], const doubl
         hg_guide_point(g, k, b);
         d[0] = b[0] - pose[0] - w[k][0];
         d[1] = b[1] - pose[1] - w[k][1];
-        d[2] = g->h_m + z[k] - pose[2] - w[k][2];
+        d[2] = h + z[k] - pose[2] - w[k][2];
         /* dPhi/dP = -2 d ; dPhi/dangle_m = -2 d . (axis_m x w) = -2 axis_m . (w x d) */
         wxd[0] = w[k][1] * d[2] - w[k][2] * d[1];
         wxd[1] = w[k][2] * d[0] - w[k][0] * d[2];
@@ -129,6 +131,7 @@ void hg_constraint_jacobian(const hg_geometry *g, const double z[6], const doubl
 
 int hg_inverse_kinematics(const hg_geometry *g, const double pose[6], double z[6])
 {
+    const double h = hg_home_height(g);
     double R[9], w[6][3], out[6];
     int k;
     if (!hg_all_finite(6, pose))
@@ -147,7 +150,7 @@ int hg_inverse_kinematics(const hg_geometry *g, const double pose[6], double z[6
         rad = g->l_m * g->l_m - dx * dx - dy * dy;
         if (!(rad > 0.0))
             return HG_ERR_UNREACHABLE;
-        out[k] = pose[2] + w[k][2] - g->h_m + sqrt(rad);
+        out[k] = pose[2] + w[k][2] - h + sqrt(rad);
     }
     if (!hg_all_finite(6, out))
         return HG_ERR_NONFINITE_INPUT;
@@ -200,6 +203,7 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
     if (report) {
         report->iterations = 0;
         report->residual_m = 0.0;
+        report->guard.kind = HG_GUARD_NONE;
     }
     if (!hg_all_finite(6, z) || !hg_all_finite(6, pose) || !isfinite(o.tolerance_m))
         return HG_ERR_NONFINITE_INPUT;
@@ -244,6 +248,8 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
         rc = HG_ERR_EULER_SINGULAR;
     if (rc == HG_OK && !on_machine_branch(g, z, c))
         rc = HG_ERR_WRONG_BRANCH;
+    if (rc == HG_OK)
+        rc = hg_guard_check(g, z, c, 0, report ? &report->guard : 0);
     if (rc == HG_OK)
         for (k = 0; k < 6; k++)
             pose[k] = c[k];

@@ -16,6 +16,7 @@
 #define HG_KINEMATICS_H
 
 #include "hg_params.h"
+#include "hg_guard.h"
 
 #define HG_NBARS 6
 /* positions (pose X Y Z, joints) beyond this many bar lengths are refused
@@ -28,12 +29,14 @@
 /* Newton-Raphson settings and report for the forward kinematics. */
 typedef struct {
     int max_iterations;        /* hard bound on iterations, >= 1 */
-    double tolerance_m;        /* stop when max |B-A|-l residual is below (metres) */
+    double tolerance_m;        /* stop when the Newton step (m, angles as arc length l*rad)
+                                  is below this; the residual is then far below it */
 } hg_fk_options;
 
 typedef struct {
     int iterations;            /* iterations used by the last call */
     double residual_m;         /* max over bars of ||B-A| - l| at the answer */
+    hg_guard_report guard;     /* the limit crossed, when the answer was refused by the guard */
 } hg_fk_report;
 
 /* Default FK options: 30 iterations, 1e-12 m. */
@@ -73,10 +76,15 @@ int hg_inverse_kinematics(const hg_geometry *g, const double pose[6], double z[6
 
 /* Forward kinematics by Newton-Raphson on the six bar equations with the
  * analytic Jacobian, starting from pose (the guess) and overwriting it with
- * the answer on success only. 0, or HG_ERR_NONFINITE_INPUT, HG_ERR_UNREACHABLE
- * (a joint beyond HG_MAX_ABS_POSITION_BARS l),
- * HG_ERR_NO_CONVERGENCE, HG_ERR_SINGULAR_JACOBIAN, HG_ERR_WRONG_BRANCH,
- * HG_ERR_DIVERGED, HG_ERR_EULER_SINGULAR. report may be 0. */
+ * the answer on success only. An answer the machine cannot take is
+ * refused: a carriage below its head joint (HG_ERR_WRONG_BRANCH), a bar
+ * beyond its joint range or two bars touching (hg_guard_check:
+ * HG_ERR_JOINT_RANGE, HG_ERR_BAR_CLEARANCE, report->guard says which);
+ * so a guess far away never yields a crossed assembly. 0, or those, or
+ * HG_ERR_NONFINITE_INPUT, HG_ERR_UNREACHABLE (a joint beyond
+ * HG_MAX_ABS_POSITION_BARS l), HG_ERR_NO_CONVERGENCE,
+ * HG_ERR_SINGULAR_JACOBIAN, HG_ERR_DIVERGED, HG_ERR_EULER_SINGULAR.
+ * report may be 0. */
 int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6],
                           const hg_fk_options *opt, hg_fk_report *report);
 

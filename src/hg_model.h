@@ -12,6 +12,7 @@
 
 #include <stddef.h>
 #include "hg_params.h"
+#include "hg_guard.h"
 
 /* The parametrizations of the paper's section 7, plus the fused one. */
 typedef enum {
@@ -49,9 +50,6 @@ typedef struct {
 #define HG_DT_MAX_S 0.01              /* hg_step refuses longer steps (HG_ERR_BAD_DT) */
 #define HG_STAB_MAX_RESIDUAL_M 1e-6   /* bar-length error after stabilization that counts as diverged */
 #define HG_BARS_ALL 0x3fu             /* broken_bars: bit k is bar k (joint k) */
-#define HG_BROKEN_HEAD_Z_MIN_M (-0.6) /* broken machine: head Z below this is out of volume */
-#define HG_BROKEN_REACH_M 1.0         /* broken machine: |X|, |Y| or a |z_k| above this is out of volume */
-#define HG_BROKEN_ROT_MAX_RAD 0.3490658503988659 /* broken machine: |A|, |B| or |C| above 20 deg is out of volume */
 
 /* Preallocated scratch for one hg_step: the integrator's stage vectors
  * and the parametrization's 6x6 (and 18x7) temporaries, so that no
@@ -79,6 +77,8 @@ typedef struct {
     double force_n[6];           /* net non-inertial force on each carriage (drive+friction+stop) */
     double residual_m;           /* max bar-length error after the last stabilization */
     int last_error;              /* code of the last failed step, 0 if none */
+    hg_guard_report guard;       /* the mechanical limit the last failed step crossed
+                                    (JOINT_RANGE, BAR_CLEARANCE, OUT_OF_VOLUME) */
     unsigned broken_bars;        /* fault injection: bit k set = bar k removed (HG_BARS_ALL);
                                     hg_data_reset clears it (all bars intact) */
     /* internal cache of the Reduced Cartesian steps: sin/cos of the head

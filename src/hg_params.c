@@ -4,6 +4,8 @@
 #include "hg_string.h"
 #include "hg_params.h"
 #include "hg_errors.h"
+#include "hg_guard.h"
+#include "hg_units.h"
 
 #define F(field) offsetof(hg_params, field)
 
@@ -12,7 +14,9 @@ static const hg_param_info table[] = {
     {"lb", "m", "machine axis to guide plane", F(geo.lb_m), "lb", "mm", 1000.0},
     {"e", "m", "half spacing of a post's guides", F(geo.e_m), "e", "mm", 1000.0},
     {"lp", "m", "head joint radius", F(geo.lp_m), "lp", "mm", 1000.0},
-    {"h", "m", "carriage height above head joints at HOME", F(geo.h_m), "h", "mm", 1000.0},
+    {"cone_carriage", "rad", "bar joint range in the carriage (cone half-angle from HOME)", F(geo.cone_carriage_rad), "cone-carriage", "deg", HG_DEG_PER_RAD},
+    {"cone_head", "rad", "bar joint range in the head (cone half-angle from HOME)", F(geo.cone_head_rad), "cone-head", "deg", HG_DEG_PER_RAD},
+    {"d_bar", "m", "bar diameter (bars touch when their axes come closer)", F(geo.d_bar_m), "d-bar", "mm", 1000.0},
     {"tool_d", "m", "tool tip below Op", F(tool_d_m), "tool-d", "mm", 1000.0},
     {"g", "m/s^2", "gravity", F(g_mps2), "g", "m/s^2", 1.0},
     {"m_head", "kg", "head mass", F(m_head_kg), "m-head", "kg", 1.0},
@@ -52,13 +56,21 @@ double hg_home_height(const hg_geometry *g)
     return sqrt(g->l_m * g->l_m - d * d);
 }
 
-void hg_params_keep_home(hg_params *p, const hg_params *before)
+const char *hg_params_hal_name(const char *name)
 {
-    double h = hg_home_height(&p->geo);
-    if (p->geo.h_m == before->geo.h_m && isfinite(h) &&
-        (p->geo.l_m != before->geo.l_m || p->geo.lb_m != before->geo.lb_m ||
-         p->geo.lp_m != before->geo.lp_m))
-        p->geo.h_m = h;
+    int i, n;
+    const hg_param_info *t = hg_params_table(&n);
+    for (i = 0; i < n; i++)
+        if (strcmp(t[i].name, name) == 0)
+            return t[i].hal_name;
+    return name;
+}
+
+int hg_param_is_geometry(int i)
+{
+    int n;
+    const hg_param_info *t = hg_params_table(&n);
+    return i >= 0 && i < n && t[i].offset < sizeof(hg_geometry);
 }
 
 void hg_params_default(hg_params *p)
@@ -68,7 +80,11 @@ void hg_params_default(hg_params *p)
     p->geo.lb_m = 0.484;
     p->geo.e_m = 0.068254;
     p->geo.lp_m = 0.073085;
-    p->geo.h_m = hg_home_height(&p->geo);
+    /* assumed hardware (docs/model.md): spherical carriage joints of +-25 deg,
+     * cardan head joints of +-40 deg, bars of 30 mm steel tube */
+    p->geo.cone_carriage_rad = 25.0 / HG_DEG_PER_RAD;
+    p->geo.cone_head_rad = 40.0 / HG_DEG_PER_RAD;
+    p->geo.d_bar_m = 0.030;
     p->tool_d_m = 0.09;
     p->g_mps2 = 9.81;
     p->m_head_kg = 6.697;
@@ -191,8 +207,23 @@ static void geometry_rules(const hg_geometry *g, check_report *r)
         refuse(r, "lp", "must be positive and smaller than lb");
     if (!failed(r, "l") && !failed(r, "lb") && !failed(r, "lp") && !(g->l_m > g->lb_m - g->lp_m))
         refuse(r, "l", "bars too short to reach the head: need l > lb - lp");
-    if (!failed(r, "l") && !(isfinite(g->h_m) && g->h_m > 0 && g->h_m < 2 * g->l_m))
-        refuse(r, "h", "must be positive and below 2 l");
+    if (!(isfinite(g->cone_carriage_rad) && g->cone_carriage_rad > 0 &&
+          g->cone_carriage_rad < HG_PI / 2))
+        refuse(r, "cone_carriage", "must lie between 0 and 90 deg");
+    if (!(isfinite(g->cone_head_rad) && g->cone_head_rad > 0 && g->cone_head_rad < HG_PI / 2))
+        refuse(r, "cone_head", "must lie between 0 and 90 deg");
+    if (!(isfinite(g->d_bar_m) && g->d_bar_m > 0))
+        refuse(r, "d_bar", "must be a positive finite length");
+    if (r->mask || r->first_field)
+        return;                        /* the rules below need a valid geometry */
+    /* a bar dips below the head's joint plane when its angle in the head
+     * joint exceeds 90 deg less its tilt at HOME: the range must exclude that */
+    if (!(g->cone_head_rad + asin((g->lb_m - g->lp_m) / g->l_m) < HG_PI / 2))
+        refuse(r, "cone_head", "plus the bars' tilt at HOME, asin((lb - lp) / l), must stay below 90 deg "
+                               "(a bar would touch the head's joint plane)");
+    if (!(g->d_bar_m < hg_guard_home_clearance(g)))
+        refuse(r, "d_bar", "must be below the closest distance between two bar axes at HOME "
+                           "(the machine could not stand at HOME)");
 }
 
 /* Copy the first failure to the caller's outputs; HG_OK or HG_ERR_BAD_PARAM. */

@@ -7,13 +7,18 @@
 #ifndef HG_PARAMS_H
 #define HG_PARAMS_H
 
-/* Geometry: everything the kinematics needs. */
+/* Geometry: everything the kinematics needs, the joints' ranges included.
+ * The carriage height above the head joints at HOME is not stored: it
+ * follows from l, lb, lp (hg_home_height). */
 typedef struct {
     double l_m;      /* bar length, joint centre to joint centre */
     double lb_m;     /* machine axis to a post's guide plane */
     double e_m;      /* half spacing of a post's two guides (and head joints) */
     double lp_m;     /* head joint radius along the post direction */
-    double h_m;      /* carriage height above the head joints at HOME */
+    double cone_carriage_rad; /* largest angle of a bar in its carriage (spherical) joint,
+                                 measured from the bar's direction at HOME */
+    double cone_head_rad;     /* the same in its head (universal) joint, in head axes */
+    double d_bar_m;  /* bar diameter: two bar axes closer than this means the bars touch */
 } hg_geometry;
 
 /* The whole machine. */
@@ -64,14 +69,16 @@ typedef struct {
     const char *what;      /* one-line description */
     unsigned long offset;  /* offsetof(hg_params, field) */
     const char *hal_name;  /* HAL parameter name: the spec name with _ -> -, e.g. "m-head" */
-    const char *hal_unit;  /* unit on HAL: mm for lengths (LinuxCNC machine units), else the SI unit */
-    double hal_scale;      /* HAL value = SI value * hal_scale (1000 for lengths, else 1) */
+    const char *hal_unit;  /* unit on HAL: mm for lengths (LinuxCNC machine units), deg for
+                              angles, else the SI unit */
+    double hal_scale;      /* HAL value = SI value * hal_scale (1000 for lengths, 180/pi for
+                              angles, else 1) */
 } hg_param_info;
 
 /* Upper bound of the table's length (bit masks over the table fit in 64 bits). */
 #define HG_PARAMS_MAX 48
 
-/* Fill p with the spec's defaults (h computed from l, lb, lp). */
+/* Fill p with the spec's defaults. */
 void hg_params_default(hg_params *p);
 
 /* The by-name table and its length. */
@@ -105,12 +112,16 @@ int hg_params_check(const hg_params *p, const char **bad_field, const char **why
  * hg_params_check reports. */
 int hg_params_check_all(const hg_params *p, unsigned long long *mask, const char *why[HG_PARAMS_MAX]);
 
-/* After changes from `before` to p: when l, lb or lp changed and h did not,
- * recompute h so that HOME stays at pose 0 (a user who sets h keeps it;
- * a geometry without a HOME, l <= lb - lp, keeps h: the check names l). */
-void hg_params_keep_home(hg_params *p, const hg_params *before);
+/* HAL name of the parameter with spec name `name` ("cone_head" -> "cone-head"),
+ * or name itself when there is none. */
+const char *hg_params_hal_name(const char *name);
 
-/* h that puts the head at pose 0 when all carriages are at 0: sqrt(l^2-(lb-lp)^2). */
+/* 1 if table entry i is a field of hg_geometry (what hexaglidekins takes). */
+int hg_param_is_geometry(int i);
+
+/* Carriage height above the head joints at HOME, the height that puts the
+ * head at pose 0 when all carriages are at 0: sqrt(l^2 - (lb - lp)^2)
+ * (NaN for a geometry without a HOME, l <= lb - lp). */
 double hg_home_height(const hg_geometry *g);
 
 #endif

@@ -153,19 +153,6 @@ static int project(const hg_model *m, broken_ws *w, unsigned broken, const doubl
     return kkt_solve(w, M, nc, J, Mv, neg, qd1);
 }
 
-/* 0, or OUT_OF_VOLUME for a state the model no longer represents
- * (limits in hg_dynamics.h; NaN counts as out). */
-static int check_volume(const double *q)
-{
-    int k, in = q[8] >= HG_BROKEN_HEAD_Z_MIN_M && fabs(q[6]) <= HG_BROKEN_REACH_M &&
-                fabs(q[7]) <= HG_BROKEN_REACH_M;
-    for (k = 0; k < 6; k++)
-        in = in && fabs(q[k]) <= HG_BROKEN_REACH_M;
-    for (k = 9; k < 12; k++)
-        in = in && fabs(q[k]) <= HG_BROKEN_ROT_MAX_RAD;
-    return in ? 0 : HG_ERR_OUT_OF_VOLUME;
-}
-
 int hg_broken_accel(const hg_model *m, hg_data *d, const double *q, const double *qd,
                     const double fz[6], double *qdd)
 {
@@ -187,16 +174,12 @@ int hg_broken_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd1,
                         double *residual_m)
 {
     broken_ws *w = (broken_ws *)d->work.step;
-    int rc;
     /* the projection's metric: M at the predicted state */
     hg_head_trig(q1 + 6, w->sc);
     hg_gen_reduced_terms(m->k_lumped, q1, qd1, w->sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->pz, w->pc,
                          w->gm);
     mass_matrix(w->mzz, w->Mzc, w->Mcc, w->M);
-    rc = project(m, w, d->broken_bars & HG_BARS_ALL, w->M, q1, qd1, residual_m);
-    if (rc)
-        return rc;
-    return check_volume(q1);
+    return project(m, w, d->broken_bars & HG_BARS_ALL, w->M, q1, qd1, residual_m);
 }
 
 const hg_dae hg_broken_dae = {NQ, hg_broken_accel, hg_broken_stabilize};

@@ -16,8 +16,9 @@ int hg_broken_accel(const hg_model *m, hg_data *d, const double *q, const double
                     const double fz[6], double *qdd);
 
 /* Project the predicted (q1, qd1) in place; *residual_m = largest
- * intact-bar length error. 0, SINGULAR_JACOBIAN, DIVERGED, STABILIZATION
- * or OUT_OF_VOLUME (the region of hg_step's contract in hg_dynamics.h). */
+ * intact-bar length error. 0, SINGULAR_JACOBIAN, DIVERGED or STABILIZATION
+ * (hg_step then applies hg_guard_check, the region of the broken machine
+ * included). */
 int hg_broken_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd1,
                         double *residual_m);
 

@@ -20,6 +20,7 @@
 #include "hg_errors.h"
 #include "hg_board.h"
 #include "hg_board_rec.h"
+#include "hg_text.h"
 #include "hg_units.h"
 
 MODULE_AUTHOR("Virtual Hexaglide project");
@@ -180,7 +181,7 @@ static void report_refusal(board_t *b)
 {
     const char *why[HG_BOARD_WHY_LEN];
     unsigned long long mask;
-    char v[HG_BOARD_VALUE_LEN];
+    char v[HG_TEXT_VALUE_LEN];
     int i, n;
     const hg_param_info *t = hg_params_table(&n);
     if (b->o.param_rc != HG_ERR_BAD_PARAM) {
@@ -189,16 +190,16 @@ static void report_refusal(board_t *b)
                         b->id, hg_strerror(b->o.param_rc), b->o.param_rc);
         return;
     }
-    hg_board_explain_refusal(&b->b, &b->ins.params, &mask, why);
+    hg_board_params_check(&b->ins.params, &mask, why);
     rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter change refused, keeping the set in "
                     "force (halcmd show param displays it again); invalid:\n", b->id);
     for (i = 0; i < HG_BOARD_WHY_LEN; i++) {
         if (!((mask >> i) & 1u))
             continue;
         if (i < n)
-            hg_board_format_value(v, hg_params_get(&b->ins.params.model, i) * t[i].hal_scale);
+            hg_text_value(v, hg_params_get(&b->ins.params.model, i) * t[i].hal_scale);
         else
-            hg_board_format_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->ins.params.substeps
+            hg_text_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->ins.params.substeps
                                                                 : b->ins.params.integrator);
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s: %s\n", b->id, b->id,
                         hg_board_param_hal_name(i), v, i < n ? " " : "", i < n ? t[i].hal_unit : "",
@@ -235,12 +236,16 @@ static void report(board_t *b, long period)
         if ((o->enc_scale_bad >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: enc-%02d-scale must be a finite non-zero "
                             "number of counts per unit; set to 1.0 (as hal_motenc)\n", id, k);
-    if (o->events & HG_EV_FAULT_LATCHED)
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s: %s (code %d); drives off, state frozen; "
+    if (o->events & HG_EV_FAULT_LATCHED) {
+        char what[HG_GUARD_TEXT_LEN];
+        hg_guard_describe(&o->fault_guard, 1, what);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s: %s (code %d)%s%s; drives off, state frozen; "
                         "set " XP ".%d.reset to restart at HOME\n", id,
                         o->fault_cause == HG_FAULT_PERIOD ? "bad thread period"
-                        : o->fault_cause == HG_FAULT_HOME ? "reset at HOME failed" : "dynamics step failed",
-                        hg_strerror(o->fault_code), o->fault_code, id);
+                        : o->fault_cause == HG_FAULT_HOME ? "reset at HOME failed"
+                        : o->fault_guard.kind ? "the machine struck a mechanical limit" : "dynamics step failed",
+                        hg_strerror(o->fault_code), o->fault_code, what[0] ? ": " : "", what, id);
+    }
 }
 
 /* The extra pins from the last outputs (mm, mm/s, degrees on HAL). */

@@ -34,7 +34,7 @@ from sympy.printing.c import C99CodePrinter  # noqa: E402
 # parameters: sympy symbol -> C expression reading hg_params *p
 PARAM_FIELDS = [
     ("l", "p->geo.l_m"), ("lb", "p->geo.lb_m"), ("e", "p->geo.e_m"),
-    ("lp", "p->geo.lp_m"), ("h", "p->geo.h_m"), ("g", "p->g_mps2"),
+    ("lp", "p->geo.lp_m"), ("h", "hg_home_height(&p->geo)"), ("g", "p->g_mps2"),
     ("m_head", "p->m_head_kg"), ("head_com", "p->head_com_m"),
     ("i_head_xx", "p->i_head_xx_kgm2"), ("i_head_yy", "p->i_head_yy_kgm2"),
     ("i_head_zz", "p->i_head_zz_kgm2"), ("m_bar", "p->m_bar_kg"),

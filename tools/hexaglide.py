@@ -83,10 +83,17 @@ class LoopSummary(C.Structure):
 
 _sizeof = _sig("hg_loop_sizeof", C.c_ulong, C.c_int)
 
+class GuardReport(C.Structure):
+    """hg_guard_report: the mechanical limit a failed step crossed (src/hg_guard.h)."""
+    _fields_ = [("kind", C.c_int), ("bar", C.c_int), ("other", C.c_int), ("value", C.c_double),
+                ("limit", C.c_double)]
+
+
 _DATA_STATE = [("t_s", C.c_double), ("z_m", _d6), ("zd_mps", _d6), ("zdd_mps2", _d6),
                ("pose", _d6), ("posed", _d6), ("bar_rad", C.c_double * 12),
                ("bar_radps", C.c_double * 12), ("current_a", _d6), ("force_n", _d6),
-               ("residual_m", C.c_double), ("last_error", C.c_int), ("broken_bars", C.c_uint),
+               ("residual_m", C.c_double), ("last_error", C.c_int), ("guard", GuardReport),
+               ("broken_bars", C.c_uint),
                ("trig_key_rad", C.c_double * 3), ("trig_sc", _d6), ("trig_valid", C.c_int)]
 
 
@@ -134,7 +141,7 @@ class BoardOutputs(C.Structure):
                 ("adc", _e8d), ("pose", _d6), ("z_m", _d6), ("zd_mps", _d6), ("volts", _d6),
                 ("current_a", _d6), ("force_n", _d6), ("sim_time_s", C.c_double), ("residual_m", C.c_double),
                 ("steps", C.c_uint), ("bars_broken", C.c_uint), ("fault", C.c_int), ("fault_code", C.c_int),
-                ("amps_on", C.c_int), ("watchdog_expired", C.c_int), ("param_error", C.c_int),
+                ("fault_guard", GuardReport), ("amps_on", C.c_int), ("watchdog_expired", C.c_int), ("param_error", C.c_int),
                 ("dac_nan", C.c_int), ("params", BoardParams), ("events", C.c_uint),
                 ("refused_mask", C.c_ulonglong), ("param_rc", C.c_int), ("reset_refused_joint", C.c_int),
                 ("fault_cause", C.c_int), ("bars_newly_broken", C.c_uint), ("dac_nan_new", C.c_uint),

@@ -23,6 +23,7 @@ static int parse_six(char **argv, const char *const names[6], double v[6])
 int cmd_ik(int argc, char **argv)
 {
     hg_params p;
+    hg_guard_report guard = {0, -1, -1, 0, 0};
     double user[6], pose[6], z[6];
     int rc, k;
     if (argc != 6) {
@@ -34,8 +35,12 @@ int cmd_ik(int argc, char **argv)
     hg_params_default(&p);
     hg_pose_from_user(user, pose);
     rc = hg_inverse_kinematics(&p.geo, pose, z);
+    if (rc == 0)                      /* joints exist; can the machine take the pose? */
+        rc = hg_guard_check(&p.geo, z, pose, 0, &guard);
     if (rc) {
-        fprintf(stderr, "hexaglide ik: %s (code %d)\n", hg_strerror(rc), rc);
+        char what[HG_GUARD_TEXT_LEN];
+        hg_guard_describe(&guard, 0, what);
+        fprintf(stderr, "hexaglide ik: %s (code %d)%s%s\n", hg_strerror(rc), rc, what[0] ? ": " : "", what);
         return 1;
     }
     for (k = 0; k < 6; k++)
@@ -66,8 +71,10 @@ int cmd_fk(int argc, char **argv)
     hg_params_default(&p);
     rc = hg_forward_kinematics(&p.geo, z, pose, 0, &rep);
     if (rc) {
-        fprintf(stderr, "hexaglide fk: %s (code %d, %d iterations, residual %.3g mm)\n",
-                hg_strerror(rc), rc, rep.iterations, rep.residual_m * HG_MM_PER_M);
+        char what[HG_GUARD_TEXT_LEN];
+        hg_guard_describe(&rep.guard, 0, what);
+        fprintf(stderr, "hexaglide fk: %s (code %d, %d iterations, residual %.3g mm)%s%s\n",
+                hg_strerror(rc), rc, rep.iterations, rep.residual_m * HG_MM_PER_M, what[0] ? ": " : "", what);
         return 1;
     }
     hg_pose_to_user(pose, user);

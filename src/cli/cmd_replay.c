@@ -401,7 +401,7 @@ int cmd_replay(int argc, char **argv, const char *self)
             unsigned long long mask = 0;
             int bit;
             memset(why, 0, sizeof why);
-            hg_board_explain_refusal(&b, &in.params, &mask, why);
+            hg_board_params_check(&in.params, &mask, why);
             fprintf(stderr, "hexaglide replay: sample %ld: the board refused the changed parameters:", n);
             for (bit = 0; bit < 64; bit++)
                 if (mask & (1ull << bit))

@@ -53,8 +53,7 @@ static int parse_volts(const char *text, double volts[6])
     return 0;
 }
 
-/* Apply "name=value" to p (h follows the geometry unless the user sets it);
- * 0 or -1 with a message. */
+/* Apply "name=value" to p; 0 or -1 with a message. */
 static int parse_set(const char *text, hg_params *p)
 {
     return cli_parse_set("sim", text, p);
@@ -88,7 +87,6 @@ static void write_row(FILE *f, double t, const hg_board_outputs *o)
 
 int cmd_sim(int argc, char **argv)
 {
-    hg_params defaults;
     hg_board_params bp;
     hg_board *b;
     hg_board_inputs in;
@@ -164,8 +162,6 @@ int cmd_sim(int argc, char **argv)
             csv = argv[++i];
         }
     }
-    hg_params_default(&defaults);
-    hg_params_keep_home(&bp.model, &defaults);   /* HOME stays at pose 0 unless h was set */
     if (!(t_end >= 0.0)) {
         fprintf(stderr, "hexaglide sim: --time must be >= 0 s, got %g\n", t_end);
         return 2;
@@ -205,9 +201,12 @@ int cmd_sim(int argc, char **argv)
     for (s = 0; s < n; s++) {
         hg_board_step(b, &in, &out, period_ns);
         if (out.fault) {
-            fprintf(stderr, "hexaglide sim: the step from t = %.6f s to %.6f s failed: %s (code %d); "
+            char what[HG_GUARD_TEXT_LEN];
+            hg_guard_describe(&out.fault_guard, 0, what);
+            fprintf(stderr, "hexaglide sim: the step from t = %.6f s to %.6f s failed: %s (code %d)%s%s; "
                             "the CSV stops at t = %.6f s\n",
-                    s * dt, (s + 1) * dt, hg_strerror(out.fault_code), out.fault_code, s * dt);
+                    s * dt, (s + 1) * dt, hg_strerror(out.fault_code), out.fault_code, what[0] ? ": " : "",
+                    what, s * dt);
             rc = out.fault_code;
             break;
         }

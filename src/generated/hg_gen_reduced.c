@@ -47,7 +47,7 @@ void hg_gen_reduced_init(const hg_params *p, double *k)
     k[8] = c6*c7*p->head_com_m;
     k[9] = p->head_com_m*p->m_head_kg/c8;
     k[10] = p->geo.lb_m;
-    k[11] = p->geo.h_m;
+    k[11] = hg_home_height(&p->geo);
     k[12] = -p->geo.e_m;
     k[13] = -1.0/2.0*c2 - 1.0/2.0*p->geo.lb_m;
     k[14] = -1.0/2.0*c9;

@@ -41,7 +41,7 @@ void hg_gen_standard_init(const hg_params *p, double *k)
     k[21] = -c7;
     k[22] = (1.0/2.0)*c5;
     k[23] = p->geo.lb_m;
-    k[24] = p->geo.h_m;
+    k[24] = hg_home_height(&p->geo);
     k[25] = -p->geo.e_m;
     k[26] = -1.0/2.0*c6 - 1.0/2.0*p->geo.lb_m;
     k[27] = -1.0/2.0*c8;

@@ -56,8 +56,8 @@ static void test_intact(void)
 
 /* Bar 0 breaks at HOME while a PD loop on the volts holds the carriages;
  * run up to 3 s or until the step fails. The head hangs on five bars and
- * swings (one degree of freedom): it must leave the region the model
- * represents (a head angle beyond HG_BROKEN_ROT_MAX_RAD) with a code. */
+ * swings (one degree of freedom): it must strike a limit (a joint's range,
+ * two bars touching, or the region the model represents) with a code. */
 static void test_bar0(hg_model_kind kind)
 {
     const double dt = 1e-3;
@@ -83,6 +83,7 @@ static void test_bar0(hg_model_kind kind)
         rc = hg_step(&m, &d, volts, dt);
         if (rc) {
             before.last_error = d.last_error;
+            before.guard = d.guard;
             frozen = memcmp(&before, &d, HG_DATA_STATE_BYTES) == 0;
             break;
         }
@@ -108,11 +109,18 @@ static void test_bar0(hg_model_kind kind)
           "(no energy from nowhere; E0 = %.2f J)", hg_model_name(kind), worst_gain, e0);
     CHECK(worst_len < 1e-9, "%s, bar 0 broken: the five intact bars keep their length "
           "(max error %.2e m)", hg_model_name(kind), worst_len);
-    CHECK(finite && rc == HG_ERR_OUT_OF_VOLUME && frozen && d.last_error == rc &&
-          rot <= HG_BROKEN_ROT_MAX_RAD && rot > HG_BROKEN_ROT_MAX_RAD - 0.02,
-          "%s, bar 0 broken: no NaN; at t = %.3f s the swing leaves the volume (code %d, %s), "
-          "state left at the last good step (largest head angle %.2f deg)", hg_model_name(kind),
-          d.t_s, rc, hg_strerror(rc), rot * 57.29578);
+    {
+        char what[HG_GUARD_TEXT_LEN];
+        hg_guard_describe(&d.guard, 0, what);
+        CHECK(finite && (rc == HG_ERR_OUT_OF_VOLUME || rc == HG_ERR_JOINT_RANGE || rc == HG_ERR_BAR_CLEARANCE) &&
+              frozen && d.last_error == rc && d.guard.kind != HG_GUARD_NONE &&
+              (d.guard.kind == HG_GUARD_REGION ? fabs(d.guard.value) > d.guard.limit
+               : d.guard.kind == HG_GUARD_BARS ? d.guard.value < d.guard.limit : d.guard.value > d.guard.limit) &&
+              rot <= HG_BROKEN_ROT_MAX_RAD,
+              "%s, bar 0 broken: no NaN; at t = %.3f s the swing strikes a limit (code %d, %s: %s), "
+              "state left at the last good step (largest head angle %.2f deg)", hg_model_name(kind),
+              d.t_s, rc, hg_strerror(rc), what, rot * 57.29578);
+    }
 }
 
 /* Every bar broken: the head drops out of the volume; a code, not NaN. */

@@ -45,7 +45,8 @@ static double bar_error_independent(const hg_geometry *g, const double z[6], con
         double alpha = (k / 2 == 0) ? 0.0 : (k / 2 == 1 ? 120.0 * DEG : -120.0 * DEG);
         double s = (k % 2 == 0) ? 1.0 : -1.0;
         double b[3] = {cos(alpha) * g->lb_m - sin(alpha) * s * g->e_m,
-                       sin(alpha) * g->lb_m + cos(alpha) * s * g->e_m, g->h_m + z[k]};
+                       sin(alpha) * g->lb_m + cos(alpha) * s * g->e_m,
+                       sqrt(g->l_m * g->l_m - (g->lb_m - g->lp_m) * (g->lb_m - g->lp_m)) + z[k]};
         double a[3], len;
         head_joint_world(g, pose, k, a);
         len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
@@ -84,8 +85,8 @@ static void test_home(const hg_params *p)
     double pose[6] = {0, 0, 0, 0, 0, 0}, z[6], worst = 0, up[6];
     int k;
     double h = sqrt(1.0 - (0.484 - 0.073085) * (0.484 - 0.073085)); /* spec: sqrt(l^2-(lb-lp)^2) */
-    CHECK(fabs(p->geo.h_m - h) < 1e-15 && fabs(h - 0.9116736602) < 1e-10,
-          "h = sqrt(l^2-(lb-lp)^2) = %.10f m as in the spec", p->geo.h_m);
+    CHECK(fabs(hg_home_height(&p->geo) - h) < 1e-15 && fabs(h - 0.9116736602) < 1e-10,
+          "h = sqrt(l^2-(lb-lp)^2) = %.10f m as in the spec", hg_home_height(&p->geo));
     CHECK(hg_inverse_kinematics(&p->geo, pose, z) == HG_OK, "IK of HOME succeeds");
     for (k = 0; k < 6; k++)
         if (fabs(z[k]) > worst)
@@ -201,6 +202,81 @@ static void test_far_poses_from_home(const hg_params *p)
     }
 }
 
+/* Rotate v by -angle about axis 0 (x), 1 (y) or 2 (z). */
+static void unrotate(double v[3], int axis, double angle)
+{
+    int i = (axis + 1) % 3, j = (axis + 2) % 3;
+    double c = cos(angle), s = sin(angle), t = c * v[i] + s * v[j];
+    v[j] = -s * v[i] + c * v[j];
+    v[i] = t;
+}
+
+/* Largest angle (rad) of a bar from its HOME direction: in its carriage
+ * joint (world axes) when head is 0, in its head joint (head axes, the bar
+ * rotated back by Rz(C), Ry(B), Rx(A) in turn) when head is 1. Carriage
+ * joint as in bar_error_independent, head joint from head_joint_world. */
+static double joint_angle_independent(const hg_geometry *g, const double z[6], const double pose[6],
+                                      int head)
+{
+    static const double home[6] = {0, 0, 0, 0, 0, 0};
+    const double h = sqrt(g->l_m * g->l_m - (g->lb_m - g->lp_m) * (g->lb_m - g->lp_m));
+    double worst = 0.0;
+    int k, r;
+    for (k = 0; k < 6; k++) {
+        double alpha = (k / 2 == 0) ? 0.0 : (k / 2 == 1 ? 120.0 * DEG : -120.0 * DEG);
+        double s = (k % 2 == 0) ? 1.0 : -1.0;
+        double bx = cos(alpha) * g->lb_m - sin(alpha) * s * g->e_m;
+        double by = sin(alpha) * g->lb_m + cos(alpha) * s * g->e_m;
+        double a[3], a0[3], u[3], u0[3], nu = 0, nu0 = 0, c = 0;
+        head_joint_world(g, pose, k, a);
+        head_joint_world(g, home, k, a0);
+        u[0] = a[0] - bx, u[1] = a[1] - by, u[2] = a[2] - (h + z[k]);
+        u0[0] = a0[0] - bx, u0[1] = a0[1] - by, u0[2] = a0[2] - h;
+        if (head) {
+            unrotate(u, 2, pose[5]);
+            unrotate(u, 1, pose[4]);
+            unrotate(u, 0, pose[3]);
+        }
+        for (r = 0; r < 3; r++) {
+            nu += u[r] * u[r];
+            nu0 += u0[r] * u0[r];
+            c += u[r] * u0[r];
+        }
+        worst = fmax(worst, acos(fmin(1.0, c / sqrt(nu * nu0))));
+    }
+    return worst;
+}
+
+/* Forward kinematics never answers with an assembly the machine cannot
+ * take: the crossed assembly a far guess converges to is refused. */
+static void test_fk_guard(const hg_params *p)
+{
+    static const double z[6] = {0, 0, 0, 0, 0, 0};
+    hg_params wide = *p;
+    hg_fk_report rep;
+    double pose[6] = {0, 0, 0, 0, 0, 170 * DEG}, keep[6], ang;
+    int rc, k;
+    memcpy(keep, pose, sizeof keep);
+    rc = hg_forward_kinematics(&p->geo, z, pose, 0, &rep);
+    CHECK((rc == HG_ERR_JOINT_RANGE || rc == HG_ERR_BAR_CLEARANCE) && memcmp(pose, keep, sizeof pose) == 0 &&
+              rep.guard.kind != HG_GUARD_NONE,
+          "joints 0, guess C = 170 deg: refused (%s, code %d), guess untouched", hg_strerror(rc), rc);
+    wide.geo.cone_carriage_rad = 1.55;   /* without the ranges: where Newton went */
+    wide.geo.cone_head_rad = 3.1;
+    wide.geo.d_bar_m = 0.0;           /* there bars 0 and 1 cross: their axes meet */
+    rc = hg_forward_kinematics(&wide.geo, z, pose, 0, &rep);
+    ang = joint_angle_independent(&p->geo, z, pose, 1);
+    CHECK(rc == HG_OK && fabs(fabs(pose[5]) - 180 * DEG) < 1e-6 && ang > p->geo.cone_head_rad,
+          "without the joint ranges the same guess converges to the crossed assembly C = %.1f deg, Z = %.1f mm, "
+          "with a bar %.1f deg off its HOME direction in its head joint (range %.0f deg)",
+          pose[5] / DEG, pose[2] * 1e3, ang / DEG, p->geo.cone_head_rad / DEG);
+    for (k = 0; k < 6; k++)
+        pose[k] = 0;
+    pose[5] = 30 * DEG;
+    rc = hg_forward_kinematics(&p->geo, z, pose, 0, &rep);
+    CHECK(rc == HG_OK && fabs(pose[5]) < 1e-9, "joints 0, guess C = 30 deg: HOME (%s)", hg_strerror(rc));
+}
+
 static void test_jacobian_fd(const hg_params *p)
 {
     double worst = 0, worst_z = 0;
@@ -300,13 +376,20 @@ static void test_refusals(const hg_params *p)
 
 int main(void)
 {
-    hg_params p;
+    hg_params p, wide;
     hg_params_default(&p);
+    /* Newton's convergence is a property of the bar equations: these two
+     * also visit poses beyond the real joints' ranges (which FK refuses) */
+    wide = p;
+    wide.geo.cone_carriage_rad = 1.5;
+    wide.geo.cone_head_rad = 1.1;
+    wide.geo.d_bar_m = 1e-3;
     test_home(&p);
     test_rotation_convention();
     test_ik_bar_lengths(&p);
-    test_round_trip(&p);
-    test_far_poses_from_home(&p);
+    test_round_trip(&wide);
+    test_far_poses_from_home(&wide);
+    test_fk_guard(&p);
     test_jacobian_fd(&p);
     test_refusals(&p);
     return hg_test_exit();

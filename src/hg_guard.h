@@ -1,0 +1,72 @@
+/* hg_guard.h - the machine's mechanical limits, as a check of one state:
+ * the angle of each bar in its carriage (spherical) joint and in its head
+ * (universal) joint against the joints' cone half-angles, the clearance
+ * between every pair of bars (closest distance of their axes against the
+ * bar diameter) and, for a machine with broken bars, the region the model
+ * represents. One guard for everything that must not return an impossible
+ * state: the intact and the broken-bar dynamics steps (hg_step) and the
+ * forward kinematics (hexaglidekins, hexaglide fk).
+ *
+ * Angles are measured from the bar's direction at HOME: in world axes at
+ * the carriage joint (the carriage only translates), in head axes at the
+ * head joint (the joint turns with the head). A bar that dips below the
+ * head's joint plane is excluded by the head cone (hg_params' rule on
+ * cone_head), so the head needs no contact test of its own.
+ *
+ * Units: SI and radians (hg_kinematics.h conventions). Pure C, no
+ * malloc, no stdio, bounded loops. */
+#ifndef HG_GUARD_H
+#define HG_GUARD_H
+
+#include "hg_params.h"
+
+/* The region a machine with broken bars may be in: the model has no
+ * contacts, and a head swinging further would strike bars and posts that
+ * it passes through here (chosen bounds, beyond every pose of the intact
+ * machine; docs/dynamics.md). */
+#define HG_BROKEN_HEAD_Z_MIN_M (-0.6) /* head Z below this is out of the region */
+#define HG_BROKEN_REACH_M 1.0         /* |X|, |Y| or a |z_k| above this is out */
+#define HG_BROKEN_ROT_MAX_RAD 0.3490658503988659 /* |A|, |B| or |C| above 20 deg is out */
+
+/* What a failed check found: the first limit crossed. */
+typedef enum {
+    HG_GUARD_NONE = 0,
+    HG_GUARD_CARRIAGE_JOINT = 1,  /* bar `bar` beyond cone_carriage in its carriage joint */
+    HG_GUARD_HEAD_JOINT = 2,      /* bar `bar` beyond cone_head in its head joint */
+    HG_GUARD_BARS = 3,            /* bars `bar` and `other` closer than d_bar */
+    HG_GUARD_REGION = 4           /* broken machine outside the modelled region (hg_dynamics.h) */
+} hg_guard_kind;
+
+typedef struct {
+    int kind;                     /* hg_guard_kind */
+    int bar, other;               /* the bar(s) involved (0..5; other -1 unless BARS) */
+    double value;                 /* the angle (rad) or distance (m) found */
+    double limit;                 /* the limit it crossed (rad or m) */
+} hg_guard_report;
+
+/* Check the state (carriage heights z, head pose) against the limits of
+ * g; bars whose bit is set in `broken` are left out (region check
+ * instead). 0, HG_ERR_JOINT_RANGE, HG_ERR_BAR_CLEARANCE or
+ * HG_ERR_OUT_OF_VOLUME with *r (may be 0) describing the first limit
+ * crossed; a non-finite state is HG_ERR_OUT_OF_VOLUME. */
+int hg_guard_check(const hg_geometry *g, const double z[6], const double pose[6],
+                   unsigned broken, hg_guard_report *r);
+
+/* Angles (rad) of every bar in its carriage joint and in its head joint. */
+void hg_guard_joint_angles(const hg_geometry *g, const double z[6], const double pose[6],
+                           double carriage_rad[6], double head_rad[6]);
+
+/* Closest distance (m) between the segments p1-q1 and p2-q2. */
+double hg_segment_distance(const double p1[3], const double q1[3], const double p2[3],
+                           const double q2[3]);
+
+/* What r found as one sentence (mm and degrees, 3 decimals), naming the
+ * bar(s) and the limit's parameter: by its HAL name ("cone-head") when
+ * hal is 1, by its spec name ("cone_head") when 0. Empty for kind NONE. */
+#define HG_GUARD_TEXT_LEN 200
+void hg_guard_describe(const hg_guard_report *r, int hal, char buf[HG_GUARD_TEXT_LEN]);
+
+/* Smallest distance between two bar axes with the machine at HOME (m). */
+double hg_guard_home_clearance(const hg_geometry *g);
+
+#endif

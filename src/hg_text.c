@@ -1,0 +1,76 @@
+/* hg_text.c - numbers and sentences as text without stdio (hg_text.h). */
+#include "hg_math.h"
+#include "hg_string.h"
+#include "hg_text.h"
+
+/* Append the decimal digits of u (no sign) at p; returns the new end. */
+static char *put_uint(char *p, unsigned long long u, int min_digits)
+{
+    char tmp[24];
+    int n = 0;
+    do {
+        tmp[n++] = (char)('0' + (int)(u % 10u));
+        u /= 10u;
+    } while (u && n < 20);
+    while (n < min_digits && n < 20)
+        tmp[n++] = '0';
+    while (n)
+        *p++ = tmp[--n];
+    return p;
+}
+
+void hg_text_value(char buf[HG_TEXT_VALUE_LEN], double v)
+{
+    char *p = buf;
+    unsigned long long ip, frac;
+    double a;
+    if (v != v) {
+        memcpy(buf, "nan", 4);
+        return;
+    }
+    if (v < 0 || (v == 0 && 1 / v < 0)) {
+        *p++ = '-';
+        v = -v;
+    }
+    if (v > 1e15) {                   /* inf or beyond 6 decimals' reach */
+        if (v > 1.7976931348623157e308)
+            memcpy(p, "inf", 4);
+        else
+            memcpy(p, "huge", 5);
+        return;
+    }
+    a = floor(v);
+    ip = (unsigned long long)a;
+    frac = (unsigned long long)floor((v - a) * 1e6 + 0.5);
+    if (frac >= 1000000ull) {
+        ip++;
+        frac -= 1000000ull;
+    }
+    p = put_uint(p, ip, 1);
+    if (frac) {
+        *p++ = '.';
+        p = put_uint(p, frac, 6);
+        while (p[-1] == '0')          /* 1.500000 -> 1.5 */
+            p--;
+    }
+    *p = '\0';
+}
+
+char *hg_text_add(char *buf, unsigned long len, const char *s)
+{
+    unsigned long n = 0;
+    while (n < len && buf[n])
+        n++;
+    while (*s && n + 1 < len)
+        buf[n++] = *s++;
+    if (n < len)
+        buf[n] = '\0';
+    return buf;
+}
+
+char *hg_text_add_value(char *buf, unsigned long len, double v)
+{
+    char t[HG_TEXT_VALUE_LEN];
+    hg_text_value(t, v);
+    return hg_text_add(buf, len, t);
+}

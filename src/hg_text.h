@@ -1,0 +1,18 @@
+/* hg_text.h - numbers and sentences as text without stdio (realtime code:
+ * rtapi_print_msg formats no floats in kernel builds), for the messages the
+ * core composes (hg_guard_describe) and the HAL glue prints. Pure C. */
+#ifndef HG_TEXT_H
+#define HG_TEXT_H
+
+/* v as text: "-12.5", up to 6 decimals, "nan", "inf", "huge" (|v| > 1e15). */
+#define HG_TEXT_VALUE_LEN 32
+void hg_text_value(char buf[HG_TEXT_VALUE_LEN], double v);
+
+/* Append the string s to buf (capacity len, NUL-terminated), truncating;
+ * returns buf. */
+char *hg_text_add(char *buf, unsigned long len, const char *s);
+
+/* Append v as hg_text_value writes it; returns buf. */
+char *hg_text_add_value(char *buf, unsigned long len, double v);
+
+#endif

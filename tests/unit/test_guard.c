@@ -1,0 +1,278 @@
+/* test_guard.c - the machine's mechanical limits (hg_guard.h) against a
+ * geometry written here: the segment distance by a second method (interior
+ * stationary point and the four edge minima of the convex quadratic), the
+ * joint angles from the spec's formulas, and the board driven open loop
+ * until it strikes: the step at which it faults must be the first step of
+ * the simulated path at which this file's own geometry crosses a limit. */
+#include <math.h>
+#include <string.h>
+#include "hg_test.h"
+#include "hg_board.h"
+#include "hg_guard.h"
+#include "hg_kinematics.h"
+#include "hg_errors.h"
+
+#define DEG (3.14159265358979323846 / 180.0)
+
+/* |a - b|^2 */
+static double dist2(const double a[3], const double b[3])
+{
+    return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+}
+
+/* f(s, t) = |p1 + s d1 - p2 - t d2|^2 */
+static double f_st(const double p1[3], const double q1[3], const double p2[3], const double q2[3],
+                   double s, double t)
+{
+    double a[3], b[3];
+    int r;
+    for (r = 0; r < 3; r++) {
+        a[r] = p1[r] + s * (q1[r] - p1[r]);
+        b[r] = p2[r] + t * (q2[r] - p2[r]);
+    }
+    return dist2(a, b);
+}
+
+/* Distance of point x to segment p-q (parameter clamped to [0, 1]). */
+static double point_segment2(const double x[3], const double p[3], const double q[3])
+{
+    double d[3], w[3], u;
+    int r;
+    for (r = 0; r < 3; r++) {
+        d[r] = q[r] - p[r];
+        w[r] = x[r] - p[r];
+    }
+    u = (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    u = u < 0 ? 0 : u > 1 ? 1 : u;
+    for (r = 0; r < 3; r++)
+        w[r] = p[r] + u * d[r];
+    return dist2(x, w);
+}
+
+/* Segment distance, second method: the minimum of the convex quadratic f
+ * over the unit square is its stationary point when that lies inside, else
+ * on an edge, where it is a point-to-segment distance. */
+static double segment_distance_ref(const double p1[3], const double q1[3], const double p2[3],
+                                   const double q2[3])
+{
+    double best = point_segment2(p1, p2, q2);
+    double a = 0, b = 0, c = 0, d = 0, e = 0, det;
+    int r;
+    best = fmin(best, point_segment2(q1, p2, q2));
+    best = fmin(best, point_segment2(p2, p1, q1));
+    best = fmin(best, point_segment2(q2, p1, q1));
+    for (r = 0; r < 3; r++) {      /* grad f = 0: [a -b; -b c] [s; t] = [-d; e] */
+        double d1 = q1[r] - p1[r], d2 = q2[r] - p2[r], w = p1[r] - p2[r];
+        a += d1 * d1;
+        b += d1 * d2;
+        c += d2 * d2;
+        d += d1 * w;
+        e += d2 * w;
+    }
+    det = a * c - b * b;
+    if (det > 1e-300) {
+        double s = (-d * c + b * e) / det, t = (a * e - b * d) / det;
+        if (s >= 0 && s <= 1 && t >= 0 && t <= 1)
+            best = fmin(best, f_st(p1, q1, p2, q2, s, t));
+    }
+    return sqrt(best);
+}
+
+static void test_segment_distance(void)
+{
+    double worst = 0;
+    int n;
+    for (n = 0; n < 20000; n++) {
+        double p1[3], q1[3], p2[3], q2[3], a, b;
+        int r;
+        for (r = 0; r < 3; r++) {
+            p1[r] = hg_test_uniform(-1, 1);
+            q1[r] = hg_test_uniform(-1, 1);
+            p2[r] = hg_test_uniform(-1, 1);
+            q2[r] = n % 4 == 0 ? p2[r] + 0.7 * (q1[r] - p1[r]) : hg_test_uniform(-1, 1); /* parallels too */
+        }
+        a = hg_segment_distance(p1, q1, p2, q2);
+        b = segment_distance_ref(p1, q1, p2, q2);
+        worst = fmax(worst, fabs(a - b));
+    }
+    CHECK(worst < 1e-9, "segment distance agrees with the second method on 20000 random pairs "
+          "(a quarter parallel): max difference %.2e m", worst);
+}
+
+/* The spec's joints: B_k = Rz(alpha_i)(lb, s e, 0) + (0, 0, h + z_k),
+ * A_k = P + R Rz(alpha_i)(lp, s e, 0), R = Rz(C) Ry(B) Rx(A). */
+static void spec_joints(const hg_geometry *g, const double z[6], const double c[6], int k,
+                        double B[3], double A[3])
+{
+    double al = (k / 2 == 0 ? 0.0 : k / 2 == 1 ? 120.0 : -120.0) * DEG, s = k % 2 ? -1.0 : 1.0;
+    double h = sqrt(g->l_m * g->l_m - (g->lb_m - g->lp_m) * (g->lb_m - g->lp_m));
+    double v[3] = {cos(al) * g->lp_m - sin(al) * s * g->e_m, sin(al) * g->lp_m + cos(al) * s * g->e_m, 0};
+    double ca = cos(c[3]), sa = sin(c[3]), cb = cos(c[4]), sb = sin(c[4]), cc = cos(c[5]), sc = sin(c[5]);
+    double x1[3], x2[3];
+    B[0] = cos(al) * g->lb_m - sin(al) * s * g->e_m;
+    B[1] = sin(al) * g->lb_m + cos(al) * s * g->e_m;
+    B[2] = h + z[k];
+    x1[0] = v[0], x1[1] = ca * v[1] - sa * v[2], x1[2] = sa * v[1] + ca * v[2];     /* Rx */
+    x2[0] = cb * x1[0] + sb * x1[2], x2[1] = x1[1], x2[2] = -sb * x1[0] + cb * x1[2]; /* Ry */
+    A[0] = c[0] + cc * x2[0] - sc * x2[1];                                             /* Rz */
+    A[1] = c[1] + sc * x2[0] + cc * x2[1];
+    A[2] = c[2] + x2[2];
+}
+
+/* Largest joint angle over bars (rad, world for the carriage joint, head
+ * axes R^T u for the head joint) and the smallest bar-axis distance (m). */
+static void spec_limits(const hg_geometry *g, const double z[6], const double c[6], double *carriage,
+                        double *head, double *clearance)
+{
+    static const double zero[6] = {0, 0, 0, 0, 0, 0};
+    double ca = cos(c[3]), sa = sin(c[3]), cb = cos(c[4]), sb = sin(c[4]), cc = cos(c[5]), sc = sin(c[5]);
+    double R[9] = {cc * cb, cc * sb * sa - sc * ca, cc * sb * ca + sc * sa,
+                   sc * cb, sc * sb * sa + cc * ca, sc * sb * ca - cc * sa,
+                   -sb, cb * sa, cb * ca};
+    double B[6][3], A[6][3];
+    int k, j, r;
+    *carriage = *head = 0;
+    *clearance = INFINITY;
+    for (k = 0; k < 6; k++) {
+        double B0[3], A0[3], u[3], u0[3], uh[3], n = 0, n0 = 0, dc = 0, dh = 0;
+        spec_joints(g, z, c, k, B[k], A[k]);
+        spec_joints(g, zero, zero, k, B0, A0);
+        for (r = 0; r < 3; r++) {
+            u[r] = A[k][r] - B[k][r];
+            u0[r] = A0[r] - B0[r];
+        }
+        for (r = 0; r < 3; r++)
+            uh[r] = R[r] * u[0] + R[3 + r] * u[1] + R[6 + r] * u[2];
+        for (r = 0; r < 3; r++) {
+            n += u[r] * u[r];
+            n0 += u0[r] * u0[r];
+            dc += u[r] * u0[r];
+            dh += uh[r] * u0[r];
+        }
+        *carriage = fmax(*carriage, acos(fmin(1.0, dc / sqrt(n * n0))));
+        *head = fmax(*head, acos(fmin(1.0, dh / sqrt(n * n0))));
+    }
+    for (j = 0; j < 6; j++)
+        for (k = j + 1; k < 6; k++)
+            *clearance = fmin(*clearance, segment_distance_ref(B[j], A[j], B[k], A[k]));
+}
+
+static void test_home_and_defaults(void)
+{
+    static const double zero[6] = {0, 0, 0, 0, 0, 0};
+    hg_params p;
+    double cj, hj, cl;
+    hg_params_default(&p);
+    spec_limits(&p.geo, zero, zero, &cj, &hj, &cl);
+    CHECK(hg_guard_check(&p.geo, zero, zero, 0, 0) == 0 && cj < 1e-7 && hj < 1e-7 &&
+              fabs(hg_guard_home_clearance(&p.geo) - cl) < 1e-12,
+          "HOME is inside every limit; closest bar axes at HOME %.3f mm (second method %.3f mm)",
+          hg_guard_home_clearance(&p.geo) * 1e3, cl * 1e3);
+}
+
+/* Open loop, the volts of issue 16 held: the board must fault at the first
+ * step whose state (this file's geometry) crosses a limit, freeze the
+ * state before it and name the limit; the head never tilts 60 deg. */
+static void test_open_loop_strike(const double volts[6], const char *what)
+{
+    static hg_board b;
+    hg_board_inputs in;
+    hg_board_outputs out;
+    double cj = 0, hj = 0, cl = 0, prev_t = 0, tilt = 0;
+    long s, crossing = -1, fault_at = -1;
+    int k;
+    hg_board_init(&b, HG_MODEL_REDUCED_CARTESIAN, 0);
+    hg_board_inputs_default(&b, &in);
+    in.dout_values = 1u << 7;
+    for (k = 0; k < 6; k++)
+        in.dac_v[k] = volts[k];
+    for (s = 0; s < 10000; s++) {
+        hg_board_step(&b, &in, &out, 1000000L);
+        if (out.fault) {
+            fault_at = s;
+            break;
+        }
+        prev_t = out.sim_time_s;
+        tilt = fmax(tilt, acos(cos(out.pose[3]) * cos(out.pose[4])));
+        spec_limits(&b.m.p.geo, out.z_m, out.pose, &cj, &hj, &cl);
+        if (crossing < 0 && (cj > b.m.p.geo.cone_carriage_rad || hj > b.m.p.geo.cone_head_rad ||
+                             cl < b.m.p.geo.d_bar_m))
+            crossing = s;
+    }
+    /* the state frozen at the fault is the last one inside; step it once more
+     * with hg_step alone and this file's geometry must find it outside */
+    {
+        hg_data d = b.d;
+        hg_model m = b.m;
+        double v[6];
+        int rc;
+        for (k = 0; k < 6; k++)
+            v[k] = out.fault ? hg_dac_output(volts[k]) : 0;
+        rc = hg_step(&m, &d, v, 1e-3);
+        memcpy(&d, &b.d, HG_DATA_STATE_BYTES);
+        d.broken_bars = 0;
+        /* hg_step refused it; integrate with the limits opened to see where it would be */
+        m.p.geo.cone_carriage_rad = m.p.geo.cone_head_rad = 3.1;
+        m.p.geo.d_bar_m = 0;
+        if (rc == out.fault_code && hg_step(&m, &d, v, 1e-3) == 0)
+            spec_limits(&b.m.p.geo, d.z_m, d.pose, &cj, &hj, &cl);
+        else
+            cj = hj = -1;
+    }
+    {
+        char text[HG_GUARD_TEXT_LEN];
+        hg_guard_describe(&out.fault_guard, 0, text);
+        CHECK(fault_at > 0 && crossing < 0 &&
+                  (out.fault_code == HG_ERR_JOINT_RANGE || out.fault_code == HG_ERR_BAR_CLEARANCE) &&
+                  (cj > b.m.p.geo.cone_carriage_rad || hj > b.m.p.geo.cone_head_rad || cl < b.m.p.geo.d_bar_m) &&
+                  out.sim_time_s == prev_t && tilt < 60 * DEG,
+              "open loop %s: faults at t = %.3f s (%s: %s); every earlier state inside the limits by the "
+              "spec's geometry, the next one outside (carriage %.2f deg, head %.2f deg, clearance %.2f mm); "
+              "state frozen; largest head tilt %.1f deg (< 60)", what, (fault_at + 1) * 1e-3,
+              hg_strerror(out.fault_code), text, cj / DEG, hj / DEG, cl * 1e3, tilt / DEG);
+    }
+}
+
+/* A head rotation C(t) computed here: the limit found by the guard along
+ * the path is where this file's geometry crosses it. With open joint
+ * ranges (open = 1) the bars themselves touch. */
+static void test_rotation_path(int open)
+{
+    hg_params p;
+    double c[6] = {0, 0, -0.05, 0, 0, 0}, z[6], cross_ref = -1, cross_guard = -1;
+    int i, rc = 0;
+    hg_guard_report r;
+    hg_params_default(&p);
+    if (open)
+        p.geo.cone_carriage_rad = p.geo.cone_head_rad = 3.1;
+    for (i = 0; i <= 18000; i++) {
+        double cj, hj, cl;
+        c[5] = i * 0.01 * DEG;
+        if (hg_inverse_kinematics(&p.geo, c, z))
+            break;
+        spec_limits(&p.geo, z, c, &cj, &hj, &cl);
+        if (cross_ref < 0 && (cj > p.geo.cone_carriage_rad || hj > p.geo.cone_head_rad || cl < p.geo.d_bar_m))
+            cross_ref = c[5];
+        if (cross_guard < 0 && (rc = hg_guard_check(&p.geo, z, c, 0, &r)) != 0)
+            cross_guard = c[5];
+    }
+    CHECK(cross_ref > 0 && cross_guard == cross_ref &&
+              (open ? rc == HG_ERR_BAR_CLEARANCE && r.kind == HG_GUARD_BARS : rc == HG_ERR_JOINT_RANGE),
+          "head turning about Z from Z = -50 mm%s: the guard stops at C = %.2f deg (code %d, kind %d, bars %d %d, "
+          "%.3f %s), the spec's geometry crosses at %.2f deg", open ? ", joint ranges open" : "",
+          cross_guard / DEG, rc, r.kind, r.bar, r.other, open ? r.value * 1e3 : r.value / DEG,
+          open ? "mm" : "deg", cross_ref / DEG);
+}
+
+int main(void)
+{
+    static const double issue16[6] = {1.5, -2, 0.7, 2.5, -1.2, 0.3};
+    static const double twist[6] = {2, -2, 2, -2, 2, -2};
+    test_segment_distance();
+    test_home_and_defaults();
+    test_rotation_path(0);
+    test_rotation_path(1);
+    test_open_loop_strike(issue16, "1.5,-2,0.7,2.5,-1.2,0.3 V");
+    test_open_loop_strike(twist, "+-2 V alternating (the head turns)");
+    return hg_test_exit();
+}
