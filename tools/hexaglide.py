@@ -167,6 +167,8 @@ _step = _sig("hg_step", C.c_int, _P, _P, _d6, C.c_double)
 _energy = _sig("hg_energy", None, _P, _P, C.POINTER(C.c_double), C.POINTER(C.c_double))
 _ik = _sig("hg_inverse_kinematics", C.c_int, _P, _d6, _d6)
 _fk = _sig("hg_forward_kinematics", C.c_int, _P, _d6, _d6, _P, _P)
+_guard_check = _sig("hg_guard_check", C.c_int, _P, _d6, _d6, C.c_uint, C.POINTER(GuardReport))
+_guard_describe = _sig("hg_guard_describe", None, C.POINTER(GuardReport), C.c_int, C.c_char_p)
 _loop_default = _sig("hg_loop_config_default", None, C.POINTER(LoopConfig))
 _loop_init = _sig("hg_loop_init", C.c_int, _P, C.POINTER(LoopConfig), _P)
 _params_copy_sz = _sizeof(6)
@@ -225,6 +227,18 @@ def fk(joints_mm, guess_user=(0, 0, 0, 0, 0, 0), params=None):
     if rc:
         raise HexaglideError("fk", rc)
     return np.concatenate([np.array(pose[:3]) * 1000.0, np.degrees(pose[3:])])
+
+
+def guard(joints_mm, pose_user, params=None):
+    """The mechanical limits at a state (src/hg_guard.h): (0, "") inside
+    them, else (code, sentence naming the bar(s), value and limit)."""
+    z = _d6(*[v / 1000.0 for v in joints_mm])
+    pose = _d6(*[v / 1000.0 for v in pose_user[:3]], *[np.radians(v) for v in pose_user[3:]])
+    rep = GuardReport()
+    rc = _guard_check(_geometry(params), z, pose, 0, C.byref(rep))
+    text = C.create_string_buffer(200)
+    _guard_describe(C.byref(rep), 0, text)
+    return rc, text.value.decode()
 
 
 class Model:
