@@ -1,4 +1,4 @@
-/* test_dynamics.c - closed-form facts of shared/hexaglide-model.md, the
+/* test_dynamics.c - closed-form facts of docs/model.md, the
  * agreement of the parametrizations, the hard stop and refused inputs.
  * Expected values are computed here from the spec's numbers, never taken
  * from the code under test. */
@@ -9,7 +9,7 @@
 #include "hg_errors.h"
 #include "hg_linalg.h"
 
-/* the spec's tables (shared/hexaglide-model.md) */
+/* the spec's tables (docs/model.md) */
 #define SPEC_G 9.81
 #define SPEC_M_HEAD 6.697
 #define SPEC_M_BAR 2.9369
