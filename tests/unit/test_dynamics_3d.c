@@ -523,23 +523,6 @@ static const double start_cd[][6] = {
 #define NSTARTS (int)(sizeof start_c / sizeof start_c[0])
 #define T_RUN_S 0.2
 
-/* The default parameters without any dissipation, set by name: 0, or -1
- * when a name the test needs is missing. */
-static int frictionless(hg_params *p)
-{
-    static const char *const required[] = {"c_visc", "f_coulomb", "c_stop"};
-    static const char *const optional[] = {"f_static"};  /* breakaway friction, where it exists */
-    unsigned i;
-    hg_params_default(p);
-    for (i = 0; i < sizeof required / sizeof required[0]; i++)
-        if (hg_params_set(p, required[i], 0.0))
-            return -1;
-    for (i = 0; i < sizeof optional / sizeof optional[0]; i++)
-        if (hg_params_field(p, optional[i]))
-            hg_params_set(p, optional[i], 0.0);
-    return 0;
-}
-
 /* Max |E(t) - E(0)| (J) over T_RUN_S of undriven motion from start st, the
  * energy T + V of the reference at the model's (pose, posed); *e0 the
  * kinetic energy at the start, *zmax the largest |z|; NAN on a failed step. */
@@ -592,7 +575,8 @@ static void test_energy(void)
     spec s;
     double zmax_all = 0, stop;
     int kind, sch, st, lev, rc;
-    CHECK(frictionless(&p) == 0, "c_visc, f_coulomb and c_stop set to 0 by name (and f_static where it exists)");
+    hg_params_default(&p);
+    CHECK(hg_test_frictionless(&p) == 0, "c_visc, f_coulomb and c_stop set to 0 by name (and f_static where it exists)");
     spec_of(&p, &s);
     stop = fmin(par(&p, "stop_max"), -par(&p, "stop_min"));
     for (kind = 0; kind < HG_MODEL_COUNT; kind++) {
