@@ -2,7 +2,7 @@
 #   make          build the realtime modules and the host tool build/hexaglide
 #   make install  put the modules in LinuxCNC's module directory and the
 #                 man pages in $(MANDIR)/man9 (root); make uninstall removes them
-#   make test     all tests; ends with "N passed, N failed"
+#   make test     all tests; ends with "N passed, N failed, N skipped"
 #   make demo     the virtual machine: home, run G-code, plots in out/
 #   make run      the same machine in AXIS
 #   make bench    speed of kinematics and dynamics

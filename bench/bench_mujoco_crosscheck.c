@@ -2,10 +2,10 @@
  * closed-form physics, and the project's dynamics against MuJoCo.
  *
  *   bench_mujoco_crosscheck facts     MuJoCo vs the closed-form facts of
- *                                     shared/hexaglide-model.md and the
- *                                     project's kinematics conventions
- *   bench_mujoco_crosscheck project   hg_step (every model kind that
- *                                     initializes) vs MuJoCo on three runs
+ *                                     docs/model.md and the project's
+ *                                     kinematics conventions
+ *   bench_mujoco_crosscheck project   hg_step (every model kind) vs MuJoCo
+ *                                     on three runs
  *   bench_mujoco_crosscheck           both (what make bench runs)
  *
  * Prints TAP lines "ok - ..." / "not ok - ..."; exit status 1 on a failure.
@@ -20,15 +20,6 @@
 #include "hg_dynamics.h"
 #include "hg_kinematics.h"
 #include "hg_mujoco_model.c"
-
-/* The project's dynamics (and kinematics) may not be built yet: link them
- * weakly and skip what is missing. */
-#pragma weak hg_model_init
-#pragma weak hg_data_reset
-#pragma weak hg_step
-#pragma weak hg_model_name
-#pragma weak hg_inverse_kinematics
-#pragma weak hg_joint_points
 
 #define DT_S 1e-3
 
@@ -45,6 +36,16 @@ static void check(int ok, const char *fmt, ...)
     printf("\n");
     if (!ok)
         failures++;
+}
+
+/* The default parameter set as the MuJoCo peer models it: Coulomb friction
+ * off (hg_mujoco_model.c refuses it); with frictionless, viscous friction
+ * off too. Set by name through the parameter table. */
+static void peer_params(hg_params *p, int frictionless)
+{
+    hg_params_default(p);
+    if (hg_params_set(p, "f_coulomb", 0.0) || (frictionless && hg_params_set(p, "c_visc", 0.0)))
+        check(0, "the parameter table has f_coulomb and c_visc");
 }
 
 /* ---- closed-form quantities of the parameter set ---- */
@@ -157,7 +158,7 @@ static void facts(void)
     double v[6], w, c, vt, mass, a, zexp;
     int k;
 
-    hg_params_default(&p);
+    peer_params(&p, 0);
     w = weight_n(&p);
     c = p.c_visc_ns_per_m;
 
@@ -176,7 +177,7 @@ static void facts(void)
     check(hgmj_connect_violation(d, &ix) < 1e-12,
           "HOME is assembled in MuJoCo: bar ends meet head joints within %.2g m (bound 1e-12)",
           hgmj_connect_violation(d, &ix));
-    if (hg_joint_points) {
+    {
         /* the project's kinematics places B_k and A_k where MuJoCo has them:
          * same bar order, same post angles, same signs */
         double z0[6] = {0}, pose0[6] = {0}, B[6][3], A[6][3], eb = 0.0, ea = 0.0;
@@ -189,8 +190,6 @@ static void facts(void)
         }
         check(eb < 1e-12 && ea < 1e-12,
               "MuJoCo carriage joints and head joints at HOME = hg_joint_points (B %.2g m, A %.2g m)", eb, ea);
-    } else {
-        check(1, "# SKIP project kinematics not linked: HOME joint points not compared");
     }
     mj_deleteData(d);
     mj_deleteModel(m);
@@ -236,7 +235,7 @@ static void facts(void)
     /* (3) frictionless free fall: z(t) = -(W/M) t^2 / 2 with M counting the
      * reflected rotor inertias. Forgetting them would be a factor 8, making
      * them weigh 15%: bound 1e-6 relative (measured about 1e-9). */
-    p.c_visc_ns_per_m = 0.0;
+    peer_params(&p, 1);
     fill(v, 0.0);
     if (mujoco_run(&p, v, T_FREE_S, &r) == 0) {
         double worst = 0.0;
@@ -258,12 +257,10 @@ static void facts(void)
      * 1e-6 m separates that from any convention slip (bar order, post sign,
      * Euler order costs millimetres; even a 0.1% error in the extracted A
      * angle costs 1.2e-5 m). */
-    hg_params_default(&p);
+    peer_params(&p, 0);
     for (k = 0; k < 6; k++)
         v[k] = holding_volts(&p) + asym_dv[k];
-    if (!hg_inverse_kinematics) {
-        check(1, "# SKIP project kinematics not linked: conventions not compared");
-    } else if (mujoco_run(&p, v, T_ASYM_S, &r) == 0) {
+    if (mujoco_run(&p, v, T_ASYM_S, &r) == 0) {
         double zik[6];
         int rc = hg_inverse_kinematics(&p.geo, r.pose, zik);
         double e = rc == 0 ? max_abs_diff(zik, r.z, 6) : INFINITY;
@@ -366,15 +363,9 @@ static void project(void)
     run_result pr;
     int kind, s, k;
 
-    if (!hg_step || !hg_model_init || !hg_data_reset || !hg_model_name) {
-        printf("ok - # SKIP project dynamics not built (src/hg_dynamics.c missing): nothing to compare with MuJoCo\n");
-        return;
-    }
     for (s = 0; s < ns; s++) {
         const scenario *sc = &scenarios[s];
-        hg_params_default(&ps[s]);
-        if (sc->frictionless)
-            ps[s].c_visc_ns_per_m = 0.0;
+        peer_params(&ps[s], sc->frictionless);
         for (k = 0; k < 6; k++)
             volts[s][k] = (sc->hold ? holding_volts(&ps[s]) : 0.0) + sc->dv_scale * asym_dv[k];
         if (mujoco_run(&ps[s], volts[s], sc->t_s, &mj[s]) != 0) {
@@ -397,11 +388,7 @@ static void project(void)
         const char *why;
         int rc = project_run(&ps[0], (hg_model_kind)kind, volts[0], DT_S, DT_S, &pr, &why);
         if (rc != 0) {
-            /* the reduced Cartesian model is the one the driver uses: required */
-            if (kind == HG_MODEL_REDUCED_CARTESIAN)
-                check(0, "%s: hg_model_init/hg_data_reset/hg_step failed: code %d %s", kn, rc, why ? why : "");
-            else
-                printf("ok - # SKIP %s not available (code %d %s)\n", kn, rc, why ? why : "");
+            check(0, "%s: hg_model_init/hg_data_reset/hg_step failed: code %d %s", kn, rc, why ? why : "");
             continue;
         }
         for (s = 0; s < ns; s++) {

@@ -6,7 +6,7 @@
  * constraints, MuJoCo's own solver and integrator) used by make bench as
  * the speed peer and by tests/engine as an accuracy referee.
  *
- * The MJCF follows shared/hexaglide-model.md directly: one static "post"
+ * The MJCF follows docs/model.md directly: one static "post"
  * frame per post rotated by alpha_i about z, in which each carriage sits at
  * (lb, s_j e, h) on a vertical slide and its bar hangs in the post's x-z
  * plane towards (lp, s_j e, 0). Host-side code (malloc, stdio): not for

@@ -1,9 +1,13 @@
 /* hg_test.h - minimal TAP-style checks for the host C unit tests.
  * CHECK(cond, fmt, ...) prints "ok - ..." or "not ok - ..."; the exit code
- * of main should be hg_test_exit(). */
+ * of main should be hg_test_exit(); hg_test_uniform, hg_test_frictionless
+ * and hg_test_solve are a deterministic random source, a machine without
+ * dissipation and a plain dense solver. */
 #ifndef HG_TEST_H
 #define HG_TEST_H
+#include <math.h>
 #include <stdio.h>
+#include "hg_params.h"
 
 static int hg_test_failures;
 
@@ -25,5 +29,52 @@ static inline double hg_test_uniform(double lo, double hi)
     x ^= x >> 12; x ^= x << 25; x ^= x >> 27;
     hg_test_rng_state = x;
     return lo + (hi - lo) * ((double)((x * 2685821657736338717ull) >> 11) / 9007199254740992.0);
+}
+/* Zero every dissipation of p by name (viscous and Coulomb friction, the
+ * hard-stop damper, and breakaway friction where the table has it), the
+ * rest unchanged: 0, or -1 when a name that must exist is missing. */
+static inline int hg_test_frictionless(hg_params *p)
+{
+    static const char *const required[] = {"c_visc", "f_coulomb", "c_stop"};
+    static const char *const optional[] = {"f_static"};
+    unsigned i;
+    for (i = 0; i < sizeof required / sizeof required[0]; i++)
+        if (hg_params_set(p, required[i], 0.0))
+            return -1;
+    for (i = 0; i < sizeof optional / sizeof optional[0]; i++)
+        if (hg_params_field(p, optional[i]))
+            hg_params_set(p, optional[i], 0.0);
+    return 0;
+}
+
+/* Solve the n x n system a x = b (row-major) by Gaussian elimination with
+ * partial pivoting: a is overwritten, b receives x (a second, plain solver
+ * beside the project's LU and LDL^T ones). */
+static inline void hg_test_solve(int n, double *a, double *b)
+{
+    int i, j, k;
+    for (k = 0; k < n; k++) {
+        int p = k;
+        for (i = k + 1; i < n; i++)
+            if (fabs(a[i * n + k]) > fabs(a[p * n + k]))
+                p = i;
+        for (j = 0; j < n; j++) {
+            double t = a[k * n + j];
+            a[k * n + j] = a[p * n + j];
+            a[p * n + j] = t;
+        }
+        { double t = b[k]; b[k] = b[p]; b[p] = t; }
+        for (i = k + 1; i < n; i++) {
+            double f = a[i * n + k] / a[k * n + k];
+            for (j = k; j < n; j++)
+                a[i * n + j] -= f * a[k * n + j];
+            b[i] -= f * b[k];
+        }
+    }
+    for (k = n - 1; k >= 0; k--) {
+        for (j = k + 1; j < n; j++)
+            b[k] -= a[k * n + j] * b[j];
+        b[k] /= a[k * n + k];
+    }
 }
 #endif

@@ -22,9 +22,7 @@ static double energy_error(hg_model_kind kind, double dt, double *e_kin)
     double t, v, e0, worst = 0;
     long s, n_kick = (long)(0.1 / dt + 0.5), n_coast = (long)(0.3 / dt + 0.5);
     hg_params_default(&p);
-    p.c_visc_ns_per_m = 0;
-    p.f_coulomb_n = 0;
-    if (hg_model_init(&m, &p, kind, 0, 0) || hg_data_reset(&m, &d))
+    if (hg_test_frictionless(&p) || hg_model_init(&m, &p, kind, 0, 0) || hg_data_reset(&m, &d))
         return INFINITY;
     for (s = 0; s < n_kick; s++)
         if (hg_step(&m, &d, kick, dt))

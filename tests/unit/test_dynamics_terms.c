@@ -160,36 +160,6 @@ static void test_energies(void)
     }
 }
 
-/* Solve the n x n system a x = b (row-major) in place by Gaussian
- * elimination with partial pivoting; b receives x. */
-static void dense_solve(int n, double *a, double *b)
-{
-    int i, j, k;
-    for (k = 0; k < n; k++) {
-        int p = k;
-        for (i = k + 1; i < n; i++)
-            if (fabs(a[i * n + k]) > fabs(a[p * n + k]))
-                p = i;
-        for (j = 0; j < n; j++) {
-            double t = a[k * n + j];
-            a[k * n + j] = a[p * n + j];
-            a[p * n + j] = t;
-        }
-        { double t = b[k]; b[k] = b[p]; b[p] = t; }
-        for (i = k + 1; i < n; i++) {
-            double f = a[i * n + k] / a[k * n + k];
-            for (j = k; j < n; j++)
-                a[i * n + j] -= f * a[k * n + j];
-            b[i] -= f * b[k];
-        }
-    }
-    for (k = n - 1; k >= 0; k--) {
-        for (j = k + 1; j < n; j++)
-            b[k] -= a[k * n + j] * b[j];
-        b[k] /= a[k * n + k];
-    }
-}
-
 /* Dense Phi_q (18 x 24) of the standard model from the generated blocks. */
 static void standard_jacobian(const double Pa[36], const double Pc[108], double *J)
 {
@@ -254,7 +224,7 @@ static void test_standard_kkt(void)
         b[i] = Q[i] + (i < 6 ? fz[i] : 0.0);
     for (r = 0; r < 18; r++)
         b[24 + r] = -gm[r];
-    dense_solve(42, K, b);
+    hg_test_solve(42, K, b);
     for (i = 0; i < 24; i++) {
         worst = fmax(worst, fabs(qdd[i] - b[i]));
         scale = fmax(scale, fabs(b[i]));
