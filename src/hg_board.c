@@ -8,13 +8,13 @@
 /* Finite x, or 0 (nothing non-finite reaches an output). */
 static double finite_or_zero(double x) { return isfinite(x) ? x : 0.0; }
 
-/* The spec's parameter block: defaults, 1 substep, improved Euler. */
+/* The spec's parameter block: defaults, 1 substep, Heun. */
 static void params_default(hg_board_params *p)
 {
     memset(p, 0, sizeof *p);
     hg_params_default(&p->model);
     p->substeps = 1;
-    p->integrator = HG_INTEGRATOR_IMPROVED_EULER;
+    p->integrator = HG_INTEGRATOR_HEUN;
 }
 
 int hg_board_params_check(const hg_board_params *p, unsigned long long *mask,

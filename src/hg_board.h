@@ -175,7 +175,7 @@ typedef struct {
 } hg_board;
 
 /* Power-up: model `kind` with parameter block p (0: spec defaults,
- * 1 substep, improved Euler), machine at HOME at rest, counters 0,
+ * 1 substep, Heun), machine at HOME at rest, counters 0,
  * watchdog disabled, no fault. 0, or HG_ERR_BAD_PARAM (p refused; use
  * hg_board_params_check to name the fields) or another negative code. */
 int hg_board_init(hg_board *b, hg_model_kind kind, const hg_board_params *p);

@@ -12,6 +12,8 @@
 #include "hg_step_cartesian.h"
 #include "hg_step_broken.h"
 #include "hg_forces.h"
+#include "hg_drive.h"
+#include "hg_friction.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
 #include "hg_units.h"
@@ -140,6 +142,8 @@ int hg_data_reset(const hg_model *m, hg_data *d)
         return rc;
     memset(d, 0, HG_DATA_STATE_BYTES);
     unpack(m, q, qd, 0, d);
+    d->amp_enabled = HG_BARS_ALL;      /* amplifiers on, no current yet */
+    d->stuck = HG_BARS_ALL;            /* at rest: every carriage held by static friction */
     d->residual_m = hg_bar_length_error(&m->p.geo, d->z_m, d->pose);
     return 0;
 }
@@ -163,6 +167,7 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
     memset(m, 0, sizeof *m);
     m->p = *p;
     m->kind = kind;
+    m->integrator = HG_INTEGRATOR_HEUN; /* within 1 um of the converged answer at 1 ms */
     m->force_per_amp_n = p->kt_nm_per_a * screw;
     m->force_per_volt_n = p->ka_a_per_v * m->force_per_amp_n;
     m->rotor_mass_kg = p->j_rotor_kgm2 * screw * screw;
@@ -199,14 +204,14 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
 /* The broken-bar step on d's [z, c] with m's scheme: 0 with q1 (n of m's
  * kind, standard bar angles from the geometry, rates 0), qd1, qdd
  * filled, or a code. */
-static int step_broken(const hg_model *m, hg_data *d, const double volts[6], const double fz[6],
+static int step_broken(const hg_model *m, hg_data *d, const double drive_n[6], const double fz[6],
                        double dt_s, double *q1, double *qd1, double *qdd, double *res)
 {
     double q0[HG_NQ_REDUCED], qd0[HG_NQ_REDUCED], ql[HG_NQ_REDUCED], qdl[HG_NQ_REDUCED];
     double qddl[HG_NQ_REDUCED];
     int rc;
     lumped_pack(d, q0, qd0);
-    rc = hg_integrate(m, m->integrator, &hg_broken_dae, d, q0, qd0, volts, fz, dt_s, ql, qdl,
+    rc = hg_integrate(m, m->integrator, &hg_broken_dae, d, q0, qd0, drive_n, fz, dt_s, ql, qdl,
                       qddl, res);
     if (rc)
         return rc;
@@ -232,45 +237,53 @@ static int step_broken(const hg_model *m, hg_data *d, const double volts[6], con
 int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
 {
     double q0[HG_NQ_MAX], qd0[HG_NQ_MAX], q1[HG_NQ_MAX], qd1[HG_NQ_MAX], qdd[HG_NQ_MAX];
-    double fz[6], cur[6], res = 0.0;
-    int n = hg_system_nq(m), rc, trig = 0;
+    double fz[6], drive_n[6], res = 0.0;
+    hg_drive_out drv;
+    int n = hg_system_nq(m), rc, trig = 0, k, fric = hg_friction_on(&m->p);
     if (!(isfinite(dt_s) && dt_s > 0.0 && dt_s <= HG_DT_MAX_S)) {
         d->last_error = HG_ERR_BAD_DT;
         return HG_ERR_BAD_DT;
     }
     pack(m, d, q0, qd0);
-    hg_carriage_forces(m, d->z_m, d->zd_mps, volts, fz, cur);
+    hg_drive_step(m, d, volts, dt_s, &drv);
+    for (k = 0; k < 6; k++) {          /* drive, and the friction of the last step, held */
+        d->work.fric_est_n[k] = fric ? d->fric_n[k] : 0.0;
+        drive_n[k] = drv.i_mean[k] * m->force_per_amp_n + d->work.fric_est_n[k];
+    }
+    hg_carriage_forces(m, d->z_m, d->zd_mps, drive_n, fz);
     switch (d->broken_bars & HG_BARS_ALL ? HG_MODEL_COUNT : m->kind) {
     case HG_MODEL_COUNT:               /* a bar broken: any kind */
-        rc = step_broken(m, d, volts, fz, dt_s, q1, qd1, qdd, &res);
+        rc = step_broken(m, d, drive_n, fz, dt_s, q1, qd1, qdd, &res);
         break;
     case HG_MODEL_STANDARD:
-        rc = hg_integrate(m, m->integrator, &hg_standard_dae, d, q0, qd0, volts, fz, dt_s, q1, qd1,
+        rc = hg_integrate(m, m->integrator, &hg_standard_dae, d, q0, qd0, drive_n, fz, dt_s, q1, qd1,
                           qdd, &res);
         break;
     case HG_MODEL_REDUCED_JOINTS:
-        rc = hg_integrate(m, m->integrator, &hg_joints_dae, d, q0, qd0, volts, fz, dt_s, q1, qd1,
+        rc = hg_integrate(m, m->integrator, &hg_joints_dae, d, q0, qd0, drive_n, fz, dt_s, q1, qd1,
                           qdd, &res);
         break;
     case HG_MODEL_FUSED_CARTESIAN:
-        if (m->integrator == HG_INTEGRATOR_IMPROVED_EULER) {
+        if (m->integrator == HG_INTEGRATOR_IMPROVED_EULER && !fric) {
             double sc0[6];
             if (d->trig_valid && d->trig_key_rad[0] == d->pose[3] &&
                 d->trig_key_rad[1] == d->pose[4] && d->trig_key_rad[2] == d->pose[5])
                 memcpy(sc0, d->trig_sc, sizeof sc0);
             else
                 hg_head_trig(d->pose, sc0);
+            d->work.fric_stuck = 0;
+            memset(d->work.fric_impulse, 0, sizeof d->work.fric_impulse);
             rc = hg_fused_step(m, d, q0, qd0, sc0, fz, dt_s, q1, qd1, qdd, &res);
             trig = 1;
             break;
         }
-        /* other schemes: the generated accelerations, stage by stage */
-        rc = hg_integrate(m, m->integrator, &hg_fused_dae, d, q0, qd0, volts, fz, dt_s, q1, qd1,
+        /* other schemes, or friction: the generated accelerations, stage by stage */
+        rc = hg_integrate(m, m->integrator, &hg_fused_dae, d, q0, qd0, drive_n, fz, dt_s, q1, qd1,
                           qdd, &res);
         trig = 1;
         break;
     case HG_MODEL_REDUCED_CARTESIAN:
-        rc = hg_integrate(m, m->integrator, &hg_cartesian_dae, d, q0, qd0, volts, fz, dt_s, q1,
+        rc = hg_integrate(m, m->integrator, &hg_cartesian_dae, d, q0, qd0, drive_n, fz, dt_s, q1,
                           qd1, qdd, &res);
         trig = 1;
         break;
@@ -287,14 +300,19 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
         d->last_error = rc;
         return rc;
     }
+    hg_drive_integral(m, d->amp_enabled, &drv, q0, q1, dt_s, d->vloop_int_m);
     unpack(m, q1, qd1, qdd, d);
     d->trig_valid = trig;
     if (trig) {
         memcpy(d->trig_key_rad, d->pose + 3, sizeof d->trig_key_rad);
         memcpy(d->trig_sc, d->work.sc1, sizeof d->trig_sc);
     }
-    memcpy(d->current_a, cur, sizeof cur);
-    memcpy(d->force_n, fz, sizeof fz);
+    memcpy(d->current_a, drv.i_end, sizeof drv.i_end);
+    for (k = 0; k < 6; k++) {          /* the step's mean force: smooth part at the start + friction */
+        d->fric_n[k] = d->work.fric_impulse[k] / dt_s;
+        d->force_n[k] = fz[k] - d->work.fric_est_n[k] + d->fric_n[k];
+    }
+    d->stuck = d->work.fric_stuck;
     d->residual_m = res;
     d->t_s += dt_s;
     d->last_error = 0;

@@ -46,7 +46,8 @@ int hg_data_reset(const hg_model *m, hg_data *d);
 
 /* Integrate one step of dt_s seconds with the given DAC volts (clamped to
  * +-10 V, non-finite volts count as 0; held over the step) with the scheme
- * m->integrator (hg_integrate.h: the paper's improved Euler by default).
+ * m->integrator (hg_integrate.h: Heun by default; the paper's improved
+ * Euler on request).
  * 0, or a negative code (BAD_DT, STATE_NONFINITE, STABILIZATION,
  * SINGULAR_MASS, ...) in which case d's state (the first
  * HG_DATA_STATE_BYTES) is left exactly as it was before the call except

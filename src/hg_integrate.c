@@ -1,8 +1,14 @@
 /* hg_integrate.c - improved Euler, Heun and RK4 on the state of any
- * parametrization, followed by its constraint stabilization. */
+ * parametrization, then friction at the velocity level, then its
+ * constraint stabilization. */
+#include "hg_math.h"
+#include "hg_string.h"
 #include "hg_integrate.h"
 #include "hg_system.h"
 #include "hg_forces.h"
+#include "hg_friction.h"
+#include "hg_spd6.h"
+#include "hg_linalg.h"
 #include "hg_errors.h"
 
 /* Stage vectors laid over hg_work.stage. */
@@ -13,6 +19,26 @@ typedef struct {
     double fz[6];                        /* stage carriage forces */
 } stage_ws;
 typedef char hg_stage_ws_fits[sizeof(stage_ws) <= sizeof(((hg_work *)0)->stage) ? 1 : -1];
+
+/* RK4's stage offsets (c_i dt) and weights (b_i); Heun's are the first two */
+static const double rk4_c[4] = {0.0, 0.5, 0.5, 1.0};
+static const double rk4_b[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
+static const double heun_c[2] = {0.0, 1.0};
+static const double heun_b[2] = {0.5, 0.5};
+
+int hg_scheme_tableau(hg_integrator scheme, const double **c, const double **b)
+{
+    switch (scheme) {
+    case HG_INTEGRATOR_HEUN:
+        *c = heun_c, *b = heun_b;
+        return 2;
+    case HG_INTEGRATOR_RK4:
+        *c = rk4_c, *b = rk4_b;
+        return 4;
+    default:
+        return 0;
+    }
+}
 
 /* The paper's step: q1 = q0 + q0' dt + q0'' dt^2/2, q1' = q0' + q0'' dt
  * (the five vectors must not overlap: restrict lets the compiler pack them). */
@@ -28,77 +54,204 @@ improved_euler(const int n, const double *restrict q0, const double *restrict qd
     }
 }
 
-/* Accelerations at the stage state (qs, vs) of w, forces from volts. */
+/* Accelerations at the stage state (qs, vs) of w, drive force held. */
 static int stage_accel(const hg_model *m, const hg_dae *f, hg_data *ctx, stage_ws *w,
-                       const double volts[6])
+                       const double drive_n[6])
 {
-    hg_carriage_forces(m, w->qs, w->vs, volts, w->fz, 0);
+    hg_carriage_forces(m, w->qs, w->vs, drive_n, w->fz);
     return f->accel(m, ctx, w->qs, w->vs, w->fz, w->a);
 }
 
+void hg_mass_save_reduced(hg_mass_snapshot *s, const double ldl[36], const double inv_d[6],
+                          const double *T)
+{
+    memcpy(s->ldl, ldl, sizeof s->ldl);
+    memcpy(s->inv_d, inv_d, sizeof s->inv_d);
+    s->t_identity = T == 0;
+    if (T)
+        memcpy(s->T, T, sizeof s->T);
+    s->kind = 1;
+}
+
+void hg_mass_save_kkt(hg_mass_snapshot *s, int n, const double *lu, const int *piv)
+{
+    if (n > HG_KKT_MAX)
+        return;                       /* cannot happen: 12 + 5 intact bars */
+    memcpy(s->kkt, lu, (unsigned long)(n * n) * sizeof(double));
+    memcpy(s->piv, piv, (unsigned long)n * sizeof(int));
+    s->nkkt = n;
+    s->kind = 2;
+}
+
+void hg_hold_independent(const hg_model *m, hg_data *ctx, const double z0[6], unsigned held,
+                         double *q1, double *qd1)
+{
+    int k;
+    (void)m;
+    (void)ctx;
+    for (k = 0; k < 6; k++)
+        if ((held >> k) & 1u) {
+            q1[k] = z0[k];
+            qd1[k] = 0.0;
+        }
+}
+
+void hg_mass_response(const hg_mass_snapshot *s, const double p[6], double *dv, double dz[6])
+{
+    int i, j;
+    if (s->kind == 1) {
+        double g[6];
+        for (i = 0; i < 6; i++) {          /* generalized impulse T^T p */
+            double v = 0.0;
+            if (s->t_identity)
+                v = p[i];
+            else
+                for (j = 0; j < 6; j++)
+                    v += s->T[6 * j + i] * p[j];
+            g[i] = v;
+        }
+        hg_spd6_apply(s->ldl, s->inv_d, g);
+        for (i = 0; i < 6; i++) {
+            double v = 0.0;
+            dv[i] = g[i];
+            if (s->t_identity)
+                v = g[i];
+            else
+                for (j = 0; j < 6; j++)
+                    v += s->T[6 * i + j] * g[j];
+            dz[i] = v;
+        }
+    } else if (s->kind == 2) {
+        double b[HG_KKT_MAX];
+        for (i = 0; i < s->nkkt; i++)
+            b[i] = i < 6 ? p[i] : 0.0;
+        hg_lu_solve(s->nkkt, s->kkt, s->piv, 1, b);
+        for (i = 0; i < HG_NQ_REDUCED; i++)
+            dv[i] = b[i];
+        for (i = 0; i < 6; i++)
+            dz[i] = b[i];
+    } else {
+        for (i = 0; i < 6; i++)
+            dv[i] = dz[i] = 0.0;
+    }
+}
+
+/* Sliding and static friction on the predicted (q1, qd1), whose stages
+ * held the expected sliding friction ctx->work.fric_est_n: the step's
+ * impulses solved on the speeds without friction, their difference from
+ * the expected ones into the independent velocities (positions by dt/2 of
+ * them: a constant force over the step); every stuck carriage is held at
+ * rest where it stopped: where it was for one stuck from the start, after
+ * a constant deceleration for one that stopped within the step. 0 or a code. */
+static int friction(const hg_model *m, const hg_dae *f, hg_data *ctx, const double *q0,
+                    const double *qd0, double dt, double *q1, double *qd1, double *qdd)
+{
+    hg_work *wk = &ctx->work;
+    double W[36], e[6] = {0, 0, 0, 0, 0, 0}, dv[HG_NQ_REDUCED], dz[6], vfree[6], zstop[6];
+    hg_friction_out fo;
+    int i, k, rc;
+    for (k = 0; k < 6; k++) {             /* W column k: the carriages' response to impulse k */
+        e[k] = 1.0;
+        hg_mass_response(&wk->mass, e, dv, dz);
+        for (i = 0; i < 6; i++)
+            W[6 * i + k] = dz[i];
+        e[k] = 0.0;
+    }
+    for (k = 0; k < 6; k++) {             /* the speeds without any sliding or static friction */
+        double v = qd1[k];
+        for (i = 0; i < 6; i++)
+            v -= W[6 * k + i] * wk->fric_est_n[i] * dt;
+        vfree[k] = v;
+    }
+    rc = hg_friction_solve(&m->p, W, vfree, qd0, ctx->stuck, dt, &fo);
+    if (rc)
+        return rc;
+    for (k = 0; k < 6; k++)               /* the stages held fric_est_n: correct by the rest */
+        e[k] = fo.impulse[k] - wk->fric_est_n[k] * dt;
+    hg_mass_response(&wk->mass, e, dv, dz);
+    for (i = 0; i < f->ni; i++) {
+        qd1[f->io + i] += dv[i];
+        q1[f->io + i] += 0.5 * dt * dv[i];
+        qdd[f->io + i] += dv[i] / dt;
+    }
+    for (k = 0; k < 6; k++)               /* dependent carriages: a start for the stabilization */
+        if (f->io != 0) {
+            qd1[k] += dz[k];
+            q1[k] += 0.5 * dt * dz[k];
+        }
+    memcpy(wk->fric_impulse, fo.impulse, sizeof fo.impulse);
+    wk->fric_stuck = fo.stuck;
+    if (fo.stuck) {                       /* where the stuck carriages stay */
+        for (k = 0; k < 6; k++)
+            zstop[k] = q0[k] + ((ctx->stuck >> k) & 1u ? 0.0 : 0.5 * qd0[k] * fo.stop[k] * dt);
+        f->hold(m, ctx, zstop, fo.stuck, q1, qd1);
+    }
+    return 0;
+}
+
 int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_data *ctx,
-                 const double *q0, const double *qd0, const double volts[6],
+                 const double *q0, const double *qd0, const double drive_n[6],
                  const double fz0[6], double dt, double *q1, double *qd1, double *qdd,
                  double *residual_m)
 {
-    /* RK4's stage offsets (c_i dt) and weights (b_i); Heun's are the first two */
-    static const double rk4_c[4] = {0.0, 0.5, 0.5, 1.0};
-    static const double rk4_b[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
-    static const double heun_c[2] = {0.0, 1.0};
-    static const double heun_b[2] = {0.5, 0.5};
     stage_ws *w = (stage_ws *)ctx->work.stage;
     const double *c, *b;
+    const int fric = hg_friction_on(&m->p);
     int n = f->n, i, s, ns, rc;
-    switch (scheme) {
-    case HG_INTEGRATOR_IMPROVED_EULER:
+    ctx->work.mass.want = fric;
+    ctx->work.mass.kind = 0;
+    ctx->work.fric_stuck = 0;
+    memset(ctx->work.fric_impulse, 0, sizeof ctx->work.fric_impulse);
+    if (scheme == HG_INTEGRATOR_IMPROVED_EULER) {
         rc = f->accel(m, ctx, q0, qd0, fz0, qdd);
+        ctx->work.mass.want = 0;
         if (rc)
             return rc;
         if (n == HG_NQ_REDUCED)        /* a constant length lets the compiler unroll */
             improved_euler(HG_NQ_REDUCED, q0, qd0, qdd, dt, q1, qd1);
         else
             improved_euler(n, q0, qd0, qdd, dt, q1, qd1);
-        return f->stabilize(m, ctx, q1, qd1, residual_m);
-    case HG_INTEGRATOR_HEUN:
-        c = heun_c, b = heun_b, ns = 2;
-        break;
-    case HG_INTEGRATOR_RK4:
-        c = rk4_c, b = rk4_b, ns = 4;
-        break;
-    default:
-        return HG_ERR_BAD_PARAM;
-    }
-    /* explicit Runge-Kutta whose stage i starts from y0 + c_i dt k_(i-1)
-     * (true of Heun's and classical RK4's tableaux) */
-    for (s = 0; s < ns; s++) {
-        if (s == 0) {
-            rc = f->accel(m, ctx, q0, qd0, fz0, w->a);
+    } else {
+        ns = hg_scheme_tableau(scheme, &c, &b);
+        if (ns == 0)
+            return HG_ERR_BAD_PARAM;
+        /* explicit Runge-Kutta whose stage i starts from y0 + c_i dt k_(i-1) */
+        for (s = 0; s < ns; s++) {
+            if (s == 0) {
+                rc = f->accel(m, ctx, q0, qd0, fz0, w->a);
+                ctx->work.mass.want = 0;
+                for (i = 0; i < n; i++) {
+                    w->vs[i] = qd0[i];
+                    w->sq[i] = 0.0;
+                    w->sv[i] = 0.0;
+                }
+            } else {
+                const double h = c[s] * dt;
+                double vprev;
+                for (i = 0; i < n; i++) {  /* k_(s-1) = (vs, a) of the previous stage */
+                    vprev = w->vs[i];
+                    w->qs[i] = q0[i] + h * vprev;
+                    w->vs[i] = qd0[i] + h * w->a[i];
+                }
+                rc = stage_accel(m, f, ctx, w, drive_n);
+            }
+            if (rc)
+                return rc;
             for (i = 0; i < n; i++) {
-                w->vs[i] = qd0[i];
-                w->sq[i] = 0.0;
-                w->sv[i] = 0.0;
+                w->sq[i] += b[s] * w->vs[i];
+                w->sv[i] += b[s] * w->a[i];
             }
-        } else {
-            const double h = c[s] * dt;
-            double vprev;
-            for (i = 0; i < n; i++) {  /* k_(s-1) = (vs, a) of the previous stage */
-                vprev = w->vs[i];
-                w->qs[i] = q0[i] + h * vprev;
-                w->vs[i] = qd0[i] + h * w->a[i];
-            }
-            rc = stage_accel(m, f, ctx, w, volts);
         }
+        for (i = 0; i < n; i++) {
+            q1[i] = q0[i] + dt * w->sq[i];
+            qd1[i] = qd0[i] + dt * w->sv[i];
+            qdd[i] = w->sv[i];
+        }
+    }
+    if (fric) {
+        rc = friction(m, f, ctx, q0, qd0, dt, q1, qd1, qdd);
         if (rc)
             return rc;
-        for (i = 0; i < n; i++) {
-            w->sq[i] += b[s] * w->vs[i];
-            w->sv[i] += b[s] * w->a[i];
-        }
-    }
-    for (i = 0; i < n; i++) {
-        q1[i] = q0[i] + dt * w->sq[i];
-        qd1[i] = qd0[i] + dt * w->sv[i];
-        qdd[i] = w->sv[i];
     }
     return f->stabilize(m, ctx, q1, qd1, residual_m);
 }

@@ -25,8 +25,8 @@ typedef enum {
 
 /* Time integration scheme of one step (hg_integrate.[ch] holds the schemes). */
 typedef enum {
-    HG_INTEGRATOR_IMPROVED_EULER = 0, /* the paper's: q += qd dt + qdd dt^2/2, qd += qdd dt (default) */
-    HG_INTEGRATOR_HEUN = 1,           /* second order (RK2), then the same stabilization */
+    HG_INTEGRATOR_IMPROVED_EULER = 0, /* the paper's: q += qd dt + qdd dt^2/2, qd += qdd dt */
+    HG_INTEGRATOR_HEUN = 1,           /* second order (RK2), then the same stabilization (default) */
     HG_INTEGRATOR_RK4 = 2,            /* classical fourth order, then the same stabilization */
     HG_INTEGRATOR_COUNT = 3
 } hg_integrator;
@@ -37,7 +37,7 @@ typedef enum {
 typedef struct {
     hg_params p;                 /* the parameter set this model was built from */
     hg_model_kind kind;
-    hg_integrator integrator;    /* scheme of hg_step (hg_model_init: improved Euler) */
+    hg_integrator integrator;    /* scheme of hg_step (hg_model_init: Heun) */
     double force_per_amp_n;      /* kt 2 pi / lead: carriage force per motor ampere (N/A) */
     double force_per_volt_n;     /* ka kt 2 pi / lead (N/V) */
     double rotor_mass_kg;        /* j_rotor (2 pi / lead)^2, inertia without weight */
@@ -51,6 +51,23 @@ typedef struct {
 #define HG_STAB_MAX_RESIDUAL_M 1e-6   /* bar-length error after stabilization that counts as diverged */
 #define HG_BARS_ALL 0x3fu             /* broken_bars: bit k is bar k (joint k) */
 
+/* The reduced mass data of a step's start, saved by the parametrization's
+ * first acceleration evaluation of the step when hg_integrate asks for it
+ * (friction, hg_friction.h, needs the carriages' response to impulses):
+ * kind 1, the reduced mass matrix in the independent coordinates (LDL^T,
+ * hg_spd6) and the map T from independent to carriage velocities; kind 2
+ * (broken bars), the factored augmented (KKT) matrix. */
+#define HG_KKT_MAX 18
+typedef struct {
+    int want;                    /* set by hg_integrate: the next accel saves its data */
+    int kind;                    /* 0 nothing saved, 1 reduced mass matrix + T, 2 KKT */
+    double ldl[36], inv_d[6];    /* kind 1: factored reduced mass matrix */
+    double T[36];                /* kind 1: carriage velocities = T x independent velocities */
+    int t_identity;              /* kind 1: T is the identity (z independent) */
+    double kkt[HG_KKT_MAX * HG_KKT_MAX]; /* kind 2: LU of [M J^T; J 0] */
+    int piv[HG_KKT_MAX], nkkt;   /* kind 2: its pivots and size */
+} hg_mass_snapshot;
+
 /* Preallocated scratch for one hg_step: the integrator's stage vectors
  * and the parametrization's 6x6 (and 18x7) temporaries, so that no
  * realtime stack frame exceeds 2560 bytes (kernel/RTAI modules). Each
@@ -62,6 +79,10 @@ typedef struct {
     double stage[HG_WORK_STAGE]; /* hg_integrate's stage states and sums */
     double step[HG_WORK_STEP];   /* the parametrization's accelerations/stabilization */
     double sc1[6];               /* Reduced Cartesian: sin/cos of the stabilized head angles */
+    hg_mass_snapshot mass;       /* the step start's mass data (friction) */
+    double fric_est_n[6];        /* friction hg_step expects and holds in the stages (N) */
+    double fric_impulse[6];      /* friction impulses of the step (N s), committed by hg_step */
+    unsigned fric_stuck;         /* carriages stuck at the step's end */
 } hg_work;
 
 typedef struct {
@@ -73,8 +94,14 @@ typedef struct {
     double posed[6];             /* its time derivative */
     double bar_rad[12];          /* bar angles (standard model only) */
     double bar_radps[12];        /* their rates (standard model only) */
-    double current_a[6];         /* motor currents after the amplifier clamp */
-    double force_n[6];           /* net non-inertial force on each carriage (drive+friction+stop) */
+    double current_a[6];         /* winding currents (A): the state of the drives (hg_drive.h) */
+    double vloop_int_m[6];       /* velocity mode: each amplifier's integrated speed error (m) */
+    unsigned amp_enabled;        /* bit k: amplifier k is enabled (hg_data_reset: all) */
+    unsigned stuck;              /* bit k: carriage k sticks (static friction holds it exactly) */
+    double fric_n[6];            /* sliding or static friction on each carriage over the last
+                                    step (N, mean): what the next step's stages expect */
+    double force_n[6];           /* net non-inertial force on each carriage over the last step
+                                    (drive + friction + stops, mean) */
     double residual_m;           /* max bar-length error after the last stabilization */
     int last_error;              /* code of the last failed step, 0 if none */
     hg_guard_report guard;       /* the mechanical limit the last failed step crossed

@@ -29,12 +29,20 @@ static const hg_param_info table[] = {
     {"m_carriage", "kg", "carriage mass", F(m_carriage_kg), "m-carriage", "kg", 1.0},
     {"lead", "m/rev", "ball-screw lead", F(lead_m), "lead", "mm/rev", 1000.0},
     {"j_rotor", "kg m^2", "rotor + screw inertia", F(j_rotor_kgm2), "j-rotor", "kg m^2", 1.0},
-    {"ka", "A/V", "amplifier gain", F(ka_a_per_v), "ka", "A/V", 1.0},
-    {"kt", "N m/A", "motor torque constant", F(kt_nm_per_a), "kt", "N m/A", 1.0},
+    {"kt", "N m/A", "motor torque constant (= back-EMF constant, V s/rad)", F(kt_nm_per_a), "kt", "N m/A", 1.0},
+    {"r_winding", "ohm", "motor winding resistance", F(r_winding_ohm), "r-winding", "ohm", 1.0},
+    {"l_winding", "H", "motor winding inductance", F(l_winding_h), "l-winding", "H", 1.0},
+    {"amp_mode", "1", "amplifier mode: 0 torque (current), 1 velocity", F(amp_mode), "amp-mode", "1", 1.0},
+    {"ka", "A/V", "torque mode: amplifier gain", F(ka_a_per_v), "ka", "A/V", 1.0},
     {"i_max", "A", "amplifier current limit", F(i_max_a), "i-max", "A", 1.0},
+    {"v_bus", "V", "amplifier supply (bus) voltage", F(v_bus_v), "v-bus", "V", 1.0},
+    {"v_rated", "m/s", "velocity mode: carriage speed at +10 V", F(v_rated_mps), "v-rated", "mm/s", 1000.0},
+    {"kp_vel", "A s/m", "velocity mode: velocity-loop proportional gain", F(kp_vel_as_per_m), "kp-vel", "A s/m", 1.0},
+    {"ki_vel", "A/m", "velocity mode: velocity-loop integral gain", F(ki_vel_a_per_m), "ki-vel", "A/m", 1.0},
     {"c_visc", "N s/m", "viscous friction per carriage", F(c_visc_ns_per_m), "c-visc", "N s/m", 1.0},
-    {"f_coulomb", "N", "Coulomb friction per carriage", F(f_coulomb_n), "f-coulomb", "N", 1.0},
-    {"v_coulomb", "m/s", "Coulomb smoothing speed", F(v_coulomb_mps), "v-coulomb", "m/s", 1.0},
+    {"f_coulomb", "N", "sliding (Coulomb) friction per carriage", F(f_coulomb_n), "f-coulomb", "N", 1.0},
+    {"f_static", "N", "breakaway (static) friction per carriage", F(f_static_n), "f-static", "N", 1.0},
+    {"v_stribeck", "m/s", "Stribeck speed (sliding friction falls from f_static to f_coulomb)", F(v_stribeck_mps), "v-stribeck", "mm/s", 1000.0},
     {"stop_min", "m", "hard stop, bottom", F(stop_min_m), "stop-min", "mm", 1000.0},
     {"stop_max", "m", "hard stop, top", F(stop_max_m), "stop-max", "mm", 1000.0},
     {"k_stop", "N/m", "hard-stop stiffness", F(k_stop_n_per_m), "k-stop", "N/m", 1.0},
@@ -54,6 +62,12 @@ double hg_home_height(const hg_geometry *g)
 {
     double d = g->lb_m - g->lp_m;
     return sqrt(g->l_m * g->l_m - d * d);
+}
+
+double hg_hold_current(const hg_params *p)
+{
+    double weight = p->g_mps2 * (p->m_head_kg + 6.0 * (p->m_bar_kg + p->m_carriage_kg));
+    return weight / 6.0 / (p->kt_nm_per_a * 2.0 * HG_PI / p->lead_m);
 }
 
 const char *hg_params_hal_name(const char *name)
@@ -97,12 +111,23 @@ void hg_params_default(hg_params *p)
     p->m_carriage_kg = 2.867;
     p->lead_m = 0.010;
     p->j_rotor_kgm2 = 1.3168e-4;
-    p->ka_a_per_v = 0.8;
     p->kt_nm_per_a = 0.51;
+    p->ka_a_per_v = 0.8;
     p->i_max_a = 8.0;
+    /* assumed (docs/model.md): an 80 V PWM servo amplifier, a 2 ohm, 5 mH winding */
+    p->r_winding_ohm = 2.0;
+    p->l_winding_h = 0.005;
+    p->amp_mode = 0.0;
+    p->v_bus_v = 80.0;
+    /* velocity mode: 10 V = 200 mm/s, a velocity loop of about 30 Hz on the carriage */
+    p->v_rated_mps = 0.2;
+    p->kp_vel_as_per_m = 35.0;
+    p->ki_vel_a_per_m = 1600.0;
     p->c_visc_ns_per_m = 5665.6;
-    p->f_coulomb_n = 0.0;
-    p->v_coulomb_mps = 1e-3;
+    /* assumed (docs/model.md): preloaded ball screw and guides */
+    p->f_coulomb_n = 40.0;
+    p->f_static_n = 50.0;
+    p->v_stribeck_mps = 0.002;
     p->stop_min_m = -0.260;
     p->stop_max_m = 0.260;
     p->k_stop_n_per_m = 5e6;      /* static penetration at the 8 A clamp ~0.5 mm; k dt^2 / m ~ 0.09 at 1 ms */
@@ -252,11 +277,12 @@ static void params_rules(const hg_params *p, check_report *r)
     static const char *const positive[] = {
         "g", "m_head", "i_head_xx", "i_head_yy", "i_head_zz", "m_bar",
         "i_bar", "m_carriage", "lead", "ka", "kt", "i_max", "k_stop",
-        "counts_per_rev", "v_coulomb",
+        "counts_per_rev", "r_winding", "l_winding", "v_bus", "v_rated", "v_stribeck",
     };
     /* fields that must be finite and >= 0 */
     static const char *const nonneg[] = {
-        "tool_d", "head_com", "j_rotor", "c_visc", "f_coulomb", "c_stop",
+        "tool_d", "head_com", "j_rotor", "c_visc", "f_coulomb", "f_static", "c_stop",
+        "kp_vel", "ki_vel",
     };
     unsigned i;
     int n;
@@ -292,6 +318,16 @@ static void params_rules(const hg_params *p, check_report *r)
         refuse(r, "limit_max", "must be finite and above HOME (0)");
     if (!failed(r, "limit_max") && !(isfinite(p->stop_max_m) && p->stop_max_m > p->limit_max_m))
         refuse(r, "stop_max", "must be finite and above limit_max");
+    if (!(p->amp_mode == 0.0 || p->amp_mode == 1.0))
+        refuse(r, "amp_mode", "must be 0 (torque mode) or 1 (velocity mode)");
+    if (!failed(r, "f_static") && !failed(r, "f_coulomb") && !(p->f_static_n >= p->f_coulomb_n))
+        refuse(r, "f_static", "must be at least f_coulomb (breakaway below the sliding force)");
+    /* the bus must drive, at standstill, the current that holds the machine at HOME */
+    if (!failed(r, "v_bus") && !failed(r, "r_winding") && !failed(r, "kt") && !failed(r, "lead") &&
+        !failed(r, "g") && !failed(r, "m_head") && !failed(r, "m_bar") && !failed(r, "m_carriage") &&
+        !(p->v_bus_v > p->r_winding_ohm * hg_hold_current(p)))
+        refuse(r, "v_bus", "must exceed r_winding times the current that holds the machine at HOME "
+                           "(W / 6 / (kt 2 pi / lead)): the drives could not hold the head");
     if (!failed(r, "limit_min") && !failed(r, "limit_max") &&
         !(isfinite(p->home_switch_m) && p->home_switch_m > p->limit_min_m &&
           p->home_switch_m < p->limit_max_m))

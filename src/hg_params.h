@@ -35,16 +35,24 @@ typedef struct {
     double m_bar_kg;           /* one bar, COM at mid-length */
     double i_bar_kgm2;         /* bar transverse inertia about the carriage joint */
     double m_carriage_kg;      /* one carriage */
-    /* drives */
+    /* drives: ball screw, motor (back-EMF constant = kt in SI), amplifier */
     double lead_m;             /* ball-screw lead per revolution */
     double j_rotor_kgm2;       /* rotor + screw inertia */
-    double ka_a_per_v;         /* amplifier gain (current mode) */
-    double kt_nm_per_a;        /* motor torque constant */
+    double kt_nm_per_a;        /* motor torque constant (= back-EMF constant, V s/rad) */
+    double r_winding_ohm;      /* motor winding resistance */
+    double l_winding_h;        /* motor winding inductance */
+    double amp_mode;           /* 0 torque (current) mode, 1 velocity mode */
+    double ka_a_per_v;         /* torque mode: amplifier gain, current per command volt */
     double i_max_a;            /* amplifier current limit */
+    double v_bus_v;            /* amplifier supply (bus) voltage: the most it can put on the winding */
+    double v_rated_mps;        /* velocity mode: carriage speed at +10 V */
+    double kp_vel_as_per_m;    /* velocity mode: the amplifier's velocity loop, current per speed error */
+    double ki_vel_a_per_m;     /* velocity mode: integral gain, current per integrated speed error */
     /* friction, per carriage */
     double c_visc_ns_per_m;    /* viscous, drive included */
-    double f_coulomb_n;        /* Coulomb, 0 = off */
-    double v_coulomb_mps;      /* speed over which Coulomb friction is smoothed (tanh) */
+    double f_coulomb_n;        /* sliding (Coulomb) friction */
+    double f_static_n;         /* breakaway (static) friction, >= f_coulomb */
+    double v_stribeck_mps;     /* Stribeck speed: sliding friction falls from f_static to f_coulomb */
     /* strokes, relative to HOME */
     double stop_min_m;         /* mechanical hard stop, bottom */
     double stop_max_m;         /* mechanical hard stop, top */
@@ -111,6 +119,10 @@ int hg_params_check(const hg_params *p, const char **bad_field, const char **why
  * (e.g. "l > lb - lp" when lb is invalid). The first failure is the one
  * hg_params_check reports. */
 int hg_params_check_all(const hg_params *p, unsigned long long *mask, const char *why[HG_PARAMS_MAX]);
+
+/* Motor current that holds the machine at HOME: W / 6 / (kt 2 pi / lead)
+ * (A), W the weight of head, bars and carriages. */
+double hg_hold_current(const hg_params *p);
 
 /* HAL name of the parameter with spec name `name` ("cone_head" -> "cone-head"),
  * or name itself when there is none. */

@@ -157,7 +157,7 @@ int hg_broken_accel(const hg_model *m, hg_data *d, const double *q, const double
                     const double fz[6], double *qdd)
 {
     broken_ws *w = (broken_ws *)d->work.step;
-    int k, nc;
+    int k, nc, rc;
     hg_head_trig(q + 6, w->sc);
     hg_gen_reduced_terms(m->k_lumped, q, qd, w->sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->pz, w->pc,
                          w->gm);
@@ -167,7 +167,10 @@ int hg_broken_accel(const hg_model *m, hg_data *d, const double *q, const double
         w->gm[k] = -w->gm[k];
     }
     nc = intact_rows(d->broken_bars & HG_BARS_ALL, w->pz, w->pc, w->gm, w->J, w->rhs);
-    return kkt_solve(w, w->M, nc, w->J, w->Q, w->rhs, qdd);
+    rc = kkt_solve(w, w->M, nc, w->J, w->Q, w->rhs, qdd);
+    if (rc == 0 && d->work.mass.want)  /* the step's start: friction's mass data */
+        hg_mass_save_kkt(&d->work.mass, NQ + nc, w->K, w->piv);
+    return rc;
 }
 
 int hg_broken_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd1,
@@ -182,4 +185,4 @@ int hg_broken_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd1,
     return project(m, w, d->broken_bars & HG_BARS_ALL, w->M, q1, qd1, residual_m);
 }
 
-const hg_dae hg_broken_dae = {NQ, hg_broken_accel, hg_broken_stabilize};
+const hg_dae hg_broken_dae = {NQ, 0, NQ, hg_broken_accel, hg_hold_independent, hg_broken_stabilize};

@@ -4,13 +4,17 @@
  * carriage, hg_gen_cartesian_terms) and the position
  * stabilization is one diagonal Newton step per carriage. The fused
  * variant is the whole improved-Euler step as one generated function. */
+#include "hg_math.h"
 #include "hg_step_cartesian.h"
 #include "hg_system.h"
 #include "hg_spd6.h"
 #include "hg_errors.h"
 #include "hg_unroll.h"
 
+#include "hg_linalg.h"
 #include "hg_gen_reduced.h"
+
+#define HOLD_NEWTON_ITER 3   /* Newton steps that put the held carriages back (each squares the error) */
 
 /* One Newton step z -= phi / Phi_z at the predicted state, then
  * z' = A c' = -Phi_z^-1 (Phi_c c'). Phi is exactly quadratic in z_k
@@ -56,14 +60,17 @@ static const double *head_trig(const hg_data *d, const double *q, double buf[6])
     return buf;
 }
 
-int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const double *qd,
-                       const double fz[6], double *qdd)
+/* Eq. 13 with z dependent: the reduced mass matrix Mh (lower triangle)
+ * and right-hand side rhs at (q, qd) with carriage forces fz; A and b in
+ * d->work.step. */
+static void cartesian_system(const hg_model *m, hg_data *d, const double *q, const double *qd,
+                             const double fz[6], double Mh[36], double rhs[6])
 {
     cartesian_ws *w = (cartesian_ws *)d->work.step;
     const double *mzz = w->mzz, *Mzc = w->Mzc, *Mcc = w->Mcc, *Q = w->Q, *A = w->A, *b = w->b;
-    double W[36], P[36], Mh[36], rhs[6];
+    double W[36], P[36];
     const double *sc = head_trig(d, q, w->sc); /* the last stabilization's, if q is its state */
-    int i, j, k, rc;
+    int i, j, k;
     /* A = -Phi_z^-1 Phi_c and b = -Phi_z^-1 gamma come generated */
     hg_gen_cartesian_terms(m->k, q, qd, sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->A, w->b);
     /* Eq. 13 with z dependent, as sums of outer products over the carriages
@@ -106,31 +113,119 @@ int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const dou
         HG_UNROLL
         for (j = 0; j <= i; j++)
             Mh[6 * i + j] = Mcc[6 * i + j] + P[6 * i + j] + P[6 * j + i];
-    rc = hg_spd6_solve(Mh, rhs);
+}
+
+int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const double *qd,
+                       const double fz[6], double *qdd)
+{
+    cartesian_ws *w = (cartesian_ws *)d->work.step;
+    double Mh[36], rhs[6], inv_d[6];
+    int j, k, rc;
+    cartesian_system(m, d, q, qd, fz, Mh, rhs);
+    rc = hg_spd6_factor(Mh, inv_d);
     if (rc)
         return rc;
+    hg_spd6_apply(Mh, inv_d, rhs);
+    if (d->work.mass.want)            /* the step's start: friction's mass data, z' = A c' */
+        hg_mass_save_reduced(&d->work.mass, Mh, inv_d, w->A);
     HG_UNROLL
     for (k = 0; k < 6; k++) {          /* z'' = A c'' + b */
-        double v = b[k];
+        double v = w->b[k];
         HG_UNROLL
         for (j = 0; j < 6; j++)
-            v += A[6 * k + j] * rhs[j];
+            v += w->A[6 * k + j] * rhs[j];
         qdd[k] = v;
         qdd[6 + k] = rhs[k];
     }
     return 0;
 }
 
-const hg_dae hg_cartesian_dae = {HG_NQ_REDUCED, hg_cartesian_accel, hg_cartesian_stabilize};
+void hg_cartesian_hold(const hg_model *m, hg_data *d, const double z0[6], unsigned held,
+                       double *q1, double *qd1)
+{
+    const hg_mass_snapshot *s = &d->work.mass;
+    double sc[6], phi[6], pz[6], pc[36], Y[36], G[36], r[6];
+    int idx[6], piv[6], n = 0, it, i, j, k;
+    for (k = 0; k < 6; k++)
+        if ((held >> k) & 1u) {
+            q1[k] = z0[k];
+            idx[n++] = k;
+        }
+    if (n == 0 || s->kind != 1)
+        return;
+    /* c such that the held bars close with their carriages at z0 (minimum
+     * Mh-norm Newton steps), then c' with no speed along those carriages */
+    for (it = 0; it <= HOLD_NEWTON_ITER; it++) {
+        double worst = 0.0;
+        hg_head_trig(q1 + 6, sc);
+        hg_gen_reduced_constraints(m->k, q1, sc, phi, pz, pc);
+        for (i = 0; i < n; i++) {       /* Y = Mh^-1 J^T, G = J Y with J = Phi_c's held rows */
+            double y[6];
+            for (j = 0; j < 6; j++)
+                y[j] = pc[6 * idx[i] + j];
+            hg_spd6_apply(s->ldl, s->inv_d, y);
+            for (j = 0; j < 6; j++)
+                Y[6 * j + i] = y[j];
+            worst = fmax(worst, fabs(phi[idx[i]]));
+        }
+        for (i = 0; i < n; i++)
+            for (j = 0; j < n; j++) {
+                double v = 0.0;
+                for (k = 0; k < 6; k++)
+                    v += pc[6 * idx[i] + k] * Y[6 * k + j];
+                G[n * i + j] = v;
+            }
+        if (hg_lu_factor(n, G, piv))
+            return;                   /* dependent constraints: leave it to the stabilization */
+        if (it == HOLD_NEWTON_ITER || worst == 0.0)
+            break;
+        for (i = 0; i < n; i++)
+            r[i] = phi[idx[i]];
+        hg_lu_solve(n, G, piv, 1, r);
+        for (j = 0; j < 6; j++) {
+            double v = 0.0;
+            for (i = 0; i < n; i++)
+                v += Y[6 * j + i] * r[i];
+            q1[6 + j] -= v;
+        }
+    }
+    for (i = 0; i < n; i++) {          /* J c' = 0 */
+        double v = 0.0;
+        for (j = 0; j < 6; j++)
+            v += pc[6 * idx[i] + j] * qd1[6 + j];
+        r[i] = v;
+    }
+    hg_lu_solve(n, G, piv, 1, r);
+    for (j = 0; j < 6; j++) {
+        double v = 0.0;
+        for (i = 0; i < n; i++)
+            v += Y[6 * j + i] * r[i];
+        qd1[6 + j] -= v;
+    }
+}
+
+const hg_dae hg_cartesian_dae = {HG_NQ_REDUCED, 6, 6, hg_cartesian_accel, hg_cartesian_hold,
+                                 hg_cartesian_stabilize};
 
 int hg_fused_accel(const hg_model *m, hg_data *d, const double *q, const double *qd,
                    const double fz[6], double *qdd)
 {
     double buf[6];
+    if (d->work.mass.want) {          /* friction's mass data: built as hg_cartesian_accel does */
+        cartesian_ws *w = (cartesian_ws *)d->work.step;
+        double Mh[36], rhs[6], inv_d[6];
+        int rc;
+        cartesian_system(m, d, q, qd, fz, Mh, rhs);
+        rc = hg_spd6_factor(Mh, inv_d);
+        if (rc)
+            return rc;
+        hg_mass_save_reduced(&d->work.mass, Mh, inv_d, w->A);
+    }
     return hg_gen_fused_accel(m->k, q, qd, head_trig(d, q, buf), fz, qdd);
 }
 
-const hg_dae hg_fused_dae = {HG_NQ_REDUCED, hg_fused_accel, hg_cartesian_stabilize};
+const hg_dae hg_fused_dae = {HG_NQ_REDUCED, 6, 6, hg_fused_accel, hg_cartesian_hold,
+                             hg_cartesian_stabilize};
 
 int hg_fused_step(const hg_model *m, hg_data *d, const double *q0, const double *qd0,
                   const double sc0[6], const double fz[6], double dt, double *q1,

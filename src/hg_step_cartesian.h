@@ -20,7 +20,13 @@ int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const dou
 int hg_cartesian_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd1,
                            double *residual_m);
 
-/* The two as an hg_dae. */
+/* hg_dae.hold: the carriages of `held` back at z0 with zero speed by
+ * moving the head pose (Newton on the held bars' constraints, minimum
+ * norm in the step start's reduced mass matrix) and its velocity. */
+void hg_cartesian_hold(const hg_model *m, hg_data *d, const double z0[6], unsigned held,
+                       double *q1, double *qd1);
+
+/* The three as an hg_dae. */
 extern const hg_dae hg_cartesian_dae;
 
 /* Accelerations as hg_cartesian_accel, from the generated

@@ -40,7 +40,7 @@ int hg_joints_accel(const hg_model *m, hg_data *d, const double *q, const double
 {
     joints_ws *w = (joints_ws *)d->work.step;
     const double *X = w->X;
-    double T1[36], Mh[36], rhs[6];     /* on the stack: they alias nothing */
+    double T1[36], Mh[36], rhs[6], inv_d[6]; /* on the stack: they alias nothing */
     int i, j, r, t, rc;
     hg_head_trig(q + 6, w->sc);
     hg_gen_reduced_terms(m->k, q, qd, w->sc, w->mzz, w->Mzc, w->Mcc, w->Q, w->pz, w->pc, w->gm);
@@ -67,8 +67,11 @@ int hg_joints_accel(const hg_model *m, hg_data *d, const double *q, const double
             Mh[i * 6 + j] = v;
         }
     }
-    if ((rc = hg_spd6_solve(Mh, rhs)))
+    if ((rc = hg_spd6_factor(Mh, inv_d)))
         return rc;
+    hg_spd6_apply(Mh, inv_d, rhs);
+    if (d->work.mass.want)             /* the step's start: friction's mass data, T = I */
+        hg_mass_save_reduced(&d->work.mass, Mh, inv_d, 0);
     for (r = 0; r < 6; r++) {          /* c'' = A z'' + b */
         double acc = -X[r * 7 + 6];
             for (j = 0; j < 6; j++)
@@ -93,4 +96,5 @@ int hg_joints_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd1,
     return 0;
 }
 
-const hg_dae hg_joints_dae = {HG_NQ_REDUCED, hg_joints_accel, hg_joints_stabilize};
+const hg_dae hg_joints_dae = {HG_NQ_REDUCED, 0, 6, hg_joints_accel, hg_hold_independent,
+                              hg_joints_stabilize};

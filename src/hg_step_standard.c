@@ -89,7 +89,7 @@ static void solve7(const std_factor *f, const double v[18], double X[18 * 7])
 /* Scratch laid over d->work.step. */
 typedef struct {
     double mzz[6], Mza[12], Maa[24], Mcc[36], Q[24], Pa[36], Pc[108], gm[18];
-    double A[18 * 6], b[18], T1[6 * 18], Mh[36], rhs[6], phi[18], X[18 * 7];
+    double A[18 * 6], b[18], T1[6 * 18], Mh[36], inv_d[6], rhs[6], phi[18], X[18 * 7];
     std_factor f;
 } standard_ws;
 typedef char hg_standard_ws_fits[sizeof(standard_ws) <= sizeof(((hg_work *)0)->step) ? 1 : -1];
@@ -135,8 +135,11 @@ int hg_standard_accel(const hg_model *m, hg_data *d, const double *q, const doub
             w->Mh[6 * i + j] = v;
         }
     }
-    if ((rc = hg_spd6_solve(w->Mh, w->rhs)))
+    if ((rc = hg_spd6_factor(w->Mh, w->inv_d)))
         return rc;
+    hg_spd6_apply(w->Mh, w->inv_d, w->rhs);
+    if (d->work.mass.want)             /* the step's start: friction's mass data, T = I */
+        hg_mass_save_reduced(&d->work.mass, w->Mh, w->inv_d, 0);
     for (i = 0; i < 6; i++)
         qdd[i] = w->rhs[i];
     for (r = 0; r < 18; r++) {         /* d'' = A z'' + b */
@@ -163,4 +166,5 @@ int hg_standard_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd1
     return 0;
 }
 
-const hg_dae hg_standard_dae = {HG_NQ_STANDARD, hg_standard_accel, hg_standard_stabilize};
+const hg_dae hg_standard_dae = {HG_NQ_STANDARD, 0, 6, hg_standard_accel, hg_hold_independent,
+                                hg_standard_stabilize};

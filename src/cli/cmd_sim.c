@@ -19,7 +19,7 @@ static void sim_usage(void)
             "                     [--time S] [--dt S] [--volts V0,V1,V2,V3,V4,V5]\n"
             "                     [--substeps N] [--integrator improved-euler|heun|rk4]\n"
             "                     [--set name=value]... [--csv FILE] [--list-params]\n"
-            "defaults: reduced-cartesian, 1 s, dt 0.001 s, 0 V, 1 substep, improved-euler, CSV to stdout.\n"
+            "defaults: reduced-cartesian, 1 s, dt 0.001 s, 0 V, 1 substep, heun, CSV to stdout.\n"
             "--dt is the board's servo period (whole ns); --volts go through the board's 13-bit DAC;\n"
             "--set takes the spec name and SI unit (see --list-params; HAL uses the hyphenated name,\n"
             "lengths in mm)\n");
@@ -98,7 +98,7 @@ int cmd_sim(int argc, char **argv)
     FILE *out_f = stdout;
     hg_params_default(&bp.model);
     bp.substeps = 1;
-    bp.integrator = HG_INTEGRATOR_IMPROVED_EULER;
+    bp.integrator = HG_INTEGRATOR_HEUN;
     for (i = 0; i < argc; i++) {
         const char *a = argv[i];
         int has = i + 1 < argc;

@@ -43,6 +43,7 @@ static void test_sinking(hg_model_kind kind)
     int rc, k;
     hg_params_default(&p);
     hg_params_set(&p, "f_coulomb", 0.0);   /* W / (6 c_visc) is viscous friction alone */
+    hg_params_set(&p, "f_static", 0.0);
     hg_model_init(&m, &p, kind, 0, 0);
     hg_data_reset(&m, &d);
     rc = run(&m, &d, v0, 1e-3, 0.3);
@@ -55,28 +56,41 @@ static void test_sinking(hg_model_kind kind)
           "%s: sinking is a pure vertical translation", hg_model_name(kind));
 }
 
-/* Coulomb friction only (smoothed by tanh): the terminal sinking speed
- * solves f_coulomb tanh(v / v_coulomb) = W / 6. */
-static void test_coulomb(hg_model_kind kind)
+/* Sliding and static friction at 0 V from HOME (closed forms of issue 16):
+ * with breakaway below W/6 the machine sinks at exactly (W/6 - f_c)/c_visc;
+ * with breakaway above W/6 it stays exactly where it is. */
+static void test_friction(hg_model_kind kind)
 {
     hg_params p;
     hg_model m;
     hg_data d;
-    double v0[6] = {0, 0, 0, 0, 0, 0}, fc = 100.0, vc = 0.002, expect, worst = 0;
+    double v0[6] = {0, 0, 0, 0, 0, 0}, fc = 30.0, expect, worst = 0;
     int rc, k;
     hg_params_default(&p);
-    p.c_visc_ns_per_m = 0;
     p.f_coulomb_n = fc;
-    p.v_coulomb_mps = vc;
-    expect = -vc * atanh(spec_weight / 6 / fc);
+    p.f_static_n = 45.0;                    /* below W/6 = 67.9 N: breaks away */
+    p.v_stribeck_mps = 0.0005;              /* the Stribeck part is gone at the sinking speed */
+    expect = -(spec_weight / 6 - fc) / SPEC_C_VISC;
     hg_model_init(&m, &p, kind, 0, 0);
     hg_data_reset(&m, &d);
     rc = run(&m, &d, v0, 1e-3, 1.0);
     for (k = 0; k < 6; k++)
         worst = fmax(worst, fabs(d.zd_mps[k] - expect));
-    CHECK(rc == 0 && worst < 1e-6 * fabs(expect),
-          "%s: Coulomb friction only, sinking speed %.6f mm/s = -v_c atanh(W/(6 f_c)) = %.6f mm/s",
-          hg_model_name(kind), d.zd_mps[0] * 1e3, expect * 1e3);
+    CHECK(rc == 0 && worst < 1e-6 * fabs(expect) && d.stuck == 0,
+          "%s: 0 V, breakaway 45 N < W/6: sinks at %.6f mm/s = -(W/6 - f_c)/c_visc = %.6f mm/s (dev %.1e)",
+          hg_model_name(kind), d.zd_mps[0] * 1e3, expect * 1e3, worst);
+    p.f_coulomb_n = 60.0;
+    p.f_static_n = 70.0;                    /* above W/6 = 67.886 N: holds */
+    hg_model_init(&m, &p, kind, 0, 0);
+    hg_data_reset(&m, &d);
+    rc = run(&m, &d, v0, 1e-3, 1.0);
+    worst = 0;
+    for (k = 0; k < 6; k++)
+        worst = fmax(worst, fabs(d.z_m[k]) + fabs(d.zd_mps[k]));
+    CHECK(rc == 0 && worst < 1e-15 && d.stuck == HG_BARS_ALL,
+          "%s: 0 V, breakaway 70 N > W/6: after 1 s every carriage at HOME, at rest, to rounding "
+          "(|z|+|z'| = %.1e m; no creep)",
+          hg_model_name(kind), worst);
 }
 
 static void test_holding(hg_model_kind kind)
@@ -89,8 +103,12 @@ static void test_holding(hg_model_kind kind)
     for (k = 0; k < 6; k++)
         v[k] = hold;
     hg_params_default(&p);
+    hg_params_set(&p, "f_coulomb", 0.0);   /* viscous friction only: any imbalance moves it */
+    hg_params_set(&p, "f_static", 0.0);
     hg_model_init(&m, &p, kind, 0, 0);
     hg_data_reset(&m, &d);
+    for (k = 0; k < 6; k++)            /* the windings already carry the holding current */
+        d.current_a[k] = SPEC_KA * hold;
     rc = run(&m, &d, v, 1e-3, 1.0);
     for (k = 0; k < 6; k++)
         worst = fmax(worst, fabs(d.z_m[k]) + fabs(d.zd_mps[k]));
@@ -263,7 +281,7 @@ int main(void)
     for (kind = 0; kind < HG_MODEL_COUNT; kind++) {
         test_sinking((hg_model_kind)kind);
         test_holding((hg_model_kind)kind);
-        test_coulomb((hg_model_kind)kind);
+        test_friction((hg_model_kind)kind);
         test_free_fall((hg_model_kind)kind);
         test_stop((hg_model_kind)kind);
         test_failure_leaves_state((hg_model_kind)kind);

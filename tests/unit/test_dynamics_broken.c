@@ -12,6 +12,7 @@
 #include "hg_integrate.h"
 #include "hg_step_broken.h"
 #include "hg_forces.h"
+#include "hg_drive.h"
 #include "hg_errors.h"
 
 /* Largest |z| and head-pose difference (m or rad) between the ordinary
@@ -23,19 +24,24 @@ static double intact_difference(double dt)
     hg_params p;
     static hg_model m;
     static hg_data d, ctx;
-    double q[12], qd[12], q1[12], qd1[12], qdd[12], fz[6], cur[6], res, worst = 0;
+    double q[12], qd[12], q1[12], qd1[12], qdd[12], fz[6], drive_n[6], res, worst = 0;
+    hg_drive_out drv;
     long s, n = (long)(0.2 / dt + 0.5);
     int k;
     hg_params_default(&p);
+    p.f_coulomb_n = p.f_static_n = 0.0;   /* two formulations of the same smooth ODE */
     if (hg_model_init(&m, &p, HG_MODEL_REDUCED_JOINTS, 0, 0) || hg_data_reset(&m, &d))
         return INFINITY;
     memset(qd, 0, sizeof qd);
     memcpy(q, d.z_m, sizeof d.z_m);
     memcpy(q + 6, d.pose, sizeof d.pose);
     for (s = 0; s < n; s++) {
-        hg_carriage_forces(&m, q, qd, volts, fz, cur);
+        hg_drive_step(&m, &d, volts, dt, &drv);   /* the same drive currents as hg_step's */
+        for (k = 0; k < 6; k++)
+            drive_n[k] = drv.i_mean[k] * m.force_per_amp_n;
+        hg_carriage_forces(&m, q, qd, drive_n, fz);
         ctx.broken_bars = 0u;
-        if (hg_integrate(&m, HG_INTEGRATOR_IMPROVED_EULER, &hg_broken_dae, &ctx, q, qd, volts, fz, dt,
+        if (hg_integrate(&m, HG_INTEGRATOR_IMPROVED_EULER, &hg_broken_dae, &ctx, q, qd, drive_n, fz, dt,
                          q1, qd1, qdd, &res) || hg_step(&m, &d, volts, dt))
             return INFINITY;
         memcpy(q, q1, sizeof q);
