@@ -405,8 +405,12 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
         hg_watchdog_dac_write(&b->wd);
     expired = hg_watchdog_advance(&b->wd, dt);
     amps_on = !estop_open(in) && !expired && !b->fault;
-    for (k = 0; k < HG_BOARD_JOINTS; k++)
-        volts[k] = (amps_on && !in->amp_fail[k]) ? dac_out_v[k] : 0.0;
+    b->d.amp_enabled = 0;
+    for (k = 0; k < HG_BOARD_JOINTS; k++) {
+        int on = amps_on && !in->amp_fail[k];
+        volts[k] = on ? dac_out_v[k] : 0.0;
+        b->d.amp_enabled |= on ? 1u << k : 0u;   /* a disabled amplifier passes no current */
+    }
 
     if (!b->fault) {
         int rc;

@@ -65,7 +65,10 @@ static int stage_accel(const hg_model *m, const hg_dae *f, hg_data *ctx, stage_w
 void hg_mass_save_reduced(hg_mass_snapshot *s, const double ldl[36], const double inv_d[6],
                           const double *T)
 {
-    memcpy(s->ldl, ldl, sizeof s->ldl);
+    int i, j;
+    for (i = 0; i < 6; i++)           /* the factors live in the lower triangle: the rest is stale */
+        for (j = 0; j < 6; j++)
+            s->ldl[6 * i + j] = j <= i ? ldl[6 * i + j] : 0.0;
     memcpy(s->inv_d, inv_d, sizeof s->inv_d);
     s->t_identity = T == 0;
     if (T)

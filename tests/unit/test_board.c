@@ -169,7 +169,7 @@ static void test_refused_params(void)
     ev = run(1);
     CHECK((ev & HG_EV_PARAM_REFUSED) &&
           out.refused_mask == ((1ull << HG_BOARD_BIT_SUBSTEPS) | (1ull << HG_BOARD_BIT_INTEGRATOR)) &&
-          out.params.substeps == 1 && out.params.integrator == 0,
+          out.params.substeps == 1 && out.params.integrator == HG_INTEGRATOR_HEUN,
           "substeps 0 and integrator 3 refused, both named (%s, %s)",
           hg_board_param_hal_name(HG_BOARD_BIT_SUBSTEPS), hg_board_param_hal_name(HG_BOARD_BIT_INTEGRATOR));
     in.params.substeps = HG_SUBSTEPS_MAX + 1;
@@ -195,13 +195,15 @@ static void test_fault_frozen(void)
     hg_board_outputs before;
     int i, latched = 0, events = 0;
     fresh();
-    in.params.model.g_mps2 = 1e7;                       /* valid, but the stabilization diverges */
+    for (i = 0; i < 6; i++)                             /* opposed full volts: the machine strikes */
+        in.dac_v[i] = i % 2 ? -10.0 : 10.0;
     for (i = 0; i < 2000 && !out.fault; i++) {
         before = out;
         run(1);
     }
     CHECK(out.fault && out.fault_code < 0 && (out.events & HG_EV_FAULT_LATCHED) && out.fault_cause == HG_FAULT_STEP,
-          "g = 1e7: fault latched after %d periods with code %d (%s)", i, out.fault_code, hg_strerror(out.fault_code));
+          "opposed full volts: fault latched after %d periods with code %d (%s)", i, out.fault_code,
+          hg_strerror(out.fault_code));
     CHECK(memcmp(out.z_m, before.z_m, sizeof out.z_m) == 0 && out.sim_time_s == before.sim_time_s,
           "rollback: the state is the last good one (the failing period left no trace)");
     for (i = 0; i < 50; i++) {
@@ -212,7 +214,8 @@ static void test_fault_frozen(void)
     CHECK(latched == 50 && events == 0 && memcmp(out.z_m, before.z_m, sizeof out.z_m) == 0 &&
           out.sim_time_s == before.sim_time_s && out.amps_on == 0 && out.volts[0] == 0 && out.current_a[0] == 0,
           "faulted: state frozen for 50 periods, drives off, latched event once");
-    in.params.model.g_mps2 = 9.81;
+    for (i = 0; i < 6; i++)
+        in.dac_v[i] = 0.0;
     in.reset = 1;
     run(1);
     CHECK(!out.fault && out.fault_code == 0 && (out.events & HG_EV_RESET_DONE), "reset edge clears the fault");
@@ -220,7 +223,8 @@ static void test_fault_frozen(void)
      * state must be the previous period's end, not a substep's */
     fresh();
     in.params.substeps = 8;
-    in.params.model.g_mps2 = 1e7;
+    for (i = 0; i < 6; i++)
+        in.dac_v[i] = i % 2 ? -10.0 : 10.0;
     for (i = 0; i < 2000 && !out.fault; i++) {
         before = out;
         run(1);

@@ -27,6 +27,7 @@ static double energy_error(hg_model_kind kind, double dt, double *e_kin)
     for (s = 0; s < n_kick; s++)
         if (hg_step(&m, &d, kick, dt))
             return INFINITY;
+    d.amp_enabled = 0;                /* drives off: no current, no back-EMF braking */
     hg_energy(&m, &d, &t, &v);
     e0 = t + v;
     *e_kin = t;

@@ -18,6 +18,7 @@ int main(void)
     hg_loop_summary sum;
     hg_params p;
     double cmd[6] = {0}, w, hold, fpv, dac_step = 20.0 / 8191.0, *traj;
+    hg_board_params bp;
     int k, i, rc;
     long n = 3000;
 
@@ -35,14 +36,28 @@ int main(void)
         c.pid[k].ff2 = 0.00023;
         c.pid[k].maxoutput = 10.0;
     }
-    rc = hg_loop_init(L, &c, 0);
+    /* without sliding and static friction the integrator settles at the
+     * voltage that balances W/6; with them anywhere the breakaway allows */
+    bp.model = p;
+    bp.model.f_coulomb_n = bp.model.f_static_n = 0.0;
+    bp.substeps = 1;
+    bp.integrator = HG_INTEGRATOR_HEUN;
+    rc = hg_loop_init(L, &c, &bp);
     CHECK(rc == 0, "init at HOME: %d", rc);
     for (i = 0; i < 3000 && rc == 0; i++)
         rc = hg_loop_step(L, cmd, &s);
     CHECK(rc == 0, "3 s holding HOME");
     for (k = 0; k < 6; k++)
         CHECK(fabs(s.output_v[k] - hold) < 1.5 * dac_step,
-              "joint %d: integrator holds the weight: %.5f V vs W/6/(ka kt 2pi/lead) = %.5f V", k, s.output_v[k], hold);
+              "joint %d, no sliding or static friction: integrator holds the weight: %.5f V vs "
+              "W/6/(ka kt 2pi/lead) = %.5f V", k, s.output_v[k], hold);
+    rc = hg_loop_init(L, &c, 0);
+    for (i = 0; i < 3000 && rc == 0; i++)
+        rc = hg_loop_step(L, cmd, &s);
+    for (k = 0; k < 6; k++)
+        CHECK(rc == 0 && fabs(s.output_v[k] - hold) <= p.f_static_n / fpv + 1.5 * dac_step,
+              "joint %d, default friction: holds at %.5f V, within the breakaway band %.5f +- %.5f V "
+              "(f_static / (ka kt 2pi/lead))", k, s.output_v[k], hold, p.f_static_n / fpv);
     CHECK(fabs(s.ferror_mm[0]) <= 0.0011, "at rest the f-error is within a count: %.4f mm", s.ferror_mm[0]);
 
     /* f-error is the previous command minus the position read this period */
