@@ -1,0 +1,386 @@
+/* cli_ini.c - a LinuxCNC INI file read as LinuxCNC's IniFile reads it
+ * (src/libnml/inifile/inifile.cc, commit f1270d6ed7): "[SECTION]" lines,
+ * "KEY = VALUE" with white space trimmed, a trailing backslash joins the
+ * next line, nothing after the value is a comment (so "1000 # mm" is not a
+ * number). What LinuxCNC would resolve silently is refused here, naming the
+ * file and line: a key given twice (LinuxCNC takes the first), an
+ * #INCLUDE (the linuxcnc script expands those into FILE.expanded).
+ * Host only (malloc, stdio). Two consumers: [HEXAGLIDE] -> model
+ * parameters (ik, fk, sim, soak) and [JOINT_N] -> the servo loops (soak). */
+#include <errno.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "cli.h"
+
+#define INI_MAX_BYTES (16L << 20)   /* refuse INI files above 16 MiB */
+
+/* [HEXAGLIDE] key -> model parameter (spec name), the key's value in the
+ * parameter's HAL unit as hexaglide.hal copies it (setp ... [HEXAGLIDE]L),
+ * so SI = value / hal_scale. param 0: a key of the section that is not a
+ * model parameter. A new key is one line here. */
+static const struct {
+    const char *key, *param;
+} hexaglide_keys[] = {
+    {"L", "l"},
+    {"LB", "lb"},
+    {"E", "e"},
+    {"LP", "lp"},
+    {"H", "h"},
+    {"RECORD", 0},   /* tools/hg_record.tcl's record file (docs/replay.md) */
+};
+
+/* [JOINT_N] key -> servo-loop setting, as configs/hexaglide.hal wires it
+ * (pid.N.* pins, motenc.0.enc-NN-scale, dac-NN-gain, dac-NN-offset):
+ * in_pid 1: a double at offset in hg_pid_gains; 0: in hg_loop_config,
+ * a double[6] array at offset. The keys tools/hexaglide.py's Loop reads. */
+static const struct {
+    const char *key;
+    int in_pid;
+    size_t offset;
+} joint_keys[] = {
+    {"P", 1, offsetof(hg_pid_gains, pgain)},
+    {"I", 1, offsetof(hg_pid_gains, igain)},
+    {"D", 1, offsetof(hg_pid_gains, dgain)},
+    {"BIAS", 1, offsetof(hg_pid_gains, bias)},
+    {"FF0", 1, offsetof(hg_pid_gains, ff0)},
+    {"FF1", 1, offsetof(hg_pid_gains, ff1)},
+    {"FF2", 1, offsetof(hg_pid_gains, ff2)},
+    {"FF3", 1, offsetof(hg_pid_gains, ff3)},
+    {"DEADBAND", 1, offsetof(hg_pid_gains, deadband)},
+    {"MAX_OUTPUT", 1, offsetof(hg_pid_gains, maxoutput)},
+    {"MAX_ERROR_I", 1, offsetof(hg_pid_gains, maxerror_i)},
+    {"INPUT_SCALE", 0, offsetof(hg_loop_config, input_scale)},
+    {"OUTPUT_SCALE", 0, offsetof(hg_loop_config, output_scale)},
+    {"OUTPUT_OFFSET", 0, offsetof(hg_loop_config, output_offset)},
+};
+
+#define N_OF(a) (sizeof(a) / sizeof((a)[0]))
+
+/* Pointer to the first non-blank character of s. */
+static char *skip_blank(char *s)
+{
+    while (*s == ' ' || *s == '\t')
+        s++;
+    return s;
+}
+
+/* Cut trailing blanks (and a CR) off s in place. */
+static void trim_end(char *s)
+{
+    size_t n = strlen(s);
+    while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t' || s[n - 1] == '\r'))
+        s[--n] = '\0';
+}
+
+/* Whole file into a NUL-terminated malloc'd buffer; 0 or -1 with a message. */
+static int slurp(const char *cmd, const char *path, char **text)
+{
+    FILE *f = fopen(path, "rb");
+    long size;
+    size_t got;
+    if (!f) {
+        fprintf(stderr, "hexaglide %s: --ini %s: %s\n", cmd, path, strerror(errno));
+        return -1;
+    }
+    if (fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0 ||
+        size > INI_MAX_BYTES) {
+        fprintf(stderr, "hexaglide %s: --ini %s: not a regular file of at most 16 MiB; give a LinuxCNC INI "
+                "file\n", cmd, path);
+        fclose(f);
+        return -1;
+    }
+    *text = malloc((size_t)size + 1);
+    if (!*text) {
+        fprintf(stderr, "hexaglide %s: --ini %s: out of memory\n", cmd, path);
+        fclose(f);
+        return -1;
+    }
+    got = fread(*text, 1, (size_t)size, f);
+    fclose(f);
+    if (got != (size_t)size || memchr(*text, '\0', got)) {
+        fprintf(stderr, "hexaglide %s: --ini %s: cannot read it as text\n", cmd, path);
+        free(*text);
+        return -1;
+    }
+    (*text)[got] = '\0';
+    return 0;
+}
+
+/* Append an entry; 0 or -1 (out of memory, message printed). */
+static int add_entry(const char *cmd, cli_ini *ini, const char *section, int section_line, char *key,
+                     char *value, int line)
+{
+    if (ini->n % 64 == 0) {
+        cli_ini_entry *e = realloc(ini->e, (size_t)(ini->n + 64) * sizeof *e);
+        if (!e) {
+            fprintf(stderr, "hexaglide %s: --ini %s: out of memory\n", cmd, ini->path);
+            return -1;
+        }
+        ini->e = e;
+    }
+    ini->e[ini->n].section = section;
+    ini->e[ini->n].key = key;
+    ini->e[ini->n].value = value;
+    ini->e[ini->n].line = line;
+    ini->e[ini->n].section_line = section_line;
+    ini->n++;
+    return 0;
+}
+
+int cli_ini_read(const char *cmd, const char *path, cli_ini *ini)
+{
+    char *p, *section = 0;
+    int line = 0, section_line = 0;
+    memset(ini, 0, sizeof *ini);
+    ini->path = path;
+    if (slurp(cmd, path, &ini->text))
+        return -1;
+    p = ini->text;
+    while (*p) {
+        char *start = p, *s, *eq, *w, *r;
+        int first = ++line;
+        /* the logical line: physical lines joined where one ends in a backslash */
+        for (w = r = p;; ) {
+            if (*r == '\n' || *r == '\0') {
+                if (r > p && r[-1] == '\\' && *r == '\n') {   /* drop "\\\n", go on */
+                    w--;
+                    r++;
+                    line++;
+                    continue;
+                }
+                p = *r ? r + 1 : r;
+                *w = '\0';
+                break;
+            }
+            *w++ = *r++;
+        }
+        trim_end(start);
+        s = skip_blank(start);
+        if (*s == '\0')
+            continue;
+        if (strncmp(s, "#INCLUDE", 8) == 0) {
+            fprintf(stderr, "hexaglide %s: %s line %d: #INCLUDE is expanded by the linuxcnc script, not "
+                    "here: give the expanded file (linuxcnc writes it as %s.expanded)\n", cmd, path, first, path);
+            cli_ini_free(ini);
+            return -1;
+        }
+        if (*s == '#' || *s == ';')
+            continue;
+        if (*s == '[') {
+            char *close = strchr(s, ']');
+            if (!close) {
+                fprintf(stderr, "hexaglide %s: %s line %d: '%s' opens a section without closing ']'\n", cmd, path,
+                        first, s);
+                cli_ini_free(ini);
+                return -1;
+            }
+            *close = '\0';
+            section = s + 1;
+            section_line = first;
+            if (add_entry(cmd, ini, section, first, 0, 0, first)) {   /* the header itself */
+                cli_ini_free(ini);
+                return -1;
+            }
+            continue;
+        }
+        eq = strchr(s, '=');
+        if (eq) {
+            *eq = '\0';
+            trim_end(s);
+        }
+        if (add_entry(cmd, ini, section ? section : "", section_line, s, eq ? skip_blank(eq + 1) : 0, first)) {
+            cli_ini_free(ini);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+void cli_ini_free(cli_ini *ini)
+{
+    free(ini->e);
+    free(ini->text);
+    ini->e = 0;
+    ini->text = 0;
+    ini->n = 0;
+}
+
+/* Line of the first "[section]" header, or 0 if there is none. */
+static int section_first_line(const cli_ini *ini, const char *section)
+{
+    int i;
+    for (i = 0; i < ini->n; i++)
+        if (!ini->e[i].key && strcmp(ini->e[i].section, section) == 0)
+            return ini->e[i].line;
+    return 0;
+}
+
+int cli_ini_has_section(const cli_ini *ini, const char *section)
+{
+    return section_first_line(ini, section) > 0;
+}
+
+int cli_ini_get(const char *cmd, const cli_ini *ini, const char *section, const char *key,
+                const cli_ini_entry **out)
+{
+    int i, head = section_first_line(ini, section);
+    *out = 0;
+    for (i = 0; i < ini->n; i++) {
+        const cli_ini_entry *e = &ini->e[i];
+        if (!e->key || strcmp(e->section, section) != 0 || strcmp(e->key, key) != 0)
+            continue;
+        if (e->section_line != head) {
+            fprintf(stderr, "hexaglide %s: [%s]%s (line %d of %s) is in a second [%s] section (line %d); "
+                    "LinuxCNC reads only the first one (line %d): merge them\n", cmd, section, key, e->line,
+                    ini->path, section, e->section_line, head);
+            return -1;
+        }
+        if (*out) {
+            fprintf(stderr, "hexaglide %s: [%s]%s is given twice (lines %d and %d of %s); LinuxCNC would "
+                    "use the first: remove one\n", cmd, section, key, (*out)->line, e->line, ini->path);
+            return -1;
+        }
+        *out = e;
+    }
+    return *out ? 0 : 1;
+}
+
+int cli_ini_number(const char *cmd, const cli_ini *ini, const cli_ini_entry *e, double *v)
+{
+    char *end = 0;
+    errno = 0;
+    if (!e->value) {
+        fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s has no '= value'\n", cmd, ini->path, e->line,
+                e->section, e->key);
+        return -1;
+    }
+    *v = strtod(e->value, &end);
+    if (end == e->value || *end != '\0' || !isfinite(*v) || (errno == ERANGE && fabs(*v) > 1.0)) {
+        fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s = '%s' is not a finite number%s\n", cmd, ini->path,
+                e->line, e->section, e->key, e->value,
+                strpbrk(e->value, "#;") ? " (LinuxCNC takes everything after '=' as the value: put comments "
+                                          "on their own line)" : "");
+        return -1;
+    }
+    return 0;
+}
+
+/* Index of spec name in hg_params_table, or -1. */
+static int param_index(const char *name)
+{
+    int i, n;
+    const hg_param_info *t = hg_params_table(&n);
+    for (i = 0; i < n; i++)
+        if (strcmp(t[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+/* The known [HEXAGLIDE] keys as "L LB ..." into buf. */
+static void hexaglide_key_list(char *buf, size_t len)
+{
+    size_t i, used = 0;
+    buf[0] = '\0';
+    for (i = 0; i < N_OF(hexaglide_keys); i++)
+        if (!hexaglide_keys[i].param || param_index(hexaglide_keys[i].param) >= 0)
+            used += (size_t)snprintf(buf + used, used < len ? len - used : 0, "%s%s", i ? " " : "",
+                                     hexaglide_keys[i].key);
+}
+
+const char *cli_ini_key_of(const char *param)
+{
+    size_t i;
+    for (i = 0; i < N_OF(hexaglide_keys); i++)
+        if (hexaglide_keys[i].param && strcmp(hexaglide_keys[i].param, param) == 0)
+            return hexaglide_keys[i].key;
+    return 0;
+}
+
+int cli_ini_apply_hexaglide(const char *cmd, const cli_ini *ini, hg_params *p)
+{
+    const hg_param_info *t = hg_params_table(0);
+    char keys[256];
+    int i, bad = 0;
+    size_t k;
+    hexaglide_key_list(keys, sizeof keys);
+    for (i = 0; i < ini->n; i++) {     /* every key of the section is one of ours */
+        const cli_ini_entry *e = &ini->e[i];
+        if (!e->key || strcmp(e->section, "HEXAGLIDE") != 0)
+            continue;
+        for (k = 0; k < N_OF(hexaglide_keys); k++)
+            if (strcmp(hexaglide_keys[k].key, e->key) == 0 &&
+                (!hexaglide_keys[k].param || param_index(hexaglide_keys[k].param) >= 0))
+                break;
+        if (k == N_OF(hexaglide_keys)) {
+            fprintf(stderr, "hexaglide %s: %s line %d: [HEXAGLIDE]%s is not a key of this section; it takes %s\n",
+                    cmd, ini->path, e->line, e->key, keys);
+            bad = 1;
+        }
+    }
+    for (k = 0; k < N_OF(hexaglide_keys); k++) {
+        const cli_ini_entry *e;
+        int pi = hexaglide_keys[k].param ? param_index(hexaglide_keys[k].param) : -1;
+        double v;
+        int rc = cli_ini_get(cmd, ini, "HEXAGLIDE", hexaglide_keys[k].key, &e);
+        if (rc) {
+            bad |= rc < 0;
+            continue;
+        }
+        if (pi < 0)
+            continue;                  /* not a model parameter */
+        if (cli_ini_number(cmd, ini, e, &v)) {
+            bad = 1;
+            continue;
+        }
+        *hg_params_at(p, pi) = v / t[pi].hal_scale;
+    }
+    return bad ? -1 : 0;
+}
+
+int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, hg_loop_config *c)
+{
+    int j, bad = 0;
+    size_t k;
+    for (j = 0; j < HG_LOOP_JOINTS; j++) {
+        char sec[16];
+        snprintf(sec, sizeof sec, "JOINT_%d", j);
+        if (!cli_ini_has_section(ini, sec)) {
+            fprintf(stderr, "hexaglide %s: %s has no [%s] section (the servo loop's gains and scales)\n", cmd,
+                    ini->path, sec);
+            bad = 1;
+            continue;
+        }
+        for (k = 0; k < N_OF(joint_keys); k++) {
+            const cli_ini_entry *e;
+            double v, *field;
+            int rc = cli_ini_get(cmd, ini, sec, joint_keys[k].key, &e);
+            if (rc) {
+                bad |= rc < 0;         /* absent: pid.c's load-time value stays */
+                continue;
+            }
+            if (cli_ini_number(cmd, ini, e, &v)) {
+                bad = 1;
+                continue;
+            }
+            field = joint_keys[k].in_pid ? (double *)((char *)&c->pid[j] + joint_keys[k].offset)
+                                         : (double *)((char *)c + joint_keys[k].offset) + j;
+            *field = v;
+        }
+    }
+    return bad ? -1 : 0;
+}
+
+int cli_ini_joint_number(const char *cmd, const cli_ini *ini, int joint, const char *key, double *v)
+{
+    char sec[16];
+    const cli_ini_entry *e;
+    int rc;
+    snprintf(sec, sizeof sec, "JOINT_%d", joint);
+    rc = cli_ini_get(cmd, ini, sec, key, &e);
+    if (rc > 0)
+        fprintf(stderr, "hexaglide %s: %s: [%s]%s is missing\n", cmd, ini->path, sec, key);
+    return rc ? -1 : cli_ini_number(cmd, ini, e, v);
+}
