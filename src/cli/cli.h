@@ -145,8 +145,9 @@ int cli_ini_joint_number(const char *cmd, const cli_ini *ini, int joint, const c
 /* ---- the source tree and Python (cli_tree.c) ---- */
 
 /* rel (e.g. "configs/hexaglide.ini") in the source tree this executable
- * was built in (its directory's parent: build/hexaglide -> .); 0, or -1 if
- * the path is unknown or too long for out. Does not check it exists. */
+ * was built in: the parent of its directory (build/hexaglide) or the one
+ * above (build/asan/hexaglide), whichever holds rel. 0, or -1 if neither
+ * does (out then names the first place looked) or out is too short. */
 int cli_tree_path(const char *rel, char *out, size_t len);
 
 /* name in this executable's own directory (build/libhexaglide.so); 0 or -1. */

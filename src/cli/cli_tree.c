@@ -41,13 +41,25 @@ int cli_beside_path(const char *name, char *out, size_t len)
 
 int cli_tree_path(const char *rel, char *out, size_t len)
 {
-    char dir[PATH_MAX], *slash;
+    char dir[PATH_MAX], first[PATH_MAX + 256];
+    int up;
     if (exe_dir(dir))
         return -1;
-    slash = strrchr(dir, '/');          /* .../build -> the source tree */
-    if (slash)
+    for (up = 0; up < 2; up++) {       /* build/hexaglide, build/asan/hexaglide */
+        char *slash = strrchr(dir, '/');
+        if (!slash)
+            break;
         *slash = '\0';
-    return snprintf(out, len, "%s/%s", slash ? dir : ".", rel) < (int)len ? 0 : -1;
+        if (snprintf(out, len, "%s/%s", dir, rel) >= (int)len)
+            return -1;
+        if (up == 0)
+            snprintf(first, sizeof first, "%s", out);
+        if (access(out, F_OK) == 0)
+            return 0;
+    }
+    if (up > 0)                        /* not found: out names the first place looked */
+        snprintf(out, len, "%s", first);
+    return -1;
 }
 
 /* Run `python -c "import a, b"` for the modules; 0 if it imports them, else
