@@ -64,6 +64,10 @@ void cli_args_init(cli_args *a, const char *cmd, const char *usage, const cli_op
  * like) and -h; "-5" is a positional value; after "--" everything is. */
 int cli_next(cli_args *a, const char **value);
 
+/* text as a finite double: 0, 1 (not a number: empty, trailing text) or
+ * 2 (not finite: nan, inf, overflow); *out set only on 0. No message. */
+int cli_strtod(const char *text, double *out);
+
 /* Parse a finite double; 0 on success, -1 (and a message naming what) otherwise. */
 int cli_parse_double(const char *text, const char *what, double *out);
 
@@ -83,6 +87,10 @@ int cli_parse_set(const char *cmd, const char *text, hg_params *p);
  * at pose 0 (hg_params_keep_home against the defaults). Not checked (the
  * board or cli_params_check do). 0, or 2 after a message. */
 int cli_params_build(const char *cmd, const char *ini, char *const *sets, int nset, hg_params *p);
+
+/* The board's parameter block as HAL loads it (spec defaults, substeps,
+ * integrator); 0, or -1 (out of memory). */
+int cli_board_defaults(hg_board_params *bp);
 
 /* 0 if p is a valid machine, else 1 after one message per invalid field. */
 int cli_params_check(const char *cmd, const hg_params *p);
@@ -159,6 +167,11 @@ int cli_beside_path(const char *name, char *out, size_t len);
  * message naming what was tried, why each failed, and `why` (what the
  * modules are needed for). */
 int cli_find_python(const char *cmd, const char *modules, const char *why, char *out, size_t len);
+
+/* The whole regular file path (at most max bytes) into a NUL-terminated
+ * malloc'd *buf (free() it), its length in *len; 0, or -1 after a message
+ * naming the file and, for the wrong kind of file, `what` to give. */
+int cli_read_file(const char *cmd, const char *path, const char *what, long long max, char **buf, size_t *len);
 
 /* An output file written through a temporary file and a rename (stdout
  * when the path is 0). */

@@ -30,6 +30,22 @@ int cli_params_build(const char *cmd, const char *ini, char *const *sets, int ns
     return 0;
 }
 
+int cli_board_defaults(hg_board_params *bp)
+{
+    hg_board *b = malloc(sizeof *b);
+    hg_board_inputs in;
+    int rc;
+    if (!b)
+        return -1;
+    rc = hg_board_init(b, HG_MODEL_REDUCED_CARTESIAN, 0);
+    if (rc == 0) {
+        hg_board_inputs_default(b, &in);   /* the block in force: HAL's load-time values */
+        *bp = in.params;
+    }
+    free(b);
+    return rc ? -1 : 0;
+}
+
 /* One line per set bit of mask: bit i < table length is parameter i, then
  * the board's substeps / integrator bits. */
 static void report_refused(const char *cmd, unsigned long long mask, const char *const *why)

@@ -7,8 +7,6 @@
  * #INCLUDE (the linuxcnc script expands those into FILE.expanded).
  * Host only (malloc, stdio). Two consumers: [HEXAGLIDE] -> model
  * parameters (ik, fk, sim, soak) and [JOINT_N] -> the servo loops (soak). */
-#include <errno.h>
-#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -75,37 +73,17 @@ static void trim_end(char *s)
         s[--n] = '\0';
 }
 
-/* Whole file into a NUL-terminated malloc'd buffer; 0 or -1 with a message. */
+/* The file as text into *text (malloc'd); 0 or -1 with a message. */
 static int slurp(const char *cmd, const char *path, char **text)
 {
-    FILE *f = fopen(path, "rb");
-    long size;
-    size_t got;
-    if (!f) {
-        fprintf(stderr, "hexaglide %s: --ini %s: %s\n", cmd, path, strerror(errno));
+    size_t len;
+    if (cli_read_file(cmd, path, "a LinuxCNC INI file", INI_MAX_BYTES, text, &len))
         return -1;
-    }
-    if (fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0 ||
-        size > INI_MAX_BYTES) {
-        fprintf(stderr, "hexaglide %s: --ini %s: not a regular file of at most 16 MiB; give a LinuxCNC INI "
-                "file\n", cmd, path);
-        fclose(f);
-        return -1;
-    }
-    *text = malloc((size_t)size + 1);
-    if (!*text) {
-        fprintf(stderr, "hexaglide %s: --ini %s: out of memory\n", cmd, path);
-        fclose(f);
-        return -1;
-    }
-    got = fread(*text, 1, (size_t)size, f);
-    fclose(f);
-    if (got != (size_t)size || memchr(*text, '\0', got)) {
-        fprintf(stderr, "hexaglide %s: --ini %s: cannot read it as text\n", cmd, path);
+    if (memchr(*text, '\0', len)) {
+        fprintf(stderr, "hexaglide %s: %s: holds NUL bytes: not an INI file\n", cmd, path);
         free(*text);
         return -1;
     }
-    (*text)[got] = '\0';
     return 0;
 }
 
@@ -250,15 +228,12 @@ int cli_ini_get(const char *cmd, const cli_ini *ini, const char *section, const 
 
 int cli_ini_number(const char *cmd, const cli_ini *ini, const cli_ini_entry *e, double *v)
 {
-    char *end = 0;
-    errno = 0;
     if (!e->value) {
         fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s has no '= value'\n", cmd, ini->path, e->line,
                 e->section, e->key);
         return -1;
     }
-    *v = strtod(e->value, &end);
-    if (end == e->value || *end != '\0' || !isfinite(*v) || (errno == ERANGE && fabs(*v) > 1.0)) {
+    if (cli_strtod(e->value, v)) {
         fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s = '%s' is not a finite number%s\n", cmd, ini->path,
                 e->line, e->section, e->key, e->value,
                 strpbrk(e->value, "#;") ? " (LinuxCNC takes everything after '=' as the value: put comments "
@@ -268,15 +243,12 @@ int cli_ini_number(const char *cmd, const cli_ini *ini, const cli_ini_entry *e, 
     return 0;
 }
 
-/* Index of spec name in hg_params_table, or -1. */
-static int param_index(const char *name)
+/* 1 if table entry k of hexaglide_keys is in use: not a parameter, or a
+ * parameter the model has (a key whose parameter is gone is unknown). */
+static int key_in_use(size_t k)
 {
-    int i, n;
-    const hg_param_info *t = hg_params_table(&n);
-    for (i = 0; i < n; i++)
-        if (strcmp(t[i].name, name) == 0)
-            return i;
-    return -1;
+    static hg_params scratch;          /* only for the by-name lookup */
+    return !hexaglide_keys[k].param || hg_params_field(&scratch, hexaglide_keys[k].param) != 0;
 }
 
 /* The known [HEXAGLIDE] keys as "L LB ..." into buf. */
@@ -285,7 +257,7 @@ static void hexaglide_key_list(char *buf, size_t len)
     size_t i, used = 0;
     buf[0] = '\0';
     for (i = 0; i < N_OF(hexaglide_keys); i++)
-        if (!hexaglide_keys[i].param || param_index(hexaglide_keys[i].param) >= 0)
+        if (key_in_use(i))
             used += (size_t)snprintf(buf + used, used < len ? len - used : 0, "%s%s", i ? " " : "",
                                      hexaglide_keys[i].key);
 }
@@ -301,9 +273,9 @@ const char *cli_ini_key_of(const char *param)
 
 int cli_ini_apply_hexaglide(const char *cmd, const cli_ini *ini, hg_params *p)
 {
-    const hg_param_info *t = hg_params_table(0);
+    int i, n, bad = 0;
+    const hg_param_info *t = hg_params_table(&n);
     char keys[256];
-    int i, bad = 0;
     size_t k;
     hexaglide_key_list(keys, sizeof keys);
     for (i = 0; i < ini->n; i++) {     /* every key of the section is one of ours */
@@ -311,8 +283,7 @@ int cli_ini_apply_hexaglide(const char *cmd, const cli_ini *ini, hg_params *p)
         if (!e->key || strcmp(e->section, "HEXAGLIDE") != 0)
             continue;
         for (k = 0; k < N_OF(hexaglide_keys); k++)
-            if (strcmp(hexaglide_keys[k].key, e->key) == 0 &&
-                (!hexaglide_keys[k].param || param_index(hexaglide_keys[k].param) >= 0))
+            if (strcmp(hexaglide_keys[k].key, e->key) == 0 && key_in_use(k))
                 break;
         if (k == N_OF(hexaglide_keys)) {
             fprintf(stderr, "hexaglide %s: %s line %d: [HEXAGLIDE]%s is not a key of this section; it takes %s\n",
@@ -320,22 +291,24 @@ int cli_ini_apply_hexaglide(const char *cmd, const cli_ini *ini, hg_params *p)
             bad = 1;
         }
     }
-    for (k = 0; k < N_OF(hexaglide_keys); k++) {
+    for (k = 0; k < N_OF(hexaglide_keys); k++) {   /* keys that are no parameter: given once */
         const cli_ini_entry *e;
-        int pi = hexaglide_keys[k].param ? param_index(hexaglide_keys[k].param) : -1;
+        if (!hexaglide_keys[k].param)
+            bad |= cli_ini_get(cmd, ini, "HEXAGLIDE", hexaglide_keys[k].key, &e) < 0;
+    }
+    for (i = 0; i < n; i++) {          /* the parameters that have a key, in their HAL unit */
+        const char *key = cli_ini_key_of(t[i].name);
+        const cli_ini_entry *e;
         double v;
-        int rc = cli_ini_get(cmd, ini, "HEXAGLIDE", hexaglide_keys[k].key, &e);
-        if (rc) {
-            bad |= rc < 0;
-            continue;
-        }
-        if (pi < 0)
-            continue;                  /* not a model parameter */
+        int rc = key ? cli_ini_get(cmd, ini, "HEXAGLIDE", key, &e) : 1;
+        bad |= rc < 0;
+        if (rc)
+            continue;                  /* absent, or named as repeated */
         if (cli_ini_number(cmd, ini, e, &v)) {
             bad = 1;
             continue;
         }
-        *hg_params_at(p, pi) = v / t[pi].hal_scale;
+        *hg_params_at(p, i) = v / t[i].hal_scale;
     }
     return bad ? -1 : 0;
 }
@@ -355,7 +328,8 @@ int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, hg_loop_config *c)
         }
         for (k = 0; k < N_OF(joint_keys); k++) {
             const cli_ini_entry *e;
-            double v, *field;
+            double v;
+            char *field;
             int rc = cli_ini_get(cmd, ini, sec, joint_keys[k].key, &e);
             if (rc) {
                 bad |= rc < 0;         /* absent: pid.c's load-time value stays */
@@ -365,9 +339,9 @@ int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, hg_loop_config *c)
                 bad = 1;
                 continue;
             }
-            field = joint_keys[k].in_pid ? (double *)((char *)&c->pid[j] + joint_keys[k].offset)
-                                         : (double *)((char *)c + joint_keys[k].offset) + j;
-            *field = v;
+            field = joint_keys[k].in_pid ? (char *)&c->pid[j] + joint_keys[k].offset
+                                         : (char *)c + joint_keys[k].offset + (size_t)j * sizeof v;
+            memcpy(field, &v, sizeof v);   /* a double field at that offset (offsetof above) */
         }
     }
     return bad ? -1 : 0;

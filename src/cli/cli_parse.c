@@ -75,22 +75,26 @@ int cli_next(cli_args *a, const char **value)
     return CLI_BAD;
 }
 
-int cli_parse_double(const char *text, const char *what, double *out)
+int cli_strtod(const char *text, double *out)
 {
     char *end = 0;
     double v;
     errno = 0;
     v = strtod(text, &end);
-    if (end == text || *end != '\0') {
-        fprintf(stderr, "hexaglide: %s: '%s' is not a number\n", what, text);
-        return -1;
-    }
-    if (!isfinite(v) || (errno == ERANGE && fabs(v) > 1.0)) { /* overflow; underflow to a denormal or 0 is a number */
-        fprintf(stderr, "hexaglide: %s: '%s' is not a finite number\n", what, text);
-        return -1;
-    }
+    if (end == text || *end != '\0')
+        return 1;
+    if (!isfinite(v) || (errno == ERANGE && fabs(v) > 1.0)) /* overflow; underflow to a denormal or 0 is a number */
+        return 2;
     *out = v;
     return 0;
+}
+
+int cli_parse_double(const char *text, const char *what, double *out)
+{
+    int rc = cli_strtod(text, out);
+    if (rc)
+        fprintf(stderr, "hexaglide: %s: '%s' is not a %snumber\n", what, text, rc == 2 ? "finite " : "");
+    return rc ? -1 : 0;
 }
 
 int cli_parse_list(const char *cmd, const char *opt, const char *text, const char *const names[], int n,

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include "cli.h"
@@ -230,5 +231,45 @@ int cli_out_close(const char *cmd, cli_out *o, int keep)
         unlink(o->tmp);
         return -1;
     }
+    return 0;
+}
+
+int cli_read_file(const char *cmd, const char *path, const char *what, long long max, char **buf, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    struct stat sb;
+    long long size;
+    size_t got;
+    if (!f) {
+        fprintf(stderr, "hexaglide %s: %s: %s\n", cmd, path, strerror(errno));
+        return -1;
+    }
+    if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode) || fseek(f, 0, SEEK_END) != 0 ||
+        (size = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        fprintf(stderr, "hexaglide %s: %s: not a regular file (cannot seek); give %s\n", cmd, path, what);
+        fclose(f);
+        return -1;
+    }
+    if (size > max) {
+        fprintf(stderr, "hexaglide %s: %s: %lld bytes, more than the %lld this reads; give %s\n", cmd, path, size,
+                max, what);
+        fclose(f);
+        return -1;
+    }
+    *buf = malloc((size_t)size + 1);
+    if (!*buf) {
+        fprintf(stderr, "hexaglide %s: %s: out of memory for %lld bytes\n", cmd, path, size);
+        fclose(f);
+        return -1;
+    }
+    got = fread(*buf, 1, (size_t)size, f);
+    fclose(f);
+    if (got != (size_t)size) {
+        fprintf(stderr, "hexaglide %s: %s: read %zu of %lld bytes\n", cmd, path, got, size);
+        free(*buf);
+        return -1;
+    }
+    (*buf)[got] = '\0';
+    *len = got;
     return 0;
 }

@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include "cli.h"
@@ -51,45 +50,6 @@ const char cli_usage_replay[] =
     "otherwise); --set takes the spec name and SI unit (hexaglide sim --list-params).\n"
     "--plot runs tools/plot_replay.py under the first python3 that imports numpy and\n"
     "matplotlib ($HEXAGLIDE_PYTHON, else $PATH).\n";
-
-/* Whole file into a malloc'd buffer; 0 or -1 with a message. */
-static int read_file(const char *path, char **buf, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    struct stat sb;
-    long long size;
-    size_t got;
-    if (!f) {
-        fprintf(stderr, "hexaglide replay: %s: %s\n", path, strerror(errno));
-        return -1;
-    }
-    if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode) || fseek(f, 0, SEEK_END) != 0 ||
-        (size = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
-        fprintf(stderr, "hexaglide replay: %s: not a regular file (cannot seek); give a record file\n", path);
-        fclose(f);
-        return -1;
-    }
-    if (size > REPLAY_MAX_BYTES) {
-        fprintf(stderr, "hexaglide replay: %s: %lld bytes, more than 4 GiB: split the recording\n", path, size);
-        fclose(f);
-        return -1;
-    }
-    *buf = malloc((size_t)size + 1);
-    if (!*buf) {
-        fprintf(stderr, "hexaglide replay: %s: out of memory for %lld bytes\n", path, size);
-        fclose(f);
-        return -1;
-    }
-    got = fread(*buf, 1, (size_t)size, f);
-    fclose(f);
-    if (got != (size_t)size) {
-        fprintf(stderr, "hexaglide replay: %s: read %zu of %lld bytes\n", path, got, size);
-        free(*buf);
-        return -1;
-    }
-    *len = got;
-    return 0;
-}
 
 /* The record pin set: one line per column, name, HAL type, direction. */
 static void list_columns(void)
@@ -313,7 +273,7 @@ int cmd_replay(int argc, char **argv)
     whatif = o.nset > 0 || o.model || o.substeps > 0 || o.integrator >= 0;
     if (parse_sets(&o, set_off, set_val)) /* checked before reading the file */
         return 2;
-    if (read_file(o.file, &buf, &len))
+    if (cli_read_file("replay", o.file, "a record file (tools/hg_record.py); split larger recordings", REPLAY_MAX_BYTES, &buf, &len))
         return 1;
     nf = hg_board_rec_fields(fld, HG_BOARD_REC_MAX);
     if (nf < 0) {

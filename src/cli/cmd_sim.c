@@ -20,7 +20,8 @@ const char cli_usage_sim[] =
     "  the virtual board with constant DAC volts, amplifiers on, one CSV row per servo period:\n"
     "  t_s, z0_mm..z5_mm (joints), zd0_mm_s..zd5_mm_s (joint velocities), x_mm y_mm z_mm,\n"
     "  a_deg b_deg c_deg (head pose)\n"
-    "defaults: reduced-cartesian, 1 s, dt 0.001 s, 0 V, 1 substep, improved-euler, CSV to stdout.\n"
+    "defaults: reduced-cartesian, 1 s, dt 0.001 s, 0 V, CSV to stdout; --substeps and --integrator\n"
+    "as the board loads them (motenc-hexaglide.N.substeps, .integrator).\n"
     "--dt is the board's servo period (whole ns); --volts go through the board's 13-bit DAC;\n"
     "--list-params prints every parameter: spec name, SI unit, default, HAL name and INI key\n"
     CLI_USAGE_MODEL;
@@ -89,8 +90,10 @@ int cmd_sim(int argc, char **argv)
     char *sets[argc > 0 ? argc : 1];
     int kind = HG_MODEL_REDUCED_CARTESIAN, k, o, nset = 0, rc = 0;
     long n, s, period_ns;
-    bp.substeps = 1;
-    bp.integrator = HG_INTEGRATOR_IMPROVED_EULER;
+    if (cli_board_defaults(&bp)) {
+        fprintf(stderr, "hexaglide sim: out of memory\n");
+        return 1;
+    }
     cli_args_init(&a, "sim", cli_usage_sim, sim_opts, argc, argv);
     while ((o = cli_next(&a, &v)) != CLI_DONE) {
         switch (o) {

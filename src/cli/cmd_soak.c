@@ -241,17 +241,16 @@ int cmd_soak(int argc, char **argv)
         return 1;
     }
     /* the board's load-time block (substeps, integrator), the model's parameters from the config */
-    rc = hg_loop_init(L, &cfg, 0);
-    bp = L->in.params;
+    if (cli_board_defaults(&bp) || cli_params_build("soak", ini, sets, nset, &bp.model) ||
+        cli_params_check("soak", &bp.model)) {
+        free(L);
+        return 2;
+    }
     if (integrator >= 0)
         bp.integrator = (unsigned)integrator;
-    if (rc == 0 && (cli_params_build("soak", ini, sets, nset, &bp.model) || cli_params_check("soak", &bp.model)))
-        rc = HG_ERR_BAD_PARAM;
-    else if (rc == 0)
-        rc = hg_loop_init(L, &cfg, &bp);
+    rc = hg_loop_init(L, &cfg, &bp);
     if (rc) {
-        if (rc != HG_ERR_BAD_PARAM)
-            fprintf(stderr, "hexaglide soak: cannot build the loop: %s (code %d)\n", hg_strerror(rc), rc);
+        fprintf(stderr, "hexaglide soak: cannot build the loop: %s (code %d)\n", hg_strerror(rc), rc);
         free(L);
         return 2;
     }
