@@ -33,7 +33,9 @@ static const struct {
 /* [JOINT_N] key -> servo-loop setting, as configs/hexaglide.hal wires it
  * (pid.N.* pins, motenc.0.enc-NN-scale, dac-NN-gain, dac-NN-offset):
  * in_pid 1: a double at offset in hg_pid_gains; 0: in hg_loop_config,
- * a double[6] array at offset. The keys tools/hexaglide.py's Loop reads. */
+ * a double[6] array at offset. The keys tools/hexaglide.py's Loop reads
+ * (so soak and tune agree); FF3 is one of them although hexaglide.hal does
+ * not wire pid.N.FF3 (0 in every shipped config). */
 static const struct {
     const char *key;
     int in_pid;
@@ -256,10 +258,9 @@ static void hexaglide_key_list(char *buf, size_t len)
 {
     size_t i, used = 0;
     buf[0] = '\0';
-    for (i = 0; i < N_OF(hexaglide_keys); i++)
+    for (i = 0; i < N_OF(hexaglide_keys) && used < len; i++)
         if (key_in_use(i))
-            used += (size_t)snprintf(buf + used, used < len ? len - used : 0, "%s%s", i ? " " : "",
-                                     hexaglide_keys[i].key);
+            used += (size_t)snprintf(buf + used, len - used, "%s%s", used ? " " : "", hexaglide_keys[i].key);
 }
 
 const char *cli_ini_key_of(const char *param)
