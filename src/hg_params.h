@@ -81,6 +81,8 @@ typedef struct {
                               angles, else the SI unit */
     double hal_scale;      /* HAL value = SI value * hal_scale (1000 for lengths, 180/pi for
                               angles, else 1) */
+    const char *ini_key;   /* key of the INI file's [HEXAGLIDE] section (value in the HAL
+                              unit, as hexaglide.hal copies it), or 0: set it by setp */
 } hg_param_info;
 
 /* Upper bound of the table's length (bit masks over the table fit in 64 bits). */

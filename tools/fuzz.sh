@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.." || exit 1
 if [ "$1" = --run ]; then MODE=run; NAME=$2; else MODE=all; RUNS=${1:-1000000}; MAXT=${2:-900}; fi
 OUT=build/fuzz
 mkdir -p "$OUT"
-CORE="$(ls src/hg_*.c src/generated/*.c) src/cli/cmd_kins.c src/cli/cmd_sim.c src/cli/cli_parse.c src/cli/cli_board.c"
+CORE="$(ls src/hg_*.c src/generated/*.c) src/cli/cmd_kins.c src/cli/cmd_sim.c src/cli/cli_parse.c src/cli/cli_board.c src/cli/cli_ini.c src/cli/cli_tree.c"
 INC="-Isrc -Isrc/generated -Isrc/cli -Itests/fuzz"
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=all"
 if [ -n "$ENGINE" ]; then :   # set by the parent run

@@ -196,7 +196,7 @@ class Params:
         if _params_set(self.buf, name.encode(), float(value)):
             raise KeyError("unknown parameter or bad value: %s=%r" % (name, value))
 
-    def board_params(self, substeps=1, integrator=0):
+    def board_params(self, substeps=1, integrator=1):
         """hg_board_params: these model parameters + the board's substeps and integrator."""
         buf = C.create_string_buffer(_sizeof(7))
         C.memmove(buf, self.buf, _params_copy_sz)
@@ -294,7 +294,7 @@ class Board:
         out.z_m[:], out.position[:6], out.count[:6], out.amps_on
     b.inputs is the full hg_board_inputs record (fault injection, index-enable, ...)."""
 
-    def __init__(self, kind="reduced-cartesian", params=None, substeps=1, integrator=0, period_ns=1000000,
+    def __init__(self, kind="reduced-cartesian", params=None, substeps=1, integrator=1, period_ns=1000000,
                  estop_closed=True):
         k = _model_from_name(kind.encode())
         if k < 0:

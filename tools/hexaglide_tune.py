@@ -19,7 +19,14 @@ import sys
 import tempfile
 import time
 
-import numpy as np
+try:
+    import numpy as np
+    import scipy  # noqa: F401  (differential_evolution, imported where used)
+    import matplotlib  # noqa: F401  (the plots)
+except ImportError as _ex:  # a message, not a traceback: which interpreter is needed and why
+    sys.exit("hexaglide tune: %s (this is %s): the tuner needs numpy, scipy and matplotlib; run it as "
+             "build/hexaglide tune, which picks a python3 that has them ($HEXAGLIDE_PYTHON, else $PATH), "
+             "or install python3-numpy python3-scipy python3-matplotlib (Debian 12)" % (_ex, sys.executable))
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402

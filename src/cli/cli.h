@@ -1,19 +1,99 @@
 /* cli.h - subcommands of the host tool build/hexaglide. Each returns the
- * process exit code: 0 on success, 1 on a refused or failed computation,
- * 2 on a usage error. Messages go to stderr, results to stdout. */
+ * process exit code: 0 on success (and for --help / -h, usage on stdout),
+ * 1 on a refused or failed computation, 2 on a usage error. Messages go
+ * to stderr, results to stdout. Every option takes "--opt value" and
+ * "--opt=value" (cli_next). */
 #ifndef HG_CLI_H
 #define HG_CLI_H
 
+#include <stddef.h>
+#include <stdio.h>
+#include "hg_board.h"
+#include "hg_loop.h"
 #include "hg_params.h"
 
 int cmd_ik(int argc, char **argv);   /* ik X Y Z A B C */
-int cmd_fk(int argc, char **argv);   /* fk J0..J5 [--guess X Y Z A B C] */
+int cmd_fk(int argc, char **argv);   /* fk J0..J5 [--guess X,Y,Z,A,B,C] */
 int cmd_sim(int argc, char **argv);  /* sim --model ... (offline simulator) */
 int cmd_soak(int argc, char **argv); /* soak [--hours H] (long closed-loop run) */
-int cmd_replay(int argc, char **argv, const char *self); /* replay FILE ... (self: argv[0]) */
+int cmd_replay(int argc, char **argv); /* replay FILE ... */
 int cmd_tune(int argc, char **argv); /* tune [--trajectory FILE] (runs tools/hexaglide_tune.py) */
 
-#include "hg_board.h"
+/* Each subcommand's usage text (what --help prints). */
+extern const char cli_usage_ik[], cli_usage_fk[], cli_usage_sim[], cli_usage_soak[], cli_usage_replay[],
+    cli_usage_tune[];
+
+/* The usage lines of --ini and --set, shared by ik, fk, sim and soak. */
+#define CLI_USAGE_MODEL                                                                            \
+    "  --ini FILE          geometry from the config's [HEXAGLIDE] section (keys L LB E LP H in mm,\n" \
+    "                      as configs/hexaglide.ini)\n"                                            \
+    "  --set name=value    a model parameter by spec name in SI units (hexaglide sim --list-params);\n" \
+    "                      repeatable. Order: defaults, then --ini, then --set; HOME stays at pose 0\n" \
+    "                      when l, lb or lp change (h follows)\n"
+
+/* ---- options (cli_parse.c) ---- */
+
+/* One option of a subcommand: "--name", and whether it takes a value. */
+typedef struct {
+    const char *name;
+    int has_value;
+} cli_opt;
+
+/* The scanner over a subcommand's arguments. */
+typedef struct {
+    const char *cmd;       /* "sim": for messages */
+    const char *usage;     /* printed on stdout for --help / -h */
+    const cli_opt *opts;   /* ends with {0, 0} */
+    int argc;
+    char **argv;
+    int i;                 /* next argument */
+    int only_positional;   /* after "--" */
+} cli_args;
+
+#define CLI_DONE (-1)      /* no arguments left */
+#define CLI_ARG (-2)       /* a positional argument, in *value */
+#define CLI_HELP (-3)      /* usage printed on stdout: exit 0 */
+#define CLI_BAD (-4)       /* message printed on stderr: exit 2 */
+
+void cli_args_init(cli_args *a, const char *cmd, const char *usage, const cli_opt *opts, int argc,
+                   char **argv);
+
+/* Next argument: the index of the option in opts (its value in *value, 0
+ * for a flag), or CLI_DONE, CLI_ARG, CLI_HELP, CLI_BAD. Options are
+ * "--name" (value from "--name=v" or the next argument, whatever it looks
+ * like) and -h; "-5" is a positional value; after "--" everything is. */
+int cli_next(cli_args *a, const char **value);
+
+/* text as a finite double: 0, 1 (not a number: empty, trailing text) or
+ * 2 (not finite: nan, inf, overflow); *out set only on 0. No message. */
+int cli_strtod(const char *text, double *out);
+
+/* Parse a finite double; 0 on success, -1 (and a message naming what) otherwise. */
+int cli_parse_double(const char *text, const char *what, double *out);
+
+/* Parse exactly n comma-separated finite numbers ("1,-2,3") for option opt,
+ * element k named names[k] in messages; 0 or -1 with a message. */
+int cli_parse_list(const char *cmd, const char *opt, const char *text, const char *const names[], int n,
+                   double *out);
+
+/* Apply "name=value" (spec name, SI unit) to p; 0, or -1 with a message
+ * "hexaglide CMD: --set: ..." naming the problem. */
+int cli_parse_set(const char *cmd, const char *text, hg_params *p);
+
+/* ---- the machine (cli_board.c) ---- */
+
+/* The model parameters: the spec's defaults, then [HEXAGLIDE] of the INI
+ * file ini (0: none), then each of the nset "name=value" in sets (HOME is
+ * at pose 0 for any geometry: h follows l, lb, lp). Not checked (the
+ * board or cli_params_check do). 0, or 2 after a message. */
+int cli_params_build(const char *cmd, const char *ini, char *const *sets, int nset, hg_params *p);
+
+/* The board's parameter block as HAL loads it (spec defaults, substeps,
+ * integrator); 0, or -1 (out of memory). */
+int cli_board_defaults(hg_board_params *bp);
+
+/* 0 if p is a valid machine, else 1 after one message per invalid field. */
+int cli_params_check(const char *cmd, const hg_params *p);
 
 /* A board (malloc'd; free() it) with model kind and block p, or 0 after a
  * message on stderr naming every invalid field (spec names, SI units). */
@@ -22,11 +102,90 @@ hg_board *cli_board_new(const char *cmd, int kind, const hg_board_params *p);
 /* --dt seconds -> the board's period in whole ns; 0, or -1 with a message. */
 int cli_parse_period(const char *cmd, double dt, long *period_ns);
 
-/* Parse a finite double; 0 on success, -1 (and a message naming what) otherwise. */
-int cli_parse_double(const char *text, const char *what, double *out);
+/* ---- LinuxCNC INI files (cli_ini.c) ---- */
 
-/* Apply "name=value" (spec name, SI unit) to p; 0, or -1 with a message
- * "hexaglide CMD: --set: ..." naming the problem. */
-int cli_parse_set(const char *cmd, const char *text, hg_params *p);
+/* One "KEY = VALUE" line (key 0: the "[section]" header line itself). */
+typedef struct {
+    const char *section;   /* without brackets, "" before the first section */
+    const char *key;
+    const char *value;     /* 0 if the line has no '=' */
+    int line;              /* 1-based, first physical line */
+    int section_line;      /* line of the header this entry is under */
+} cli_ini_entry;
+
+typedef struct {
+    const char *path;
+    char *text;            /* the file, cut in place */
+    cli_ini_entry *e;
+    int n;
+} cli_ini;
+
+/* Read path; 0, or -1 after a message naming the file (and line). */
+int cli_ini_read(const char *cmd, const char *path, cli_ini *ini);
+void cli_ini_free(cli_ini *ini);
+
+/* 1 if the file has a [section] header. */
+int cli_ini_has_section(const cli_ini *ini, const char *section);
+
+/* [section]key: 0 and *out, 1 if absent, -1 (message) if given twice or in
+ * a repeated section (LinuxCNC would silently take the first). */
+int cli_ini_get(const char *cmd, const cli_ini *ini, const char *section, const char *key,
+                const cli_ini_entry **out);
+
+/* The entry's value as a finite number; 0, or -1 naming key, file, line. */
+int cli_ini_number(const char *cmd, const cli_ini *ini, const cli_ini_entry *e, double *v);
+
+/* [HEXAGLIDE] onto p (keys in their HAL unit, mm for lengths); every
+ * unknown key, repeated key and non-number is named. 0 or -1. */
+int cli_ini_apply_hexaglide(const char *cmd, const cli_ini *ini, hg_params *p);
+
+/* The [HEXAGLIDE] key of model parameter param (spec name), or 0. */
+const char *cli_ini_key_of(const char *param);
+
+/* [JOINT_0]..[JOINT_5] gains and scales onto c, as configs/hexaglide.hal
+ * wires them (absent keys keep c's values); each section must exist.
+ * 0, or -1 after naming every problem. */
+int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, hg_loop_config *c);
+
+/* [JOINT_joint]key as a number (required); 0 or -1 with a message. */
+int cli_ini_joint_number(const char *cmd, const cli_ini *ini, int joint, const char *key, double *v);
+
+/* ---- the source tree and Python (cli_tree.c) ---- */
+
+/* rel (e.g. "configs/hexaglide.ini") in the source tree this executable
+ * was built in: the parent of its directory (build/hexaglide) or the one
+ * above (build/asan/hexaglide), whichever holds rel. 0, or -1 if neither
+ * does (out then names the first place looked) or out is too short. */
+int cli_tree_path(const char *rel, char *out, size_t len);
+
+/* name in this executable's own directory (build/libhexaglide.so); 0 or -1. */
+int cli_beside_path(const char *name, char *out, size_t len);
+
+/* A Python 3 interpreter that imports every module of the space-separated
+ * list modules: $HEXAGLIDE_PYTHON if set (then only it), else each
+ * `python3` on $PATH in order. 0 and its path in out, or -1 after a
+ * message naming what was tried, why each failed, and `why` (what the
+ * modules are needed for). */
+int cli_find_python(const char *cmd, const char *modules, const char *why, char *out, size_t len);
+
+/* The whole regular file path (at most max bytes) into a NUL-terminated
+ * malloc'd *buf (free() it), its length in *len; 0, or -1 after a message
+ * naming the file and, for the wrong kind of file, `what` to give. */
+int cli_read_file(const char *cmd, const char *path, const char *what, long long max, char **buf, size_t *len);
+
+/* An output file written through a temporary file and a rename (stdout
+ * when the path is 0). */
+typedef struct {
+    FILE *f;
+    const char *path;      /* 0: stdout */
+    char tmp[4096];        /* path.tmp-PID while writing */
+} cli_out;
+
+/* Open path's temporary file (or stdout); 0, or -1 after a message. */
+int cli_out_open(const char *cmd, const char *path, cli_out *o);
+
+/* Close; keep: rename onto path, else remove. 0, or -1 after a message
+ * (the write or the rename failed; nothing left behind). */
+int cli_out_close(const char *cmd, cli_out *o, int keep);
 
 #endif

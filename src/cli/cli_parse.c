@@ -1,4 +1,5 @@
-/* cli_parse.c - number parsing shared by the subcommands. */
+/* cli_parse.c - argument parsing shared by the subcommands: the option
+ * scanner (--opt value, --opt=value, --help), numbers, lists, --set. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -6,21 +7,126 @@
 #include <string.h>
 #include "cli.h"
 
-int cli_parse_double(const char *text, const char *what, double *out)
+void cli_args_init(cli_args *a, const char *cmd, const char *usage, const cli_opt *opts, int argc,
+                   char **argv)
+{
+    a->cmd = cmd;
+    a->usage = usage;
+    a->opts = opts;
+    a->argc = argc;
+    a->argv = argv;
+    a->i = 0;
+    a->only_positional = 0;
+}
+
+int cli_next(cli_args *a, const char **value)
+{
+    const char *arg, *eq;
+    size_t len;
+    int k;
+    *value = 0;
+    if (a->i >= a->argc)
+        return CLI_DONE;
+    arg = a->argv[a->i++];
+    if (!a->only_positional && strcmp(arg, "--") == 0) {   /* the rest is positional */
+        a->only_positional = 1;
+        return cli_next(a, value);
+    }
+    /* "-5" and "-" are values, not options: only "--name" and -h are options */
+    if (a->only_positional || strncmp(arg, "--", 2) != 0) {
+        if (!a->only_positional && strcmp(arg, "-h") == 0) {
+            fputs(a->usage, stdout);
+            return CLI_HELP;
+        }
+        *value = arg;
+        return CLI_ARG;
+    }
+    eq = strchr(arg, '=');
+    len = eq ? (size_t)(eq - arg) : strlen(arg);
+    if (len == 6 && strncmp(arg, "--help", 6) == 0 && !eq) {
+        fputs(a->usage, stdout);
+        return CLI_HELP;
+    }
+    for (k = 0; a->opts && a->opts[k].name; k++) {
+        const cli_opt *o = &a->opts[k];
+        if (strlen(o->name) != len || strncmp(o->name, arg, len) != 0)
+            continue;
+        if (!o->has_value) {
+            if (eq) {
+                fprintf(stderr, "hexaglide %s: %s takes no value (got '%s')\n", a->cmd, o->name, arg);
+                return CLI_BAD;
+            }
+            return k;
+        }
+        if (eq) {
+            *value = eq + 1;
+            return k;
+        }
+        if (a->i >= a->argc) {
+            fprintf(stderr, "hexaglide %s: %s needs a value (%s VALUE or %s=VALUE)\n", a->cmd, o->name,
+                    o->name, o->name);
+            return CLI_BAD;
+        }
+        *value = a->argv[a->i++];
+        return k;
+    }
+    fprintf(stderr, "hexaglide %s: unknown option '%.*s' ('hexaglide %s --help' lists the options)\n",
+            a->cmd, (int)len, arg, a->cmd);
+    return CLI_BAD;
+}
+
+int cli_strtod(const char *text, double *out)
 {
     char *end = 0;
     double v;
     errno = 0;
     v = strtod(text, &end);
-    if (end == text || *end != '\0') {
-        fprintf(stderr, "hexaglide: %s: '%s' is not a number\n", what, text);
-        return -1;
-    }
-    if (!isfinite(v) || (errno == ERANGE && fabs(v) > 1.0)) { /* overflow; underflow to a denormal or 0 is a number */
-        fprintf(stderr, "hexaglide: %s: '%s' is not a finite number\n", what, text);
-        return -1;
-    }
+    if (end == text || *end != '\0')
+        return 1;
+    if (!isfinite(v) || (errno == ERANGE && fabs(v) > 1.0)) /* overflow; underflow to a denormal or 0 is a number */
+        return 2;
     *out = v;
+    return 0;
+}
+
+int cli_parse_double(const char *text, const char *what, double *out)
+{
+    int rc = cli_strtod(text, out);
+    if (rc)
+        fprintf(stderr, "hexaglide: %s: '%s' is not a %snumber\n", what, text, rc == 2 ? "finite " : "");
+    return rc ? -1 : 0;
+}
+
+int cli_parse_list(const char *cmd, const char *opt, const char *text, const char *const names[], int n,
+                   double *out)
+{
+    const char *p = text;
+    int k;
+    for (k = 0; k < n; k++) {
+        const char *comma = strchr(p, ',');
+        size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        char item[64], what[96];
+        if (!comma && k != n - 1) {
+            fprintf(stderr, "hexaglide %s: %s: need %d comma-separated values, got %d in '%s'\n", cmd, opt, n,
+                    k + 1, text);
+            return -1;
+        }
+        if (comma && k == n - 1) {
+            fprintf(stderr, "hexaglide %s: %s: need %d comma-separated values, got more in '%s'\n", cmd, opt, n,
+                    text);
+            return -1;
+        }
+        snprintf(what, sizeof what, "%s %s", opt, names[k]);
+        if (len >= sizeof item) {
+            fprintf(stderr, "hexaglide: %s: '%.*s...' is not a number\n", what, 20, p);
+            return -1;
+        }
+        memcpy(item, p, len);
+        item[len] = '\0';
+        if (cli_parse_double(item, what, &out[k]))
+            return -1;
+        p = comma ? comma + 1 : p + len;
+    }
     return 0;
 }
 

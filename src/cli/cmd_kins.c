@@ -1,4 +1,5 @@
-/* cmd_kins.c - the ik and fk subcommands (mm and degrees at the interface). */
+/* cmd_kins.c - the ik and fk subcommands (mm and degrees at the interface),
+ * on the geometry of the defaults, a config (--ini) and --set. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -10,33 +11,110 @@
 static const char *const pose_names[6] = {"X", "Y", "Z", "A", "B", "C"};
 static const char *const joint_names[6] = {"J0", "J1", "J2", "J3", "J4", "J5"};
 
-/* Parse six numbers into v; 0 on success, 2 (usage error) otherwise. */
-static int parse_six(char **argv, const char *const names[6], double v[6])
+const char cli_usage_ik[] =
+    "usage: hexaglide ik [--ini FILE] [--set name=value]... X Y Z A B C\n"
+    "  prints the joints J0..J5 (mm) of the pose X Y Z (mm) A B C (degrees), one line,\n"
+    "  full precision\n" CLI_USAGE_MODEL;
+
+const char cli_usage_fk[] =
+    "usage: hexaglide fk [--guess X,Y,Z,A,B,C] [--ini FILE] [--set name=value]... J0 J1 J2 J3 J4 J5\n"
+    "  prints the pose X Y Z (mm) A B C (degrees) of the joints J0..J5 (mm), one line\n"
+    "  --guess X,Y,Z,A,B,C  where Newton-Raphson starts (default HOME, 0,0,0,0,0,0); six\n"
+    "                       separate numbers (--guess X Y Z A B C) are taken too\n" CLI_USAGE_MODEL;
+
+enum { OPT_INI, OPT_SET, OPT_GUESS };
+static const cli_opt ik_opts[] = {{"--ini", 1}, {"--set", 1}, {0, 0}};
+static const cli_opt fk_opts[] = {{"--ini", 1}, {"--set", 1}, {"--guess", 1}, {0, 0}};
+
+/* What ik and fk share: the parsed command line. */
+typedef struct {
+    const char *ini;
+    char **sets;               /* points into argv: at most argc entries */
+    int nset, npos, guessed, nguess; /* nguess: numbers of a space-separated --guess read */
+    double pos[6];             /* the six positional numbers */
+    double guess[6];           /* user units */
+    hg_params p;
+} kins_cmd;
+
+/* Parse the arguments and build the geometry; 0, or the exit code (0 for
+ * --help after printing it: *done set). */
+static int kins_parse(const char *cmd, const char *usage, const cli_opt *opts, const char *const names[6],
+                      const char *what, int argc, char **argv, kins_cmd *c, char **sets, int *done)
 {
-    int i;
-    for (i = 0; i < 6; i++)
-        if (cli_parse_double(argv[i], names[i], &v[i]))
+    cli_args a;
+    const char *v;
+    int o;
+    *done = 0;
+    memset(c, 0, sizeof *c);
+    c->sets = sets;
+    cli_args_init(&a, cmd, usage, opts, argc, argv);
+    while ((o = cli_next(&a, &v)) != CLI_DONE) {
+        if (o == CLI_HELP) {
+            *done = 1;
+            return 0;
+        }
+        if (o == CLI_BAD)
             return 2;
-    return 0;
+        if (o == CLI_ARG && c->guessed && c->nguess < 6) {   /* --guess X Y Z A B C */
+            if (cli_parse_double(v, pose_names[c->nguess], &c->guess[c->nguess]))
+                return 2;
+            c->nguess++;
+        } else if (o == CLI_ARG) {
+            if (c->npos == 6) {
+                fprintf(stderr, "hexaglide %s: need 6 numbers %s, got more ('%s')%s\n", cmd, what, v,
+                        opts == fk_opts ? "; --guess takes X,Y,Z,A,B,C as one comma-separated argument" : "");
+                return 2;
+            }
+            if (cli_parse_double(v, names[c->npos], &c->pos[c->npos]))
+                return 2;
+            c->npos++;
+        } else if (o == OPT_INI) {
+            if (c->ini) {
+                fprintf(stderr, "hexaglide %s: --ini given twice (%s and %s)\n", cmd, c->ini, v);
+                return 2;
+            }
+            c->ini = v;
+        } else if (o == OPT_SET) {
+            c->sets[c->nset++] = (char *)v;
+        } else if (strchr(v, ',')) {  /* OPT_GUESS (only in fk_opts): X,Y,Z,A,B,C */
+            if (cli_parse_list(cmd, "--guess", v, pose_names, 6, c->guess))
+                return 2;
+            c->guessed = 1;
+            c->nguess = 6;
+        } else {                       /* OPT_GUESS X, the other five follow */
+            if (cli_parse_double(v, pose_names[0], &c->guess[0]))
+                return 2;
+            c->guessed = 1;
+            c->nguess = 1;
+        }
+    }
+    if (c->guessed && c->nguess != 6) {
+        fprintf(stderr, "hexaglide %s: --guess needs 6 numbers X Y Z (mm) A B C (deg), got %d\n", cmd, c->nguess);
+        return 2;
+    }
+    if (c->npos != 6) {
+        fprintf(stderr, "hexaglide %s: need 6 numbers %s, got %d\n", cmd, what, c->npos);
+        return 2;
+    }
+    if (cli_params_build(cmd, c->ini, c->sets, c->nset, &c->p))
+        return 2;
+    return cli_params_check(cmd, &c->p) ? 2 : 0;
 }
 
 int cmd_ik(int argc, char **argv)
 {
-    hg_params p;
+    kins_cmd c;
+    char *sets[argc > 0 ? argc : 1];
     hg_guard_report guard = {0, -1, -1, 0, 0};
-    double user[6], pose[6], z[6];
-    int rc, k;
-    if (argc != 6) {
-        fprintf(stderr, "hexaglide ik: need 6 numbers X Y Z (mm) A B C (deg), got %d\n", argc);
-        return 2;
-    }
-    if (parse_six(argv, pose_names, user))
-        return 2;
-    hg_params_default(&p);
-    hg_pose_from_user(user, pose);
-    rc = hg_inverse_kinematics(&p.geo, pose, z);
+    double pose[6], z[6];
+    int rc, k, done;
+    rc = kins_parse("ik", cli_usage_ik, ik_opts, pose_names, "X Y Z (mm) A B C (deg)", argc, argv, &c, sets, &done);
+    if (rc || done)
+        return rc;
+    hg_pose_from_user(c.pos, pose);
+    rc = hg_inverse_kinematics(&c.p.geo, pose, z);
     if (rc == 0)                      /* joints exist; can the machine take the pose? */
-        rc = hg_guard_check(&p.geo, z, pose, 0, &guard);
+        rc = hg_guard_check(&c.p.geo, z, pose, 0, &guard);
     if (rc) {
         char what[HG_GUARD_TEXT_LEN];
         hg_guard_describe(&guard, 0, what);
@@ -50,26 +128,19 @@ int cmd_ik(int argc, char **argv)
 
 int cmd_fk(int argc, char **argv)
 {
-    hg_params p;
+    kins_cmd c;
+    char *sets[argc > 0 ? argc : 1];
     hg_fk_report rep;
     double user[6], z[6], pose[6] = {0, 0, 0, 0, 0, 0};
-    int rc, k;
-    if (argc != 6 && !(argc == 13 && strcmp(argv[6], "--guess") == 0)) {
-        fprintf(stderr, "hexaglide fk: need 6 joint positions J0..J5 (mm), optionally followed by "
-                        "--guess X Y Z (mm) A B C (deg); got %d arguments\n", argc);
-        return 2;
-    }
-    if (parse_six(argv, joint_names, user))
-        return 2;
+    int rc, k, done;
+    rc = kins_parse("fk", cli_usage_fk, fk_opts, joint_names, "J0..J5 (mm)", argc, argv, &c, sets, &done);
+    if (rc || done)
+        return rc;
     for (k = 0; k < 6; k++)
-        z[k] = user[k] / HG_MM_PER_M;
-    if (argc == 13) {
-        if (parse_six(argv + 7, pose_names, user))
-            return 2;
-        hg_pose_from_user(user, pose);
-    }
-    hg_params_default(&p);
-    rc = hg_forward_kinematics(&p.geo, z, pose, 0, &rep);
+        z[k] = c.pos[k] / HG_MM_PER_M;
+    if (c.guessed)
+        hg_pose_from_user(c.guess, pose);
+    rc = hg_forward_kinematics(&c.p.geo, z, pose, 0, &rep);
     if (rc) {
         char what[HG_GUARD_TEXT_LEN];
         hg_guard_describe(&rep.guard, 0, what);

@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include "cli.h"
@@ -40,57 +39,17 @@ typedef struct {
     long mismatched_samples;
 } replay_stats;
 
-static void replay_usage(void)
-{
-    fprintf(stderr,
-            "usage: hexaglide replay FILE [--csv OUT] [--plot PNG] [--set name=value]...\n"
-            "                        [--model NAME] [--substeps N] [--integrator NAME]\n"
-            "       hexaglide replay --list-columns   (the record pin set)\n"
-            "FILE: a record of tools/hg_record.py (docs/replay.md). Without --set, --model,\n"
-            "--substeps, --integrator: replays and compares, exit 0 only if bit-exact.\n"
-            "With them (what-if): the same inputs into the changed board (written to\n"
-            "FILE.whatif.png.csv and plotted to FILE.whatif.png unless --csv/--plot say\n"
-            "otherwise); --set takes the spec name and SI unit (hexaglide sim --list-params).\n");
-}
-
-/* Whole file into a malloc'd buffer; 0 or -1 with a message. */
-static int read_file(const char *path, char **buf, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    struct stat sb;
-    long long size;
-    size_t got;
-    if (!f) {
-        fprintf(stderr, "hexaglide replay: %s: %s\n", path, strerror(errno));
-        return -1;
-    }
-    if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode) || fseek(f, 0, SEEK_END) != 0 ||
-        (size = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
-        fprintf(stderr, "hexaglide replay: %s: not a regular file (cannot seek); give a record file\n", path);
-        fclose(f);
-        return -1;
-    }
-    if (size > REPLAY_MAX_BYTES) {
-        fprintf(stderr, "hexaglide replay: %s: %lld bytes, more than 4 GiB: split the recording\n", path, size);
-        fclose(f);
-        return -1;
-    }
-    *buf = malloc((size_t)size + 1);
-    if (!*buf) {
-        fprintf(stderr, "hexaglide replay: %s: out of memory for %lld bytes\n", path, size);
-        fclose(f);
-        return -1;
-    }
-    got = fread(*buf, 1, (size_t)size, f);
-    fclose(f);
-    if (got != (size_t)size) {
-        fprintf(stderr, "hexaglide replay: %s: read %zu of %lld bytes\n", path, got, size);
-        free(*buf);
-        return -1;
-    }
-    *len = got;
-    return 0;
-}
+const char cli_usage_replay[] =
+    "usage: hexaglide replay FILE [--csv OUT] [--plot PNG] [--set name=value]...\n"
+    "                        [--model NAME] [--substeps N] [--integrator NAME]\n"
+    "       hexaglide replay --list-columns   (the record pin set)\n"
+    "FILE: a record of tools/hg_record.py (docs/replay.md). Without --set, --model,\n"
+    "--substeps, --integrator: replays and compares, exit 0 only if bit-exact.\n"
+    "With them (what-if): the same inputs into the changed board (written to\n"
+    "FILE.whatif.png.csv and plotted to FILE.whatif.png unless --csv/--plot say\n"
+    "otherwise); --set takes the spec name and SI unit (hexaglide sim --list-params).\n"
+    "--plot runs tools/plot_replay.py under the first python3 that imports numpy and\n"
+    "matplotlib ($HEXAGLIDE_PYTHON, else $PATH).\n";
 
 /* The record pin set: one line per column, name, HAL type, direction. */
 static void list_columns(void)
@@ -106,40 +65,57 @@ static void list_columns(void)
                : f[i].side == HG_BRS_NFMASK ? ", 2 bits per NaN/inf-capable input" : "");
 }
 
-/* Parse the options; 0, 2 (usage error, message printed), -1 (done: listed). */
+enum { OPT_CSV, OPT_PLOT, OPT_SET, OPT_MODEL, OPT_SUBSTEPS, OPT_INTEGRATOR, OPT_LIST };
+static const cli_opt replay_options[] = {
+    {"--csv", 1}, {"--plot", 1}, {"--set", 1}, {"--model", 1}, {"--substeps", 1}, {"--integrator", 1},
+    {"--list-columns", 0}, {0, 0},
+};
+
+/* Parse the options; 0, 2 (usage error, message printed), -1 (done: listed or --help). */
 static int parse_opts(int argc, char **argv, replay_opts *o)
 {
-    int i;
+    cli_args a;
+    const char *v;
+    int opt;
     memset(o, 0, sizeof *o);
     o->substeps = -1;
     o->integrator = -1;
-    for (i = 0; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "";
-        int takes = strcmp(a, "--csv") == 0 || strcmp(a, "--plot") == 0 || strcmp(a, "--set") == 0 ||
-                    strcmp(a, "--model") == 0 || strcmp(a, "--substeps") == 0 ||
-                    strcmp(a, "--integrator") == 0;
-        if (takes && i + 1 >= argc) {
-            fprintf(stderr, "hexaglide replay: %s needs a value\n", a);
+    cli_args_init(&a, "replay", cli_usage_replay, replay_options, argc, argv);
+    while ((opt = cli_next(&a, &v)) != CLI_DONE) {
+        switch (opt) {
+        case CLI_HELP:
+            return -1;
+        case CLI_BAD:
             return 2;
-        }
-        if (strcmp(a, "--csv") == 0) {
+        case CLI_ARG:
+            if (o->file) {
+                fprintf(stderr, "hexaglide replay: one record file only (got %s and %s)\n", o->file, v);
+                return 2;
+            }
+            o->file = v;
+            break;
+        case OPT_CSV:
             o->csv = v;
-        } else if (strcmp(a, "--plot") == 0) {
+            break;
+        case OPT_PLOT:
             o->plot = v;
-        } else if (strcmp(a, "--set") == 0) {
+            break;
+        case OPT_SET:
             if (o->nset == REPLAY_MAX_SETS) {
                 fprintf(stderr, "hexaglide replay: more than %d --set options\n", REPLAY_MAX_SETS);
                 return 2;
             }
             o->set[o->nset++] = v;
-        } else if (strcmp(a, "--model") == 0) {
+            break;
+        case OPT_MODEL:
             if (hg_model_from_name(v) < 0) {
                 fprintf(stderr, "hexaglide replay: --model %s unknown; use standard, reduced-joints, "
                         "reduced-cartesian or fused-cartesian\n", v);
                 return 2;
             }
             o->model = v;
-        } else if (strcmp(a, "--substeps") == 0) {
+            break;
+        case OPT_SUBSTEPS: {
             char *end = 0;
             errno = 0;
             o->substeps = strtol(v, &end, 10);
@@ -147,33 +123,22 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
                 fprintf(stderr, "hexaglide replay: --substeps %s: give an integer 1..%u\n", v, HG_SUBSTEPS_MAX);
                 return 2;
             }
-        } else if (strcmp(a, "--integrator") == 0) {
+            break;
+        }
+        case OPT_INTEGRATOR:
             o->integrator = hg_integrator_from_name(v);
             if (o->integrator < 0) {
                 fprintf(stderr, "hexaglide replay: --integrator %s unknown; use improved-euler, heun or rk4\n", v);
                 return 2;
             }
-        } else if (strcmp(a, "--list-columns") == 0) {
+            break;
+        default:                       /* OPT_LIST */
             list_columns();
             return -1;
-        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            replay_usage();
-            return 2;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            fprintf(stderr, "hexaglide replay: unknown option %s\n", a);
-            replay_usage();
-            return 2;
-        } else if (!o->file) {
-            o->file = a;
-        } else {
-            fprintf(stderr, "hexaglide replay: one record file only (got %s and %s)\n", o->file, a);
-            return 2;
         }
-        if (takes)
-            i++;
     }
     if (!o->file) {
-        replay_usage();
+        fprintf(stderr, "hexaglide replay: give a record FILE ('hexaglide replay --help' for the usage)\n");
         return 2;
     }
     return 0;
@@ -250,32 +215,36 @@ static void csv_header(FILE *f)
     fprintf(f, ",fault_code_rec,fault_code\n");
 }
 
-/* Run the plot script beside this binary (../tools/plot_replay.py) on csv -> png. */
-static int run_plot(const char *self, const char *csv, const char *png)
+/* Run the source tree's tools/plot_replay.py on csv -> png. */
+static int run_plot(const char *csv, const char *png)
 {
-    char script[4096];
-    const char *slash = strrchr(self, '/');
-    int n = slash ? (int)(slash - self) : 1, status = 0;
+    char script[4096], python[4096];
+    int status = 0;
     pid_t pid;
-    if (snprintf(script, sizeof script, "%.*s/../tools/plot_replay.py", n, slash ? self : ".") >= (int)sizeof script) {
-        fprintf(stderr, "hexaglide replay: --plot: path of this program too long\n");
+    if (cli_tree_path("tools/plot_replay.py", script, sizeof script) || access(script, R_OK) != 0) {
+        fprintf(stderr, "hexaglide replay: --plot: tools/plot_replay.py not found beside this program; the CSV "
+                "is in %s\n", csv);
+        return 1;
+    }
+    if (cli_find_python("replay", "numpy matplotlib", "the plot is matplotlib's", python, sizeof python)) {
+        fprintf(stderr, "hexaglide replay: no plot; the CSV is in %s\n", csv);
         return 1;
     }
     pid = fork();
     if (pid == 0) {
-        char *args[] = {"/usr/bin/python3", script, (char *)csv, (char *)png, 0};
+        char *args[] = {python, script, (char *)csv, (char *)png, 0};
         execv(args[0], args);
         _exit(127);
     }
     if (pid < 0 || waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        fprintf(stderr, "hexaglide replay: the plot failed (%s %s %s); the CSV is in %s\n", script, csv,
-                png, csv);
+        fprintf(stderr, "hexaglide replay: the plot failed (%s %s %s %s); the CSV is in %s\n", python, script,
+                csv, png, csv);
         return 1;
     }
     return 0;
 }
 
-int cmd_replay(int argc, char **argv, const char *self)
+int cmd_replay(int argc, char **argv)
 {
     replay_opts o;
     char *buf = 0, text[64];
@@ -294,6 +263,7 @@ int cmd_replay(int argc, char **argv, const char *self)
     int nf, i, k, rc, whatif, kind = -1, status = 0;
     long period = 0;
     FILE *csv = 0;
+    cli_out csv_out;
     char csv_auto[4096], png_auto[4000];
     const char *csv_path;
 
@@ -303,7 +273,7 @@ int cmd_replay(int argc, char **argv, const char *self)
     whatif = o.nset > 0 || o.model || o.substeps > 0 || o.integrator >= 0;
     if (parse_sets(&o, set_off, set_val)) /* checked before reading the file */
         return 2;
-    if (read_file(o.file, &buf, &len))
+    if (cli_read_file("replay", o.file, "a record file (tools/hg_record.py); split larger recordings", REPLAY_MAX_BYTES, &buf, &len))
         return 1;
     nf = hg_board_rec_fields(fld, HG_BOARD_REC_MAX);
     if (nf < 0) {
@@ -355,13 +325,12 @@ int cmd_replay(int argc, char **argv, const char *self)
         snprintf(csv_auto, sizeof csv_auto, "%s.csv", o.plot);
         csv_path = csv_auto;
     }
-    if (csv_path) {
-        csv = fopen(csv_path, "w");
-        if (!csv) {
-            fprintf(stderr, "hexaglide replay: --csv %s: %s\n", csv_path, strerror(errno));
+    if (csv_path) {                    /* written through a temporary file and a rename */
+        if (cli_out_open("replay", csv_path, &csv_out)) {
             free(buf);
             return 1;
         }
+        csv = csv_out.f;
         csv_header(csv);
     }
 
@@ -447,10 +416,8 @@ int cmd_replay(int argc, char **argv, const char *self)
         fprintf(stderr, "hexaglide replay: %s: %s\n", o.file, e.msg);
         status = 1;
     }
-    if (csv && fclose(csv) != 0) {
-        fprintf(stderr, "hexaglide replay: --csv %s: write failed\n", csv_path);
+    if (csv && cli_out_close("replay", &csv_out, 1))   /* the rows up to a failure are kept */
         status = 1;
-    }
     free(buf);
     if (status)
         return status;
@@ -466,7 +433,7 @@ int cmd_replay(int argc, char **argv, const char *self)
     printf("%s: samples %ld, max |count diff| %lld, max |pos diff| %.3g mm, max |pose diff| %.3g m/rad, "
            "first mismatch %s\n", whatif ? "what-if" : "replay", st.samples, st.max_count_diff,
            st.max_pos_diff_mm, st.max_pose_diff, text);
-    if (o.plot && run_plot(self, csv_path, o.plot))
+    if (o.plot && run_plot(csv_path, o.plot))
         return 1;
     return (whatif || st.first_mismatch < 0) ? 0 : 1;
 }

@@ -12,52 +12,19 @@
 
 #define SIM_MAX_STEPS 100000000L   /* refuse runs longer than this many steps */
 
-static void sim_usage(void)
-{
-    fprintf(stderr,
-            "usage: hexaglide sim [--model standard|reduced-joints|reduced-cartesian|fused-cartesian]\n"
-            "                     [--time S] [--dt S] [--volts V0,V1,V2,V3,V4,V5]\n"
-            "                     [--substeps N] [--integrator improved-euler|heun|rk4]\n"
-            "                     [--set name=value]... [--csv FILE] [--list-params]\n"
-            "defaults: reduced-cartesian, 1 s, dt 0.001 s, 0 V, 1 substep, heun, CSV to stdout.\n"
-            "--dt is the board's servo period (whole ns); --volts go through the board's 13-bit DAC;\n"
-            "--set takes the spec name and SI unit (see --list-params; HAL uses the hyphenated name,\n"
-            "lengths in mm)\n");
-}
-
-/* Parse "v0,...,v5" into volts; 0 or -1 with a message. */
-static int parse_volts(const char *text, double volts[6])
-{
-    char buf[512], *tok, *save = 0;
-    int n = 0;
-    if (strlen(text) >= sizeof buf) {
-        fprintf(stderr, "hexaglide sim: --volts: argument too long\n");
-        return -1;
-    }
-    memcpy(buf, text, strlen(text) + 1);   /* length checked above */
-    for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(0, ",", &save)) {
-        char what[32];
-        if (n == 6) {
-            fprintf(stderr, "hexaglide sim: --volts: need exactly 6 comma-separated values, got more\n");
-            return -1;
-        }
-        snprintf(what, sizeof what, "--volts V%d", n);
-        if (cli_parse_double(tok, what, &volts[n]))
-            return -1;
-        n++;
-    }
-    if (n != 6) {
-        fprintf(stderr, "hexaglide sim: --volts: need exactly 6 comma-separated values, got %d\n", n);
-        return -1;
-    }
-    return 0;
-}
-
-/* Apply "name=value" to p; 0 or -1 with a message. */
-static int parse_set(const char *text, hg_params *p)
-{
-    return cli_parse_set("sim", text, p);
-}
+const char cli_usage_sim[] =
+    "usage: hexaglide sim [--model standard|reduced-joints|reduced-cartesian|fused-cartesian]\n"
+    "                     [--time S] [--dt S] [--volts V0,V1,V2,V3,V4,V5]\n"
+    "                     [--substeps N] [--integrator improved-euler|heun|rk4]\n"
+    "                     [--ini FILE] [--set name=value]... [--csv FILE] [--list-params]\n"
+    "  the virtual board with constant DAC volts, amplifiers on, one CSV row per servo period:\n"
+    "  t_s, z0_mm..z5_mm (joints), zd0_mm_s..zd5_mm_s (joint velocities), x_mm y_mm z_mm,\n"
+    "  a_deg b_deg c_deg (head pose)\n"
+    "defaults: reduced-cartesian, 1 s, dt 0.001 s, 0 V, CSV to stdout; --substeps and --integrator\n"
+    "as the board loads them (motenc-hexaglide.N.substeps, .integrator).\n"
+    "--dt is the board's servo period (whole ns); --volts go through the board's 13-bit DAC;\n"
+    "--list-params prints every parameter: spec name, SI unit, default, HAL name and INI key\n"
+    CLI_USAGE_MODEL;
 
 static void list_params(void)
 {
@@ -65,9 +32,14 @@ static void list_params(void)
     const hg_param_info *t = hg_params_table(&n);
     hg_params p;
     hg_params_default(&p);
-    for (i = 0; i < n; i++)
-        printf("%-16s %-8s %-14.9g %s (HAL: %s, %s)\n", t[i].name, t[i].unit,
-               *hg_params_field(&p, t[i].name), t[i].what, t[i].hal_name, t[i].hal_unit);
+    for (i = 0; i < n; i++) {
+        const char *key = cli_ini_key_of(t[i].name);
+        printf("%-16s %-8s %-14.9g %s (HAL: %s, %s", t[i].name, t[i].unit, *hg_params_field(&p, t[i].name),
+               t[i].what, t[i].hal_name, t[i].hal_unit);
+        if (key)
+            printf("; INI: [HEXAGLIDE]%s, %s", key, t[i].hal_unit);
+        printf(")\n");
+    }
 }
 
 static void write_row(FILE *f, double t, const hg_board_outputs *o)
@@ -85,83 +57,112 @@ static void write_row(FILE *f, double t, const hg_board_outputs *o)
     fputc('\n', f);
 }
 
+/* The CSV header: units in every name, none like an option. */
+static void write_header(FILE *f)
+{
+    int k;
+    fprintf(f, "t_s");
+    for (k = 0; k < 6; k++)
+        fprintf(f, ",z%d_mm", k);
+    for (k = 0; k < 6; k++)
+        fprintf(f, ",zd%d_mm_s", k);
+    fprintf(f, ",x_mm,y_mm,z_mm,a_deg,b_deg,c_deg\n");
+}
+
+enum { OPT_MODEL, OPT_TIME, OPT_DT, OPT_VOLTS, OPT_SUBSTEPS, OPT_INTEGRATOR, OPT_INI, OPT_SET, OPT_CSV,
+       OPT_LIST };
+static const cli_opt sim_opts[] = {
+    {"--model", 1}, {"--time", 1}, {"--dt", 1}, {"--volts", 1}, {"--substeps", 1}, {"--integrator", 1},
+    {"--ini", 1}, {"--set", 1}, {"--csv", 1}, {"--list-params", 0}, {0, 0},
+};
+static const char *const volt_names[6] = {"V0", "V1", "V2", "V3", "V4", "V5"};
+
 int cmd_sim(int argc, char **argv)
 {
     hg_board_params bp;
     hg_board *b;
     hg_board_inputs in;
     hg_board_outputs out;
+    cli_args a;
+    cli_out csv;
     double t_end = 1.0, dt = 0.001, volts[6] = {0, 0, 0, 0, 0, 0}, substeps = 1;
-    const char *csv = 0;
-    int kind = HG_MODEL_REDUCED_CARTESIAN, i, k, rc = 0;
+    const char *csv_path = 0, *ini = 0, *v;
+    char *sets[argc > 0 ? argc : 1];
+    int kind = HG_MODEL_REDUCED_CARTESIAN, k, o, nset = 0, rc = 0;
     long n, s, period_ns;
-    FILE *out_f = stdout;
-    hg_params_default(&bp.model);
-    bp.substeps = 1;
-    bp.integrator = HG_INTEGRATOR_HEUN;
-    for (i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        int has = i + 1 < argc;
-        if (strcmp(a, "--list-params") == 0) {
+    if (cli_board_defaults(&bp)) {
+        fprintf(stderr, "hexaglide sim: out of memory\n");
+        return 1;
+    }
+    cli_args_init(&a, "sim", cli_usage_sim, sim_opts, argc, argv);
+    while ((o = cli_next(&a, &v)) != CLI_DONE) {
+        switch (o) {
+        case CLI_HELP:
+            return 0;
+        case CLI_BAD:
+            return 2;
+        case CLI_ARG:
+            fprintf(stderr, "hexaglide sim: unexpected argument '%s' ('hexaglide sim --help' lists the "
+                    "options)\n", v);
+            return 2;
+        case OPT_LIST:
             list_params();
             return 0;
-        }
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            sim_usage();
-            return 0;
-        }
-        if (strcmp(a, "--model") != 0 && strcmp(a, "--time") != 0 && strcmp(a, "--dt") != 0 &&
-            strcmp(a, "--volts") != 0 && strcmp(a, "--set") != 0 && strcmp(a, "--csv") != 0 &&
-            strcmp(a, "--substeps") != 0 && strcmp(a, "--integrator") != 0) {
-            fprintf(stderr, "hexaglide sim: unknown %s '%s'\n",
-                    strncmp(a, "--", 2) == 0 ? "option" : "argument", a);
-            sim_usage();
-            return 2;
-        }
-        if (!has) {
-            fprintf(stderr, "hexaglide sim: missing value after '%s'\n", a);
-            sim_usage();
-            return 2;
-        }
-        if (strcmp(a, "--model") == 0) {
-            kind = hg_model_from_name(argv[++i]);
+        case OPT_MODEL:
+            kind = hg_model_from_name(v);
             if (kind < 0) {
                 fprintf(stderr, "hexaglide sim: unknown model '%s' (standard, reduced-joints, "
-                                "reduced-cartesian, fused-cartesian)\n", argv[i]);
+                                "reduced-cartesian, fused-cartesian)\n", v);
                 return 2;
             }
-        } else if (strcmp(a, "--integrator") == 0) {
-            int which = hg_integrator_from_name(argv[++i]);
+            break;
+        case OPT_INTEGRATOR: {
+            int which = hg_integrator_from_name(v);
             if (which < 0) {
-                fprintf(stderr, "hexaglide sim: unknown integrator '%s' (improved-euler, heun, rk4)\n", argv[i]);
+                fprintf(stderr, "hexaglide sim: unknown integrator '%s' (improved-euler, heun, rk4)\n", v);
                 return 2;
             }
             bp.integrator = (unsigned)which;
-        } else if (strcmp(a, "--substeps") == 0) {
-            if (cli_parse_double(argv[++i], "--substeps", &substeps))
+            break;
+        }
+        case OPT_SUBSTEPS:
+            if (cli_parse_double(v, "--substeps", &substeps))
                 return 2;
             if (!(substeps >= 1 && substeps <= HG_SUBSTEPS_MAX && substeps == floor(substeps))) {
                 fprintf(stderr, "hexaglide sim: --substeps must be an integer in 1..%u, got %s\n",
-                        HG_SUBSTEPS_MAX, argv[i]);
+                        HG_SUBSTEPS_MAX, v);
                 return 2;
             }
             bp.substeps = (unsigned)substeps;
-        } else if (strcmp(a, "--time") == 0) {
-            if (cli_parse_double(argv[++i], "--time", &t_end))
+            break;
+        case OPT_TIME:
+            if (cli_parse_double(v, "--time", &t_end))
                 return 2;
-        } else if (strcmp(a, "--dt") == 0) {
-            if (cli_parse_double(argv[++i], "--dt", &dt))
+            break;
+        case OPT_DT:
+            if (cli_parse_double(v, "--dt", &dt))
                 return 2;
-        } else if (strcmp(a, "--volts") == 0) {
-            if (parse_volts(argv[++i], volts))
+            break;
+        case OPT_VOLTS:
+            if (cli_parse_list("sim", "--volts", v, volt_names, 6, volts))
                 return 2;
-        } else if (strcmp(a, "--set") == 0) {
-            if (parse_set(argv[++i], &bp.model))
+            break;
+        case OPT_INI:
+            if (ini) {
+                fprintf(stderr, "hexaglide sim: --ini given twice (%s and %s)\n", ini, v);
                 return 2;
-        } else {
-            csv = argv[++i];
+            }
+            ini = v;
+            break;
+        case OPT_SET:
+            sets[nset++] = (char *)v;
+            break;
+        default:                       /* OPT_CSV */
+            csv_path = v;
         }
     }
+    if (cli_params_build("sim", ini, sets, nset, &bp.model))
+        return 2;
     if (!(t_end >= 0.0)) {
         fprintf(stderr, "hexaglide sim: --time must be >= 0 s, got %g\n", t_end);
         return 2;
@@ -183,21 +184,17 @@ int cmd_sim(int argc, char **argv)
     b = cli_board_new("sim", kind, &bp);
     if (!b)
         return 2;
-    if (csv) {
-        out_f = fopen(csv, "w");
-        if (!out_f) {
-            perror(csv);
-            free(b);
-            return 1;
-        }
+    if (cli_out_open("sim", csv_path, &csv)) {
+        free(b);
+        return 1;
     }
     hg_board_inputs_default(b, &in);
     in.dout_values = 1u << in.estop_loop_out;   /* E-STOP loop closed: amplifiers on */
     for (k = 0; k < 6; k++)
         in.dac_v[k] = volts[k];
     hg_board_peek(b, &out);
-    fprintf(out_f, "t,j0,j1,j2,j3,j4,j5,v0,v1,v2,v3,v4,v5,x,y,z,a,b,c\n");
-    write_row(out_f, 0.0, &out);
+    write_header(csv.f);
+    write_row(csv.f, 0.0, &out);
     for (s = 0; s < n; s++) {
         hg_board_step(b, &in, &out, period_ns);
         if (out.fault) {
@@ -210,12 +207,10 @@ int cmd_sim(int argc, char **argv)
             rc = out.fault_code;
             break;
         }
-        write_row(out_f, (double)(s + 1) * dt, &out);   /* no drift from summing dt */
+        write_row(csv.f, (double)(s + 1) * dt, &out);   /* no drift from summing dt */
     }
-    if (out_f != stdout && fclose(out_f) != 0) {
-        perror(csv);
+    if (cli_out_close("sim", &csv, 1))       /* the rows before a failure are kept */
         rc = rc ? rc : -1;
-    }
     free(b);
     return rc ? 1 : 0;
 }

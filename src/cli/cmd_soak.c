@@ -1,21 +1,57 @@
 /* cmd_soak.c - the soak subcommand: hours of simulated time, offline and
  * faster than real time, of the machine following a random smooth
- * trajectory through six PID loops into the virtual board (hg_board.h, the
- * code LinuxCNC runs: DACs, amplifiers, encoders). Reports constraint
- * drift, energy balance, faults, following error and the wall time it took.
- *   hexaglide soak [--hours H] [--model NAME] [--seed N] [--dt S] */
+ * trajectory through the closed loop LinuxCNC runs (src/hg_loop.h: motion's
+ * joint commands from the inverse kinematics, LinuxCNC's pid on the encoder
+ * position with the config's gains and scales, the virtual board's DACs,
+ * amplifiers, dynamics and encoders). Reports, each measured apart from
+ * what the step says of itself:
+ *   constraint drift  bar lengths |B_k - A_k| from the carriage heights and
+ *                     the head pose by the kinematics' closed form
+ *                     (hg_joint_points), against l;
+ *   energy balance    change of kinetic + potential energy (hg_energy)
+ *                     against the work of the carriage forces (drives,
+ *                     friction, stops: each step's start-state force, which
+ *                     improved Euler holds over the step, times the step's
+ *                     displacement), in joules and relative to the net
+ *                     change; improved Euler's mismatch halves with dt;
+ *   following error   motion's f-error through the encoder (mm and counts),
+ *                     and LinuxCNC's following-error trip of the config
+ *                     (control.c: limit = max(FERROR |v| / MAX_VELOCITY, MIN_FERROR));
+ *   faults and the wall time. */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 #include "cli.h"
 #include "hg_dynamics.h"
 #include "hg_errors.h"
-#include "hg_pid.h"
+#include "hg_forces.h"
+#include "hg_kinematics.h"
 #include "hg_units.h"
 
 #define SOAK_HARMONICS 3
+#define SOAK_RAMP_S 2.0        /* the trajectory ramps in over this */
+#define SOAK_SETTLED_S 2.5     /* following error counted from here on */
+
+const char cli_usage_soak[] =
+    "usage: hexaglide soak [--hours H] [--model NAME] [--seed N] [--dt S] [--integrator NAME]\n"
+    "                      [--ini FILE] [--set name=value]...\n"
+    "  H hours (default 8) of a random smooth trajectory through LinuxCNC's closed loop\n"
+    "  (src/hg_loop.c: pid on the encoder position, the virtual board), then a health report:\n"
+    "  constraint drift, energy balance, following error, faults, wall time. Exit 1 on a fault\n"
+    "  or a following-error trip.\n"
+    "  --ini FILE  the config: [JOINT_0..5] P I D FF0 FF1 FF2 FF3 BIAS DEADBAND MAX_OUTPUT\n"
+    "              MAX_ERROR_I INPUT_SCALE OUTPUT_SCALE OUTPUT_OFFSET (as configs/hexaglide.hal\n"
+    "              wires them; FF3 as tune reads it), FERROR MIN_FERROR MAX_VELOCITY (the trip),\n"
+    "              [EMCMOT]SERVO_PERIOD, [HEXAGLIDE] geometry. Default: configs/hexaglide.ini\n"
+    "              of the source tree this hexaglide was built in (../configs/ beside build/)\n"
+    "  --dt S      servo period (default the config's SERVO_PERIOD)\n"
+    "  --model     standard|reduced-joints|reduced-cartesian|fused-cartesian (default reduced-cartesian)\n"
+    "  --integrator improved-euler|heun|rk4 (default: the board's, as HAL loads it)\n"
+    "  --set name=value  a model parameter (spec name, SI units), after the config\n";
 
 /* A smooth random pose trajectory: per coordinate a sum of sines. */
 typedef struct {
@@ -24,6 +60,12 @@ typedef struct {
     double phase[6][SOAK_HARMONICS];   /* rad */
 } soak_trajectory;
 
+/* The config's following-error rule, per joint (mm, mm/s). */
+typedef struct {
+    double ferror, min_ferror, max_velocity;
+} soak_ferror_rule;
+
+/* xorshift64* uniform in [lo, hi). */
 static double uniform(unsigned long long *s, double lo, double hi)
 {
     *s ^= *s >> 12; *s ^= *s << 25; *s ^= *s >> 27;
@@ -48,7 +90,7 @@ static void trajectory_init(soak_trajectory *tr, unsigned long long seed)
 /* Pose at time t, ramped in over the first 2 s so it starts at HOME at rest. */
 static void trajectory_pose(const soak_trajectory *tr, double t, double pose[6])
 {
-    double ramp = t >= 2.0 ? 1.0 : 0.5 - 0.5 * cos(HG_PI * t / 2.0);
+    double ramp = t >= SOAK_RAMP_S ? 1.0 : 0.5 - 0.5 * cos(HG_PI * t / SOAK_RAMP_S);
     int c, h;
     for (c = 0; c < 6; c++) {
         pose[c] = 0;
@@ -58,21 +100,20 @@ static void trajectory_pose(const soak_trajectory *tr, double t, double pose[6])
     }
 }
 
-/* PID gains for this machine (LinuxCNC pid units: mm in, volts out):
- * about 20 Hz position bandwidth on ~60 kg per axis. */
-static void soak_gains(const hg_model *m, hg_pid_gains *g)
+/* Largest | |B_k - A_k| - l | over the bars (m): the bar lengths of the
+ * carriage heights z and the head pose, by the kinematics' closed form. */
+static double bar_length_error(const hg_geometry *g, const double z[6], const double pose[6])
 {
-    double mass = m->rotor_mass_kg + m->p.m_carriage_kg + m->p.m_bar_kg + m->p.m_head_kg / 6;
-    double w = 2 * HG_PI * 20.0, fpv = m->force_per_volt_n;
-    hg_pid_defaults(g);
-    g->pgain = mass * w * w / fpv / HG_MM_PER_M;
-    g->dgain = (2 * 0.7 * mass * w - m->p.c_visc_ns_per_m) / fpv / HG_MM_PER_M;
-    if (g->dgain < 0)
-        g->dgain = 0;
-    g->igain = g->pgain * w / 8;
-    g->ff1 = m->p.c_visc_ns_per_m / fpv / HG_MM_PER_M;
-    g->maxoutput = 10.0;
-    g->maxerror_i = 10.0 / (g->igain > 0 ? g->igain : 1);
+    double B[6][3], A[6][3], worst = 0;
+    int k;
+    hg_joint_points(g, z, pose, B, A);
+    for (k = 0; k < 6; k++) {
+        double dx = B[k][0] - A[k][0], dy = B[k][1] - A[k][1], dz = B[k][2] - A[k][2];
+        double e = fabs(sqrt(dx * dx + dy * dy + dz * dz) - g->l_m);
+        if (!(e <= worst))             /* NaN is the worst */
+            worst = e;
+    }
+    return worst;
 }
 
 static double now_s(void)
@@ -82,115 +123,211 @@ static double now_s(void)
     return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
-int cmd_soak(int argc, char **argv)
+/* The loop's settings from the config: gains, scales, trip rule, period
+ * (dt_s > 0 overrides [EMCMOT]SERVO_PERIOD). 0 or 2 after messages. */
+static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_config *c, soak_ferror_rule *r)
 {
-    hg_board_params bp;
-    hg_board *b;
-    hg_board_inputs in;
-    hg_board_outputs out;
-    hg_pid_gains gains;
-    hg_pid_state pid[6];
-    soak_trajectory tr;
-    double hours = 8.0, dt = 0.001, seed_d = 1, t0, wall, e0k, e0p, ek, ep;
-    double work_j = 0, work_abs_j = 0, drift = 0, ferr_max = 0, z_prev[6], cmd_prev[6];
-    int kind = HG_MODEL_REDUCED_CARTESIAN, i, k, rc = 0, faults = 0;
-    long n, s, period_ns;
-    for (i = 0; i + 1 < argc; i += 2) {
-        if (strcmp(argv[i], "--hours") == 0) {
-            if (cli_parse_double(argv[i + 1], "--hours", &hours))
-                return 2;
-        } else if (strcmp(argv[i], "--dt") == 0) {
-            if (cli_parse_double(argv[i + 1], "--dt", &dt))
-                return 2;
-        } else if (strcmp(argv[i], "--seed") == 0) {
-            if (cli_parse_double(argv[i + 1], "--seed", &seed_d))
-                return 2;
-        } else if (strcmp(argv[i], "--model") == 0) {
-            kind = hg_model_from_name(argv[i + 1]);
-            if (kind < 0) {
-                fprintf(stderr, "hexaglide soak: unknown model '%s'\n", argv[i + 1]);
-                return 2;
-            }
-        } else {
-            break;
+    static const char *const rule_keys[3] = {"FERROR", "MIN_FERROR", "MAX_VELOCITY"};
+    cli_ini ini;
+    const cli_ini_entry *e;
+    double servo_ns = 1e6;
+    int j, k, bad = 0;
+    if (cli_ini_read("soak", ini_path, &ini))
+        return 2;
+    hg_loop_config_default(c);
+    c->model_kind = kind;
+    bad |= cli_ini_apply_joints("soak", &ini, c) != 0;
+    for (j = 0; j < HG_LOOP_JOINTS; j++)
+        for (k = 0; k < 3; k++) {
+            double *f = k == 0 ? &r[j].ferror : k == 1 ? &r[j].min_ferror : &r[j].max_velocity;
+            bad |= cli_ini_joint_number("soak", &ini, j, rule_keys[k], f) != 0;
         }
-    }
-    if (i != argc) {
-        fprintf(stderr, "usage: hexaglide soak [--hours H] [--model NAME] [--seed N] [--dt S]\n");
+    k = cli_ini_get("soak", &ini, "EMCMOT", "SERVO_PERIOD", &e);
+    if (k < 0 || (k == 0 && cli_ini_number("soak", &ini, e, &servo_ns)))
+        bad = 1;
+    cli_ini_free(&ini);
+    if (bad) {
+        fprintf(stderr, "hexaglide soak: fix %s (or give another with --ini)\n", ini_path);
         return 2;
     }
-    if (!(hours > 0 && hours <= 1000) || !(dt > 0 && dt <= HG_DT_MAX_S)) {
+    if (dt_s > 0 && cli_parse_period("soak", dt_s, &c->period_ns))
+        return 2;
+    if (!(dt_s > 0)) {
+        if (cli_parse_period("soak", servo_ns * 1e-9, &c->period_ns)) {
+            fprintf(stderr, "hexaglide soak: [EMCMOT]SERVO_PERIOD of %s (ns) is outside the board's range\n",
+                    ini_path);
+            return 2;
+        }
+    }
+    for (j = 0; j < HG_LOOP_JOINTS; j++)
+        if (!(c->input_scale[j] != 0 && r[j].max_velocity > 0 && r[j].ferror >= 0 && r[j].min_ferror >= 0)) {
+            fprintf(stderr, "hexaglide soak: %s: [JOINT_%d] needs INPUT_SCALE != 0, MAX_VELOCITY > 0, "
+                    "FERROR >= 0 and MIN_FERROR >= 0\n", ini_path, j);
+            return 2;
+        }
+    return 0;
+}
+
+enum { OPT_HOURS, OPT_DT, OPT_SEED, OPT_MODEL, OPT_INI, OPT_SET, OPT_INTEGRATOR };
+static const cli_opt soak_opts[] = {
+    {"--hours", 1}, {"--dt", 1}, {"--seed", 1}, {"--model", 1}, {"--ini", 1}, {"--set", 1},
+    {"--integrator", 1}, {0, 0},
+};
+
+int cmd_soak(int argc, char **argv)
+{
+    hg_loop_config cfg;
+    hg_board_params bp;
+    hg_loop *L;
+    hg_loop_sample smp;
+    soak_trajectory tr;
+    soak_ferror_rule rule[HG_LOOP_JOINTS];
+    cli_args a;
+    char default_ini[4096], *sets[argc > 0 ? argc : 1];
+    const char *ini = 0, *v;
+    double hours = 8.0, dt = 0, seed_d = 1, t0, wall, e0k, e0p, ek, ep, net, mismatch;
+    double work_j = 0, friction_j = 0, drift = 0, ferr_max = 0, ferr_counts = 0, cmd_prev[6] = {0}, cmd_prev2[6] = {0};
+    int kind = HG_MODEL_REDUCED_CARTESIAN, k, o, nset = 0, rc = 0, faults = 0, trips = 0, ferr_joint = 0;
+    int integrator = -1;
+    long n, s;
+    cli_args_init(&a, "soak", cli_usage_soak, soak_opts, argc, argv);
+    while ((o = cli_next(&a, &v)) != CLI_DONE) {
+        if (o == CLI_HELP)
+            return 0;
+        if (o == CLI_BAD)
+            return 2;
+        if (o == CLI_ARG) {
+            fprintf(stderr, "hexaglide soak: unexpected argument '%s' ('hexaglide soak --help' lists the "
+                    "options)\n", v);
+            return 2;
+        }
+        if ((o == OPT_HOURS && cli_parse_double(v, "--hours", &hours)) ||
+            (o == OPT_DT && cli_parse_double(v, "--dt", &dt)) ||
+            (o == OPT_SEED && cli_parse_double(v, "--seed", &seed_d)))
+            return 2;
+        if (o == OPT_MODEL && (kind = hg_model_from_name(v)) < 0) {
+            fprintf(stderr, "hexaglide soak: unknown model '%s' (standard, reduced-joints, reduced-cartesian, "
+                    "fused-cartesian)\n", v);
+            return 2;
+        }
+        if (o == OPT_INTEGRATOR && (integrator = hg_integrator_from_name(v)) < 0) {
+            fprintf(stderr, "hexaglide soak: unknown integrator '%s' (improved-euler, heun, rk4)\n", v);
+            return 2;
+        }
+        if (o == OPT_INI)
+            ini = v;
+        if (o == OPT_SET)
+            sets[nset++] = (char *)v;
+    }
+    if (!(hours > 0 && hours <= 1000) || !(dt == 0 || (dt > 0 && dt <= HG_DT_MAX_S))) {
         fprintf(stderr, "hexaglide soak: need 0 < --hours <= 1000 and 0 < --dt <= %g s\n", HG_DT_MAX_S);
         return 2;
     }
-    if (cli_parse_period("soak", dt, &period_ns))
+    if (!ini) {
+        if (cli_tree_path("configs/hexaglide.ini", default_ini, sizeof default_ini) ||
+            access(default_ini, R_OK) != 0) {
+            fprintf(stderr, "hexaglide soak: no config beside this program (../configs/hexaglide.ini): give "
+                    "--ini FILE, a LinuxCNC INI with [JOINT_0..5] gains\n");
+            return 2;
+        }
+        ini = default_ini;
+    }
+    if (read_config(ini, dt, kind, &cfg, rule))
         return 2;
-    dt = (double)period_ns * 1e-9;
-    hg_params_default(&bp.model);
-    bp.substeps = 1;
-    bp.integrator = HG_INTEGRATOR_IMPROVED_EULER;
-    b = cli_board_new("soak", kind, &bp);
-    if (!b)
+    dt = (double)cfg.period_ns * 1e-9;
+    L = malloc(sizeof *L);
+    if (!L) {
+        fprintf(stderr, "hexaglide soak: out of memory\n");
         return 1;
-    hg_board_inputs_default(b, &in);
-    in.dout_values = 1u << in.estop_loop_out;   /* E-STOP loop closed: amplifiers on */
-    hg_board_peek(b, &out);
-    soak_gains(&b->m, &gains);
-    for (k = 0; k < 6; k++) {
-        hg_pid_reset(&pid[k]);
-        z_prev[k] = cmd_prev[k] = 0;
+    }
+    /* the board's load-time block (substeps, integrator), the model's parameters from the config */
+    if (cli_board_defaults(&bp) || cli_params_build("soak", ini, sets, nset, &bp.model) ||
+        cli_params_check("soak", &bp.model)) {
+        free(L);
+        return 2;
+    }
+    if (integrator >= 0)
+        bp.integrator = (unsigned)integrator;
+    rc = hg_loop_init(L, &cfg, &bp);
+    if (rc) {
+        fprintf(stderr, "hexaglide soak: cannot build the loop: %s (code %d)\n", hg_strerror(rc), rc);
+        free(L);
+        return 2;
     }
     trajectory_init(&tr, (unsigned long long)fabs(seed_d) * 7919 + 1);
-    hg_energy(&b->m, &b->d, &e0k, &e0p);
+    hg_energy(&L->board.m, &L->board.d, &e0k, &e0p);
     n = (long)(hours * 3600.0 / dt + 0.5);
     t0 = now_s();
+    rc = 0;
     for (s = 0; s < n; s++) {
-        double t = (s + 1) * dt, pose[6], cmd[6];
+        double t = (s + 1) * dt, pose[6], cmd[6], z0[6], f_passive[6];
+        static const double no_drive[6] = {0, 0, 0, 0, 0, 0};
         trajectory_pose(&tr, t, pose);
-        if (hg_inverse_kinematics(&b->m.p.geo, pose, cmd)) {
+        if (hg_inverse_kinematics(&L->board.m.p.geo, pose, cmd)) {
             fprintf(stderr, "hexaglide soak: trajectory left the working volume at t = %.3f s\n", t);
             rc = 1;
             break;
         }
         for (k = 0; k < 6; k++) {
-            double fe = fabs(cmd_prev[k] - out.z_m[k]);
-            if (fe > ferr_max && t > 2.5)
-                ferr_max = fe;
-            in.dac_v[k] = hg_pid_calc(&gains, &pid[k], cmd[k] * HG_MM_PER_M, out.z_m[k] * HG_MM_PER_M, 1, 0,
-                                      period_ns);
-            cmd_prev[k] = cmd[k];
-            z_prev[k] = out.z_m[k];
+            cmd[k] *= HG_MM_PER_M;
+            z0[k] = L->out.z_m[k];
         }
-        in.dac_written = 1;
-        hg_board_step(b, &in, &out, period_ns);
-        if (out.fault) {
+        /* viscous friction and stops alone: the smooth carriage forces without the drives */
+        hg_carriage_forces(&L->board.m, L->board.d.z_m, L->board.d.zd_mps, no_drive, f_passive);
+        if (hg_loop_step(L, cmd, &smp)) {
             faults++;
-            fprintf(stderr, "hexaglide soak: step failed at t = %.3f s: %s\n", t, hg_strerror(out.fault_code));
+            fprintf(stderr, "hexaglide soak: step failed at t = %.3f s: %s (code %d)\n", t,
+                    hg_strerror(L->out.fault_code), L->out.fault_code);
             break;
         }
         for (k = 0; k < 6; k++) {
-            double dw = out.force_n[k] * (out.z_m[k] - z_prev[k]);
-            work_j += dw;
-            work_abs_j += fabs(dw);
+            /* motion compares with the previous period's command and velocity */
+            double fe = fabs(smp.ferror_mm[k]), vel = fabs(cmd_prev[k] - cmd_prev2[k]) / dt;
+            double limit = rule[k].ferror * vel / rule[k].max_velocity;
+            if (limit < rule[k].min_ferror)
+                limit = rule[k].min_ferror;
+            if (fe > limit && !trips++)
+                fprintf(stderr, "hexaglide soak: at t = %.3f s joint %d's following error %.4f mm exceeds "
+                        "LinuxCNC's limit %.4f mm (FERROR %g, MIN_FERROR %g at %.1f mm/s): LinuxCNC would "
+                        "stop here\n", t, k, fe, limit, rule[k].ferror, rule[k].min_ferror, vel);
+            if (fe > ferr_max && t > SOAK_SETTLED_S) {
+                ferr_max = fe;
+                ferr_joint = k;
+                ferr_counts = fe * fabs(cfg.input_scale[k]);
+            }
+            cmd_prev2[k] = cmd_prev[k];
+            cmd_prev[k] = cmd[k];
+            /* the step held the force of its start state: its work */
+            work_j += L->out.force_n[k] * (L->out.z_m[k] - z0[k]);
+            /* + sliding and static friction, resolved over the step */
+            friction_j += (f_passive[k] + L->board.d.fric_n[k]) * (L->out.z_m[k] - z0[k]);
         }
-        if (out.residual_m > drift)
-            drift = out.residual_m;
+        {
+            double e = bar_length_error(&L->board.m.p.geo, L->out.z_m, L->out.pose);
+            if (!(e <= drift))
+                drift = e;
+        }
+        if (trips)
+            break;
     }
     wall = now_s() - t0;
-    hg_energy(&b->m, &b->d, &ek, &ep);
-    printf("soak: %s, %.2f h simulated (%ld steps of %.3g s) in %.1f s wall (%.0fx real time, %.3f us/step)\n",
-           hg_model_name((hg_model_kind)kind), s * dt / 3600.0, s, dt, wall, s * dt / (wall > 0 ? wall : 1),
-           1e6 * wall / (s > 0 ? s : 1));
-    printf("soak: constraint drift (max bar-length error after stabilization): %.3e m\n", drift);
-    printf("soak: energy balance: change %.6g J, work of drives+friction+stops %.6g J, "
-           "mismatch %.3e J = %.3e of the work moved (sum |dW| = %.6g J)\n",
-           (ek + ep) - (e0k + e0p), work_j, (ek + ep) - (e0k + e0p) - work_j,
-           fabs((ek + ep) - (e0k + e0p) - work_j) / (work_abs_j > 0 ? work_abs_j : 1), work_abs_j);
-    printf("soak: max following error after the 2 s ramp-in: %.4f mm\n", ferr_max * HG_MM_PER_M);
-    printf("soak: faults: %d\n", faults);
-    printf("SOAK drift_m=%.3e energy_rel=%.3e faults=%d ferr_mm=%.4f wall_s=%.1f steps=%ld\n", drift,
-           fabs((ek + ep) - (e0k + e0p) - work_j) / (work_abs_j > 0 ? work_abs_j : 1), faults,
-           ferr_max * HG_MM_PER_M, wall, s);
-    free(b);
-    return (rc || faults) ? 1 : 0;
+    hg_energy(&L->board.m, &L->board.d, &ek, &ep);
+    net = (ek + ep) - (e0k + e0p);
+    mismatch = net - work_j;
+    printf("soak: %s, config %s, %.2f h simulated (%ld periods of %.3g s) in %.1f s wall (%.0fx real time, "
+           "%.3f us/period)\n", hg_model_name((hg_model_kind)kind), ini, s * dt / 3600.0, s, dt, wall,
+           s * dt / (wall > 0 ? wall : 1), 1e6 * wall / (s > 0 ? s : 1));
+    printf("soak: constraint drift (largest | |B-A| - l | of the closed-form bar lengths): %.3e m\n", drift);
+    printf("soak: energy balance (%s): net change %.6g J; work of the drives %.6g J, of friction and stops "
+           "%.6g J; mismatch %.3e J = %.3e of the net change\n",
+           hg_integrator_name((hg_integrator)L->board.m.integrator), net, work_j - friction_j, friction_j,
+           mismatch, fabs(mismatch) / (net != 0 ? fabs(net) : 1));
+    printf("soak: max following error after the %.1f s ramp-in: %.4f mm = %.2f counts (joint %d, through the "
+           "encoder)\n", SOAK_SETTLED_S, ferr_max, ferr_counts, ferr_joint);
+    printf("soak: faults: %d, following-error trips: %d\n", faults, trips);
+    printf("SOAK drift_m=%.3e energy_net_j=%.6g energy_mismatch_j=%.3e energy_rel=%.3e friction_j=%.6g "
+           "faults=%d trips=%d ferr_mm=%.6f ferr_counts=%.3f wall_s=%.1f steps=%ld\n", drift, net, mismatch,
+           fabs(mismatch) / (net != 0 ? fabs(net) : 1), friction_j, faults, trips, ferr_max, ferr_counts, wall, s);
+    free(L);
+    return (rc || faults || trips) ? 1 : 0;
 }

@@ -2,7 +2,8 @@
  * the model. The closed loop is C (src/hg_loop.c through
  * build/libhexaglide.so); the search (scipy) and the plots (matplotlib) are
  * tools/hexaglide_tune.py, which this command runs with the arguments given
- * (docs/tuning.md).
+ * (docs/tuning.md) under the first Python 3 that imports numpy, scipy and
+ * matplotlib ($HEXAGLIDE_PYTHON, else each python3 on $PATH).
  *   hexaglide tune [--trajectory FILE] [--output FILE] [--plots DIR] [...] */
 #include <errno.h>
 #include <limits.h>
@@ -12,43 +13,50 @@
 #include <unistd.h>
 #include "cli.h"
 
-#define TUNE_PYTHON "/usr/bin/python3"
+#define TUNE_MODULES "numpy scipy matplotlib"
+#define TUNE_WHY "the tuner's search is scipy's differential evolution and its plots are matplotlib's"
+
+const char cli_usage_tune[] =
+    "usage: hexaglide tune [--trajectory FILE] [--ini FILE] [--output FILE] [--plots DIR]\n"
+    "                      [--evaluate] [--set KEY=value]... [...]\n"
+    "  PID and feed-forward gains tuned against the model (docs/tuning.md); every option is\n"
+    "  tools/hexaglide_tune.py's, whose --help lists them all.\n"
+    "  Python: the tuner needs numpy, scipy and matplotlib. It runs under $HEXAGLIDE_PYTHON if\n"
+    "  set, else under the first python3 on $PATH that imports them (on Debian 12 the system's\n"
+    "  /usr/bin/python3 with python3-numpy python3-scipy python3-matplotlib installed; a pyenv\n"
+    "  or venv python3 without them is skipped).\n";
 
 int cmd_tune(int argc, char **argv)
 {
-    char exe[PATH_MAX], script[PATH_MAX + 64], lib[PATH_MAX + 64], *slash;
+    char script[PATH_MAX], lib[PATH_MAX], python[PATH_MAX];
     char **args;
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    int i;
-    if (n <= 0) {
-        fprintf(stderr, "hexaglide tune: cannot find my own path (/proc/self/exe): %s\n", strerror(errno));
-        return 1;
+    int i, help = 0;
+    for (i = 0; i < argc; i++)
+        help |= strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0;
+    if (cli_tree_path("tools/hexaglide_tune.py", script, sizeof script) || access(script, R_OK) != 0) {
+        fprintf(stderr, "hexaglide tune: tools/hexaglide_tune.py not found beside this program: run the "
+                "hexaglide of a source tree (build/hexaglide)\n");
+        if (help)
+            fputs(cli_usage_tune, stdout);
+        return help ? 0 : 1;
     }
-    exe[n] = 0;
-    slash = strrchr(exe, '/');              /* .../build/hexaglide -> .../build */
-    *slash = 0;
-    snprintf(lib, sizeof lib, "%s/libhexaglide.so", exe);
-    slash = strrchr(exe, '/');              /* .../build -> the source tree */
-    if (slash)
-        *slash = 0;
-    snprintf(script, sizeof script, "%s/tools/hexaglide_tune.py", exe);
-    if (access(script, R_OK) != 0) {
-        fprintf(stderr, "hexaglide tune: %s not found: run the hexaglide of a source tree (build/hexaglide)\n", script);
-        return 1;
+    if (cli_find_python("tune", TUNE_MODULES, TUNE_WHY, python, sizeof python)) {
+        if (help)                      /* the usage still; the message above says what is missing */
+            fputs(cli_usage_tune, stdout);
+        return help ? 0 : 1;
     }
-    if (access(lib, R_OK) == 0)
-        setenv("HEXAGLIDE_LIB", lib, 0);
+    if (cli_beside_path("libhexaglide.so", lib, sizeof lib) == 0 && access(lib, R_OK) == 0)
+        setenv("HEXAGLIDE_LIB", lib, 0);   /* the core this hexaglide was built with */
     args = calloc((size_t)argc + 3, sizeof *args);
     if (!args)
         return 1;
-    args[0] = TUNE_PYTHON;
+    args[0] = python;
     args[1] = script;
     for (i = 0; i < argc; i++)
         args[i + 2] = argv[i];
     fflush(stdout);
-    execv(TUNE_PYTHON, args);
-    fprintf(stderr, "hexaglide tune: cannot run %s (%s): install python3-scipy and python3-matplotlib "
-            "(tools/install-deps.sh tune)\n", TUNE_PYTHON, strerror(errno));
+    execv(python, args);
+    fprintf(stderr, "hexaglide tune: cannot run %s (%s)\n", python, strerror(errno));
     free(args);
     return 1;
 }

@@ -2,47 +2,50 @@
  *   hexaglide ik X Y Z A B C            pose (mm, deg) -> joints (mm)
  *   hexaglide fk J0..J5 [--guess ...]   joints (mm) -> pose (mm, deg)
  *   hexaglide sim [options]             offline simulation of the virtual board (CSV)
- *   hexaglide soak [--hours H]          hours of closed-loop motion, health report
+ *   hexaglide soak [--hours H]          hours of LinuxCNC's closed loop, health report
  *   hexaglide replay FILE [options]     re-run a recorded LinuxCNC run, compare (docs/replay.md)
- *   hexaglide tune [--trajectory FILE]  PID gains tuned against the model (docs/tuning.md) */
+ *   hexaglide tune [--trajectory FILE]  PID gains tuned against the model (docs/tuning.md)
+ * `hexaglide CMD --help` prints CMD's usage. */
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include "cli.h"
 
+static const struct {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *usage;
+} commands[] = {
+    {"ik", cmd_ik, cli_usage_ik},
+    {"fk", cmd_fk, cli_usage_fk},
+    {"sim", cmd_sim, cli_usage_sim},
+    {"soak", cmd_soak, cli_usage_soak},
+    {"replay", cmd_replay, cli_usage_replay},
+    {"tune", cmd_tune, cli_usage_tune},
+};
+#define N_COMMANDS (int)(sizeof commands / sizeof commands[0])
+
+/* Every subcommand's first usage line, then where the rest is. */
 static void usage(FILE *f)
 {
-    fprintf(f,
-            "usage: hexaglide ik X Y Z A B C\n"
-            "       hexaglide fk J0 J1 J2 J3 J4 J5 [--guess X Y Z A B C]\n"
-            "       hexaglide sim [--model standard|reduced-joints|reduced-cartesian|fused-cartesian]\n"
-            "                     [--time S] [--dt S] [--volts V0,..,V5] [--substeps N]\n"
-            "                     [--integrator improved-euler|heun|rk4] [--set name=value]... [--csv FILE]\n"
-            "       hexaglide soak [--hours H] [--model NAME] [--seed N] [--dt S]\n"
-            "       hexaglide replay FILE [--csv OUT] [--plot PNG] [--set name=value]...\n"
-            "                        [--model NAME] [--substeps N] [--integrator NAME]\n"
-            "       hexaglide tune [--trajectory FILE] [--output FILE] [--plots DIR] [--help]\n"
-            "units: X Y Z and joints in mm, A B C in degrees (see README.md)\n");
+    int i;
+    for (i = 0; i < N_COMMANDS; i++) {
+        const char *u = commands[i].usage + (i ? 7 : 0), *nl = strchr(u, '\n');   /* "usage: " once */
+        fprintf(f, "%s%.*s\n", i ? "       " : "", (int)(nl ? nl - u : (long)strlen(u)), u);
+    }
+    fprintf(f, "'hexaglide CMD --help' prints CMD's options. Units: X Y Z and joints in mm, A B C in\n"
+               "degrees (README.md); every option takes '--opt value' and '--opt=value'.\n");
 }
 
 int main(int argc, char **argv)
 {
+    int i;
     if (argc < 2) {
         usage(stderr);
         return 2;
     }
-    if (strcmp(argv[1], "ik") == 0)
-        return cmd_ik(argc - 2, argv + 2);
-    if (strcmp(argv[1], "fk") == 0)
-        return cmd_fk(argc - 2, argv + 2);
-    if (strcmp(argv[1], "sim") == 0)
-        return cmd_sim(argc - 2, argv + 2);
-    if (strcmp(argv[1], "soak") == 0)
-        return cmd_soak(argc - 2, argv + 2);
-    if (strcmp(argv[1], "replay") == 0)
-        return cmd_replay(argc - 2, argv + 2, argv[0]);
-    if (strcmp(argv[1], "tune") == 0)
-        return cmd_tune(argc - 2, argv + 2);
+    for (i = 0; i < N_COMMANDS; i++)
+        if (strcmp(argv[1], commands[i].name) == 0)
+            return commands[i].run(argc - 2, argv + 2);
     if (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
         usage(stdout);
         return 0;

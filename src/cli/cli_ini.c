@@ -1,0 +1,383 @@
+/* cli_ini.c - a LinuxCNC INI file read as LinuxCNC's IniFile reads it
+ * (src/libnml/inifile/inifile.cc, commit f1270d6ed7): "[SECTION]" lines,
+ * "KEY = VALUE" with white space trimmed, a trailing backslash joins the
+ * next line, nothing after the value is a comment (so "1000 # mm" is not a
+ * number). What LinuxCNC would resolve silently is refused here, naming the
+ * file and line: a key given twice (LinuxCNC takes the first), an
+ * #INCLUDE (the linuxcnc script expands those into FILE.expanded).
+ * Host only (malloc, stdio). Two consumers: [HEXAGLIDE] -> model
+ * parameters (ik, fk, sim, soak) and [JOINT_N] -> the servo loops (soak). */
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "cli.h"
+
+#define INI_MAX_BYTES (16L << 20)   /* refuse INI files above 16 MiB */
+
+/* [HEXAGLIDE] keys that are no model parameter (the parameters' keys are
+ * hg_params_table's ini_key, their values in the HAL unit). */
+static const char *const other_keys[] = {
+    "RECORD",   /* tools/hg_record.tcl's record file (docs/replay.md) */
+};
+
+/* Keys of earlier versions, with what to do instead. */
+static const struct {
+    const char *key, *instead;
+} gone_keys[] = {
+    {"H", "the carriage height at HOME follows from L, LB and LP now: remove the key"},
+};
+
+/* [JOINT_N] key -> servo-loop setting, as configs/hexaglide.hal wires it
+ * (pid.N.* pins, motenc.0.enc-NN-scale, dac-NN-gain, dac-NN-offset):
+ * in_pid 1: a double at offset in hg_pid_gains; 0: in hg_loop_config,
+ * a double[6] array at offset. The keys tools/hexaglide.py's Loop reads
+ * (so soak and tune agree); FF3 is one of them although hexaglide.hal does
+ * not wire pid.N.FF3 (0 in every shipped config). */
+static const struct {
+    const char *key;
+    int in_pid;
+    size_t offset;
+} joint_keys[] = {
+    {"P", 1, offsetof(hg_pid_gains, pgain)},
+    {"I", 1, offsetof(hg_pid_gains, igain)},
+    {"D", 1, offsetof(hg_pid_gains, dgain)},
+    {"BIAS", 1, offsetof(hg_pid_gains, bias)},
+    {"FF0", 1, offsetof(hg_pid_gains, ff0)},
+    {"FF1", 1, offsetof(hg_pid_gains, ff1)},
+    {"FF2", 1, offsetof(hg_pid_gains, ff2)},
+    {"FF3", 1, offsetof(hg_pid_gains, ff3)},
+    {"DEADBAND", 1, offsetof(hg_pid_gains, deadband)},
+    {"MAX_OUTPUT", 1, offsetof(hg_pid_gains, maxoutput)},
+    {"MAX_ERROR_I", 1, offsetof(hg_pid_gains, maxerror_i)},
+    {"INPUT_SCALE", 0, offsetof(hg_loop_config, input_scale)},
+    {"OUTPUT_SCALE", 0, offsetof(hg_loop_config, output_scale)},
+    {"OUTPUT_OFFSET", 0, offsetof(hg_loop_config, output_offset)},
+};
+
+#define N_OF(a) (sizeof(a) / sizeof((a)[0]))
+
+/* Pointer to the first non-blank character of s. */
+static char *skip_blank(char *s)
+{
+    while (*s == ' ' || *s == '\t')
+        s++;
+    return s;
+}
+
+/* Cut trailing blanks (and a CR) off s in place. */
+static void trim_end(char *s)
+{
+    size_t n = strlen(s);
+    while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t' || s[n - 1] == '\r'))
+        s[--n] = '\0';
+}
+
+/* The file as text into *text (malloc'd); 0 or -1 with a message. */
+static int slurp(const char *cmd, const char *path, char **text)
+{
+    size_t len;
+    if (cli_read_file(cmd, path, "a LinuxCNC INI file", INI_MAX_BYTES, text, &len))
+        return -1;
+    if (memchr(*text, '\0', len)) {
+        fprintf(stderr, "hexaglide %s: %s: holds NUL bytes: not an INI file\n", cmd, path);
+        free(*text);
+        return -1;
+    }
+    return 0;
+}
+
+/* Append an entry; 0 or -1 (out of memory, message printed). */
+static int add_entry(const char *cmd, cli_ini *ini, const char *section, int section_line, char *key,
+                     char *value, int line)
+{
+    if (ini->n % 64 == 0) {
+        cli_ini_entry *e = realloc(ini->e, (size_t)(ini->n + 64) * sizeof *e);
+        if (!e) {
+            fprintf(stderr, "hexaglide %s: --ini %s: out of memory\n", cmd, ini->path);
+            return -1;
+        }
+        ini->e = e;
+    }
+    ini->e[ini->n].section = section;
+    ini->e[ini->n].key = key;
+    ini->e[ini->n].value = value;
+    ini->e[ini->n].line = line;
+    ini->e[ini->n].section_line = section_line;
+    ini->n++;
+    return 0;
+}
+
+int cli_ini_read(const char *cmd, const char *path, cli_ini *ini)
+{
+    char *p, *section = 0;
+    int line = 0, section_line = 0;
+    memset(ini, 0, sizeof *ini);
+    ini->path = path;
+    if (slurp(cmd, path, &ini->text))
+        return -1;
+    p = ini->text;
+    while (*p) {
+        char *start = p, *s, *eq, *w, *r;
+        int first = ++line;
+        /* the logical line: physical lines joined where one ends in a backslash */
+        for (w = r = p;; ) {
+            if (*r == '\n' || *r == '\0') {
+                if (r > p && r[-1] == '\\' && *r == '\n') {   /* drop "\\\n", go on */
+                    w--;
+                    r++;
+                    line++;
+                    continue;
+                }
+                p = *r ? r + 1 : r;
+                *w = '\0';
+                break;
+            }
+            *w++ = *r++;
+        }
+        trim_end(start);
+        s = skip_blank(start);
+        if (*s == '\0')
+            continue;
+        if (strncmp(s, "#INCLUDE", 8) == 0) {
+            fprintf(stderr, "hexaglide %s: %s line %d: #INCLUDE is expanded by the linuxcnc script, not "
+                    "here: give the expanded file (linuxcnc writes it as %s.expanded)\n", cmd, path, first, path);
+            cli_ini_free(ini);
+            return -1;
+        }
+        if (*s == '#' || *s == ';')
+            continue;
+        if (*s == '[') {
+            char *close = strchr(s, ']');
+            if (!close) {
+                fprintf(stderr, "hexaglide %s: %s line %d: '%s' opens a section without closing ']'\n", cmd, path,
+                        first, s);
+                cli_ini_free(ini);
+                return -1;
+            }
+            *close = '\0';
+            section = s + 1;
+            section_line = first;
+            if (add_entry(cmd, ini, section, first, 0, 0, first)) {   /* the header itself */
+                cli_ini_free(ini);
+                return -1;
+            }
+            continue;
+        }
+        eq = strchr(s, '=');
+        if (eq) {
+            *eq = '\0';
+            trim_end(s);
+        }
+        if (add_entry(cmd, ini, section ? section : "", section_line, s, eq ? skip_blank(eq + 1) : 0, first)) {
+            cli_ini_free(ini);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+void cli_ini_free(cli_ini *ini)
+{
+    free(ini->e);
+    free(ini->text);
+    ini->e = 0;
+    ini->text = 0;
+    ini->n = 0;
+}
+
+/* Line of the first "[section]" header, or 0 if there is none. */
+static int section_first_line(const cli_ini *ini, const char *section)
+{
+    int i;
+    for (i = 0; i < ini->n; i++)
+        if (!ini->e[i].key && strcmp(ini->e[i].section, section) == 0)
+            return ini->e[i].line;
+    return 0;
+}
+
+int cli_ini_has_section(const cli_ini *ini, const char *section)
+{
+    return section_first_line(ini, section) > 0;
+}
+
+int cli_ini_get(const char *cmd, const cli_ini *ini, const char *section, const char *key,
+                const cli_ini_entry **out)
+{
+    int i, head = section_first_line(ini, section);
+    *out = 0;
+    for (i = 0; i < ini->n; i++) {
+        const cli_ini_entry *e = &ini->e[i];
+        if (!e->key || strcmp(e->section, section) != 0 || strcmp(e->key, key) != 0)
+            continue;
+        if (e->section_line != head) {
+            fprintf(stderr, "hexaglide %s: [%s]%s (line %d of %s) is in a second [%s] section (line %d); "
+                    "LinuxCNC reads only the first one (line %d): merge them\n", cmd, section, key, e->line,
+                    ini->path, section, e->section_line, head);
+            return -1;
+        }
+        if (*out) {
+            fprintf(stderr, "hexaglide %s: [%s]%s is given twice (lines %d and %d of %s); LinuxCNC would "
+                    "use the first: remove one\n", cmd, section, key, (*out)->line, e->line, ini->path);
+            return -1;
+        }
+        *out = e;
+    }
+    return *out ? 0 : 1;
+}
+
+int cli_ini_number(const char *cmd, const cli_ini *ini, const cli_ini_entry *e, double *v)
+{
+    if (!e->value) {
+        fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s has no '= value'\n", cmd, ini->path, e->line,
+                e->section, e->key);
+        return -1;
+    }
+    if (cli_strtod(e->value, v)) {
+        fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s = '%s' is not a finite number%s\n", cmd, ini->path,
+                e->line, e->section, e->key, e->value,
+                strpbrk(e->value, "#;") ? " (LinuxCNC takes everything after '=' as the value: put comments "
+                                          "on their own line)" : "");
+        return -1;
+    }
+    return 0;
+}
+
+/* Spec name of the parameter whose [HEXAGLIDE] key is key, or 0. */
+static const char *param_of_key(const char *key)
+{
+    int i, n;
+    const hg_param_info *t = hg_params_table(&n);
+    for (i = 0; i < n; i++)
+        if (t[i].ini_key && strcmp(t[i].ini_key, key) == 0)
+            return t[i].name;
+    return 0;
+}
+
+/* 1 if key is a [HEXAGLIDE] key: a parameter's ini_key or another key. */
+static int known_key(const char *key)
+{
+    size_t k;
+    if (param_of_key(key))
+        return 1;
+    for (k = 0; k < N_OF(other_keys); k++)
+        if (strcmp(other_keys[k], key) == 0)
+            return 1;
+    return 0;
+}
+
+/* The known [HEXAGLIDE] keys as "L LB ..." into buf. */
+static void hexaglide_key_list(char *buf, size_t len)
+{
+    int i, n;
+    size_t k, used = 0;
+    const hg_param_info *t = hg_params_table(&n);
+    buf[0] = '\0';
+    for (i = 0; i < n && used < len; i++)
+        if (t[i].ini_key)
+            used += (size_t)snprintf(buf + used, len - used, "%s%s", used ? " " : "", t[i].ini_key);
+    for (k = 0; k < N_OF(other_keys) && used < len; k++)
+        used += (size_t)snprintf(buf + used, len - used, " %s", other_keys[k]);
+}
+
+const char *cli_ini_key_of(const char *param)
+{
+    int i, n;
+    const hg_param_info *t = hg_params_table(&n);
+    for (i = 0; i < n; i++)
+        if (strcmp(t[i].name, param) == 0)
+            return t[i].ini_key;
+    return 0;
+}
+
+
+int cli_ini_apply_hexaglide(const char *cmd, const cli_ini *ini, hg_params *p)
+{
+    int i, n, bad = 0;
+    const hg_param_info *t = hg_params_table(&n);
+    char keys[256];
+    size_t k;
+    hexaglide_key_list(keys, sizeof keys);
+    for (i = 0; i < ini->n; i++) {     /* every key of the section is one of ours */
+        const cli_ini_entry *e = &ini->e[i];
+        if (!e->key || strcmp(e->section, "HEXAGLIDE") != 0)
+            continue;
+        for (k = 0; k < N_OF(gone_keys); k++)
+            if (strcmp(gone_keys[k].key, e->key) == 0)
+                break;
+        if (k < N_OF(gone_keys)) {
+            fprintf(stderr, "hexaglide %s: %s line %d: [HEXAGLIDE]%s: %s\n", cmd, ini->path, e->line,
+                    e->key, gone_keys[k].instead);
+            bad = 1;
+        } else if (!known_key(e->key)) {
+            fprintf(stderr, "hexaglide %s: %s line %d: [HEXAGLIDE]%s is not a key of this section; it takes %s\n",
+                    cmd, ini->path, e->line, e->key, keys);
+            bad = 1;
+        }
+    }
+    for (k = 0; k < N_OF(other_keys); k++) {   /* keys that are no parameter: given once */
+        const cli_ini_entry *e;
+        bad |= cli_ini_get(cmd, ini, "HEXAGLIDE", other_keys[k], &e) < 0;
+    }
+    for (i = 0; i < n; i++) {          /* the parameters that have a key, in their HAL unit */
+        const char *key = cli_ini_key_of(t[i].name);
+        const cli_ini_entry *e;
+        double v;
+        int rc = key ? cli_ini_get(cmd, ini, "HEXAGLIDE", key, &e) : 1;
+        bad |= rc < 0;
+        if (rc)
+            continue;                  /* absent, or named as repeated */
+        if (cli_ini_number(cmd, ini, e, &v)) {
+            bad = 1;
+            continue;
+        }
+        *hg_params_at(p, i) = v / t[i].hal_scale;
+    }
+    return bad ? -1 : 0;
+}
+
+int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, hg_loop_config *c)
+{
+    int j, bad = 0;
+    size_t k;
+    for (j = 0; j < HG_LOOP_JOINTS; j++) {
+        char sec[16];
+        snprintf(sec, sizeof sec, "JOINT_%d", j);
+        if (!cli_ini_has_section(ini, sec)) {
+            fprintf(stderr, "hexaglide %s: %s has no [%s] section (the servo loop's gains and scales)\n", cmd,
+                    ini->path, sec);
+            bad = 1;
+            continue;
+        }
+        for (k = 0; k < N_OF(joint_keys); k++) {
+            const cli_ini_entry *e;
+            double v;
+            char *field;
+            int rc = cli_ini_get(cmd, ini, sec, joint_keys[k].key, &e);
+            if (rc) {
+                bad |= rc < 0;         /* absent: pid.c's load-time value stays */
+                continue;
+            }
+            if (cli_ini_number(cmd, ini, e, &v)) {
+                bad = 1;
+                continue;
+            }
+            field = joint_keys[k].in_pid ? (char *)&c->pid[j] + joint_keys[k].offset
+                                         : (char *)c + joint_keys[k].offset + (size_t)j * sizeof v;
+            memcpy(field, &v, sizeof v);   /* a double field at that offset (offsetof above) */
+        }
+    }
+    return bad ? -1 : 0;
+}
+
+int cli_ini_joint_number(const char *cmd, const cli_ini *ini, int joint, const char *key, double *v)
+{
+    char sec[16];
+    const cli_ini_entry *e;
+    int rc;
+    snprintf(sec, sizeof sec, "JOINT_%d", joint);
+    rc = cli_ini_get(cmd, ini, sec, key, &e);
+    if (rc > 0)
+        fprintf(stderr, "hexaglide %s: %s: [%s]%s is missing\n", cmd, ini->path, sec, key);
+    return rc ? -1 : cli_ini_number(cmd, ini, e, v);
+}

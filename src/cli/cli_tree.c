@@ -1,0 +1,275 @@
+/* cli_tree.c - what the host tool finds beside itself: files of its source
+ * tree (configs/, tools/) and a Python 3 interpreter with the modules a
+ * script needs (tune: numpy, scipy, matplotlib; replay --plot: numpy,
+ * matplotlib). No interpreter path is built in: $HEXAGLIDE_PYTHON, else
+ * every python3 on $PATH, each checked by importing the modules. And the
+ * output files, written through a temporary file and a rename. */
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include "cli.h"
+
+#define PY_TRIED_MAX 16        /* interpreters reported in the failure message */
+
+/* The directory of this executable into dir (PATH_MAX); 0 or -1. */
+static int exe_dir(char *dir)
+{
+    char *slash;
+    ssize_t n = readlink("/proc/self/exe", dir, PATH_MAX - 1);
+    if (n <= 0)
+        return -1;
+    dir[n] = '\0';
+    slash = strrchr(dir, '/');          /* .../build/hexaglide -> .../build */
+    if (!slash)
+        return -1;
+    *slash = '\0';
+    return 0;
+}
+
+int cli_beside_path(const char *name, char *out, size_t len)
+{
+    char dir[PATH_MAX];
+    if (exe_dir(dir))
+        return -1;
+    return snprintf(out, len, "%s/%s", dir, name) < (int)len ? 0 : -1;
+}
+
+int cli_tree_path(const char *rel, char *out, size_t len)
+{
+    char dir[PATH_MAX], first[PATH_MAX + 256];
+    int up;
+    if (exe_dir(dir))
+        return -1;
+    for (up = 0; up < 2; up++) {       /* build/hexaglide, build/asan/hexaglide */
+        char *slash = strrchr(dir, '/');
+        if (!slash)
+            break;
+        *slash = '\0';
+        if (snprintf(out, len, "%s/%s", dir, rel) >= (int)len)
+            return -1;
+        if (up == 0)
+            snprintf(first, sizeof first, "%s", out);
+        if (access(out, F_OK) == 0)
+            return 0;
+    }
+    if (up > 0)                        /* not found: out names the first place looked */
+        snprintf(out, len, "%s", first);
+    return -1;
+}
+
+/* Run `python -c "import a, b"` for the modules; 0 if it imports them, else
+ * -1 with the last line of what it printed (or why it did not run) in why. */
+static int python_imports(const char *python, const char *modules, char *why, size_t len)
+{
+    char code[256], buf[4096];
+    size_t used = 0, i, j;
+    int fd[2], status = 0;
+    ssize_t got;
+    pid_t pid;
+    for (i = 0, j = 0; modules[i] && j + 3 < sizeof code; i++) {   /* "a b" -> "import a, b" */
+        if (j == 0) {
+            memcpy(code, "import ", 7);
+            j = 7;
+        }
+        if (modules[i] == ' ') {
+            code[j++] = ',';
+            code[j++] = ' ';
+        } else {
+            code[j++] = modules[i];
+        }
+    }
+    code[j] = '\0';
+    if (pipe(fd) != 0) {
+        snprintf(why, len, "cannot run it (pipe: %s)", strerror(errno));
+        return -1;
+    }
+    pid = fork();
+    if (pid == 0) {
+        int null = open("/dev/null", O_RDWR);
+        if (null >= 0) {
+            dup2(null, 0);
+            dup2(null, 1);
+        }
+        dup2(fd[1], 2);
+        close(fd[0]);
+        close(fd[1]);
+        execl(python, python, "-c", code, (char *)0);
+        fprintf(stderr, "cannot run it: %s\n", strerror(errno));
+        _exit(127);
+    }
+    close(fd[1]);
+    if (pid < 0) {
+        close(fd[0]);
+        snprintf(why, len, "cannot run it (fork: %s)", strerror(errno));
+        return -1;
+    }
+    while ((got = read(fd[0], buf + used, sizeof buf - 1 - used)) > 0) {
+        used += (size_t)got;
+        if (used == sizeof buf - 1) {      /* keep the tail */
+            memmove(buf, buf + sizeof buf / 2, used - sizeof buf / 2);
+            used -= sizeof buf / 2;
+        }
+    }
+    close(fd[0]);
+    if (waitpid(pid, &status, 0) < 0)
+        status = -1;
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+        return 0;
+    while (used > 0 && (buf[used - 1] == '\n' || buf[used - 1] == ' '))
+        used--;
+    buf[used] = '\0';
+    {
+        const char *last = strrchr(buf, '\n');
+        const char *msg = used ? (last ? last + 1 : buf)
+                               : WIFEXITED(status) ? "exit status without a message" : "killed by a signal";
+        size_t ml = strlen(msg) < len ? strlen(msg) : len - 1;   /* cut to fit */
+        memcpy(why, msg, ml);
+        why[ml] = '\0';
+    }
+    return -1;
+}
+
+int cli_find_python(const char *cmd, const char *modules, const char *why, char *out, size_t len)
+{
+    static char tried[PY_TRIED_MAX][PATH_MAX], shown[PY_TRIED_MAX][PATH_MAX], reason[PY_TRIED_MAX][256];
+    const char *env = getenv("HEXAGLIDE_PYTHON"), *path = getenv("PATH");
+    char dir[PATH_MAX], cand[PATH_MAX], real[PATH_MAX], pkgs[256];
+    int n = 0, i, k;
+    size_t used = 0;
+    if (env && *env) {
+        char r[256];
+        if (python_imports(env, modules, r, sizeof r) == 0 && snprintf(out, len, "%s", env) < (int)len)
+            return 0;
+        fprintf(stderr, "hexaglide %s: HEXAGLIDE_PYTHON=%s does not import %s: %s\n"
+                "hexaglide %s: %s; set HEXAGLIDE_PYTHON to a python3 that has them, or unset it to search "
+                "$PATH\n", cmd, env, modules, r, cmd, why);
+        return -1;
+    }
+    while (path && *path && n < PY_TRIED_MAX) {
+        const char *start = path, *colon = strchr(path, ':');
+        size_t dl = colon ? (size_t)(colon - path) : strlen(path);
+        int seen = 0;
+        path = colon ? colon + 1 : path + dl;
+        if (dl == 0 || dl >= sizeof dir)   /* an empty entry (the cwd) is not searched */
+            continue;
+        memcpy(dir, start, dl);
+        dir[dl] = '\0';
+        if (snprintf(cand, sizeof cand, "%s/python3", dir) >= (int)sizeof cand || access(cand, X_OK) != 0 ||
+            !realpath(cand, real))
+            continue;
+        for (i = 0; i < n; i++)        /* /bin/python3 is /usr/bin/python3 */
+            seen |= strcmp(tried[i], real) == 0;
+        if (seen)
+            continue;
+        if (python_imports(cand, modules, reason[n], sizeof reason[n]) == 0 &&
+            snprintf(out, len, "%s", cand) < (int)len)
+            return 0;
+        snprintf(tried[n], sizeof tried[n], "%s", real);
+        snprintf(shown[n], sizeof shown[n], "%s", cand);
+        n++;
+    }
+    pkgs[0] = '\0';
+    for (i = 0, k = 1; modules[i] && used + 16 < sizeof pkgs; i++) {   /* "a b" -> "python3-a python3-b" */
+        if (k)
+            used += (size_t)snprintf(pkgs + used, sizeof pkgs - used, "%spython3-", used ? " " : "");
+        k = modules[i] == ' ';
+        if (!k)
+            pkgs[used++] = modules[i];
+        pkgs[used] = '\0';
+    }
+    fprintf(stderr, "hexaglide %s: no python3 on $PATH imports %s (%s):\n", cmd, modules, why);
+    for (i = 0; i < n; i++)
+        fprintf(stderr, "  %s: %s\n", shown[i], reason[i]);
+    if (n == 0)
+        fprintf(stderr, "  (no python3 on $PATH at all)\n");
+    fprintf(stderr, "hexaglide %s: on Debian 12: apt-get install %s (as root; Debian's /usr/bin/python3 "
+            "then has them), or set HEXAGLIDE_PYTHON to a python3 that imports them\n", cmd, pkgs);
+    return -1;
+}
+
+int cli_out_open(const char *cmd, const char *path, cli_out *o)
+{
+    o->path = path;
+    o->tmp[0] = '\0';
+    o->f = stdout;
+    if (!path)
+        return 0;
+    if (snprintf(o->tmp, sizeof o->tmp, "%s.tmp-%ld", path, (long)getpid()) >= (int)sizeof o->tmp) {
+        fprintf(stderr, "hexaglide %s: %s: path too long\n", cmd, path);
+        return -1;
+    }
+    o->f = fopen(o->tmp, "w");
+    if (!o->f) {
+        fprintf(stderr, "hexaglide %s: cannot write %s: %s\n", cmd, path, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+int cli_out_close(const char *cmd, cli_out *o, int keep)
+{
+    int bad;
+    if (!o->path)
+        return fflush(stdout) != 0 ? -1 : 0;
+    bad = ferror(o->f) != 0;
+    bad |= fclose(o->f) != 0;
+    if (bad || !keep) {
+        if (bad)
+            fprintf(stderr, "hexaglide %s: writing %s failed: %s (nothing written)\n", cmd, o->path,
+                    strerror(errno));
+        unlink(o->tmp);
+        return bad ? -1 : 0;
+    }
+    if (rename(o->tmp, o->path) != 0) {
+        fprintf(stderr, "hexaglide %s: cannot rename %s to %s: %s\n", cmd, o->tmp, o->path, strerror(errno));
+        unlink(o->tmp);
+        return -1;
+    }
+    return 0;
+}
+
+int cli_read_file(const char *cmd, const char *path, const char *what, long long max, char **buf, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    struct stat sb;
+    long long size;
+    size_t got;
+    if (!f) {
+        fprintf(stderr, "hexaglide %s: %s: %s\n", cmd, path, strerror(errno));
+        return -1;
+    }
+    if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode) || fseek(f, 0, SEEK_END) != 0 ||
+        (size = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        fprintf(stderr, "hexaglide %s: %s: not a regular file (cannot seek); give %s\n", cmd, path, what);
+        fclose(f);
+        return -1;
+    }
+    if (size > max) {
+        fprintf(stderr, "hexaglide %s: %s: %lld bytes, more than the %lld this reads; give %s\n", cmd, path, size,
+                max, what);
+        fclose(f);
+        return -1;
+    }
+    *buf = malloc((size_t)size + 1);
+    if (!*buf) {
+        fprintf(stderr, "hexaglide %s: %s: out of memory for %lld bytes\n", cmd, path, size);
+        fclose(f);
+        return -1;
+    }
+    got = fread(*buf, 1, (size_t)size, f);
+    fclose(f);
+    if (got != (size_t)size) {
+        fprintf(stderr, "hexaglide %s: %s: read %zu of %lld bytes\n", cmd, path, got, size);
+        free(*buf);
+        return -1;
+    }
+    (*buf)[got] = '\0';
+    *len = got;
+    return 0;
+}
