@@ -4,6 +4,8 @@
 #include "hg_string.h"
 #include "hg_board.h"
 #include "hg_errors.h"
+#include "hg_stability.h"
+#include "hg_text.h"
 
 /* Finite x, or 0 (nothing non-finite reaches an output). */
 static double finite_or_zero(double x) { return isfinite(x) ? x : 0.0; }
@@ -98,7 +100,8 @@ int hg_board_init(hg_board *b, hg_model_kind kind, const hg_board_params *p)
         rc = hg_model_set_integrator(&b->m, (int)p->integrator);
     if (rc)
         return rc;
-    b->substeps = p->substeps;
+    b->substeps = b->substeps_run = p->substeps;
+    b->stiff_param = -1;
     b->last_in = *p;
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         b->enc_scale[k] = b->enc_scale_in[k] = 1.0;
@@ -137,6 +140,39 @@ static int shape_differs(const hg_geometry *a, const hg_geometry *c)
     return a->l_m != c->l_m || a->lb_m != c->lb_m || a->e_m != c->e_m || a->lp_m != c->lp_m;
 }
 
+/* Table index of the parameter with spec name `name`, or -1. */
+static int param_index(const char *name)
+{
+    int i, n;
+    const hg_param_info *t = hg_params_table(&n);
+    for (i = 0; name && i < n; i++)
+        if (strcmp(t[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+/* The substeps the period needs with the parameters in force (once per
+ * change of either): substeps_run, an event when it rises above substeps,
+ * a latched fault when not even HG_SUBSTEPS_MAX integrate it. */
+static void find_substeps(hg_board *b, long period_ns, hg_board_outputs *out)
+{
+    hg_stability st;
+    unsigned before = b->substeps_run;
+    int rc;
+    if (b->stab_period_ns == period_ns)
+        return;
+    rc = hg_stability_check(&b->m.p, b->m.integrator, (double)period_ns * 1e-9, b->substeps,
+                            HG_SUBSTEPS_MAX, &st);
+    b->stab_period_ns = period_ns;
+    b->stiff_param = param_index(st.param);
+    b->stiff_dt_max_s = st.dt_max_s;
+    b->substeps_run = rc ? b->substeps : st.substeps;
+    if (rc)
+        latch_fault(b, out, HG_ERR_STIFF, HG_FAULT_STIFF);
+    else if (b->substeps_run > b->substeps && b->substeps_run != before)
+        out->events |= HG_EV_SUBSTEPS_AUTO;
+}
+
 /* Try the input parameter block: apply it, or refuse it naming every
  * invalid field (the set in force stays). A new shape restarts at HOME; a
  * new lead or counts-per-rev rescales the counters without a jump. */
@@ -164,8 +200,22 @@ static void apply_params(hg_board *b, const hg_board_params *want, hg_board_outp
         b->param_error = 1;
         return;
     }
+    if (b->stab_period_ns > 0) {      /* can the scheme integrate it at the running period? */
+        hg_stability st;
+        if (hg_stability_check(&b->m_new.p, b->m_new.integrator, (double)b->stab_period_ns * 1e-9,
+                               want->substeps, HG_SUBSTEPS_MAX, &st)) {
+            out->events |= HG_EV_PARAM_REFUSED;
+            out->refused_mask = 1ull << param_index(st.param);
+            out->param_rc = HG_ERR_STIFF;
+            out->stiff_param = param_index(st.param);
+            out->stiff_dt_max_s = st.dt_max_s;
+            b->param_error = 1;
+            return;
+        }
+    }
     geometry_changed = shape_differs(&b->m_new.p.geo, &b->m.p.geo);
     b->m = b->m_new;
+    b->stab_period_ns = 0;            /* substeps_run found again at the next period */
     b->substeps = want->substeps;
     b->param_error = 0;
     out->events |= HG_EV_PARAM_APPLIED;
@@ -203,7 +253,7 @@ static int state_finite(const hg_data *d)
  * with the state restored to the period's start. */
 static int integrate(hg_board *b, const double volts[6], double dt)
 {
-    unsigned i, n = b->substeps;
+    unsigned i, n = b->substeps_run;
     double h = dt / (double)n;
     int rc = 0;
     memcpy(&b->d_saved, &b->d, HG_DATA_STATE_BYTES); /* the state, not the step's scratch */
@@ -327,6 +377,11 @@ static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outpu
     out->dac_nan = b->dac_nan != 0;
     out->params.model = b->m.p;
     out->params.substeps = b->substeps;
+    out->substeps_run = b->substeps_run;
+    if (out->stiff_param < 0 || !(out->events & HG_EV_PARAM_REFUSED)) {
+        out->stiff_param = b->substeps_run > b->substeps || b->fault_code == HG_ERR_STIFF ? b->stiff_param : -1;
+        out->stiff_dt_max_s = out->stiff_param >= 0 ? b->stiff_dt_max_s : 0.0;
+    }
     out->params.integrator = (unsigned)b->m.integrator;
 }
 
@@ -362,6 +417,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
 
     memset(out, 0, sizeof *out);
     out->reset_refused_joint = -1;
+    out->stiff_param = -1;
     /* reset edge: HOME at rest, unless a bar-broken input still holds */
     if (in->reset && !b->prev_reset) {
         int j = bar_input_set(in);
@@ -412,6 +468,8 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
         b->d.amp_enabled |= on ? 1u << k : 0u;   /* a disabled amplifier passes no current */
     }
 
+    if (!b->fault && dt > 0.0)
+        find_substeps(b, period_ns, out);
     if (!b->fault) {
         int rc;
         break_bars(b, in, out);
@@ -432,4 +490,33 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
                                            in->stuck[k]) | in->tripped[k];
     adc(b, in);
     publish(b, in, out, volts);
+}
+
+void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
+                                 char buf[HG_BOARD_TEXT_LEN])
+{
+    const unsigned long n = HG_BOARD_TEXT_LEN;
+    int np;
+    const hg_param_info *t = hg_params_table(&np);
+    const hg_param_info *e = out->stiff_param >= 0 && out->stiff_param < np ? &t[out->stiff_param] : 0;
+    buf[0] = '\0';
+    if (!e)
+        return;
+    hg_text_add(buf, n, hal ? e->hal_name : e->name);
+    hg_text_add(buf, n, " = ");
+    hg_text_add_value(buf, n, hg_params_get(&b->m.p, out->stiff_param) * (hal ? e->hal_scale : 1.0));
+    hg_text_add(buf, n, " ");
+    hg_text_add(buf, n, hal ? e->hal_unit : e->unit);
+    hg_text_add(buf, n, ": ");
+    hg_text_add(buf, n, hg_integrator_name(b->m.integrator));
+    if (out->stiff_dt_max_s > 0.0) {
+        hg_text_add(buf, n, " is stable with it in steps of at most ");
+        hg_text_add_value(buf, n, floor(out->stiff_dt_max_s * 1e9 + 0.5) / 1e6);
+        hg_text_add(buf, n, " ms");
+    } else {
+        hg_text_add(buf, n, " is unstable with it at any step (the mode needs damping)");
+    }
+    hg_text_add(buf, n, "; the period is ");
+    hg_text_add_value(buf, n, (double)period_ns / 1e6);
+    hg_text_add(buf, n, " ms");
 }

@@ -91,7 +91,9 @@ enum {
     HG_EV_PERIOD_BAD = 1u << 7,       /* period_ns outside (0, HG_PERIOD_MAX_NS]: not integrated */
     HG_EV_DAC_NAN = 1u << 8,          /* dac_nan_new: bit ch = channel ch became NaN (outputs 0 V) */
     HG_EV_ENC_SCALE_BAD = 1u << 9,    /* enc_scale_bad: bit ch = scale was 0/NaN, set to 1.0 */
-    HG_EV_WATCHDOG_KICKED = 1u << 10  /* watchdog_reset input consumed (glue clears the pin) */
+    HG_EV_WATCHDOG_KICKED = 1u << 10, /* watchdog_reset input consumed (glue clears the pin) */
+    HG_EV_SUBSTEPS_AUTO = 1u << 11    /* substeps_run changed: more substeps than asked for, because
+                                         stiff_param at the period needs steps of stiff_dt_max_s */
 };
 
 /* Why the fault latched (hg_board_outputs.fault_cause). */
@@ -99,7 +101,9 @@ typedef enum {
     HG_FAULT_NONE = 0,
     HG_FAULT_STEP = 1,                /* a dynamics (sub)step failed or left a non-finite state */
     HG_FAULT_PERIOD = 2,              /* bad thread period (code HG_ERR_BAD_DT) */
-    HG_FAULT_HOME = 3                 /* the machine could not be assembled at HOME on reset */
+    HG_FAULT_HOME = 3,                /* the machine could not be assembled at HOME on reset */
+    HG_FAULT_STIFF = 4                /* the thread's period is too long for the parameters even with
+                                         the most substeps (code HG_ERR_STIFF): stiff_param, stiff_dt_max_s */
 } hg_fault_cause;
 
 /* One servo period's outputs (all finite). HAL pin of each field: */
@@ -148,6 +152,10 @@ typedef struct {
     unsigned bars_newly_broken;       /* BAR_BROKEN */
     unsigned dac_nan_new;             /* DAC_NAN */
     unsigned enc_scale_bad;           /* ENC_SCALE_BAD */
+    unsigned substeps_run;            /* substeps-run: integration steps of the last period, >= substeps */
+    int stiff_param;                  /* SUBSTEPS_AUTO, FAULT_STIFF or PARAM_REFUSED with param_rc
+                                         HG_ERR_STIFF: table index of the limiting parameter, else -1 */
+    double stiff_dt_max_s;            /* ... and the longest step it allows with the scheme */
 } hg_board_outputs;
 
 /* The board: model, state, sensors and latches (no pointers). */
@@ -156,7 +164,11 @@ typedef struct {
     hg_model m_new;                   /* scratch: a candidate model being built */
     hg_data d;                        /* the machine's state */
     hg_data d_saved;                  /* state at the start of the period (rollback) */
-    unsigned substeps;                /* in force */
+    unsigned substeps;                /* in force (asked for) */
+    unsigned substeps_run;            /* run: at least substeps, as the period and parameters need */
+    long stab_period_ns;              /* the period substeps_run was found for (0: find it again) */
+    int stiff_param;                  /* what set substeps_run above substeps (-1: nothing) */
+    double stiff_dt_max_s;
     hg_board_params last_in;          /* the input block of the previous step (change detection) */
     hg_encoder enc[HG_BOARD_ENCODERS];
     double enc_scale[HG_BOARD_ENCODERS]; /* in force */
@@ -206,6 +218,15 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
 #define HG_BOARD_WHY_LEN 64
 int hg_board_params_check(const hg_board_params *p, unsigned long long *mask,
                           const char *why[HG_BOARD_WHY_LEN]);
+
+/* What made the board run more substeps than asked, or refuse a
+ * parameter set or fault as too stiff (out's stiff_param, stiff_dt_max_s,
+ * substeps_run, the period), as one sentence naming the parameter by its
+ * HAL name (hal 1, value in HAL units) or spec name (hal 0). Empty when
+ * nothing limits. */
+#define HG_BOARD_TEXT_LEN 240
+void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
+                                 char buf[HG_BOARD_TEXT_LEN]);
 
 /* HAL name of refused_mask bit i ("c-visc", "substeps", ...), 0 if none. */
 const char *hg_board_param_hal_name(int bit);

@@ -60,7 +60,7 @@ typedef struct {
     hal_u32_t watchdog_control;
     joint_hal joint[HG_BOARD_JOINTS];
     hal_float_t *head[6], *sim_time, *residual;
-    hal_u32_t *steps, *step_ns, *step_max_ns, *dout_word, *bars_broken;
+    hal_u32_t *steps, *step_ns, *step_max_ns, *dout_word, *bars_broken, *substeps_run;
     hal_bit_t *fault, *reset, *amps_on, *estop_button, *watchdog_expired, *param_error, *dac_nan;
     hal_s32_t *fault_code;
     hal_s32_t estop_loop_out;
@@ -177,7 +177,7 @@ static void write_params(board_t *b)
 }
 
 /* Say, once, why the parameter change was refused: every field, its value, the rule. */
-static void report_refusal(board_t *b)
+static void report_refusal(board_t *b, long period)
 {
     const char *why[HG_BOARD_WHY_LEN];
     unsigned long long mask;
@@ -185,9 +185,12 @@ static void report_refusal(board_t *b)
     int i, n;
     const hg_param_info *t = hg_params_table(&n);
     if (b->o.param_rc != HG_ERR_BAD_PARAM) {
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter set refused: %s (code %d); "
-                        "keeping the set in force (show param displays it again)\n",
-                        b->id, hg_strerror(b->o.param_rc), b->o.param_rc);
+        char what[HG_BOARD_TEXT_LEN];
+        hg_board_describe_stiffness(&b->b, &b->o, period, 1, what);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter set refused: %s (code %d)%s%s, even "
+                        "with %u substeps; keeping the set in force (show param displays it again)\n",
+                        b->id, hg_strerror(b->o.param_rc), b->o.param_rc, what[0] ? ": " : "", what,
+                        HG_SUBSTEPS_MAX);
         return;
     }
     hg_board_params_check(&b->ins.params, &mask, why);
@@ -213,7 +216,7 @@ static void report(board_t *b, long period)
     const hg_board_outputs *o = &b->o;
     int k, id = b->id;
     if (o->events & HG_EV_PARAM_REFUSED)
-        report_refusal(b);
+        report_refusal(b, period);
     if (o->events & HG_EV_GEOMETRY_RESTART)
         rtapi_print_msg(RTAPI_MSG_INFO, MODNAME ": board %d: new geometry, machine restarted at HOME\n", id);
     if (o->events & HG_EV_RESET_REFUSED)
@@ -236,7 +239,21 @@ static void report(board_t *b, long period)
         if ((o->enc_scale_bad >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: enc-%02d-scale must be a finite non-zero "
                             "number of counts per unit; set to 1.0 (as hal_motenc)\n", id, k);
-    if (o->events & HG_EV_FAULT_LATCHED) {
+    if (o->events & HG_EV_SUBSTEPS_AUTO) {
+        char what[HG_BOARD_TEXT_LEN];
+        hg_board_describe_stiffness(&b->b, o, period, 1, what);
+        rtapi_print_msg(RTAPI_MSG_WARN, MODNAME ": board %d: %s: running %u integration steps per period "
+                        "(" XP ".%d.substeps-run) instead of the %u asked for\n", id, what, o->substeps_run,
+                        id, o->params.substeps);
+    }
+    if (o->events & HG_EV_FAULT_LATCHED && o->fault_cause == HG_FAULT_STIFF) {
+        char what[HG_BOARD_TEXT_LEN];
+        hg_board_describe_stiffness(&b->b, o, period, 1, what);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s: the step cannot integrate the parameters at "
+                        "this period even with %u substeps (code %d); drives off; set a softer value or "
+                        "another integrator, then " XP ".%d.reset\n", id, what, HG_SUBSTEPS_MAX,
+                        o->fault_code, id);
+    } else if (o->events & HG_EV_FAULT_LATCHED) {
         char what[HG_GUARD_TEXT_LEN];
         hg_guard_describe(&o->fault_guard, 1, what);
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s: %s (code %d)%s%s; drives off, state frozen; "
@@ -270,6 +287,7 @@ static void publish(board_t *b)
     *b->sim_time = o->sim_time_s;
     *b->residual = o->residual_m;
     *b->steps = o->steps;
+    *b->substeps_run = o->substeps_run;
     *b->bars_broken = o->bars_broken;
     *b->fault = o->fault;
     *b->fault_code = o->fault_code;
@@ -466,6 +484,7 @@ static int export_extra(board_t *b)
     PIN(float, HAL_OUT, &b->sim_time, XP ".%d.sim-time", id);
     PIN(float, HAL_OUT, &b->residual, XP ".%d.residual", id);
     PIN(u32, HAL_OUT, &b->steps, XP ".%d.steps", id);
+    PIN(u32, HAL_OUT, &b->substeps_run, XP ".%d.substeps-run", id);
     PIN(u32, HAL_OUT, &b->bars_broken, XP ".%d.bars-broken", id);
     PIN(u32, HAL_OUT, &b->step_ns, XP ".%d.step-time-ns", id);
     PIN(u32, HAL_IO, &b->step_max_ns, XP ".%d.step-time-max-ns", id);

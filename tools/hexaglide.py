@@ -145,7 +145,8 @@ class BoardOutputs(C.Structure):
                 ("dac_nan", C.c_int), ("params", BoardParams), ("events", C.c_uint),
                 ("refused_mask", C.c_ulonglong), ("param_rc", C.c_int), ("reset_refused_joint", C.c_int),
                 ("fault_cause", C.c_int), ("bars_newly_broken", C.c_uint), ("dac_nan_new", C.c_uint),
-                ("enc_scale_bad", C.c_uint)]
+                ("enc_scale_bad", C.c_uint), ("substeps_run", C.c_uint), ("stiff_param", C.c_int),
+                ("stiff_dt_max_s", C.c_double)]
 
 
 for _i, _s in ((7, BoardParams), (9, BoardInputs), (10, BoardOutputs)):

@@ -197,6 +197,20 @@ int cmd_sim(int argc, char **argv)
     write_row(csv.f, 0.0, &out);
     for (s = 0; s < n; s++) {
         hg_board_step(b, &in, &out, period_ns);
+        if (out.events & HG_EV_SUBSTEPS_AUTO) {
+            char why[HG_BOARD_TEXT_LEN];
+            hg_board_describe_stiffness(b, &out, period_ns, 0, why);
+            fprintf(stderr, "hexaglide sim: %s: running %u substeps per period instead of %u\n", why,
+                    out.substeps_run, out.params.substeps);
+        }
+        if (out.fault && out.fault_cause == HG_FAULT_STIFF) {
+            char why[HG_BOARD_TEXT_LEN];
+            hg_board_describe_stiffness(b, &out, period_ns, 0, why);
+            fprintf(stderr, "hexaglide sim: %s: %s even with %u substeps; give a softer value, another "
+                            "--integrator or a shorter --dt\n", why, hg_strerror(out.fault_code), HG_SUBSTEPS_MAX);
+            rc = out.fault_code;
+            break;
+        }
         if (out.fault) {
             char what[HG_GUARD_TEXT_LEN];
             hg_guard_describe(&out.fault_guard, 0, what);

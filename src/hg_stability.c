@@ -1,0 +1,172 @@
+/* hg_stability.c - linear stability of the board's step on the stiff
+ * test systems of one carriage (hg_stability.h). */
+#include "hg_math.h"
+#include "hg_stability.h"
+#include "hg_integrate.h"
+#include "hg_errors.h"
+#include "hg_units.h"
+
+#define JURY_MARGIN 1e-12     /* strictly inside the unit circle */
+#define BISECT_ITER 40        /* the largest stable step, to 1e-12 of the period */
+
+/* One carriage with one stiff part: m x'' = f - c x' - k x, f the drive's
+ * force held over the step from a state variable w. */
+typedef struct {
+    double m, k, c;
+    int drive;           /* 0 current held (w unused), 1 bus-limited winding (w = i), 2 velocity loop (w = xi) */
+    double fpa;          /* force per ampere (N/A) */
+    double ke_r;         /* winding: current per speed the back-EMF takes, kt (2 pi / lead) / R (A s/m) */
+    double tau;          /* winding: L / R (s) */
+    double kp, ki;       /* velocity loop (A s/m, A/m) */
+    const char *param;   /* what limits it */
+} test_system;
+
+/* Acceleration of the test system. */
+static double accel(const test_system *s, double f, double x, double v)
+{
+    return (f - s->c * v - s->k * x) / s->m;
+}
+
+/* One step of dt of the scheme on y = (x, v, w), in hg_step's order: the
+ * drive's force from the step's start, the scheme's stages, the drive's
+ * state at the end. */
+static void step(const test_system *s, hg_integrator scheme, double dt, double y[3])
+{
+    const double *cs, *bs;
+    double x0 = y[0], v0 = y[1], w0 = y[2], f = 0.0, w1 = 0.0, x1, v1, a;
+    int ns = hg_scheme_tableau(scheme, &cs, &bs), i;
+    if (s->drive == 1) {               /* the winding towards (u - e) / R, linearized: -ke_r v */
+        double is = -s->ke_r * v0, dec = exp(-dt / s->tau);
+        f = s->fpa * (is + (w0 - is) * s->tau / dt * (1.0 - dec));
+        w1 = is + (w0 - is) * dec;
+    } else if (s->drive == 2) {        /* xi + x is constant (xi' = -x'): xi = -x, a spring */
+        f = s->fpa * (-s->kp * v0 - s->ki * x0);
+    }
+    a = accel(s, f, x0, v0);
+    if (ns == 0) {                     /* improved Euler */
+        x1 = x0 + v0 * dt + 0.5 * a * dt * dt;
+        v1 = v0 + a * dt;
+    } else {
+        double vs = v0, sq = bs[0] * v0, sv = bs[0] * a;
+        for (i = 1; i < ns; i++) {
+            double h = cs[i] * dt, xs = x0 + h * vs;
+            vs = v0 + h * a;
+            a = accel(s, f, xs, vs);
+            sq += bs[i] * vs;
+            sv += bs[i] * a;
+        }
+        x1 = x0 + dt * sq;
+        v1 = v0 + dt * sv;
+    }
+    y[0] = x1;
+    y[1] = v1;
+    y[2] = w1;
+}
+
+/* 1 when every eigenvalue of the step's map lies inside the unit circle.
+ * Without a spring the position is neutral (eigenvalue 1, it only
+ * accumulates), so the map is taken on (v, w); with one on (x, v, w); the
+ * velocity loop ties its integral to x, so its map is on (x, v). */
+static int stable(const test_system *s, hg_integrator scheme, double dt)
+{
+    double G[3][3];
+    int j, r, n = s->drive == 2 ? 2 : s->k > 0.0 ? 3 : 2, off = s->drive == 2 ? 0 : 3 - n;
+    for (j = 0; j < n; j++) {          /* column j: the image of unit vector j */
+        double y[3] = {0, 0, 0};
+        y[off + j] = 1.0;
+        step(s, scheme, dt, y);
+        for (r = 0; r < n; r++)
+            G[r][j] = y[off + r];
+    }
+    if (n == 2) {                      /* z^2 + a1 z + a0 */
+        double a1 = -(G[0][0] + G[1][1]), a0 = G[0][0] * G[1][1] - G[0][1] * G[1][0];
+        return fabs(a0) < 1.0 - JURY_MARGIN && 1.0 + a1 + a0 > JURY_MARGIN && 1.0 - a1 + a0 > JURY_MARGIN;
+    } else {                           /* z^3 + a2 z^2 + a1 z + a0, Jury's conditions */
+        double tr = G[0][0] + G[1][1] + G[2][2];
+        double m2 = G[0][0] * G[1][1] - G[0][1] * G[1][0] + G[0][0] * G[2][2] - G[0][2] * G[2][0] +
+                    G[1][1] * G[2][2] - G[1][2] * G[2][1];
+        double det = G[0][0] * (G[1][1] * G[2][2] - G[1][2] * G[2][1]) -
+                     G[0][1] * (G[1][0] * G[2][2] - G[1][2] * G[2][0]) +
+                     G[0][2] * (G[1][0] * G[2][1] - G[1][1] * G[2][0]);
+        double a2 = -tr, a1 = m2, a0 = -det;
+        return 1.0 + a2 + a1 + a0 > JURY_MARGIN && 1.0 - a2 + a1 - a0 > JURY_MARGIN &&
+               fabs(a0) < 1.0 - JURY_MARGIN && fabs(a0 * a0 - 1.0) > fabs(a0 * a2 - a1) + JURY_MARGIN;
+    }
+}
+
+/* The test systems of p; returns how many. */
+static int test_systems(const hg_params *p, test_system s[6])
+{
+    const double k = 2.0 * HG_PI / p->lead_m, fpa = p->kt_nm_per_a * k;
+    const double m = p->m_carriage_kg + p->j_rotor_kgm2 * k * k;
+    const test_system base = {m, 0.0, p->c_visc_ns_per_m, 0, fpa, fpa / p->r_winding_ohm,
+                              p->l_winding_h / p->r_winding_ohm, p->kp_vel_as_per_m,
+                              p->ki_vel_a_per_m, "c_visc"};
+    test_system stop;
+    int n = 0;
+    if (p->c_visc_ns_per_m > 0.0) {                         /* viscous friction alone */
+        s[n] = base;
+        s[n].param = "c_visc", n++;
+    }
+    s[n] = base;                                            /* in a hard stop */
+    s[n].k = p->k_stop_n_per_m, s[n].c += p->c_stop_ns_per_m;
+    s[n].param = s[n].c > 0.0 ? "k_stop" : "c_stop", n++;
+    stop = s[n - 1];
+    s[n] = base;                                            /* back-EMF of a drive at its bus voltage */
+    s[n].drive = 1, s[n].param = "r_winding", n++;
+    s[n] = stop;                                            /* ... in a hard stop */
+    s[n].drive = 1, n++;
+    if (p->amp_mode == 1.0) {
+        s[n] = base;                                        /* the velocity loop */
+        s[n].drive = 2, s[n].param = "kp_vel", n++;
+        s[n] = stop;                                        /* ... in a hard stop */
+        s[n].drive = 2, n++;
+    }
+    return n;
+}
+
+/* Index of the first test system unstable at dt, or -1. */
+static int first_unstable(const test_system *s, int n, hg_integrator scheme, double dt)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        if (!stable(&s[i], scheme, dt))
+            return i;
+    return -1;
+}
+
+int hg_stability_check(const hg_params *p, hg_integrator scheme, double period_s, unsigned substeps_min,
+                       unsigned substeps_max, hg_stability *out)
+{
+    test_system s[6];
+    int n = test_systems(p, s), first;
+    unsigned k;
+    double lo, hi;
+    if (substeps_min < 1)
+        substeps_min = 1;
+    out->substeps = 0;
+    out->param = 0;
+    out->dt_max_s = 0.0;
+    first = first_unstable(s, n, scheme, period_s / substeps_min);
+    if (first < 0) {
+        out->substeps = substeps_min;
+        return 0;
+    }
+    out->param = s[first].param;
+    lo = 0.0;                          /* the largest stable step of the limiting system */
+    hi = period_s / substeps_min;
+    for (k = 0; k < BISECT_ITER; k++) {
+        double mid = 0.5 * (lo + hi);
+        if (stable(&s[first], scheme, mid))
+            lo = mid;
+        else
+            hi = mid;
+    }
+    out->dt_max_s = lo;
+    for (k = substeps_min + 1; k <= substeps_max; k++)
+        if (first_unstable(s, n, scheme, period_s / k) < 0) {
+            out->substeps = k;
+            return 0;
+        }
+    return HG_ERR_STIFF;
+}

@@ -1,0 +1,162 @@
+/* test_stability.c - hg_stability's bound against the machine itself: the
+ * linear test systems predict the longest stable step for a stiff
+ * parameter; the full nonlinear step (hg_step on all six carriages, head
+ * and bars made light so that each carriage's inertia is the test
+ * system's, m_carriage + j_rotor (2 pi / lead)^2) must settle a little
+ * below that step and not settle a little above it. Also: the defaults
+ * need one step per 1 ms period with every scheme, an undamped hard stop
+ * is refused for improved Euler and Heun, and the board runs the substeps
+ * the check asks for and says so. */
+#include <math.h>
+#include <string.h>
+#include "hg_test.h"
+#include "hg_board.h"
+#include "hg_dynamics.h"
+#include "hg_stability.h"
+#include "hg_errors.h"
+
+/* The spec's machine with head and bars of almost no mass. */
+static void light(hg_params *p)
+{
+    hg_params_default(p);
+    p->m_head_kg = 1e-3;
+    p->i_head_xx_kgm2 = p->i_head_yy_kgm2 = p->i_head_zz_kgm2 = 1e-6;
+    p->m_bar_kg = 1e-3;
+    p->i_bar_kgm2 = 0.3 * p->m_bar_kg * p->geo.l_m * p->geo.l_m;
+    p->f_coulomb_n = p->f_static_n = 0.0;
+}
+
+/* How the carriage speed's swing (largest minus smallest) changes from the
+ * 50 ms after t_s / 2 to the last 50 ms of t_s, six equal volts from
+ * HOME, stepping dt: well below 1 it settles, near or above 1 it does not
+ * (a limit cycle where the drive or the stop clips it; INFINITY when the
+ * step fails; 0 once the swing is below 1 nm/s). */
+static double swing_ratio(const hg_params *p, hg_integrator scheme, double volts, double dt, double t_s)
+{
+    static hg_model m;
+    static hg_data d;
+    double v[6], lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY}, early, late;
+    long s, n = lround(t_s / dt), mid = n / 2, w = lround(0.05 / dt);
+    int k;
+    if (hg_model_init(&m, p, HG_MODEL_REDUCED_JOINTS, 0, 0) || hg_model_set_integrator(&m, scheme) ||
+        hg_data_reset(&m, &d))
+        return INFINITY;
+    for (k = 0; k < 6; k++)
+        v[k] = volts;
+    for (s = 0; s < n; s++) {
+        if (hg_step(&m, &d, v, dt))
+            return INFINITY;
+        k = s >= mid && s < mid + w ? 0 : s >= n - w ? 1 : -1;
+        if (k >= 0) {
+            lo[k] = fmin(lo[k], d.zd_mps[0]);
+            hi[k] = fmax(hi[k], d.zd_mps[0]);
+        }
+    }
+    early = hi[0] - lo[0];
+    late = hi[1] - lo[1];
+    return late < 1e-9 ? 0.0 : late / early;
+}
+
+/* The bound for p at 1 ms, and the machine a little below and above it. */
+static void check_bound(const char *what, const hg_params *p, hg_integrator scheme, double volts, double t_s)
+{
+    hg_stability st;
+    int rc = hg_stability_check(p, scheme, 1e-3, 1, 1, &st);
+    double below, above;
+    if (!(rc == HG_ERR_STIFF && st.dt_max_s > 0.0)) {
+        CHECK(0, "%s with %s: expected a bound below 1 ms (rc %d)", what, hg_integrator_name(scheme), rc);
+        return;
+    }
+    below = swing_ratio(p, scheme, volts, 0.9 * st.dt_max_s, t_s);
+    above = swing_ratio(p, scheme, volts, 1.1 * st.dt_max_s, t_s);
+    CHECK(below < 0.5 && !(above < 0.8),
+          "%s with %s: bound %.4f ms (%s); at 0.9 of it the machine's speed swing dies out (late/early %.2g), "
+          "at 1.1 it does not (%.2g)", what, hg_integrator_name(scheme), st.dt_max_s * 1e3, st.param,
+          below, above);
+}
+
+static void test_bounds(void)
+{
+    hg_params p;
+    int s;
+    for (s = 0; s < HG_INTEGRATOR_COUNT; s++) {
+        hg_stability st;
+        hg_params_default(&p);
+        CHECK(hg_stability_check(&p, (hg_integrator)s, 1e-3, 1, HG_SUBSTEPS_MAX, &st) == 0 && st.substeps == 1,
+              "defaults at 1 ms with %s: one step per period (%u)", hg_integrator_name((hg_integrator)s),
+              st.substeps);
+    }
+    /* a stiff hard stop: pushed into a near one at full volts */
+    light(&p);
+    p.stop_max_m = 0.004;
+    p.limit_max_m = 0.003;
+    p.home_switch_m = 0.001;
+    for (s = 0; s < HG_INTEGRATOR_COUNT; s++) {
+        p.k_stop_n_per_m = s == HG_INTEGRATOR_RK4 ? 9e8 : 2e8;
+        check_bound(s == HG_INTEGRATOR_RK4 ? "k_stop 9e8 N/m, in the stop" : "k_stop 2e8 N/m, in the stop",
+                    &p, (hg_integrator)s, 10.0, 0.6);
+    }
+    /* a drive whose back-EMF damping is strong (small winding resistance and
+     * inductance), at its bus-limited top speed */
+    light(&p);
+    p.r_winding_ohm = 0.1;
+    p.l_winding_h = 1e-6;
+    for (s = 0; s < HG_INTEGRATOR_COUNT; s++)
+        check_bound("r_winding 0.1 ohm, l_winding 1 uH, top speed", &p, (hg_integrator)s, 10.0, 0.6);
+}
+
+static void test_refused_and_board(void)
+{
+    static hg_board b;
+    hg_board_params bp;
+    hg_board_inputs in;
+    hg_board_outputs out;
+    hg_stability st;
+    int rc, i;
+    hg_params_default(&bp.model);
+    bp.model.c_visc_ns_per_m = bp.model.c_stop_ns_per_m = 0.0;
+    rc = hg_stability_check(&bp.model, HG_INTEGRATOR_HEUN, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
+    CHECK(rc == HG_ERR_STIFF && st.param && strcmp(st.param, "c_stop") == 0,
+          "an undamped hard stop with heun: refused at any step, naming %s", st.param ? st.param : "nothing");
+    rc = hg_stability_check(&bp.model, HG_INTEGRATOR_RK4, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
+    CHECK(rc == 0 && st.substeps == 1, "... rk4 integrates it (|R| < 1 on the imaginary axis up to 2.8)");
+    /* the board: k_stop 5e8 needs more substeps with improved Euler at 1 ms */
+    hg_params_default(&bp.model);
+    bp.model.k_stop_n_per_m = 5e8;
+    bp.substeps = 1;
+    bp.integrator = HG_INTEGRATOR_IMPROVED_EULER;
+    rc = hg_stability_check(&bp.model, HG_INTEGRATOR_IMPROVED_EULER, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
+    hg_board_init(&b, HG_MODEL_REDUCED_CARTESIAN, &bp);
+    hg_board_inputs_default(&b, &in);
+    in.dout_values = 1u << 7;
+    hg_board_step(&b, &in, &out, 1000000L);
+    CHECK(rc == 0 && st.substeps > 1 && out.substeps_run == st.substeps && (out.events & HG_EV_SUBSTEPS_AUTO) &&
+              out.stiff_param >= 0 && strcmp(hg_params_table(0)[out.stiff_param].name, "k_stop") == 0 &&
+              out.params.substeps == 1,
+          "board, k_stop 5e8 with improved Euler at 1 ms: runs %u substeps (%u asked), says so once, names k_stop",
+          out.substeps_run, out.params.substeps);
+    hg_board_step(&b, &in, &out, 1000000L);
+    CHECK(!(out.events & HG_EV_SUBSTEPS_AUTO) && out.substeps_run == st.substeps, "... and keeps them without a new event");
+    /* a period the parameters cannot be integrated at even with 64 substeps: fault STIFF */
+    for (i = 0; i < 2; i++)
+        hg_board_step(&b, &in, &out, 10000000L);
+    CHECK(out.fault && out.fault_code == HG_ERR_STIFF, "10 ms period with k_stop 5e8: fault %d (%s)", out.fault_code,
+          hg_strerror(out.fault_code));
+    /* a change the running period cannot integrate is refused, naming it */
+    hg_board_init(&b, HG_MODEL_REDUCED_CARTESIAN, 0);
+    hg_board_inputs_default(&b, &in);
+    hg_board_step(&b, &in, &out, 1000000L);
+    in.params.model.c_visc_ns_per_m = in.params.model.c_stop_ns_per_m = 0.0;
+    hg_board_step(&b, &in, &out, 1000000L);
+    CHECK((out.events & HG_EV_PARAM_REFUSED) && out.param_rc == HG_ERR_STIFF && out.stiff_param >= 0 &&
+              strcmp(hg_params_table(0)[out.stiff_param].name, "c_stop") == 0 &&
+              out.params.model.c_stop_ns_per_m > 0.0,
+          "c_visc = c_stop = 0 at 1 ms with heun: refused (code %d), naming c_stop, the set in force kept", out.param_rc);
+}
+
+int main(void)
+{
+    test_bounds();
+    test_refused_and_board();
+    return hg_test_exit();
+}
