@@ -311,10 +311,11 @@ static void csv_header(FILE *f, int with_loop)
     fputc('\n', f);
 }
 
-/* Run the plot script beside this binary (../tools/plot_replay.py) on csv -> png. */
-static int run_plot(const char *self, const char *csv, const char *png)
+/* Run the plot script beside this binary (../tools/plot_replay.py) on csv -> png;
+ * the f-error window from..to when from >= 0. */
+static int run_plot(const char *self, const char *csv, const char *png, long from, long to)
 {
-    char script[4096];
+    char script[4096], a_from[24], a_to[24];
     const char *slash = strrchr(self, '/');
     int n = slash ? (int)(slash - self) : 1, status = 0;
     pid_t pid;
@@ -324,7 +325,11 @@ static int run_plot(const char *self, const char *csv, const char *png)
     }
     pid = fork();
     if (pid == 0) {
-        char *args[] = {"/usr/bin/python3", script, (char *)csv, (char *)png, 0};
+        char *args[] = {"/usr/bin/python3", script, (char *)csv, (char *)png, a_from, a_to, 0};
+        snprintf(a_from, sizeof a_from, "%ld", from);
+        snprintf(a_to, sizeof a_to, "%ld", to);
+        if (from < 0)
+            args[4] = 0;
         execv(args[0], args);
         _exit(127);
     }
@@ -443,10 +448,11 @@ static void joint_add(joint_stats *j, int w, long n, double fe, double v)
 }
 
 /* The per-joint lines: recorded (and predicted) peak and RMS f-error, peak volts. */
-static void joint_report(const joint_stats *js, int whatif, long from, long to)
+static void joint_report(const joint_stats *js, int whatif, long from, long to, int auto_from)
 {
     int k;
-    printf("f-error window: samples %ld..%ld, each joint while its amplifier is enabled\n", from, to);
+    printf("f-error window: samples %ld..%ld (%s), each joint while its amplifier is enabled\n", from, to,
+           auto_from ? "after the last index latch: homing done" : "--from");
     for (k = 0; k < 6; k++) {
         const joint_stats *j = &js[k];
         double rms0 = j->n ? sqrt(j->sq[0] / (double)j->n) : 0.0, rms1 = j->n ? sqrt(j->sq[1] / (double)j->n) : 0.0;
@@ -487,8 +493,8 @@ int cmd_replay(int argc, char **argv, const char *self)
     double prev_cmd[6] = {0}, fe[2][6], volts[2][6];
     int nf, i, k, rc, whatif, closed, kind = -1, status = 0, ie[6] = {0};
     unsigned prev_ie_rec = 0, prev_latched_rec = 0;
-    long period = 0, win_from = 0, last_n = 0;
-    long settings_from = 0, first_enabled = -1;
+    long period = 0, win_from = 0;
+    long settings_from = 0, first_enabled = -1, last_enabled = -1;
     FILE *csv = 0;
     char csv_auto[4096], png_auto[4000], csv_tmp[4200];
     const char *csv_path;
@@ -702,6 +708,7 @@ int cmd_replay(int argc, char **argv, const char *self)
                     continue;
                 if (first_enabled < 0)
                     first_enabled = n;
+                last_enabled = n;
                 joint_add(&js[k], 0, n, fe[0][k], volts[0][k]);
                 joint_add(&js[k], 1, n, fe[1][k], volts[1][k]);
                 js[k].n++;
@@ -714,7 +721,6 @@ int cmd_replay(int argc, char **argv, const char *self)
         if (csv)
             csv_row(csv, n, row, col_z, col_count, col_pose, &out_w, has_cmd ? (const double (*)[6])fe : 0,
                     (const double (*)[6])volts);
-        last_n = n;
         stx.samples++;
         st.samples++;
     }
@@ -749,7 +755,7 @@ int cmd_replay(int argc, char **argv, const char *self)
                 "(run replay without options for the fields): the recorded f-errors are the replayed ones\n",
                 stx.first_mismatch);
     if (has_cmd && first_enabled >= 0)
-        joint_report(js, whatif, win_from, last_n);
+        joint_report(js, whatif, win_from, last_enabled, o.from < 0);
     if (whatif) {
         printf("what-if, %s\n", closed ? "closed loop: LinuxCNC's pid with the recorded settings on the "
                                         "recorded joint commands"
@@ -765,7 +771,7 @@ int cmd_replay(int argc, char **argv, const char *self)
     printf("%s: samples %ld, max |count diff| %lld, max |pos diff| %.3g mm, max |pose diff| %.3g m/rad, "
            "first mismatch %s\n", whatif ? "what-if" : "replay", st.samples, st.max_count_diff,
            st.max_pos_diff_mm, st.max_pose_diff, text);
-    if (o.plot && run_plot(self, csv_path, o.plot))
+    if (o.plot && run_plot(self, csv_path, o.plot, has_cmd && first_enabled >= 0 ? win_from : -1, last_enabled))
         return 1;
     return (whatif || st.first_mismatch < 0) ? 0 : 1;
 }
