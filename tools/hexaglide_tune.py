@@ -161,9 +161,9 @@ def check_trajectory(path, cmd):
 
 def load_record(path):
     """Joint commands (n, 6) in mm from a record of tools/hg_record.py
-    (docs/replay.md): the columns joint.N.motor-pos-cmd, from the period
-    after the last index latch (homing done, as `replay` starts its f-error
-    window) to the last period with every amplifier enabled (pid.N.enable
+    (docs/replay.md): the columns joint.N.motor-pos-cmd, from the second
+    period after the last index latch (homing done, where `replay` starts its
+    f-error window) to the last period with every amplifier enabled (pid.N.enable
     is out-08+N of in.dout-values)."""
     header, no = None, 0
     with open(path) as f:
@@ -187,7 +187,7 @@ def load_record(path):
         raise BadInput("%s holds a NaN or infinite value: not a record tools/hg_record.py wrote" % path)
     latched = np.where(data[:, 6].astype(np.int64) & 0x3f)[0]
     on = np.where((data[:, 7].astype(np.int64) >> 8 & 0x3f) == 0x3f)[0]
-    i0 = latched[-1] + 1 if len(latched) else (on[0] if len(on) else 0)
+    i0 = latched[-1] + 2 if len(latched) else (on[0] if len(on) else 0)
     i1 = on[-1] + 1 if len(on) else len(data)
     return np.ascontiguousarray(data[i0:i1, :6])
 

@@ -26,7 +26,6 @@
 #include "hg_units.h"
 
 #define REPLAY_MAX_SETS 64
-#define REPLAY_MAX_SPREAD 32          /* --spread: closed loops run side by side */
 #define REPLAY_MAX_BYTES (4LL << 30)  /* refuse record files above 4 GiB */
 
 typedef struct {
@@ -37,7 +36,6 @@ typedef struct {
     int integrator;                   /* -1: as recorded */
     int open_loop;                    /* --open-loop: recorded DAC volts, no pid */
     long from;                        /* --from: first sample of the f-error statistics, -1 auto */
-    long spread;                      /* --spread: closed loops at as many quantization phases */
 } replay_opts;
 
 /* What the comparison found. */
@@ -79,7 +77,7 @@ static void replay_usage(void)
     fprintf(stderr,
             "usage: hexaglide replay FILE [--csv OUT] [--plot PNG] [--set name=value]...\n"
             "                        [--model NAME] [--substeps N] [--integrator NAME]\n"
-            "                        [--open-loop] [--from SAMPLE] [--spread K]\n"
+            "                        [--open-loop] [--from SAMPLE]\n"
             "       hexaglide replay --list-columns   (the record pin set)\n"
             "FILE: a record of tools/hg_record.py (docs/replay.md). Without --set, --model,\n"
             "--substeps, --integrator: replays and compares, exit 0 only if bit-exact.\n"
@@ -88,9 +86,7 @@ static void replay_usage(void)
             "recorded DAC volts (--open-loop); written to FILE.whatif.png.csv and\n"
             "plotted to FILE.whatif.png unless --csv/--plot say otherwise; --set takes\n"
             "the spec name and SI unit (hexaglide sim --list-params). Following-error\n"
-            "statistics from --from SAMPLE (default: after the last index latch, homing).\n"
-            "--spread K: K closed loops, commands offset by 0, 1/K, ... of an encoder count\n"
-            "(the quantization phase), predicted peaks as median and range.\n");
+            "statistics from --from SAMPLE (default: after the last index latch, homing).\n");
 }
 
 /* Whole file into a malloc'd buffer; 0 or -1 with a message. */
@@ -154,13 +150,11 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
     o->substeps = -1;
     o->integrator = -1;
     o->from = -1;
-    o->spread = 1;
     for (i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "";
         int takes = strcmp(a, "--csv") == 0 || strcmp(a, "--plot") == 0 || strcmp(a, "--set") == 0 ||
                     strcmp(a, "--model") == 0 || strcmp(a, "--substeps") == 0 ||
-                    strcmp(a, "--integrator") == 0 || strcmp(a, "--from") == 0 ||
-                    strcmp(a, "--spread") == 0;
+                    strcmp(a, "--integrator") == 0 || strcmp(a, "--from") == 0;
         if (takes && i + 1 >= argc) {
             fprintf(stderr, "hexaglide replay: %s needs a value\n", a);
             return 2;
@@ -202,14 +196,6 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
             o->from = strtol(v, &end, 10);
             if (end == v || *end || errno || o->from < 0) {
                 fprintf(stderr, "hexaglide replay: --from %s: give a sample number (0, 1, ...)\n", v);
-                return 2;
-            }
-        } else if (strcmp(a, "--spread") == 0) {
-            char *end = 0;
-            errno = 0;
-            o->spread = strtol(v, &end, 10);
-            if (end == v || *end || errno || o->spread < 1 || o->spread > REPLAY_MAX_SPREAD) {
-                fprintf(stderr, "hexaglide replay: --spread %s: give an integer 1..%d\n", v, REPLAY_MAX_SPREAD);
                 return 2;
             }
         } else if (strcmp(a, "--open-loop") == 0) {
@@ -466,7 +452,7 @@ static void joint_report(const joint_stats *js, int whatif, long from, long to, 
 {
     int k;
     printf("f-error window: samples %ld..%ld (%s), each joint while its amplifier is enabled\n", from, to,
-           auto_from ? "after the last index latch: homing done" : "--from");
+           auto_from ? "from the 2nd period after the last index latch: homing done" : "--from");
     for (k = 0; k < 6; k++) {
         const joint_stats *j = &js[k];
         double rms0 = j->n ? sqrt(j->sq[0] / (double)j->n) : 0.0, rms1 = j->n ? sqrt(j->sq[1] / (double)j->n) : 0.0;
@@ -487,12 +473,11 @@ static void joint_report(const joint_stats *js, int whatif, long from, long to, 
 /* One period of a closed loop: index-enable as one HAL signal (encoder-read
  * clears it after this board's latch, motion's recorded rising edge sets it,
  * a recorded fall that was not the recorded board's latch cancels it), then
- * the servo thread on the commands plus offset_mm. */
+ * the servo thread on the recorded commands. */
 static void closed_step(hg_loop *L, int ie[6], const hg_board_inputs *in_w, unsigned ie_rec,
                         unsigned prev_ie_rec, unsigned prev_latched_rec, const double *cmd,
-                        const double *offset_mm, const int *enable, long period, hg_loop_sample *smp)
+                        const int *enable, long period, hg_loop_sample *smp)
 {
-    double c[6];
     int k;
     L->in = *in_w;
     for (k = 0; k < 6; k++) {
@@ -503,22 +488,8 @@ static void closed_step(hg_loop *L, int ie[6], const hg_board_inputs *in_w, unsi
         if (!(ie_rec >> k & 1u) && (prev_ie_rec >> k & 1u) && !(prev_latched_rec >> k & 1u))
             ie[k] = 0;
         L->in.index_enable[k] = ie[k];
-        c[k] = cmd[k] + offset_mm[k];
     }
-    (void)hg_loop_step_io(L, c, enable, period, smp); /* a fault shows in the outputs, as in LinuxCNC */
-}
-
-/* Median of v[0..n) (n <= REPLAY_MAX_SPREAD), sorted in place. */
-static double median(double *v, int n)
-{
-    int i, j;
-    for (i = 1; i < n; i++)
-        for (j = i; j > 0 && v[j - 1] > v[j]; j--) {
-            double t = v[j];
-            v[j] = v[j - 1];
-            v[j - 1] = t;
-        }
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    (void)hg_loop_step_io(L, cmd, enable, period, smp); /* a fault shows in the outputs, as in LinuxCNC */
 }
 
 int cmd_replay(int argc, char **argv, const char *self)
@@ -528,10 +499,8 @@ int cmd_replay(int argc, char **argv, const char *self)
     size_t len = 0;
     static hg_record r;
     static hg_board bx, b;            /* the recorded run replayed; the open-loop what-if */
-    static hg_loop L[REPLAY_MAX_SPREAD]; /* the closed-loop what-if, at --spread phases */
-    static int ie[REPLAY_MAX_SPREAD][6];
-    static double spk[REPLAY_MAX_SPREAD][6]; /* peak |f-error| of each loop in the window */
-    static double fel[REPLAY_MAX_SPREAD][6]; /* f-error of each loop in this period */
+    static hg_loop L;                 /* the closed-loop what-if */
+    int ie[6] = {0};                  /* its index-enable signals */
     static hg_board_rec_field fld[HG_BOARD_REC_MAX];
     static double row[HG_RECORD_MAX_COLS];
     int col[HG_BOARD_REC_MAX], col_z[6], col_count[7], col_pose[6], col_cmd[6], col_period = 0, col_model = 0;
@@ -545,7 +514,7 @@ int cmd_replay(int argc, char **argv, const char *self)
     replay_stats st = {0, 0, 0.0, 0.0, -1, 0}, stx = {0, 0, 0.0, 0.0, -1, 0};
     joint_stats js[6];
     double prev_cmd[6] = {0}, fe[2][6], volts[2][6];
-    int nf, i, k, l, rc, whatif, closed, kind = -1, status = 0;
+    int nf, i, k, rc, whatif, closed, kind = -1, status = 0;
     unsigned prev_ie_rec = 0, prev_latched_rec = 0;
     long period = 0, win_from = 0;
     long settings_from = 0, first_enabled = -1, last_enabled = -1;
@@ -561,11 +530,6 @@ int cmd_replay(int argc, char **argv, const char *self)
     if (o.open_loop && !whatif) {
         fprintf(stderr, "hexaglide replay: --open-loop is for a what-if: give --set, --model, --substeps "
                 "or --integrator too\n");
-        return 2;
-    }
-    if (o.spread > 1 && !closed) {
-        fprintf(stderr, "hexaglide replay: --spread is for the closed-loop what-if: give --set, --model, "
-                "--substeps or --integrator, without --open-loop\n");
         return 2;
     }
     if (parse_sets(&o, set_off, set_val)) /* checked before reading the file */
@@ -666,8 +630,8 @@ int cmd_replay(int argc, char **argv, const char *self)
                 hg_board_peek(&b, &out_w);
             }
             lc.model_kind = kind;
-            for (l = 0; !rc && closed && l < o.spread; l++)
-                rc = hg_loop_init(&L[l], &lc, 0);
+            if (!rc && closed)
+                rc = hg_loop_init(&L, &lc, 0);
             if (rc) {
                 fprintf(stderr, "hexaglide replay: the board refused its defaults: %s\n", hg_strerror(rc));
                 status = 1;
@@ -703,21 +667,13 @@ int cmd_replay(int argc, char **argv, const char *self)
         latched_rec = col_latched >= 0 ? (unsigned)row[col_latched] : 0u;
         if (closed) {                  /* LinuxCNC's servo thread on the changed board */
             hg_loop_sample smp;
-            double cmd[6], off[6];
+            double cmd[6];
             for (k = 0; k < 6; k++)
                 cmd[k] = row[col_cmd[k]];
-            for (l = 0; l < o.spread; l++) {
-                for (k = 0; k < 6; k++) /* l/K of an encoder count */
-                    off[k] = isfinite(in.enc_scale[k]) && fabs(in.enc_scale[k]) > 1e-20
-                                 ? (double)l / ((double)o.spread * fabs(in.enc_scale[k])) : 0.0;
-                closed_step(&L[l], ie[l], &in_w, ie_rec, prev_ie_rec, prev_latched_rec, cmd, off, enable,
-                            period, &smp);
-                for (k = 0; k < 6; k++)
-                    fel[l][k] = smp.ferror_mm[k];
-            }
-            out_w = L[0].out;
+            closed_step(&L, ie, &in_w, ie_rec, prev_ie_rec, prev_latched_rec, cmd, enable, period, &smp);
+            out_w = L.out;
             for (k = 0; k < 6; k++) {
-                fe[1][k] = fel[0][k];
+                fe[1][k] = smp.ferror_mm[k];
                 volts[1][k] = out_w.volts[k];
             }
         } else if (whatif) {              /* open loop: the recorded DAC volts */
@@ -738,7 +694,7 @@ int cmd_replay(int argc, char **argv, const char *self)
             unsigned long long mask = 0;
             int bit;
             memset(why, 0, sizeof why);
-            hg_board_explain_refusal(closed ? &L[0].board : &b, &in_w.params, &mask, why);
+            hg_board_explain_refusal(closed ? &L.board : &b, &in_w.params, &mask, why);
             fprintf(stderr, "hexaglide replay: sample %ld: the board refused the changed parameters:", n);
             for (bit = 0; bit < 64; bit++)
                 if (mask & (1ull << bit))
@@ -753,8 +709,7 @@ int cmd_replay(int argc, char **argv, const char *self)
         if (has_cmd) {                 /* the f-error statistics */
             if (o.from < 0 && (prev_latched_rec & 0x3fu)) {
                 memset(js, 0, sizeof js); /* a latch (homing): the window starts again */
-                memset(spk, 0, sizeof spk);
-                win_from = n;
+                win_from = n + 1;     /* in the period after the latch motion reports 0 */
             }
             if (o.from >= 0)
                 win_from = o.from;
@@ -767,9 +722,6 @@ int cmd_replay(int argc, char **argv, const char *self)
                 joint_add(&js[k], 0, n, fe[0][k], volts[0][k]);
                 joint_add(&js[k], 1, n, fe[1][k], volts[1][k]);
                 js[k].n++;
-                for (l = 0; closed && l < o.spread; l++)
-                    if (fabs(fel[l][k]) > spk[l][k])
-                        spk[l][k] = fabs(fel[l][k]);
             }
             for (k = 0; k < 6; k++)
                 prev_cmd[k] = row[col_cmd[k]];
@@ -814,15 +766,6 @@ int cmd_replay(int argc, char **argv, const char *self)
                 stx.first_mismatch);
     if (has_cmd && first_enabled >= 0)
         joint_report(js, whatif, win_from, last_enabled, o.from < 0);
-    if (closed && o.spread > 1 && first_enabled >= 0)
-        for (k = 0; k < 6; k++) {
-            double v[REPLAY_MAX_SPREAD], m;
-            for (l = 0; l < o.spread; l++)
-                v[l] = spk[l][k];
-            m = median(v, (int)o.spread);
-            printf("joint %d: predicted peak |f-error| over %ld quantization phases: median %.6f mm, "
-                   "range %.6f..%.6f mm\n", k, o.spread, m, v[0], v[o.spread - 1]);
-        }
     if (whatif) {
         printf("what-if, %s\n", closed ? "closed loop: LinuxCNC's pid with the recorded settings on the "
                                         "recorded joint commands"
