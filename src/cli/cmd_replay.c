@@ -617,13 +617,15 @@ int cmd_replay(int argc, char **argv, const char *self)
         int enable[6];
         unsigned ie_rec, latched_rec;
         if (n == 0) {                  /* power-up, as at loadrt: model and defaults */
-            kind = o.model ? hg_model_from_name(o.model) : (int)row[col_model];
+            kind = (int)row[col_model];   /* the recorded run is replayed as recorded */
             if (kind < 0 || kind >= HG_MODEL_COUNT) {
                 fprintf(stderr, "hexaglide replay: %s: line %ld: in.model %d is not a model (0..%d); "
-                        "the record is damaged, or give --model\n", o.file, r.line, kind, HG_MODEL_COUNT - 1);
+                        "the record is damaged\n", o.file, r.line, kind, HG_MODEL_COUNT - 1);
                 status = 1;
                 break;
             }
+            if (o.model)
+                kind = hg_model_from_name(o.model);
             rc = hg_board_init(&bx, (hg_model_kind)(int)row[col_model], 0);
             if (!rc && whatif && !closed) {
                 rc = hg_board_init(&b, (hg_model_kind)kind, 0);
