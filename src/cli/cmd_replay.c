@@ -26,6 +26,10 @@
 #include "hg_units.h"
 
 #define REPLAY_MAX_SETS 64
+#define REPLAY_MAX_SPREAD 16          /* --spread: closed loops side by side */
+#define SPREAD_STEP 7                 /* periods between the loops' program starts */
+#define SPREAD_IDLE 20                /* unchanged commands after homing that make the idle to stretch */
+#define RING 128                      /* periods kept for the delayed loops (> 7 * 15 + 1) */
 #define REPLAY_MAX_BYTES (4LL << 30)  /* refuse record files above 4 GiB */
 
 typedef struct {
@@ -36,7 +40,19 @@ typedef struct {
     int integrator;                   /* -1: as recorded */
     int open_loop;                    /* --open-loop: recorded DAC volts, no pid */
     long from;                        /* --from: first sample of the f-error statistics, -1 auto */
+    long spread;                      /* --spread: closed loops with the program started later */
 } replay_opts;
+
+/* What a closed loop consumes in one period, kept for the delayed --spread loops. */
+typedef struct {
+    hg_board_inputs in;               /* the what-if board's inputs */
+    double cmd[6];                    /* joint commands (mm) */
+    int enable[6];                    /* pid.N.enable */
+    unsigned ie_rec, prev_ie_rec, prev_latched_rec; /* index-enable edges as recorded */
+    unsigned win;                     /* bit k: joint k counts in the f-error window */
+    int reset;                        /* the window starts again here (a latch) */
+    long period;
+} period_in;
 
 /* What the comparison found. */
 typedef struct {
@@ -77,7 +93,7 @@ static void replay_usage(void)
     fprintf(stderr,
             "usage: hexaglide replay FILE [--csv OUT] [--plot PNG] [--set name=value]...\n"
             "                        [--model NAME] [--substeps N] [--integrator NAME]\n"
-            "                        [--open-loop] [--from SAMPLE]\n"
+            "                        [--open-loop] [--from SAMPLE] [--spread K]\n"
             "       hexaglide replay --list-columns   (the record pin set)\n"
             "FILE: a record of tools/hg_record.py (docs/replay.md). Without --set, --model,\n"
             "--substeps, --integrator: replays and compares, exit 0 only if bit-exact.\n"
@@ -86,7 +102,9 @@ static void replay_usage(void)
             "recorded DAC volts (--open-loop); written to FILE.whatif.png.csv and\n"
             "plotted to FILE.whatif.png unless --csv/--plot say otherwise; --set takes\n"
             "the spec name and SI unit (hexaglide sim --list-params). Following-error\n"
-            "statistics from --from SAMPLE (default: after the last index latch, homing).\n");
+            "statistics from --from SAMPLE (default: after the last index latch, homing).\n"
+            "--spread K: K closed loops, the idle after homing stretched by 0, 7, ... periods\n"
+            "(when LinuxCNC starts the program), predicted peaks as median and range.\n");
 }
 
 /* Whole file into a malloc'd buffer; 0 or -1 with a message. */
@@ -150,11 +168,13 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
     o->substeps = -1;
     o->integrator = -1;
     o->from = -1;
+    o->spread = 1;
     for (i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "";
         int takes = strcmp(a, "--csv") == 0 || strcmp(a, "--plot") == 0 || strcmp(a, "--set") == 0 ||
                     strcmp(a, "--model") == 0 || strcmp(a, "--substeps") == 0 ||
-                    strcmp(a, "--integrator") == 0 || strcmp(a, "--from") == 0;
+                    strcmp(a, "--integrator") == 0 || strcmp(a, "--from") == 0 ||
+                    strcmp(a, "--spread") == 0;
         if (takes && i + 1 >= argc) {
             fprintf(stderr, "hexaglide replay: %s needs a value\n", a);
             return 2;
@@ -196,6 +216,14 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
             o->from = strtol(v, &end, 10);
             if (end == v || *end || errno || o->from < 0) {
                 fprintf(stderr, "hexaglide replay: --from %s: give a sample number (0, 1, ...)\n", v);
+                return 2;
+            }
+        } else if (strcmp(a, "--spread") == 0) {
+            char *end = 0;
+            errno = 0;
+            o->spread = strtol(v, &end, 10);
+            if (end == v || *end || errno || o->spread < 1 || o->spread > REPLAY_MAX_SPREAD) {
+                fprintf(stderr, "hexaglide replay: --spread %s: give an integer 1..%d\n", v, REPLAY_MAX_SPREAD);
                 return 2;
             }
         } else if (strcmp(a, "--open-loop") == 0) {
@@ -492,6 +520,42 @@ static void closed_step(hg_loop *L, int ie[6], const hg_board_inputs *in_w, unsi
     (void)hg_loop_step_io(L, cmd, enable, period, smp); /* a fault shows in the outputs, as in LinuxCNC */
 }
 
+/* Median of v[0..n), sorted in place. */
+static double median(double *v, int n)
+{
+    int i, j;
+    for (i = 1; i < n; i++)
+        for (j = i; j > 0 && v[j - 1] > v[j]; j--) {
+            double t = v[j];
+            v[j] = v[j - 1];
+            v[j - 1] = t;
+        }
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* One period of --spread loop l (delay SPREAD_STEP * l): until it has held
+ * the idle after homing (period hold_at - 1 again) that long, it runs the
+ * same periods as loop 0; then the recorded periods that late. Its peak
+ * |f-error| per joint over the window into pk. */
+static void spread_step(hg_loop *L, int ie[6], long *lag, int l, long n, long hold_at,
+                        const period_in *ring, double pk[6])
+{
+    const period_in *p;
+    hg_loop_sample smp;
+    int k, hold = hold_at >= 0 && n >= hold_at && *lag < (long)SPREAD_STEP * l;
+    p = &ring[(hold ? hold_at - 1 : n - *lag) % RING];
+    if (hold)
+        (*lag)++;
+    if (p->reset && !hold)
+        for (k = 0; k < 6; k++)
+            pk[k] = 0.0;
+    closed_step(L, ie, &p->in, p->ie_rec, hold ? p->ie_rec : p->prev_ie_rec, hold ? 0u : p->prev_latched_rec,
+                p->cmd, p->enable, p->period, &smp);
+    for (k = 0; k < 6; k++)
+        if ((p->win >> k & 1u) && fabs(smp.ferror_mm[k]) > pk[k])
+            pk[k] = fabs(smp.ferror_mm[k]);
+}
+
 int cmd_replay(int argc, char **argv, const char *self)
 {
     replay_opts o;
@@ -501,6 +565,12 @@ int cmd_replay(int argc, char **argv, const char *self)
     static hg_board bx, b;            /* the recorded run replayed; the open-loop what-if */
     static hg_loop L;                 /* the closed-loop what-if */
     int ie[6] = {0};                  /* its index-enable signals */
+    static hg_loop Ls[REPLAY_MAX_SPREAD]; /* --spread loops 1..K-1 (0 is L) */
+    static int ies[REPLAY_MAX_SPREAD][6];
+    static long lag[REPLAY_MAX_SPREAD];
+    static double spk[REPLAY_MAX_SPREAD][6];
+    static period_in ring[RING];
+    long hold_at = -1, last_latch = -1, still = 0;
     static hg_board_rec_field fld[HG_BOARD_REC_MAX];
     static double row[HG_RECORD_MAX_COLS];
     int col[HG_BOARD_REC_MAX], col_z[6], col_count[7], col_pose[6], col_cmd[6], col_period = 0, col_model = 0;
@@ -530,6 +600,11 @@ int cmd_replay(int argc, char **argv, const char *self)
     if (o.open_loop && !whatif) {
         fprintf(stderr, "hexaglide replay: --open-loop is for a what-if: give --set, --model, --substeps "
                 "or --integrator too\n");
+        return 2;
+    }
+    if (o.spread > 1 && !closed) {
+        fprintf(stderr, "hexaglide replay: --spread is for the closed-loop what-if: give --set, --model, "
+                "--substeps or --integrator, without --open-loop\n");
         return 2;
     }
     if (parse_sets(&o, set_off, set_val)) /* checked before reading the file */
@@ -634,6 +709,8 @@ int cmd_replay(int argc, char **argv, const char *self)
             lc.model_kind = kind;
             if (!rc && closed)
                 rc = hg_loop_init(&L, &lc, 0);
+            for (i = 1; !rc && closed && i < o.spread; i++)
+                rc = hg_loop_init(&Ls[i], &lc, 0);
             if (rc) {
                 fprintf(stderr, "hexaglide replay: the board refused its defaults: %s\n", hg_strerror(rc));
                 status = 1;
@@ -728,6 +805,34 @@ int cmd_replay(int argc, char **argv, const char *self)
             for (k = 0; k < 6; k++)
                 prev_cmd[k] = row[col_cmd[k]];
         }
+        if (closed && o.spread > 1) {  /* the delayed loops */
+            period_in *p = &ring[n % RING];
+            p->in = in_w;
+            p->period = period;
+            p->ie_rec = ie_rec;
+            p->prev_ie_rec = prev_ie_rec;
+            p->prev_latched_rec = prev_latched_rec;
+            p->reset = o.from < 0 && (prev_latched_rec & 0x3fu);
+            p->win = 0;
+            for (k = 0; k < 6; k++) {
+                p->cmd[k] = row[col_cmd[k]];
+                p->enable[k] = enable[k];
+                if (enable[k] && n >= win_from)
+                    p->win |= 1u << k;
+            }
+            if (prev_latched_rec & 0x3fu) {
+                last_latch = n;
+                still = 0;
+            } else if (n > 0 && memcmp(p->cmd, ring[(n - 1) % RING].cmd, sizeof p->cmd) == 0) {
+                still++;
+            } else {
+                still = 0;
+            }
+            if (hold_at < 0 && last_latch >= 0 && still >= SPREAD_IDLE)
+                hold_at = n + 1;      /* idle after homing: the delayed loops hold period n */
+            for (i = 1; i < o.spread; i++)
+                spread_step(&Ls[i], ies[i], &lag[i], i, n, hold_at, ring, spk[i]);
+        }
         prev_ie_rec = ie_rec;
         prev_latched_rec = latched_rec;
         if (csv)
@@ -768,6 +873,20 @@ int cmd_replay(int argc, char **argv, const char *self)
                 stx.first_mismatch);
     if (has_cmd && first_enabled >= 0)
         joint_report(js, whatif, win_from, last_enabled, o.from < 0);
+    if (closed && o.spread > 1 && hold_at < 0)
+        fprintf(stderr, "hexaglide replay: note: --spread: no idle after an index latch (homing) in %s: "
+                "the %ld loops ran the same periods\n", o.file, o.spread);
+    if (closed && o.spread > 1 && first_enabled >= 0)
+        for (k = 0; k < 6; k++) {
+            double v[REPLAY_MAX_SPREAD], m;
+            v[0] = js[k].peak_mm[1];
+            for (i = 1; i < o.spread; i++)
+                v[i] = spk[i][k];
+            m = median(v, (int)o.spread);
+            printf("joint %d: predicted peak |f-error| with the program started 0..%ld periods later "
+                   "(%ld loops): median %.6f mm, range %.6f..%.6f mm\n", k, (o.spread - 1) * SPREAD_STEP,
+                   o.spread, m, v[0], v[o.spread - 1]);
+        }
     if (whatif) {
         printf("what-if, %s\n", closed ? "closed loop: LinuxCNC's pid with the recorded settings on the "
                                         "recorded joint commands"
