@@ -47,12 +47,12 @@ int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p)
 /* The plant: the board's dac-write + dynamics (+ encoders) for one period
  * with the pid outputs as DAC values, through hg_board_step as LinuxCNC's
  * motenc.0.dac-write and motenc.0.dynamics run it. 0 or the fault code. */
-static int plant_step(hg_loop *L, const double dac_value[HG_LOOP_JOINTS])
+static int plant_step(hg_loop *L, const double dac_value[HG_LOOP_JOINTS], long period_ns)
 {
     int k;
     for (k = 0; k < HG_LOOP_JOINTS; k++)
         L->in.dac_v[k] = (dac_value[k] - L->cfg.output_offset[k]) * L->cfg.output_scale[k];
-    hg_board_step(&L->board, &L->in, &L->out, L->cfg.period_ns);
+    hg_board_step(&L->board, &L->in, &L->out, period_ns);
     if (!L->out.fault)
         return 0;
     return L->out.fault_code ? L->out.fault_code : HG_ERR_STATE_NONFINITE;
@@ -64,7 +64,8 @@ static double plant_position_mm(const hg_loop *L, int k)
     return L->out.position[k];
 }
 
-int hg_loop_step(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], hg_loop_sample *out)
+int hg_loop_step_io(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], const int enable[HG_LOOP_JOINTS],
+                    long period_ns, hg_loop_sample *out)
 {
     double fb[HG_LOOP_JOINTS], dac[HG_LOOP_JOINTS];
     int k, rc;
@@ -77,15 +78,22 @@ int hg_loop_step(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], hg_loop_sample
             out->fb_mm[k] = fb[k];
             out->ferror_mm[k] = L->prev_cmd_mm[k] - fb[k];
         }
-        dac[k] = hg_pid_calc(&L->cfg.pid[k], &L->pid[k], cmd_mm[k], fb[k], 1, 0, L->cfg.period_ns);
+        dac[k] = hg_pid_calc(&L->cfg.pid[k], &L->pid[k], cmd_mm[k], fb[k], enable[k],
+                             L->in.index_enable[k], period_ns);
         if (out)
             out->output_v[k] = dac[k];
     }
-    rc = plant_step(L, dac);
+    rc = plant_step(L, dac, period_ns);
     for (k = 0; k < HG_LOOP_JOINTS; k++)
         L->prev_cmd_mm[k] = cmd_mm[k];
     L->periods++;
     return rc;
+}
+
+int hg_loop_step(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], hg_loop_sample *out)
+{
+    static const int on[HG_LOOP_JOINTS] = {1, 1, 1, 1, 1, 1};
+    return hg_loop_step_io(L, cmd_mm, on, L->cfg.period_ns, out);
 }
 
 int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,

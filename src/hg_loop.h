@@ -72,6 +72,16 @@ int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p);
  * or HG_ERR_NONFINITE_INPUT for a non-finite command (nothing run). */
 int hg_loop_step(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], hg_loop_sample *out);
 
+/* One servo period as LinuxCNC ran it, for a replay of a recorded run:
+ * the board inputs are what the caller put in L->in (a record's, say;
+ * the pids overwrite dac_v[0..5]), pid.N.enable is enable[N] (motion's
+ * joint.N.amp-enable-out), pid.N.index-enable is L->in.index_enable[N]
+ * (one signal with the encoder's, as in configs/hexaglide.hal), and the
+ * period is period_ns for the pids and the board. Otherwise as hg_loop_step,
+ * which is this call with every pid enabled and cfg.period_ns. */
+int hg_loop_step_io(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], const int enable[HG_LOOP_JOINTS],
+                    long period_ns, hg_loop_sample *out);
+
 /* Run n periods of commands cmd_mm[n][6] (row-major); per-period f-errors and
  * outputs into ferror_mm[n][6] / output_v[n][6] when not 0; summary over the
  * periods from `from` on. Stops early at a trip (see ferror_limit_mm).

@@ -111,7 +111,7 @@ static int parse_meta(hg_record *r, const char *s, size_t n, hg_record_error *e)
                     "a metadata line is '# key value'; fix or delete this line");
     if (r->nmeta == HG_RECORD_MAX_META)
         return fail(r, e, HG_REC_ERR_META, r->line, 1, -1,
-                    "more than 32 metadata lines: not a record file tools/hg_record.py wrote");
+                    "more than 256 metadata lines: not a record file tools/hg_record.py wrote");
     k0 = i;
     while (i < n && name_char(s[i]))
         i++;
@@ -175,6 +175,45 @@ static int parse_header(hg_record *r, const char *s, size_t n, hg_record_error *
     return 0;
 }
 
+/* The footer: the "# key value" lines after the last row (what the recorder
+ * knew only at the end), into r->meta; the rows then end where it starts. */
+static int parse_footer(hg_record *r, hg_record_error *e)
+{
+    size_t start = r->len, end = r->len, i;
+    long line = r->line, save_pos = (long)r->pos, save_line = r->line;
+    const char *s = 0;
+    size_t n = 0;
+    int rc;
+    if (end == r->pos || r->buf[end - 1] != '\n')
+        return 0;                     /* no footer; a cut last line is reported with the rows */
+    while (start > r->pos) {          /* back over the trailing '#' lines */
+        size_t b = start - 1;         /* the '\n' ending the line before `start` */
+        while (b > r->pos && r->buf[b - 1] != '\n')
+            b--;
+        if (r->buf[b] != '#')
+            break;
+        start = b;
+    }
+    if (start == end)
+        return 0;
+    for (i = r->pos; i < start; i++)  /* its line number */
+        if (r->buf[i] == '\n')
+            line++;
+    r->pos = start;
+    r->line = line;
+    while ((rc = next_line(r, &s, &n, e)) == 1) {
+        rc = parse_meta(r, s, n, e);
+        if (rc)
+            return rc;
+    }
+    if (rc < 0)
+        return rc;
+    r->pos = (size_t)save_pos;
+    r->line = save_line;
+    r->len = start;
+    return 0;
+}
+
 int hg_record_open(hg_record *r, const char *buf, size_t len, hg_record_error *e)
 {
     const char *s = 0;
@@ -212,7 +251,8 @@ int hg_record_open(hg_record *r, const char *buf, size_t len, hg_record_error *e
                 return rc;
             continue;
         }
-        return parse_header(r, s, n, e);
+        rc = parse_header(r, s, n, e);
+        return rc ? rc : parse_footer(r, e);
     }
 }
 

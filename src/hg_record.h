@@ -6,6 +6,8 @@
  *   # key value                     metadata (model, period-ns, board, ...)
  *   sample,name1,name2,...          header: column names, comma-separated
  *   0,1.5,-3,...                    one row per servo period, sample 0, 1, 2...
+ *   # key value                     footer: metadata known only at the end
+ *                                   (the pid settings polled over the run)
  * Numbers are C/Python float syntax (decimal or hexadecimal, e.g. repr()
  * or %.17g output): they round-trip every double exactly. NaN, inf (except
  * in HG_REC_ANY columns: "nan", "inf", "-inf"),
@@ -26,7 +28,7 @@
 #define HG_RECORD_MAX_COLS 256        /* columns per row, sample included */
 #define HG_RECORD_NAME_MAX 63         /* characters of a column name */
 #define HG_RECORD_LINE_MAX 65536      /* bytes of one line, newline excluded */
-#define HG_RECORD_MAX_META 32         /* "# key value" lines */
+#define HG_RECORD_MAX_META 256        /* "# key value" lines, header and footer */
 
 /* What a column holds: checked on every row. */
 typedef enum {
@@ -83,7 +85,9 @@ typedef struct {
     int nmeta;
 } hg_record;
 
-/* Start reading buf[0..len): magic, metadata and header. 0, or an
+/* Start reading buf[0..len): magic, metadata, header and the footer's
+ * metadata (the "# " lines after the last row; then hg_record_next stops
+ * before them). 0, or an
  * HG_REC_ERR_* code with *e filled. Every column starts as HG_REC_F64,
  * except column 0 which must be called "sample" (HG_REC_U32). */
 int hg_record_open(hg_record *r, const char *buf, size_t len, hg_record_error *e);

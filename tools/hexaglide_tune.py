@@ -37,6 +37,7 @@ MIN_SAMPLES = 200          # a trajectory shorter than this is refused (0.2 s)
 SETTLE = 1500              # periods at the first command before the trajectory
 RAMP = 500                 # periods of the smooth move from HOME to the first command
 LEAD_IN = 300              # rows kept before the program starts (recorded runs)
+RECORD_MAGIC = "# hexaglide-record 1"   # line 1 of a record (src/hg_record.h)
 PREDICT_SETTLES = [SETTLE + 53 * i for i in range(15)]   # the prediction's 15 runs
 KEYS = ["P", "I", "D", "FF0", "FF1", "FF2", "FF3", "BIAS"]
 
@@ -67,13 +68,17 @@ def pid_keys(g):
 def load_trajectory(path):
     """Joint commands (n, 6) in mm from a recorded run.
 
-    Accepted: the CSV of tools/headless/hexaglide_headless.py (columns
+    Accepted: a record of tools/hg_record.py (load_record), the CSV of
+    tools/headless/hexaglide_headless.py (columns
     joint.N.motor-pos-cmd; cropped to the program when halui.program.is-running
     is there), or plain rows of 6 numbers (or 7: a sample number / time first,
     as `halsampler -t` prints), separated by spaces or commas; lines starting
     with # are comments. .gz files are read too."""
     if not os.path.isfile(path):
         raise BadInput("no such trajectory file: %s" % path)
+    with open(path, "rb") as f:
+        if f.readline().rstrip(b"\r\n") == RECORD_MAGIC.encode():
+            return check_trajectory(path, load_record(path))
     import gzip
     opener = gzip.open if path.endswith(".gz") else open
     try:
@@ -148,12 +153,50 @@ def load_trajectory(path):
             if len(bad):
                 raise BadInput("%s line %d: the first column (sample number or time) does not advance "
                                "evenly: samples lost?" % (path, rows[bad[0] + 1][0]))
+    return check_trajectory(path, cmd)
+
+
+def check_trajectory(path, cmd):
+    """cmd (n, 6) if it is long enough and in mm, else BadInput."""
     if len(cmd) < MIN_SAMPLES:
         raise BadInput("%s: %d samples; need at least %d (%.1f s of servo periods)"
                        % (path, len(cmd), MIN_SAMPLES, MIN_SAMPLES * PERIOD_S))
     if np.abs(cmd).max() > 1000:
         raise BadInput("%s: a joint command beyond 1000 mm: not joint commands in mm?" % path)
     return np.ascontiguousarray(cmd)
+
+
+def load_record(path):
+    """Joint commands (n, 6) in mm from a record of tools/hg_record.py
+    (docs/replay.md): the columns joint.N.motor-pos-cmd, from the second
+    period after the last index latch (homing done, where `replay` starts its
+    f-error window) to the last period with every amplifier enabled (pid.N.enable
+    is out-08+N of in.dout-values)."""
+    header, no = None, 0
+    with open(path) as f:
+        for no, line in enumerate(f, 1):
+            if not line.startswith("#"):
+                header = line.rstrip("\r\n").split(",")
+                break
+    if header is None or header[0] != "sample":
+        raise BadInput("%s: no header line after the metadata: the record was cut short; record again" % path)
+    want = ["joint.%d.motor-pos-cmd" % j for j in range(hg.JOINTS)] + ["out.index-latched", "in.dout-values"]
+    missing = [c for c in want if c not in header]
+    if missing:
+        raise BadInput("%s: no column %s: a record from an older tools/hg_record.py has no joint commands; "
+                       "record again (docs/replay.md)" % (path, missing[0]))
+    try:
+        data = np.loadtxt(path, delimiter=",", skiprows=no, comments="#", ndmin=2,
+                          usecols=[header.index(c) for c in want])
+    except ValueError as ex:
+        raise BadInput("%s: %s (line numbers count after the header, line %d); record again" % (path, ex, no))
+    if not np.all(np.isfinite(data)):
+        raise BadInput("%s holds a NaN or infinite value: not a record tools/hg_record.py wrote" % path)
+    latched = np.where(data[:, 6].astype(np.int64) & 0x3f)[0]
+    on = np.where((data[:, 7].astype(np.int64) >> 8 & 0x3f) == 0x3f)[0]
+    i0 = latched[-1] + 2 if len(latched) else (on[0] if len(on) else 0)
+    i1 = on[-1] + 1 if len(on) else len(data)
+    return np.ascontiguousarray(data[i0:i1, :6])
 
 
 def s_curve(dist, vmax, amax, jerk_time=0.02):

@@ -1,11 +1,15 @@
 /* cmd_replay.c - the replay subcommand: re-run a recorded LinuxCNC run
  * (tools/hg_record.py) through hg_board, period by period, and compare
  * the outputs with the recorded ones; or, with --set/--model/--substeps/
- * --integrator, run the same inputs into a changed board (what-if) and
- * write both runs side by side (docs/replay.md). */
+ * --integrator, run a changed board (what-if): by default closed loop,
+ * LinuxCNC's six pid loops (hg_loop, the recorded gains) on the recorded
+ * joint commands, reporting the following error and drive volts predicted
+ * beside the recorded ones; with --open-loop, the recorded DAC volts into
+ * the changed board. Both runs are written side by side (docs/replay.md). */
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,10 +20,15 @@
 #include "hg_board.h"
 #include "hg_board_rec.h"
 #include "hg_errors.h"
+#include "hg_loop.h"
 #include "hg_record.h"
 #include "hg_units.h"
 
 #define REPLAY_MAX_SETS 64
+#define REPLAY_MAX_SPREAD 16          /* --spread: closed loops side by side */
+#define SPREAD_STEP 7                 /* periods between the loops' program starts */
+#define SPREAD_IDLE 20                /* unchanged commands after homing that make the idle to stretch */
+#define RING 128                      /* periods kept for the delayed loops (> 7 * 15 + 1) */
 #define REPLAY_MAX_BYTES (4LL << 30)  /* refuse record files above 4 GiB */
 
 typedef struct {
@@ -28,7 +37,21 @@ typedef struct {
     int nset;
     long substeps;                    /* -1: as recorded */
     int integrator;                   /* -1: as recorded */
+    int open_loop;                    /* --open-loop: recorded DAC volts, no pid */
+    long from;                        /* --from: first sample of the f-error statistics, -1 auto */
+    long spread;                      /* --spread: closed loops with the program started later */
 } replay_opts;
+
+/* What a closed loop consumes in one period, kept for the delayed --spread loops. */
+typedef struct {
+    hg_board_inputs in;               /* the what-if board's inputs */
+    double cmd[6];                    /* joint commands (mm) */
+    int enable[6];                    /* pid.N.enable */
+    unsigned ie_rec, prev_ie_rec, prev_latched_rec; /* index-enable edges as recorded */
+    unsigned win;                     /* bit k: joint k counts in the f-error window */
+    int reset;                        /* the window starts again here (a latch) */
+    long period;
+} period_in;
 
 /* What the comparison found. */
 typedef struct {
@@ -39,15 +62,46 @@ typedef struct {
     long mismatched_samples;
 } replay_stats;
 
+/* Following error and drive volts of one joint over the statistics window:
+ * [0] recorded, [1] replayed or predicted. */
+typedef struct {
+    double peak_mm[2], sq[2], peak_v[2];
+    long peak_at[2], n;
+} joint_stats;
+
+/* pid.c's setting pins and where hg_pid_gains holds each (the footer's
+ * pid.N.<name> lines, tools/hg_record.py PID_SETTINGS). */
+static const struct {
+    const char *name;
+    size_t offset;                    /* of a double, or of error_previous_target (int) */
+} pid_setting[] = {
+    {"Pgain", offsetof(hg_pid_gains, pgain)},       {"Igain", offsetof(hg_pid_gains, igain)},
+    {"Dgain", offsetof(hg_pid_gains, dgain)},       {"bias", offsetof(hg_pid_gains, bias)},
+    {"FF0", offsetof(hg_pid_gains, ff0)},           {"FF1", offsetof(hg_pid_gains, ff1)},
+    {"FF2", offsetof(hg_pid_gains, ff2)},           {"FF3", offsetof(hg_pid_gains, ff3)},
+    {"deadband", offsetof(hg_pid_gains, deadband)}, {"maxerror", offsetof(hg_pid_gains, maxerror)},
+    {"maxerrorI", offsetof(hg_pid_gains, maxerror_i)}, {"maxerrorD", offsetof(hg_pid_gains, maxerror_d)},
+    {"maxcmdD", offsetof(hg_pid_gains, maxcmd_d)},  {"maxcmdDD", offsetof(hg_pid_gains, maxcmd_dd)},
+    {"maxcmdDDD", offsetof(hg_pid_gains, maxcmd_ddd)}, {"maxoutput", offsetof(hg_pid_gains, maxoutput)},
+    {"error-previous-target", offsetof(hg_pid_gains, error_previous_target)},
+};
+#define PID_SETTINGS ((int)(sizeof pid_setting / sizeof pid_setting[0]))
+
 const char cli_usage_replay[] =
     "usage: hexaglide replay FILE [--csv OUT] [--plot PNG] [--set name=value]...\n"
     "                        [--model NAME] [--substeps N] [--integrator NAME]\n"
+    "                        [--open-loop] [--from SAMPLE] [--spread K]\n"
     "       hexaglide replay --list-columns   (the record pin set)\n"
     "FILE: a record of tools/hg_record.py (docs/replay.md). Without --set, --model,\n"
     "--substeps, --integrator: replays and compares, exit 0 only if bit-exact.\n"
-    "With them (what-if): the same inputs into the changed board (written to\n"
-    "FILE.whatif.png.csv and plotted to FILE.whatif.png unless --csv/--plot say\n"
-    "otherwise); --set takes the spec name and SI unit (hexaglide sim --list-params).\n"
+    "With them (what-if): the changed board under LinuxCNC's pid loops with the\n"
+    "recorded gains, on the recorded joint commands (closed loop), or fed the\n"
+    "recorded DAC volts (--open-loop); written to FILE.whatif.png.csv and\n"
+    "plotted to FILE.whatif.png unless --csv/--plot say otherwise; --set takes\n"
+    "the spec name and SI unit (hexaglide sim --list-params). Following-error\n"
+    "statistics from --from SAMPLE (default: after the last index latch, homing).\n"
+    "--spread K: K closed loops, the idle after homing stretched by 0, 7, ... periods\n"
+    "(when LinuxCNC starts the program), predicted peaks as median and range.\n"
     "--plot runs tools/plot_replay.py under the first python3 that imports numpy and\n"
     "matplotlib ($HEXAGLIDE_PYTHON, else $PATH).\n";
 
@@ -65,11 +119,25 @@ static void list_columns(void)
                : f[i].side == HG_BRS_NFMASK ? ", 2 bits per NaN/inf-capable input" : "");
 }
 
-enum { OPT_CSV, OPT_PLOT, OPT_SET, OPT_MODEL, OPT_SUBSTEPS, OPT_INTEGRATOR, OPT_LIST };
+enum { OPT_CSV, OPT_PLOT, OPT_SET, OPT_MODEL, OPT_SUBSTEPS, OPT_INTEGRATOR, OPT_FROM, OPT_SPREAD,
+       OPT_OPEN, OPT_LIST };
 static const cli_opt replay_options[] = {
     {"--csv", 1}, {"--plot", 1}, {"--set", 1}, {"--model", 1}, {"--substeps", 1}, {"--integrator", 1},
-    {"--list-columns", 0}, {0, 0},
+    {"--from", 1}, {"--spread", 1}, {"--open-loop", 0}, {"--list-columns", 0}, {0, 0},
 };
+
+/* An integer option in lo..hi; 0, or 2 after a message saying what to give. */
+static int int_opt(const char *name, const char *v, long lo, long hi, const char *give, long *out)
+{
+    char *end = 0;
+    errno = 0;
+    *out = strtol(v, &end, 10);
+    if (end == v || *end || errno || *out < lo || *out > hi) {
+        fprintf(stderr, "hexaglide replay: %s %s: give %s\n", name, v, give);
+        return 2;
+    }
+    return 0;
+}
 
 /* Parse the options; 0, 2 (usage error, message printed), -1 (done: listed or --help). */
 static int parse_opts(int argc, char **argv, replay_opts *o)
@@ -80,6 +148,8 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
     memset(o, 0, sizeof *o);
     o->substeps = -1;
     o->integrator = -1;
+    o->from = -1;
+    o->spread = 1;
     cli_args_init(&a, "replay", cli_usage_replay, replay_options, argc, argv);
     while ((opt = cli_next(&a, &v)) != CLI_DONE) {
         switch (opt) {
@@ -116,13 +186,10 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
             o->model = v;
             break;
         case OPT_SUBSTEPS: {
-            char *end = 0;
-            errno = 0;
-            o->substeps = strtol(v, &end, 10);
-            if (end == v || *end || errno || o->substeps < 1 || o->substeps > (long)HG_SUBSTEPS_MAX) {
-                fprintf(stderr, "hexaglide replay: --substeps %s: give an integer 1..%u\n", v, HG_SUBSTEPS_MAX);
+            long n;
+            if (int_opt("--substeps", v, 1, (long)HG_SUBSTEPS_MAX, "an integer 1..64", &n))
                 return 2;
-            }
+            o->substeps = n;
             break;
         }
         case OPT_INTEGRATOR:
@@ -131,6 +198,20 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
                 fprintf(stderr, "hexaglide replay: --integrator %s unknown; use improved-euler, heun or rk4\n", v);
                 return 2;
             }
+            break;
+        case OPT_FROM:
+            if (int_opt("--from", v, 0, LONG_MAX, "a sample number (0, 1, ...)", &o->from))
+                return 2;
+            break;
+        case OPT_SPREAD: {
+            long n;
+            if (int_opt("--spread", v, 1, REPLAY_MAX_SPREAD, "an integer 1..8", &n))
+                return 2;
+            o->spread = (int)n;
+            break;
+        }
+        case OPT_OPEN:
+            o->open_loop = 1;
             break;
         default:                       /* OPT_LIST */
             list_columns();
@@ -175,11 +256,13 @@ static int bits_differ(double a, double b)
     return x != y;
 }
 
-/* One CSV row: sample, time, recorded and replayed joints (mm), counts, pose (mm, deg). */
+/* One CSV row: sample, time, recorded and replayed joints (mm), counts, pose
+ * (mm, deg), fault codes; with joint commands: f-errors (mm) and drive volts. */
 static void csv_row(FILE *f, long n, const double *row, const int *col_z, const int *col_count,
-                    const int *col_pose, const hg_board_outputs *o)
+                    const int *col_pose, const hg_board_outputs *o, const double (*fe)[6],
+                    const double (*volts)[6])
 {
-    int k;
+    int k, w;
     fprintf(f, "%ld,%.17g", n, o->sim_time_s);
     for (k = 0; k < 6; k++)
         fprintf(f, ",%.17g", row[col_z[k]] * HG_MM_PER_M);
@@ -193,10 +276,15 @@ static void csv_row(FILE *f, long n, const double *row, const int *col_z, const 
         fprintf(f, ",%.17g", row[col_pose[k]] * (k < 3 ? HG_MM_PER_M : HG_DEG_PER_RAD));
     for (k = 0; k < 6; k++)
         fprintf(f, ",%.17g", o->pose[k] * (k < 3 ? HG_MM_PER_M : HG_DEG_PER_RAD));
-    fprintf(f, ",%d,%d\n", (int)row[col_count[6]], o->fault_code);
+    fprintf(f, ",%d,%d", (int)row[col_count[6]], o->fault_code);
+    if (fe)
+        for (w = 0; w < 2; w++)
+            for (k = 0; k < 6; k++)
+                fprintf(f, ",%.17g,%.17g", fe[w][k], volts[w][k]);
+    fputc('\n', f);
 }
 
-static void csv_header(FILE *f)
+static void csv_header(FILE *f, int with_loop)
 {
     int k;
     fprintf(f, "sample,t_s");
@@ -212,13 +300,21 @@ static void csv_header(FILE *f)
         fprintf(f, ",%c_rec", "xyzabc"[k]);
     for (k = 0; k < 6; k++)
         fprintf(f, ",%c", "xyzabc"[k]);
-    fprintf(f, ",fault_code_rec,fault_code\n");
+    fprintf(f, ",fault_code_rec,fault_code");
+    if (with_loop) {
+        for (k = 0; k < 6; k++)
+            fprintf(f, ",ferror%d_rec_mm,volts%d_rec", k, k);
+        for (k = 0; k < 6; k++)
+            fprintf(f, ",ferror%d_mm,volts%d", k, k);
+    }
+    fputc('\n', f);
 }
 
-/* Run the source tree's tools/plot_replay.py on csv -> png. */
-static int run_plot(const char *csv, const char *png)
+/* Run the source tree's tools/plot_replay.py on csv -> png; the f-error
+ * window from..to when from >= 0. */
+static int run_plot(const char *csv, const char *png, long from, long to)
 {
-    char script[4096], python[4096];
+    char script[4096], python[4096], a_from[24], a_to[24];
     int status = 0;
     pid_t pid;
     if (cli_tree_path("tools/plot_replay.py", script, sizeof script) || access(script, R_OK) != 0) {
@@ -230,9 +326,14 @@ static int run_plot(const char *csv, const char *png)
         fprintf(stderr, "hexaglide replay: no plot; the CSV is in %s\n", csv);
         return 1;
     }
+    snprintf(a_from, sizeof a_from, "%ld", from);
+    snprintf(a_to, sizeof a_to, "%ld", to);
+    fflush(stdout);
     pid = fork();
     if (pid == 0) {
-        char *args[] = {python, script, (char *)csv, (char *)png, 0};
+        char *args[] = {python, script, (char *)csv, (char *)png, a_from, a_to, 0};
+        if (from < 0)
+            args[4] = 0;
         execv(args[0], args);
         _exit(127);
     }
@@ -244,33 +345,245 @@ static int run_plot(const char *csv, const char *png)
     return 0;
 }
 
+/* The closed loop's config from the record: the pid settings and DAC
+ * scales of its footer, the wiring its header vouches for. 0, or 1 with
+ * a message saying what is missing and what to do. */
+static int loop_config(const hg_record *r, const char *file, const int *col_cmd, hg_loop_config *c)
+{
+    char key[96], val[96], *end;
+    int k, i;
+    hg_loop_config_default(c);
+    for (k = 0; k < 6; k++)
+        if (col_cmd[k] < 0) {
+            fprintf(stderr, "hexaglide replay: %s has no column joint.%d.motor-pos-cmd (recorded by an older "
+                    "tools/hg_record.py?): the closed-loop what-if runs the pid loops on motion's joint "
+                    "commands; record again, or give --open-loop\n", file, k);
+            return 1;
+        }
+    if (!hg_record_meta_get(r, "closed-loop", val, sizeof val) || strcmp(val, "hexaglide.hal") != 0) {
+        fprintf(stderr, "hexaglide replay: %s: the recorder did not find the loops wired as "
+                "configs/hexaglide.hal wires them (header '# closed-loop %s'): the closed-loop what-if "
+                "would not be the loop LinuxCNC ran; give --open-loop\n", file,
+                hg_record_meta_get(r, "closed-loop", val, sizeof val) ? val : "missing");
+        return 1;
+    }
+    for (k = 0; k < 6; k++)
+        for (i = 0; i < PID_SETTINGS + 2; i++) {
+            double v;
+            if (i < PID_SETTINGS)
+                snprintf(key, sizeof key, "pid.%d.%s", k, pid_setting[i].name);
+            else
+                snprintf(key, sizeof key, "motenc.0.dac-%02d-%s", k, i == PID_SETTINGS ? "gain" : "offset");
+            if (!hg_record_meta_get(r, key, val, sizeof val)) {
+                fprintf(stderr, "hexaglide replay: %s has no line '# %s VALUE' after its last row: the "
+                        "recorder writes the pid settings there when LinuxCNC stops; a recording cut "
+                        "short or from an older recorder lacks them; record again, or give --open-loop\n",
+                        file, key);
+                return 1;
+            }
+            errno = 0;
+            v = strtod(val, &end);
+            if (end == val || *end || errno || !isfinite(v)) {
+                fprintf(stderr, "hexaglide replay: %s: '# %s %s': not a finite number; the pid "
+                        "setting is damaged (LinuxCNC had it non-finite?); fix the line, or give "
+                        "--open-loop\n", file, key, val);
+                return 1;
+            }
+            if (i == PID_SETTINGS)
+                c->output_scale[k] = v;
+            else if (i == PID_SETTINGS + 1)
+                c->output_offset[k] = v;
+            else if (pid_setting[i].offset == offsetof(hg_pid_gains, error_previous_target))
+                c->pid[k].error_previous_target = v != 0.0;
+            else
+                memcpy((char *)&c->pid[k] + pid_setting[i].offset, &v, sizeof v);
+        }
+    return 0;
+}
+
+/* Compare the outputs of one step with the recorded row into *st; print
+ * the differing fields of the first mismatch when print_first. 1 if any differs. */
+static int compare_row(const hg_board_rec_field *fld, int nf, const int *col, const double *row,
+                       const hg_board_inputs *in, const hg_board_outputs *out, long period, int kind,
+                       long n, long line, int print_first, replay_stats *st)
+{
+    int i, mismatch = 0;
+    for (i = 0; i < nf; i++) {
+        double rec, rep, d;
+        if (fld[i].side != HG_BRS_OUT)
+            continue;
+        rec = row[col[i]];
+        rep = hg_board_rec_get(fld, nf, i, in, out, period, kind);
+        if (!bits_differ(rec, rep))
+            continue;
+        d = fabs(rep - rec);
+        if (strncmp(fld[i].name, "out.count-", 10) == 0 && d > (double)st->max_count_diff)
+            st->max_count_diff = (long long)d;
+        if (strncmp(fld[i].name, "out.z-", 6) == 0 && d * HG_MM_PER_M > st->max_pos_diff_mm)
+            st->max_pos_diff_mm = d * HG_MM_PER_M;
+        if (strncmp(fld[i].name, "out.pose-", 9) == 0 && d > st->max_pose_diff)
+            st->max_pose_diff = d;
+        if (st->first_mismatch < 0 && print_first) {
+            if (!mismatch)
+                printf("first mismatch at sample %ld (line %ld):\n", n, line);
+            printf("  %-22s recorded %.17g  replayed %.17g  difference %.3g\n", fld[i].name, rec, rep,
+                   rep - rec);
+        }
+        mismatch = 1;
+    }
+    if (mismatch) {
+        if (st->first_mismatch < 0)
+            st->first_mismatch = n;
+        st->mismatched_samples++;
+    }
+    return mismatch;
+}
+
+/* Add sample n of one joint (f-error mm, drive volts; w 0 recorded, 1 predicted). */
+static void joint_add(joint_stats *j, int w, long n, double fe, double v)
+{
+    if (fabs(fe) > j->peak_mm[w]) {
+        j->peak_mm[w] = fabs(fe);
+        j->peak_at[w] = n;
+    }
+    j->sq[w] += fe * fe;
+    if (fabs(v) > j->peak_v[w])
+        j->peak_v[w] = fabs(v);
+}
+
+/* The per-joint lines: recorded (and predicted) peak and RMS f-error, peak volts. */
+static void joint_report(const joint_stats *js, int whatif, long from, long to, int auto_from)
+{
+    int k;
+    printf("f-error window: samples %ld..%ld (%s), each joint while its amplifier is enabled\n", from, to,
+           auto_from ? "from the 2nd period after the last index latch: homing done" : "--from");
+    for (k = 0; k < 6; k++) {
+        const joint_stats *j = &js[k];
+        double rms0 = j->n ? sqrt(j->sq[0] / (double)j->n) : 0.0, rms1 = j->n ? sqrt(j->sq[1] / (double)j->n) : 0.0;
+        if (!whatif) {
+            printf("joint %d: peak |f-error| %.6f mm (sample %ld), RMS %.6f mm, peak volts %.4f V\n", k,
+                   j->peak_mm[0], j->peak_at[0], rms0, j->peak_v[0]);
+            continue;
+        }
+        printf("joint %d: peak |f-error| recorded %.6f mm (sample %ld), predicted %.6f mm (sample %ld)",
+               k, j->peak_mm[0], j->peak_at[0], j->peak_mm[1], j->peak_at[1]);
+        if (j->peak_mm[0] > 0)
+            printf(" %+.1f%%", 100.0 * (j->peak_mm[1] / j->peak_mm[0] - 1.0));
+        printf("; RMS recorded %.6f, predicted %.6f mm; peak volts recorded %.4f, predicted %.4f V\n",
+               rms0, rms1, j->peak_v[0], j->peak_v[1]);
+    }
+}
+
+/* One period of a closed loop: index-enable as one HAL signal (encoder-read
+ * clears it after this board's latch, motion's recorded rising edge sets it,
+ * a recorded fall that was not the recorded board's latch cancels it), then
+ * the servo thread on the recorded commands. */
+static void closed_step(hg_loop *L, int ie[6], const hg_board_inputs *in_w, unsigned ie_rec,
+                        unsigned prev_ie_rec, unsigned prev_latched_rec, const double *cmd,
+                        const int *enable, long period, hg_loop_sample *smp)
+{
+    int k;
+    L->in = *in_w;
+    for (k = 0; k < 6; k++) {
+        if (L->out.index_latched[k])
+            ie[k] = 0;
+        if ((ie_rec >> k & 1u) && !(prev_ie_rec >> k & 1u))
+            ie[k] = 1;
+        if (!(ie_rec >> k & 1u) && (prev_ie_rec >> k & 1u) && !(prev_latched_rec >> k & 1u))
+            ie[k] = 0;
+        L->in.index_enable[k] = ie[k];
+    }
+    (void)hg_loop_step_io(L, cmd, enable, period, smp); /* a fault shows in the outputs, as in LinuxCNC */
+}
+
+/* Median of v[0..n), sorted in place. */
+static double median(double *v, int n)
+{
+    int i, j;
+    for (i = 1; i < n; i++)
+        for (j = i; j > 0 && v[j - 1] > v[j]; j--) {
+            double t = v[j];
+            v[j] = v[j - 1];
+            v[j - 1] = t;
+        }
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* One period of --spread loop l (delay SPREAD_STEP * l): until it has held
+ * the idle after homing (period hold_at - 1 again) that long, it runs the
+ * same periods as loop 0; then the recorded periods that late. Its peak
+ * |f-error| per joint over the window into pk. */
+static void spread_step(hg_loop *L, int ie[6], long *lag, int l, long n, long hold_at,
+                        const period_in *ring, double pk[6])
+{
+    const period_in *p;
+    hg_loop_sample smp;
+    int k, hold = hold_at >= 0 && n >= hold_at && *lag < (long)SPREAD_STEP * l;
+    p = &ring[(hold ? hold_at - 1 : n - *lag) % RING];
+    if (hold)
+        (*lag)++;
+    if (p->reset && !hold)
+        for (k = 0; k < 6; k++)
+            pk[k] = 0.0;
+    closed_step(L, ie, &p->in, p->ie_rec, hold ? p->ie_rec : p->prev_ie_rec, hold ? 0u : p->prev_latched_rec,
+                p->cmd, p->enable, p->period, &smp);
+    for (k = 0; k < 6; k++)
+        if ((p->win >> k & 1u) && fabs(smp.ferror_mm[k]) > pk[k])
+            pk[k] = fabs(smp.ferror_mm[k]);
+}
+
 int cmd_replay(int argc, char **argv)
 {
     replay_opts o;
     char *buf = 0, text[64];
     size_t len = 0;
     static hg_record r;
-    static hg_board b;
+    static hg_board bx, b;            /* the recorded run replayed; the open-loop what-if */
+    static hg_loop L;                 /* the closed-loop what-if */
+    int ie[6] = {0};                  /* its index-enable signals */
+    static hg_loop Ls[REPLAY_MAX_SPREAD]; /* --spread loops 1..K-1 (0 is L) */
+    static int ies[REPLAY_MAX_SPREAD][6];
+    static long lag[REPLAY_MAX_SPREAD];
+    static double spk[REPLAY_MAX_SPREAD][6];
+    static period_in ring[RING];
+    long hold_at = -1, last_latch = -1, still = 0;
     static hg_board_rec_field fld[HG_BOARD_REC_MAX];
     static double row[HG_RECORD_MAX_COLS];
-    int col[HG_BOARD_REC_MAX], col_z[6], col_count[7], col_pose[6], col_period = 0, col_model = 0;
+    int col[HG_BOARD_REC_MAX], col_z[6], col_count[7], col_pose[6], col_cmd[6], col_period = 0, col_model = 0;
+    int col_latched = -1, has_cmd = 1;
     hg_record_error e;
-    hg_board_inputs in;
-    hg_board_outputs out;
+    hg_board_inputs in, in_w;
+    hg_board_outputs out_w, out_x;
+    hg_loop_config lc;
     unsigned long set_off[REPLAY_MAX_SETS];
     double set_val[REPLAY_MAX_SETS];
-    replay_stats st = {0, 0, 0.0, 0.0, -1, 0};
-    int nf, i, k, rc, whatif, kind = -1, status = 0;
-    long period = 0;
+    replay_stats st = {0, 0, 0.0, 0.0, -1, 0}, stx = {0, 0, 0.0, 0.0, -1, 0};
+    joint_stats js[6];
+    double prev_cmd[6] = {0}, fe[2][6], volts[2][6];
+    int nf, i, k, rc, whatif, closed, kind = -1, status = 0;
+    unsigned prev_ie_rec = 0, prev_latched_rec = 0;
+    long period = 0, win_from = 0;
+    long settings_from = 0, first_enabled = -1, last_enabled = -1;
     FILE *csv = 0;
-    cli_out csv_out;
     char csv_auto[4096], png_auto[4000];
+    cli_out csv_out;
     const char *csv_path;
 
     rc = parse_opts(argc, argv, &o);
     if (rc)
         return rc < 0 ? 0 : rc;
     whatif = o.nset > 0 || o.model || o.substeps > 0 || o.integrator >= 0;
+    closed = whatif && !o.open_loop;
+    if (o.open_loop && !whatif) {
+        fprintf(stderr, "hexaglide replay: --open-loop is for a what-if: give --set, --model, --substeps "
+                "or --integrator too\n");
+        return 2;
+    }
+    if (o.spread > 1 && !closed) {
+        fprintf(stderr, "hexaglide replay: --spread is for the closed-loop what-if: give --set, --model, "
+                "--substeps or --integrator, without --open-loop\n");
+        return 2;
+    }
     if (parse_sets(&o, set_off, set_val)) /* checked before reading the file */
         return 2;
     if (cli_read_file("replay", o.file, "a record file (tools/hg_record.py); split larger recordings", REPLAY_MAX_BYTES, &buf, &len))
@@ -296,9 +609,6 @@ int cmd_replay(int argc, char **argv)
         free(buf);
         return 1;
     }
-    if (r.ncols - 1 > nf)
-        fprintf(stderr, "hexaglide replay: note: %s has %d columns this version does not use (recorded "
-                "by a newer board?)\n", o.file, r.ncols - 1 - nf);
     for (k = 0; k < 6; k++) {
         snprintf(text, sizeof text, "out.z-%d", k);
         col_z[k] = hg_record_column(&r, text);
@@ -306,14 +616,32 @@ int cmd_replay(int argc, char **argv)
         col_count[k] = hg_record_column(&r, text);
         snprintf(text, sizeof text, "out.pose-%c", "xyzabc"[k]);
         col_pose[k] = hg_record_column(&r, text);
+        snprintf(text, sizeof text, "joint.%d.motor-pos-cmd", k);
+        col_cmd[k] = hg_record_column(&r, text);
+        if (col_cmd[k] < 0)
+            has_cmd = 0;
     }
     col_count[6] = hg_record_column(&r, "out.fault-code");
+    col_latched = hg_record_column(&r, "out.index-latched");
+    {
+        int used = nf + (has_cmd ? 6 : 0);
+        if (r.ncols - 1 > used)
+            fprintf(stderr, "hexaglide replay: note: %s has %d columns replay does not use (extra pins, or "
+                    "recorded by a newer board)\n", o.file, r.ncols - 1 - used);
+    }
     for (i = 0; i < nf; i++) {         /* the step's other arguments */
         if (fld[i].side == HG_BRS_PERIOD)
             col_period = col[i];
         if (fld[i].side == HG_BRS_MODEL)
             col_model = col[i];
     }
+    if (closed && loop_config(&r, o.file, col_cmd, &lc)) {
+        free(buf);
+        return 1;
+    }
+    if (hg_record_meta_get(&r, "settings-from-sample", text, sizeof text))
+        settings_from = strtol(text, 0, 10);
+    memset(js, 0, sizeof js);
 
     if (whatif && !o.csv && !o.plot) { /* a what-if always leaves its run and plot */
         snprintf(png_auto, sizeof png_auto, "%s.whatif.png", o.file);
@@ -331,46 +659,96 @@ int cmd_replay(int argc, char **argv)
             return 1;
         }
         csv = csv_out.f;
-        csv_header(csv);
+        csv_header(csv, has_cmd);
     }
 
     while ((rc = hg_record_next(&r, row, &e)) == 1) {
         long n = (long)row[0];
-        int mismatch = 0;
+        int enable[6];
+        unsigned ie_rec, latched_rec;
         if (n == 0) {                  /* power-up, as at loadrt: model and defaults */
-            kind = o.model ? hg_model_from_name(o.model) : (int)row[col_model];
+            kind = (int)row[col_model];   /* the recorded run is replayed as recorded */
             if (kind < 0 || kind >= HG_MODEL_COUNT) {
                 fprintf(stderr, "hexaglide replay: %s: line %ld: in.model %d is not a model (0..%d); "
-                        "the record is damaged, or give --model\n", o.file, r.line, kind, HG_MODEL_COUNT - 1);
+                        "the record is damaged\n", o.file, r.line, kind, HG_MODEL_COUNT - 1);
                 status = 1;
                 break;
             }
-            rc = hg_board_init(&b, (hg_model_kind)kind, 0);
+            if (o.model)
+                kind = hg_model_from_name(o.model);
+            rc = hg_board_init(&bx, (hg_model_kind)(int)row[col_model], 0);
+            if (!rc && whatif && !closed) {
+                rc = hg_board_init(&b, (hg_model_kind)kind, 0);
+                hg_board_peek(&b, &out_w);
+            }
+            lc.model_kind = kind;
+            if (!rc && closed)
+                rc = hg_loop_init(&L, &lc, 0);
+            for (i = 1; !rc && closed && i < o.spread; i++)
+                rc = hg_loop_init(&Ls[i], &lc, 0);
             if (rc) {
                 fprintf(stderr, "hexaglide replay: the board refused its defaults: %s\n", hg_strerror(rc));
                 status = 1;
                 break;
             }
-            hg_board_inputs_default(&b, &in);
+            hg_board_inputs_default(&bx, &in);
+            hg_board_peek(&bx, &out_x);
         }
         for (i = 0; i < nf; i++)
             hg_board_rec_set(fld, nf, i, &in, row[col[i]]);
         period = (long)row[col_period];
-        if (whatif) {                  /* the recorded block with the user's changes on top */
-            for (k = 0; k < o.nset; k++)
-                memcpy((char *)&in.params.model + set_off[k], &set_val[k], sizeof set_val[k]);
-            if (o.substeps > 0)
-                in.params.substeps = (unsigned)o.substeps;
-            if (o.integrator >= 0)
-                in.params.integrator = (unsigned)o.integrator;
+        for (k = 0; k < 6; k++) {      /* the recorded run: motion's f-error, pid.N.enable */
+            double fb = out_x.position[k];
+            fe[0][k] = prev_cmd[k] - fb;
+            enable[k] = (int)((in.dout_values >> (8 + k)) & 1u);
         }
-        hg_board_step(&b, &in, &out, period);
-        if (whatif && (out.events & HG_EV_PARAM_REFUSED)) {
+        hg_board_step(&bx, &in, &out_x, period);
+        compare_row(fld, nf, col, row, &in, &out_x, period, (int)row[col_model], n, r.line, !whatif, &stx);
+        for (k = 0; k < 6; k++)
+            volts[0][k] = out_x.volts[k];
+        if (whatif) {                  /* the recorded block with the user's changes on top */
+            in_w = in;
+            for (k = 0; k < o.nset; k++)
+                memcpy((char *)&in_w.params.model + set_off[k], &set_val[k], sizeof set_val[k]);
+            if (o.substeps > 0)
+                in_w.params.substeps = (unsigned)o.substeps;
+            if (o.integrator >= 0)
+                in_w.params.integrator = (unsigned)o.integrator;
+        }
+        ie_rec = 0;
+        for (k = 0; k < 6; k++)
+            ie_rec |= (in.index_enable[k] != 0) << k;
+        latched_rec = col_latched >= 0 ? (unsigned)row[col_latched] : 0u;
+        if (closed) {                  /* LinuxCNC's servo thread on the changed board */
+            hg_loop_sample smp;
+            double cmd[6];
+            for (k = 0; k < 6; k++)
+                cmd[k] = row[col_cmd[k]];
+            closed_step(&L, ie, &in_w, ie_rec, prev_ie_rec, prev_latched_rec, cmd, enable, period, &smp);
+            out_w = L.out;
+            for (k = 0; k < 6; k++) {
+                fe[1][k] = smp.ferror_mm[k];
+                volts[1][k] = out_w.volts[k];
+            }
+        } else if (whatif) {              /* open loop: the recorded DAC volts */
+            for (k = 0; k < 6; k++)
+                fe[1][k] = prev_cmd[k] - out_w.position[k];
+            hg_board_step(&b, &in_w, &out_w, period);
+            for (k = 0; k < 6; k++)
+                volts[1][k] = out_w.volts[k];
+        } else {
+            out_w = out_x;
+            for (k = 0; k < 6; k++) {
+                fe[1][k] = fe[0][k];
+                volts[1][k] = volts[0][k];
+            }
+        }
+        if (whatif && (out_w.events & HG_EV_PARAM_REFUSED)) {
             const char *why[HG_BOARD_WHY_LEN];
             unsigned long long mask = 0;
             int bit;
             memset(why, 0, sizeof why);
-            hg_board_params_check(&in.params, &mask, why);
+            hg_board_params_check(&in_w.params, &mask, why);
             fprintf(stderr, "hexaglide replay: sample %ld: the board refused the changed parameters:", n);
             for (bit = 0; bit < 64; bit++)
                 if (mask & (1ull << bit))
@@ -380,51 +758,109 @@ int cmd_replay(int argc, char **argv)
             status = 1;
             break;
         }
-        for (i = 0; i < nf; i++) {
-            double rec, rep, d;
-            if (fld[i].side != HG_BRS_OUT)
-                continue;
-            rec = row[col[i]];
-            rep = hg_board_rec_get(fld, nf, i, &in, &out, period, kind);
-            if (!bits_differ(rec, rep))
-                continue;
-            d = fabs(rep - rec);
-            if (strncmp(fld[i].name, "out.count-", 10) == 0 && d > (double)st.max_count_diff)
-                st.max_count_diff = (long long)d;
-            if (strncmp(fld[i].name, "out.z-", 6) == 0 && d * HG_MM_PER_M > st.max_pos_diff_mm)
-                st.max_pos_diff_mm = d * HG_MM_PER_M;
-            if (strncmp(fld[i].name, "out.pose-", 9) == 0 && d > st.max_pose_diff)
-                st.max_pose_diff = d;
-            if (st.first_mismatch < 0 && !whatif) {
-                if (!mismatch)
-                    printf("first mismatch at sample %ld (line %ld):\n", n, r.line);
-                printf("  %-22s recorded %.17g  replayed %.17g  difference %.3g\n", fld[i].name, rec, rep,
-                       rep - rec);
+        if (whatif)
+            compare_row(fld, nf, col, row, &in_w, &out_w, period, kind, n, r.line, 0, &st);
+        if (has_cmd) {                 /* the f-error statistics */
+            if (o.from < 0 && (prev_latched_rec & 0x3fu)) {
+                memset(js, 0, sizeof js); /* a latch (homing): the window starts again */
+                win_from = n + 1;     /* in the period after the latch motion reports 0 */
             }
-            mismatch = 1;
+            if (o.from >= 0)
+                win_from = o.from;
+            for (k = 0; k < 6; k++) {
+                if (!enable[k] || n < win_from)
+                    continue;
+                if (first_enabled < 0)
+                    first_enabled = n;
+                last_enabled = n;
+                joint_add(&js[k], 0, n, fe[0][k], volts[0][k]);
+                joint_add(&js[k], 1, n, fe[1][k], volts[1][k]);
+                js[k].n++;
+            }
+            for (k = 0; k < 6; k++)
+                prev_cmd[k] = row[col_cmd[k]];
         }
-        if (mismatch) {
-            if (st.first_mismatch < 0)
-                st.first_mismatch = n;
-            st.mismatched_samples++;
+        if (closed && o.spread > 1) {  /* the delayed loops */
+            period_in *p = &ring[n % RING];
+            p->in = in_w;
+            p->period = period;
+            p->ie_rec = ie_rec;
+            p->prev_ie_rec = prev_ie_rec;
+            p->prev_latched_rec = prev_latched_rec;
+            p->reset = o.from < 0 && (prev_latched_rec & 0x3fu);
+            p->win = 0;
+            for (k = 0; k < 6; k++) {
+                p->cmd[k] = row[col_cmd[k]];
+                p->enable[k] = enable[k];
+                if (enable[k] && n >= win_from)
+                    p->win |= 1u << k;
+            }
+            if (prev_latched_rec & 0x3fu) {
+                last_latch = n;
+                still = 0;
+            } else if (n > 0 && memcmp(p->cmd, ring[(n - 1) % RING].cmd, sizeof p->cmd) == 0) {
+                still++;
+            } else {
+                still = 0;
+            }
+            if (hold_at < 0 && last_latch >= 0 && still >= SPREAD_IDLE)
+                hold_at = n + 1;      /* idle after homing: the delayed loops hold period n */
+            for (i = 1; i < o.spread; i++)
+                spread_step(&Ls[i], ies[i], &lag[i], i, n, hold_at, ring, spk[i]);
         }
+        prev_ie_rec = ie_rec;
+        prev_latched_rec = latched_rec;
         if (csv)
-            csv_row(csv, n, row, col_z, col_count, col_pose, &out);
+            csv_row(csv, n, row, col_z, col_count, col_pose, &out_w, has_cmd ? (const double (*)[6])fe : 0,
+                    (const double (*)[6])volts);
+        stx.samples++;
         st.samples++;
     }
     if (rc < 0) {
         fprintf(stderr, "hexaglide replay: %s: %s\n", o.file, e.msg);
         status = 1;
     }
-    if (csv && cli_out_close("replay", &csv_out, 1))   /* the rows up to a failure are kept */
+    if (csv && cli_out_close("replay", &csv_out, !status))
         status = 1;
     free(buf);
     if (status)
         return status;
-    if (st.samples == 0) {
+    if (stx.samples == 0) {
         fprintf(stderr, "hexaglide replay: %s: no rows after the header: nothing recorded; was "
                 "LinuxCNC's servo thread running? (docs/replay.md)\n", o.file);
         return 1;
+    }
+    if (closed && settings_from > 0 && first_enabled >= 0 && first_enabled < settings_from)
+        fprintf(stderr, "hexaglide replay: note: the pid settings changed while the loops ran (in force "
+                "from about sample %ld, the loops enabled from %ld); the closed loop uses the final ones "
+                "throughout\n", settings_from, first_enabled);
+    if (whatif && stx.first_mismatch >= 0)
+        fprintf(stderr, "hexaglide replay: note: the recorded run does not replay bit-exact from sample %ld "
+                "(run replay without options for the fields): the recorded f-errors are the replayed ones\n",
+                stx.first_mismatch);
+    if (has_cmd && first_enabled >= 0)
+        joint_report(js, whatif, win_from, last_enabled, o.from < 0);
+    if (closed && o.spread > 1 && hold_at < 0)
+        fprintf(stderr, "hexaglide replay: note: --spread: no idle after an index latch (homing) in %s: "
+                "the %ld loops ran the same periods\n", o.file, o.spread);
+    if (closed && o.spread > 1 && first_enabled >= 0)
+        for (k = 0; k < 6; k++) {
+            double v[REPLAY_MAX_SPREAD], m;
+            v[0] = js[k].peak_mm[1];
+            for (i = 1; i < o.spread; i++)
+                v[i] = spk[i][k];
+            m = median(v, (int)o.spread);
+            printf("joint %d: predicted peak |f-error| with the program started 0..%ld periods later "
+                   "(%ld loops): median %.6f mm, range %.6f..%.6f mm\n", k, (o.spread - 1) * SPREAD_STEP,
+                   o.spread, m, v[0], v[o.spread - 1]);
+        }
+    if (whatif) {
+        printf("what-if, %s\n", closed ? "closed loop: LinuxCNC's pid with the recorded settings on the "
+                                        "recorded joint commands"
+                                      : "open loop: the recorded DAC volts into the changed board");
+        st.samples = stx.samples;
+    } else {
+        st = stx;
     }
     if (st.first_mismatch < 0)
         snprintf(text, sizeof text, "none (bit-exact)");
@@ -433,7 +869,7 @@ int cmd_replay(int argc, char **argv)
     printf("%s: samples %ld, max |count diff| %lld, max |pos diff| %.3g mm, max |pose diff| %.3g m/rad, "
            "first mismatch %s\n", whatif ? "what-if" : "replay", st.samples, st.max_count_diff,
            st.max_pos_diff_mm, st.max_pose_diff, text);
-    if (o.plot && run_plot(csv_path, o.plot))
+    if (o.plot && run_plot(csv_path, o.plot, has_cmd && first_enabled >= 0 ? win_from : -1, last_enabled))
         return 1;
     return (whatif || st.first_mismatch < 0) ? 0 : 1;
 }

@@ -2,7 +2,8 @@
  * the integrator settles at the volts that hold the machine's weight (W/6 per
  * carriage at HOME, within one DAC step), f-error is motion's (previous
  * command minus the encoder position), a vertical move keeps the six joints
- * identical (symmetry), and gains that make the loop unstable trip it. */
+ * identical (symmetry), gains that make the loop unstable trip it, and a
+ * pid disabled through hg_loop_step_io drives 0 V (its carriage sinks). */
 #include <math.h>
 #include <stdlib.h>
 #include "hg_errors.h"
@@ -77,6 +78,22 @@ int main(void)
     for (k = 1; k < 6; k++)
         CHECK(fabs(sum.peak_ferror_mm[k] - sum.peak_ferror_mm[0]) < 1e-9, "joint %d peak f-error = joint 0's (%.5f mm)",
               k, sum.peak_ferror_mm[k]);
+
+    /* hg_loop_step_io: pid.N.enable off gives 0 V on that drive every period
+     * (pid.c's output when disabled): its carriage sinks, the others hold */
+    {
+        static const int en[6] = {1, 1, 0, 1, 1, 1};
+        double z0[6] = {0}, vmax = 0;
+        hg_loop_init(L, &c, 0);
+        for (i = 0; i < 500; i++) {
+            hg_loop_step_io(L, z0, en, c.period_ns, &s);
+            if (fabs(s.output_v[2]) > vmax)
+                vmax = fabs(s.output_v[2]);
+        }
+        CHECK(vmax == 0.0, "step_io: disabled pid.2 outputs 0 V (max %.3g)", vmax);
+        CHECK(L->out.z_m[2] < L->out.z_m[0] - 1e-4 && fabs(L->out.z_m[0]) < 1e-4,
+              "step_io: joint 2 sinks (%.4f mm), joint 0 holds (%.4f mm)", L->out.z_m[2] * 1e3, L->out.z_m[0] * 1e3);
+    }
 
     /* far too much gain: the loop oscillates and trips at the f-error limit */
     for (k = 0; k < 6; k++)
