@@ -32,6 +32,28 @@ int hg_regressor_init(hg_regressor *r, const hg_params *p, const char **bad_fiel
 }
 
 /* ---- the drive and friction columns: the only place they are written ---- */
+static const char *const fric_name[HG_REG_NFRIC] = {"f_offset", "c_visc", "f_coulomb", "f_breakaway"};
+static const char *const fric_unit[HG_REG_NFRIC] = {"N", "N s/m", "N", "N"};
+
+const char *hg_regressor_column(int j, const char **unit, int *carriage)
+{
+    if (j < 0 || j >= HG_REG_NCOL)
+        return 0;
+    if (j < HG_REG_NIN) {
+        if (unit)
+            *unit = hg_gen_regressor_units[j];
+        if (carriage)
+            *carriage = -1;
+        return hg_gen_regressor_names[j];
+    }
+    j -= HG_REG_NIN;
+    if (unit)
+        *unit = fric_unit[j / 6];
+    if (carriage)
+        *carriage = j % 6;
+    return fric_name[j / 6];
+}
+
 void hg_regressor_friction(const hg_regressor *r, const double zd[6], double cols[6][HG_REG_NFRIC])
 {
     int k;

@@ -85,7 +85,13 @@ int hg_regressor_pose_n(const hg_regressor *r, long n, const double *pose, const
                         const double *posedd, double *Y, double *z, double *zd, double *zdd,
                         long *failed_at);
 
-/* sizeof(hg_regressor), for bindings (tools/hexaglide.py). */
+/* Name of column j (0 <= j < HG_REG_NCOL; 0 otherwise), *unit its SI unit
+ * and *carriage its carriage for the per-carriage friction columns (-1 for
+ * the inertial ones, whose names carry it: "m_drive[3]"): "m_head", ...,
+ * "f_offset", "c_visc", "f_coulomb", "f_breakaway". */
+const char *hg_regressor_column(int j, const char **unit, int *carriage);
+
+/* sizeof(hg_regressor), for bindings (tools/hexaglide_identify.py). */
 unsigned long hg_regressor_sizeof(void);
 
 #endif

@@ -12,6 +12,13 @@ int cmd_sim(int argc, char **argv);  /* sim --model ... (offline simulator) */
 int cmd_soak(int argc, char **argv); /* soak [--hours H] (long closed-loop run) */
 int cmd_replay(int argc, char **argv, const char *self); /* replay FILE ... (self: argv[0]) */
 int cmd_tune(int argc, char **argv); /* tune [--trajectory FILE] (runs tools/hexaglide_tune.py) */
+int cmd_identify(int argc, char **argv); /* identify RECORD... (runs tools/hexaglide_identify.py) */
+int cmd_excite(int argc, char **argv);   /* excite [--output FILE] (runs tools/hexaglide_excite.py) */
+
+/* Run /usr/bin/python3 tools/SCRIPT ARGS... of the source tree this binary
+ * was built in, with HEXAGLIDE_LIB naming the library beside it; returns
+ * only on failure (1, after a message naming cmd). */
+int cli_run_python(const char *cmd, const char *script_name, int argc, char **argv);
 
 #include "hg_board.h"
 

@@ -4,7 +4,9 @@
  *   hexaglide sim [options]             offline simulation of the virtual board (CSV)
  *   hexaglide soak [--hours H]          hours of closed-loop motion, health report
  *   hexaglide replay FILE [options]     re-run a recorded LinuxCNC run, compare (docs/replay.md)
- *   hexaglide tune [--trajectory FILE]  PID gains tuned against the model (docs/tuning.md) */
+ *   hexaglide tune [--trajectory FILE]  PID gains tuned against the model (docs/tuning.md)
+ *   hexaglide identify RECORD...        dynamic parameters from recorded runs (docs/identification.md)
+ *   hexaglide excite [--output FILE]    an excitation program to record them with */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,6 +24,8 @@ static void usage(FILE *f)
             "       hexaglide replay FILE [--csv OUT] [--plot PNG] [--set name=value]...\n"
             "                        [--model NAME] [--substeps N] [--integrator NAME]\n"
             "       hexaglide tune [--trajectory FILE] [--output FILE] [--plots DIR] [--help]\n"
+            "       hexaglide identify RECORD... [--validate RECORD] [--output FILE] [--plots DIR] [--help]\n"
+            "       hexaglide excite [--output FILE] [--ini FILE] [--help]\n"
             "units: X Y Z and joints in mm, A B C in degrees (see README.md)\n");
 }
 
@@ -43,6 +47,10 @@ int main(int argc, char **argv)
         return cmd_replay(argc - 2, argv + 2, argv[0]);
     if (strcmp(argv[1], "tune") == 0)
         return cmd_tune(argc - 2, argv + 2);
+    if (strcmp(argv[1], "identify") == 0)
+        return cmd_identify(argc - 2, argv + 2);
+    if (strcmp(argv[1], "excite") == 0)
+        return cmd_excite(argc - 2, argv + 2);
     if (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
         usage(stdout);
         return 0;
