@@ -211,7 +211,16 @@ class StructuralBase:
 
     def base_values(self, pi):
         """Base parameters of a full pi."""
-        return pi[self.base] + self.beta @ pi[self.dep]
+        return self.T @ pi
+
+    @property
+    def T(self):
+        """The base parameters as rows of coefficients on pi (nbase x NCOL)."""
+        T = np.zeros((len(self.base), NCOL))
+        T[np.arange(len(self.base)), self.base] = 1.0
+        for d, j in enumerate(self.dep):
+            T[:, j] = self.beta[:, d]
+        return T
 
     def names(self):
         """Each base parameter's formula: 'm_head + 6*m_end'."""
@@ -226,24 +235,14 @@ class StructuralBase:
             out.append(" + ".join(terms).replace("+ -", "- "))
         return out
 
-    def condition(self, Ystack):
-        """Condition number of the base regressor (rows: samples x carriages),
-        columns scaled to unit norm."""
-        A = Ystack[:, self.base]
-        n = np.linalg.norm(A, axis=0)
-        if (n == 0).any():
-            return np.inf
-        s = np.linalg.svd(A / n, compute_uv=False)
-        return s[0] / s[-1] if s[-1] > 0 else np.inf
-
 
 def fmt_coef(b):
-    """A coefficient for a formula: 6, 0.5, 0.0161."""
+    """A coefficient for a formula: 6, 0.5, 0.0161234 (6 digits)."""
     for den in (1, 2, 4):
         if abs(b * den - round(b * den)) < 1e-9 * max(1, abs(b)):
             v = round(b * den) / den
             return ("%d" % v) if den == 1 else ("%g" % v)
-    return "%.4g" % b
+    return "%.6g" % b
 
 
 def atomic_write(path, write):
@@ -549,6 +548,7 @@ class Settings:
     slow_mps = 0.002          # rows of a carriage slower than this are left out (stick: friction unknown)
     slow_window = 3.0         # ... and within this many cutoff periods of such a moment
     margin_s = 0.3            # trimmed at both ends of every usable stretch (filter transients)
+    timing = "auto"           # start / mid: where the volts of a period act (auto: the record's integrator; mid)
     second_cutoff = 1.5       # a second fit at this x cutoff: the difference is the cutoff's cost, in the sigmas
 
 
@@ -579,7 +579,9 @@ def equations(run, reg, params, s):
     bd, ad = _butter(s, dt, min(s.cutoff_hz * s.diff_ratio, 0.4 / dt))
     dec = max(1, int(1.0 / (4 * s.cutoff_hz * dt)))     # 4 samples per cutoff period
     edge = int(round(s.margin_s / dt))
-    start_timing = run.integrator == 0                   # improved Euler: V_n+1 acts from the state n
+    # improved Euler: V_n+1 accelerates uniformly from state n (friction at n);
+    # a continuous machine, Heun, RK4: V_n+1 acts around the middle of the period
+    start_timing = run.integrator == 0 if s.timing == "auto" else s.timing == "start"
     ok = run.ok.copy()
     imax, ka = params["i_max"], params["ka"]
     V = dac_output(run.volts)
@@ -689,7 +691,6 @@ def estimate(eqs, base, pi0):
     A, F, car, seg = A[U], F[U], car[U], seg[U]
     est = Estimate()
     est.rows = len(F)
-    theta0 = base.base_values(pi0)
     norm = np.linalg.norm(A, axis=0)
     ident = norm > 0
     if ident.any():
@@ -699,8 +700,26 @@ def estimate(eqs, base, pi0):
         weak = P[d < RANK_TOL * d[0]]
         ident[cols[weak]] = False
     est.ident = ident
-    fixed = ~ident
-    rhs = F - A[:, fixed] @ theta0[fixed]
+    # what the kept columns estimate: their base parameter plus the share of each
+    # left-out one that their columns carry (exactly the base parameter when the
+    # data separate everything): rows of coefficients on pi
+    T = base.T
+    est.map = T.copy()
+    out = ~ident & (norm > 0)
+    est.names = base.names()
+    if out.any() and ident.any():
+        gam, *_ = np.linalg.lstsq(A[:, ident], A[:, out], rcond=None)
+        est.map[ident] += gam @ T[out]
+        sc = np.array([PRIOR_SCALE.get(unit_of(j), 1.0) for j in base.base])
+        bn = base.names()
+        for r, i in enumerate(np.flatnonzero(ident)):
+            terms = [bn[i]]
+            for c, d in zip(gam[r], np.flatnonzero(out)):
+                if abs(c) * sc[d] > 1e-4 * sc[i]:
+                    terms.append("%s*(%s)" % (fmt_coef(c), bn[d]) if " " in bn[d] else
+                                 "%s*%s" % (fmt_coef(c), bn[d]))
+            est.names[i] = " + ".join(terms).replace("+ -", "- ")
+    rhs = F
     Ai = A[:, ident]
     w = np.ones(6)
     for _ in range(3):                                 # weights: 1 / residual sigma per carriage
@@ -719,7 +738,7 @@ def estimate(eqs, base, pi0):
     info = Aw.T @ Aw
     inv = np.linalg.inv(info)
     cov = inv * s2 * est.tau
-    est.theta_ls = theta0.copy()
+    est.theta_ls = est.map @ pi0
     est.theta_ls[ident] = th
     est.cov = np.full((nb, nb), np.nan)
     est.cov[np.ix_(ident, ident)] = cov
@@ -732,22 +751,17 @@ def estimate(eqs, base, pi0):
     # physically consistent pi: the fit's information on the identified
     # directions, the prior (weakly) on the rest
     est.pi, est.active = consistent_pi(base, est, pi0, np.linalg.inv(cov))
-    est.theta = base.base_values(est.pi)
+    est.theta = est.map @ est.pi
     return est
 
 
 def consistent_pi(base, est, pi0, info):
-    """argmin (T pi - theta)_id' info (T pi - theta)_id + |(pi - pi0) / scale|^2
+    """argmin (M pi - theta)_id' info (M pi - theta)_id + |(pi - pi0) / scale|^2 (M: est.map)
     subject to feasibility(pi) >= 0: the unconstrained minimum when it is
     feasible, else scipy's SLSQP from the prior. Returns (pi, names of the
     constraints that bind)."""
     from scipy.optimize import minimize
-    nb = len(base.base)
-    T = np.zeros((nb, NCOL))
-    T[np.arange(nb), base.base] = 1.0
-    for d, j in enumerate(base.dep):
-        T[:, j] = base.beta[:, d]
-    Ti = T[est.ident]
+    Ti = est.map[est.ident]
     ti = est.theta_ls[est.ident]
     scale = np.array([max(abs(pi0[j]), PRIOR_SCALE.get(COLUMNS[j][1], 1.0)) for j in range(NCOL)])
     # parameters that appear only in combinations (m_end) stay at their prior
@@ -836,7 +850,7 @@ def unit_of(j):
 
 def report(est, base, runs, s, params, pi0):
     """The estimate as NAME = VALUE +- SIGMA lines and '#' lines."""
-    names = base.names()
+    names = est.names
     out = []
     src = ", ".join(sorted(set(e_src for e_src in s.sources)))
     out.append("# hexaglide identify: %s" % ", ".join("%s (%d periods)" % (r.path, len(r.volts)) for r in runs))
@@ -856,8 +870,8 @@ def report(est, base, runs, s, params, pi0):
                                                                              for j in base.zero))))
     fixed = [i for i in range(len(base.base)) if not est.ident[i]]
     if fixed:
-        out.append("# not identifiable from these data (too little excitation), kept at the prior: %s"
-                   % ", ".join(names[i] for i in fixed))
+        out.append("# not identifiable from these data (too little excitation): %s; what the data say of them "
+                   "is in the combinations below (setp: the prior)" % ", ".join(base.names()[i] for i in fixed))
     for i, j in enumerate(base.base):
         if not est.ident[i]:
             continue
@@ -884,7 +898,7 @@ def report(est, base, runs, s, params, pi0):
 
 
 def touched_spec(base, est):
-    """Which spec parameters the data determine (any base parameter containing them identified)."""
+    """Which spec parameters the data determine (their base parameter was not left out)."""
     names = base.names()
     idn = [names[i] for i in range(len(names)) if est.ident[i]]
 
@@ -1030,8 +1044,8 @@ def plots(outdir, eqs, est, base, pi0, vdata):
     e = eqs[0]
     fit_plot(e, e["F"] - e["Y"] @ est.pi, "identify: fit on the first recording (filtered, decimated)",
              "identify_fit.png")
-    names = base.names()
-    th0 = base.base_values(pi0)
+    names = est.names
+    th0 = est.map @ pi0
     idx = [i for i in range(len(names)) if est.ident[i]]
     scale = np.array([max(abs(th0[i]), PRIOR_SCALE.get(unit_of(base.base[i]), 1.0)) for i in idx])
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 0.28 * len(idx) + 1.5), sharey=True,
@@ -1103,11 +1117,14 @@ def main(argv=None):
                     help="counts: encoder counts, as on a real machine (default); state: a board record's "
                     "exact carriage positions and velocities")
     ap.add_argument("--cutoff", type=float, default=Settings.cutoff_hz, help="low-pass cutoff, Hz (default %(default)s)")
+    ap.add_argument("--timing", choices=["auto", "start", "mid"], default="auto",
+                    help="when a period's volts act: start (the virtual board's improved Euler), mid (a real "
+                    "machine, Heun, RK4); auto: the board record's integrator, mid for sampler recordings")
     ap.add_argument("--commands", metavar="FILE",
                     help="joint commands for the closed-loop validation (the validation recording's own if it has them)")
     a = ap.parse_args(argv)
     s = Settings()
-    s.source, s.cutoff_hz = a.source, a.cutoff
+    s.source, s.cutoff_hz, s.timing = a.source, a.cutoff, a.timing
     try:
         if not (a.cutoff > 0):
             raise BadInput("--cutoff must be positive (Hz)")
@@ -1140,7 +1157,7 @@ def main(argv=None):
     est = estimate(eqs, base, pi0)
     # what the cutoff costs: the same fit with a faster filter; the difference joins the sigmas
     s2 = Settings()
-    s2.source, s2.cutoff_hz = s.source, s.cutoff_hz * s.second_cutoff
+    s2.source, s2.cutoff_hz, s2.timing = s.source, s.cutoff_hz * s.second_cutoff, s.timing
     if s2.cutoff_hz * 2 * runs[0].dt < 0.5:
         est2 = estimate([equations(r, reg, params, s2) for r in runs], base, pi0)
         both = est.ident & est2.ident
