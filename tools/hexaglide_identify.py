@@ -235,6 +235,16 @@ class StructuralBase:
             out.append(" + ".join(terms).replace("+ -", "- "))
         return out
 
+    def condition(self, Ystack):
+        """Condition number of the base regressor (rows: samples x carriages),
+        columns scaled to unit norm."""
+        A = Ystack[:, self.base]
+        n = np.linalg.norm(A, axis=0)
+        if (n == 0).any():
+            return np.inf
+        s = np.linalg.svd(A / n, compute_uv=False)
+        return s[0] / s[-1] if s[-1] > 0 else np.inf
+
 
 def fmt_coef(b):
     """A coefficient for a formula: 6, 0.5, 0.0161234 (6 digits)."""
