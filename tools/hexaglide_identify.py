@@ -604,10 +604,10 @@ def equations(run, reg, params, s):
         if len(seg) < 2 * edge + 10 * dec + 3:
             continue
         i0, i1 = seg[0], seg[-1]
-        n = np.arange(i0, i1)                           # states n, forces of period n + 1
         Fr = fpv * V
-        F_at = Fr[n + 1] if start_timing else 0.5 * (Fr[n] + Fr[n + 1])
         if source == "state":
+            n = np.arange(i0, i1)                       # states n, forces of period n + 1
+            F_at = Fr[n + 1] if start_timing else 0.5 * (Fr[n] + Fr[n + 1])
             z = run.pos[n]
             v = run.vel[n]
             if start_timing:
@@ -615,16 +615,23 @@ def equations(run, reg, params, s):
             else:
                 acc = np.gradient(run.vel[i0:i1 + 1], dt, axis=0)[:-1]
         else:
+            # on the half-period grid: period n + 1 moves the carriage from the
+            # position of row n to that of row n + 1; its mean speed is the
+            # difference of the two, its acceleration the difference of the
+            # neighbouring speeds: the average of periods n, n + 1 (twice) and
+            # n + 2, so the forces are averaged with the same weights
+            n = np.arange(i0 + 1, i1 - 1)
             zq = run.counts[i0:i1 + 1] / run.count_scale if run.kind == "record" else run.pos[i0:i1 + 1]
             zf = filtfilt(bd, ad, zq, axis=0)
-            v_all = np.gradient(zf, dt, axis=0)
-            acc = np.gradient(v_all, dt, axis=0)
-            # improved Euler: the volts of period n + 1 accelerate the carriage
-            # uniformly from state n, friction taken at state n: as a continuous
-            # signal that acceleration is centred half a period later
-            acc = 0.5 * (acc[:-1] + acc[1:]) if start_timing else acc[:-1]
-            z, v = zf[:-1], v_all[:-1]
-            F_at = filtfilt(bd, ad, F_at, axis=0)
+            vh = np.diff(zf, axis=0) / dt               # vh[m]: mean speed of period i0 + m + 1
+            j = n - i0
+            acc = (vh[j + 1] - vh[j - 1]) / (2 * dt)
+            F_at = filtfilt(bd, ad, 0.25 * (Fr[n] + 2 * Fr[n + 1] + Fr[n + 2]), axis=0)
+            if start_timing:
+                # improved Euler: uniform acceleration from state n, friction at state n
+                z, v = zf[j], vh[j] - 0.5 * dt * acc
+            else:
+                z, v = 0.5 * (zf[j] + zf[j + 1]), vh[j]
         Y, _ = reg.joints(z, v, acc)
         Yf = filtfilt(b, a, Y, axis=0)
         Ff = filtfilt(b, a, F_at, axis=0)
