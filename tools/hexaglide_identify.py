@@ -647,7 +647,8 @@ def equations(run, reg, params, s):
     if not Ys:
         return None
     return dict(Y=np.concatenate(Ys), F=np.concatenate(Fs), use=np.concatenate(Us),
-                t=np.concatenate(Ts), source=source, dec=dec)
+                t=np.concatenate(Ts), source=source, dec=dec,
+                timing="start (improved Euler)" if start_timing else "mid-period")
 
 
 # ====================================================================== the estimate
@@ -874,6 +875,7 @@ def report(est, base, runs, s, params, pi0):
     out.append("# %d equations (carriage x sample) from %s, zero-phase low-pass %.3g Hz (Butterworth order %d, "
                "forwards and backwards), decimated to %.3g Hz"
                % (est.rows, src, s.cutoff_hz, s.order, 1.0 / (s.dec * runs[0].dt)))
+    out.append("# a period's volts act from: %s" % ", ".join(sorted(set(s.timings))))
     out.append("# force scale: ka kt 2 pi / lead = %.6g N/V (known beforehand: ka %g A/V, kt %g N m/A, "
                "lead %g m)" % (force_per_volt(params), params["ka"], params["kt"], params["lead"]))
     out.append("# condition number %.1f (base regressor of these data, columns scaled to unit norm)" % est.cond)
@@ -1168,6 +1170,7 @@ def main(argv=None):
         log("%s: %s" % (a.records[0], ex))
         return 2
     s.sources = [e["source"] for e in eqs]
+    s.timings = [e["timing"] for e in eqs]
     s.dec = eqs[0]["dec"]
     base = StructuralBase(reg)
     pi0 = prior_pi(params)
