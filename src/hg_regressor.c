@@ -1,6 +1,6 @@
 /* hg_regressor.c - drive forces linear in the parameters (hg_regressor.h). */
-#include <math.h>
-#include <string.h>
+#include "hg_math.h"    /* host only (tanh): not in the realtime module */
+#include "hg_string.h"
 #include "hg_regressor.h"
 #include "hg_dynamics.h"
 #include "hg_gen_reduced.h"

@@ -379,15 +379,7 @@ def read_board_record(path):
 
 def hg_params_table():
     """{spec name: HAL name} of the parameter table (src/hg_params.c)."""
-    tab = hg._sig("hg_params_table", C.c_void_p, C.POINTER(C.c_int))
-    n = C.c_int()
-    base = tab(C.byref(n))
-
-    class Info(C.Structure):
-        _fields_ = [("name", C.c_char_p), ("unit", C.c_char_p), ("what", C.c_char_p), ("offset", C.c_ulong),
-                    ("hal_name", C.c_char_p), ("hal_unit", C.c_char_p), ("hal_scale", C.c_double)]
-    arr = (Info * n.value).from_address(base)
-    return {i.name.decode(): i.hal_name.decode() for i in arr}
+    return {name: hal for name, _, hal, _, _ in hal_table()}
 
 
 def hal_table():

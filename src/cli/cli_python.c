@@ -18,6 +18,7 @@ int cli_run_python(const char *cmd, const char *script_name, int argc, char **ar
     char **args;
     ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
     int i;
+    script[0] = 0;
     if (n <= 0) {
         fprintf(stderr, "hexaglide %s: cannot find my own path (/proc/self/exe): %s\n", cmd, strerror(errno));
         return 1;
@@ -26,10 +27,17 @@ int cli_run_python(const char *cmd, const char *script_name, int argc, char **ar
     slash = strrchr(exe, '/');              /* .../build/hexaglide -> .../build */
     *slash = 0;
     snprintf(lib, sizeof lib, "%s/libhexaglide.so", exe);
-    slash = strrchr(exe, '/');              /* .../build -> the source tree */
-    if (slash)
+    /* the source tree: the nearest directory above with tools/SCRIPT
+     * (build/hexaglide, build/asan/hexaglide) */
+    for (i = 0; i < 4; i++) {
+        slash = strrchr(exe, '/');
+        if (!slash)
+            break;
         *slash = 0;
-    snprintf(script, sizeof script, "%s/tools/%s", exe, script_name);
+        snprintf(script, sizeof script, "%s/tools/%s", exe, script_name);
+        if (access(script, R_OK) == 0)
+            break;
+    }
     if (access(script, R_OK) != 0) {
         fprintf(stderr, "hexaglide %s: %s not found: run the hexaglide of a source tree (build/hexaglide)\n",
                 cmd, script);
