@@ -627,7 +627,9 @@ def equations(run, reg, params, s):
         Y, _ = reg.joints(z, v, acc)
         Yf = filtfilt(b, a, Y, axis=0)
         Ff = filtfilt(b, a, F_at, axis=0)
-        slow = np.abs(v) < s.slow_mps
+        # with a breakaway column (Stribeck speed known) its speed range stays in
+        vs = param_or(params, "v_stribeck")
+        slow = np.abs(v) < (min(s.slow_mps, 0.25 * vs) if vs else s.slow_mps)
         bad = clamped[n] | clamped[n + 1] | slow
         wide = int(round(s.slow_window / (s.cutoff_hz * dt)))
         bad = np.stack([_dilate(bad[:, k], wide) for k in range(6)], 1)
