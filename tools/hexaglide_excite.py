@@ -31,6 +31,7 @@ TO_SI = np.array([1e-3] * 3 + [np.pi / 180] * 3)
 
 
 def log(*a):
+    """Progress and results on stderr."""
     print("hexaglide excite:", *a, file=sys.stderr, flush=True)
 
 
@@ -144,6 +145,7 @@ class Problem:
         return np.concatenate(out), Y
 
     def cond(self, Y):
+        """Condition number of the base regressor rows Y (n, 6, NCOL)."""
         return self.base.condition(Y.reshape(-1, Y.shape[-1]))
 
 
@@ -226,6 +228,7 @@ def gcode(prob, theta, a, cond):
 
 
 def main(argv=None):
+    """hexaglide excite: design, check on 1 ms, write the G-code."""
     argv = sys.argv[1:] if argv is None else argv
     ap = argparse.ArgumentParser(prog="hexaglide excite", description=__doc__.split("\n\n")[0])
     ap.add_argument("--ini", default=os.path.join(ROOT, "configs", "hexaglide.ini"),

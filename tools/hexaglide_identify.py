@@ -267,6 +267,7 @@ class BadInput(Exception):
 
 
 def log(*a):
+    """Progress and messages on stderr."""
     print("hexaglide identify:", *a, file=sys.stderr, flush=True)
 
 
@@ -555,6 +556,7 @@ class Settings:
 
 
 def _butter(s, dt, hz=None):
+    """Butterworth low-pass coefficients (b, a) at hz (default the cutoff) for period dt."""
     from scipy.signal import butter
     return butter(s.order, (hz or s.cutoff_hz) * 2 * dt)
 
@@ -806,6 +808,7 @@ def consistent_pi(base, est, pi0, info):
 
 
 def _put(base_vec, live, y):
+    """base_vec with its live entries replaced by y."""
     z = base_vec.copy()
     z[live] = y
     return z
@@ -857,6 +860,7 @@ def setp_text(spec, source, touched):
 
 # ====================================================================== report
 def unit_of(j):
+    """SI unit of column j."""
     return COLUMNS[j][1]
 
 
@@ -1113,6 +1117,7 @@ def known_params(runs, sets):
 
 
 def main(argv=None):
+    """hexaglide identify: read, fit, report, validate, write."""
     import argparse
     ap = argparse.ArgumentParser(prog="hexaglide identify", description=__doc__.split("\n\n")[0])
     ap.add_argument("records", nargs="+", metavar="RECORD",
