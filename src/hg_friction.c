@@ -12,10 +12,15 @@ int hg_friction_on(const hg_params *p)
     return p->f_static_n > 0.0 || p->f_coulomb_n > 0.0;
 }
 
-double hg_friction_sliding(const hg_params *p, double v)
+double hg_friction_stribeck(const hg_params *p, double v)
 {
     double x = v / p->v_stribeck_mps;
-    return p->f_coulomb_n + (p->f_static_n - p->f_coulomb_n) * exp(-x * x);
+    return exp(-x * x);
+}
+
+double hg_friction_sliding(const hg_params *p, double v)
+{
+    return p->f_coulomb_n + (p->f_static_n - p->f_coulomb_n) * hg_friction_stribeck(p, v);
 }
 
 /* erf(x), x >= 0, with rtapi_math's exp: Numerical Recipes' Chebyshev

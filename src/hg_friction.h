@@ -40,8 +40,12 @@ typedef struct {
 /* 1 when p has sliding or static friction (f_coulomb or f_static > 0). */
 int hg_friction_on(const hg_params *p);
 
-/* Sliding friction force (N, >= 0) at speed v (m/s): the Stribeck curve. */
+/* Sliding friction force (N, >= 0) at speed v (m/s): the Stribeck curve,
+ * f_coulomb + (f_static - f_coulomb) hg_friction_stribeck(p, v). */
 double hg_friction_sliding(const hg_params *p, double v);
+
+/* The Stribeck curve's shape exp(-(v / v_stribeck)^2): 1 at rest, 0 fast. */
+double hg_friction_stribeck(const hg_params *p, double v);
 
 /* The step's friction impulses: W (6x6, row-major, symmetric positive
  * definite, m/s per N s), vstar the carriage speeds at the step's end

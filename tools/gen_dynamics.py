@@ -109,6 +109,10 @@ class System:
     def rigid_body(self, mass, pos_com, R, angles, angle_rates, inertia):
         """Head: translation of the COM plus rotation with body angular velocity."""
         self.point(mass, pos_com)
+        self.rotation(R, angles, angle_rates, inertia)
+
+    def rotation(self, R, angles, angle_rates, inertia):
+        """Rotational kinetic energy 1/2 wb^T inertia wb, wb the body angular velocity."""
         Rd = sp.zeros(3, 3)
         for a, ad in zip(angles, angle_rates):
             Rd += R.diff(a) * ad
@@ -561,6 +565,8 @@ class Unit:
         self.hoist = Hoister()
         self.funcs = []      # (prototype, doc, body lines)
         self.macros = []
+        self.decls = []      # extra header lines (declarations of data)
+        self.data = []       # extra C lines (constant tables)
         self.trig = None     # substitution sin/cos(head angle) -> sc[] inputs
 
     def function(self, proto, doc, assigns, names, levels=(), prefix="x"):
@@ -602,6 +608,7 @@ def write_unit(unit, outdir):
          "#ifndef %s_H" % up, "#define %s_H" % up, "", '#include "hg_params.h"', "",
          "#define %s_NCONST %d  /* length of the constant table k[] */" % (up, nk)]
     h += unit.macros
+    h += unit.decls
     h.append("")
     h.append("/* Fill k[%s_NCONST] with the parameter-only subexpressions (%d flops). */"
              % (up, init_flops))
@@ -614,6 +621,7 @@ def write_unit(unit, outdir):
     c = [stamp(sp.__version__), '#include "hg_math.h"  /* rtapi_math.h in realtime builds */',
          '#include "hg_errors.h"',
          '#include "%s.h"' % unit.name, ""]
+    c += unit.data
     c.append("void %s_init(const hg_params *p, double *k)" % unit.name)
     c.append("{")
     c += init_lines
@@ -993,6 +1001,119 @@ def gen_standard(outdir):
     return m
 
 
+# ---------------------------------------------------------------------------
+# identification: the same reduced model, linear in its inertial parameters
+# (docs/identification.md). Each body is written with the parameters that
+# its kinetic and potential energy are linear in: the head by its mass, its
+# first moment and its inertia about Op (head axes), the bars by their
+# lumped masses, each carriage by its inertial mass (carriage plus reflected
+# rotor). The carriages' own weight is constant per carriage and is left to
+# the per-drive offset column (src/hg_regressor.c), as are friction.
+REG_PARAMS = [
+    ("m_head", "kg", "head mass"),
+    ("m_head*com_x", "kg m", "head first moment about Op, head x (spec: 0)"),
+    ("m_head*com_y", "kg m", "head first moment about Op, head y (spec: 0)"),
+    ("m_head*com_z", "kg m", "head first moment about Op, head z (spec: -m_head*head_com)"),
+    ("j_head_xx", "kg m^2", "head inertia about Op, head axes (spec: i_head_xx + m_head*head_com^2)"),
+    ("j_head_yy", "kg m^2", "head inertia about Op, head axes (spec: i_head_yy + m_head*head_com^2)"),
+    ("j_head_zz", "kg m^2", "head inertia about Op, head axes (spec: i_head_zz)"),
+    ("j_head_xy", "kg m^2", "head inertia about Op, tensor element xy (spec: 0)"),
+    ("j_head_xz", "kg m^2", "head inertia about Op, tensor element xz (spec: 0)"),
+    ("j_head_yz", "kg m^2", "head inertia about Op, tensor element yz (spec: 0)"),
+    ("m_end", "kg", "lumped bar mass at each joint (spec: 2 i_bar/l^2 - m_bar/2)"),
+    ("m_mid", "kg", "lumped bar mass at mid-length (spec: 2 m_bar - 4 i_bar/l^2)"),
+] + [("m_drive[%d]" % k, "kg", "carriage %d inertial mass: m_carriage + j_rotor (2 pi/lead)^2" % k)
+     for k in range(6)]
+
+
+def regressor_model():
+    """Inverse dynamics r = M q'' - Q of the reduced model (as reduced_model(),
+    flat) with the parameters of REG_PARAMS as symbols, and its Jacobian
+    Y = dr/dpi (12 x len(REG_PARAMS)): r = Y pi exactly, since r is linear in pi."""
+    q, qd = reduced_coordinates()
+    qdd = sp.Matrix(sp.symbols("zdd0:6") + sp.symbols("Xdd Ydd Zdd Add Bdd Cdd"))
+    z, c, cd = q[:6, 0], q[6:, 0], qd[6:, 0]
+    pi = sp.symbols("pi0:%d" % len(REG_PARAMS))
+    mh, hv = pi[0], sp.Matrix(pi[1:4])
+    J = sp.Matrix([[pi[4], pi[7], pi[8]], [pi[7], pi[5], pi[9]], [pi[8], pi[9], pi[6]]])
+    me, mm, mdrive = pi[10], pi[11], pi[12:18]
+    R = head_rotation(c)
+    Pp = sp.Matrix(c[:3])
+    sysm = System(q, qd)
+    # head about Op: T = 1/2 m |P'|^2 + P'.(R h)' + 1/2 wb^T J wb
+    sysm.point(mh, Pp)
+    sysm.pair(1, Pp, R * hv)
+    sysm.rotation(R, c[3:], cd[3:], J)
+    sysm.weight(mh, Pp)
+    sysm.weight(1, R * hv)
+    for k in range(6):
+        B = post_point(k, P["lb"]) + sp.Matrix([0, 0, P["h"] + z[k]])
+        A = Pp + R * post_point(k, P["lp"])
+        sysm.point(mdrive[k], B)          # carriage + rotor: inertia; weight in the offset
+        for mass, pos in ((me, A), (me, B), (mm, (A + B) / 2)):
+            sysm.point(mass, pos)
+            sysm.weight(mass, pos)
+    sysm.finish()
+    r = sysm.M * qdd - sysm.Q
+    Y = r.jacobian(sp.Matrix(pi))
+    assert all(sp.expand(x).free_symbols.isdisjoint(pi) for x in Y)
+    return dict(q=q, qd=qd, qdd=qdd, pi=pi, Y=Y, r=r)
+
+
+def reg_pi_spec():
+    """The spec's values of REG_PARAMS as expressions of hg_params (for the
+    generated hg_gen_regressor_spec, which the unit test checks the regressor
+    against the dynamics with)."""
+    me, mm = derived_masses()
+    m_rot = P["j_rotor"] * (2 * sp.pi / P["lead"]) ** 2
+    hc2 = P["m_head"] * P["head_com"] ** 2
+    return [P["m_head"], 0, 0, -P["m_head"] * P["head_com"],
+            P["i_head_xx"] + hc2, P["i_head_yy"] + hc2, P["i_head_zz"], 0, 0, 0,
+            me, mm] + [P["m_carriage"] + m_rot] * 6
+
+
+def gen_regressor(outdir):
+    m = regressor_model()
+    q, qd, qdd, Y = m["q"], m["qd"], m["qdd"], m["Y"]
+    n = len(REG_PARAMS)
+    u = Unit("hg_gen_regressor", "Identification: the reduced model's inverse dynamics "
+             "r = M q'' - Q, linear in its inertial parameters\n * (hg_gen_regressor_names): "
+             "r = Y pi, rows z (6) and c (6). Depends on the geometry and g only.\n"
+             " * Every function but init takes sc[6] = sin A, cos A, sin B, cos B, sin C, cos C of q[9..11].")
+    u.trig, trig_names = trig_inputs(q[6:, 0])
+    names = {**state_names(q, qd), **trig_names, **{s: "qdd[%d]" % i for i, s in enumerate(qdd)}}
+    assigns = [("Yz[%d]" % (i * n + j), Y[i, j]) for i in range(6) for j in range(n)]
+    assigns += [("Yc[%d]" % (i * n + j), Y[6 + i, j]) for i in range(6) for j in range(n)]
+    fl = u.function(
+        "void hg_gen_regressor(const double *k, const double q[12], const double qd[12],\n"
+        "                      const double qdd[12], const double sc[6],\n"
+        "                      double Yz[6 * HG_GEN_REGRESSOR_NPAR], double Yc[6 * HG_GEN_REGRESSOR_NPAR])",
+        "Regressor of M q'' - Q at a consistent state (q, q', q''): row i of Yz (carriage z_i) "
+        "and of Yc (head coordinate i of X Y Z A B C), column j the parameter "
+        "hg_gen_regressor_names[j], row-major", assigns, names)
+    body = u.funcs[-1][2]
+    if not any("q[" in x.replace("qd[", "").replace("qdd[", "") for x in body):
+        body.insert(0, "    (void)q;    /* positions enter through the head angles' sc only */")
+    spec = reg_pi_spec()
+    pr = Printer(dict(PARAM_C))
+    body = ["    pi[%d] = %s;" % (j, pr.doprint(sp.sympify(x))) for j, x in enumerate(spec)]
+    u.funcs.append(("void hg_gen_regressor_spec(const hg_params *p, double pi[HG_GEN_REGRESSOR_NPAR])",
+                    "The parameters of hg_gen_regressor_names that the spec's set p describes "
+                    "(the lumped bar of docs/model.md, the rotor reflected by the lead)", body))
+    u.macros += ["#define HG_GEN_REGRESSOR_NPAR %d  /* columns of hg_gen_regressor */" % n,
+                 "#define HG_GEN_REGRESSOR_FLOPS %d" % fl]
+    u.decls += ["", "/* Name, SI unit and meaning of each column (REG_PARAMS of the generator). */",
+                "extern const char *const hg_gen_regressor_names[HG_GEN_REGRESSOR_NPAR];",
+                "extern const char *const hg_gen_regressor_units[HG_GEN_REGRESSOR_NPAR];",
+                "extern const char *const hg_gen_regressor_what[HG_GEN_REGRESSOR_NPAR];"]
+    for tab, idx in (("names", 0), ("units", 1), ("what", 2)):
+        u.data.append("const char *const hg_gen_regressor_%s[HG_GEN_REGRESSOR_NPAR] = {" % tab)
+        u.data += ['    "%s",' % r[idx] for r in REG_PARAMS]
+        u.data += ["};", ""]
+    write_unit(u, outdir)
+    return m
+
+
 def main(argv):
     if sp.__version__ != REQUIRED_SYMPY:
         sys.stderr.write("gen_dynamics.py: SymPy %s found, %s required (Debian 12 "
@@ -1001,7 +1122,7 @@ def main(argv):
         return 2
     outdir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "src", "generated")
     args = list(argv)
-    which = ["reduced", "standard"]
+    which = ["reduced", "standard", "regressor"]
     while args:
         a = args.pop(0)
         if a == "--out" and args:
@@ -1009,13 +1130,15 @@ def main(argv):
         elif a == "--only" and args:
             which = args.pop(0).split(",")
         else:
-            sys.stderr.write("usage: gen_dynamics.py [--out DIR] [--only reduced,standard]\n")
+            sys.stderr.write("usage: gen_dynamics.py [--out DIR] [--only reduced,standard,regressor]\n")
             return 2
     os.makedirs(outdir, exist_ok=True)
     if "reduced" in which:
         gen_reduced(outdir)
     if "standard" in which:
         gen_standard(outdir)
+    if "regressor" in which:
+        gen_regressor(outdir)
     return 0
 
 

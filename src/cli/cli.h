@@ -18,18 +18,28 @@ int cmd_sim(int argc, char **argv);  /* sim --model ... (offline simulator) */
 int cmd_soak(int argc, char **argv); /* soak [--hours H] (long closed-loop run) */
 int cmd_replay(int argc, char **argv); /* replay FILE ... */
 int cmd_tune(int argc, char **argv); /* tune [--trajectory FILE] (runs tools/hexaglide_tune.py) */
+int cmd_identify(int argc, char **argv); /* identify RECORD... (runs tools/hexaglide_identify.py) */
+int cmd_excite(int argc, char **argv);   /* excite [--output FILE] (runs tools/hexaglide_excite.py) */
+
+/* Run tools/SCRIPT ARGS... of the source tree this binary was built in
+ * under the first Python 3 that imports `modules` (cli_find_python; `why`
+ * says what they are for), with HEXAGLIDE_LIB naming the library beside
+ * it; returns only on failure (1, after a message naming cmd), or 0 for a
+ * --help it could not pass on (after printing `usage`). */
+int cli_run_python(const char *cmd, const char *script_name, const char *modules, const char *why,
+                   const char *usage, int argc, char **argv);
 
 /* Each subcommand's usage text (what --help prints). */
 extern const char cli_usage_ik[], cli_usage_fk[], cli_usage_sim[], cli_usage_soak[], cli_usage_replay[],
-    cli_usage_tune[];
+    cli_usage_tune[], cli_usage_identify[], cli_usage_excite[];
 
 /* The usage lines of --ini and --set, shared by ik, fk, sim and soak. */
 #define CLI_USAGE_MODEL                                                                            \
-    "  --ini FILE          geometry from the config's [HEXAGLIDE] section (keys L LB E LP H in mm,\n" \
-    "                      as configs/hexaglide.ini)\n"                                            \
+    "  --ini FILE          geometry from the config's [HEXAGLIDE] section (keys L LB E LP in mm,\n" \
+    "                      CONE_CARRIAGE CONE_HEAD in degrees, D_BAR in mm, as configs/hexaglide.ini)\n" \
     "  --set name=value    a model parameter by spec name in SI units (hexaglide sim --list-params);\n" \
     "                      repeatable. Order: defaults, then --ini, then --set; HOME stays at pose 0\n" \
-    "                      when l, lb or lp change (h follows)\n"
+    "                      for any l, lb, lp (h follows from them)\n"
 
 /* ---- options (cli_parse.c) ---- */
 

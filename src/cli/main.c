@@ -5,6 +5,8 @@
  *   hexaglide soak [--hours H]          hours of LinuxCNC's closed loop, health report
  *   hexaglide replay FILE [options]     re-run a recorded LinuxCNC run, compare (docs/replay.md)
  *   hexaglide tune [--trajectory FILE]  PID gains tuned against the model (docs/tuning.md)
+ *   hexaglide identify RECORD...        dynamic parameters from recorded runs (docs/identification.md)
+ *   hexaglide excite [--output FILE]    an excitation program to record them with
  * `hexaglide CMD --help` prints CMD's usage. */
 #include <stdio.h>
 #include <string.h>
@@ -21,6 +23,8 @@ static const struct {
     {"soak", cmd_soak, cli_usage_soak},
     {"replay", cmd_replay, cli_usage_replay},
     {"tune", cmd_tune, cli_usage_tune},
+    {"identify", cmd_identify, cli_usage_identify},
+    {"excite", cmd_excite, cli_usage_excite},
 };
 #define N_COMMANDS (int)(sizeof commands / sizeof commands[0])
 

@@ -1,0 +1,296 @@
+#!/usr/bin/python3
+"""hexaglide_excite.py - an excitation program for identification: a finite
+Fourier series per world axis, optimised (scipy) for the condition number
+of the base regressor, inside the config's working volume ([AXIS_*]
+MIN/MAX_LIMIT), the joint ranges ([JOINT_N] MIN/MAX_LIMIT), the speed and
+acceleration limits of axes and joints, and a bound on the drive volts the
+prior model predicts (well below the amplifier's saturation). Written as
+G-code that LinuxCNC runs: inverse-time G1 segments (G93), one per
+--segment seconds. Normally started as `build/hexaglide excite`
+(src/cli/cmd_excite.c); see docs/identification.md.
+
+stdout: the G-code (or --output FILE). stderr: progress, the run time and
+the condition number reached. Exit codes: 0 ok, 1 no feasible trajectory,
+2 bad input.
+"""
+import argparse
+import os
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import hexaglide as hg  # noqa: E402
+import hexaglide_identify as hid  # noqa: E402
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+AXES = "XYZABC"
+# world units -> SI: mm -> m, deg -> rad
+TO_SI = np.array([1e-3] * 3 + [np.pi / 180] * 3)
+
+
+def log(*a):
+    """Progress and results on stderr."""
+    print("hexaglide excite:", *a, file=sys.stderr, flush=True)
+
+
+class Fourier:
+    """x_i(t) = x0_i + sum_l a_il/(l w) sin(l w t) - b_il/(l w) cos(l w t), per axis
+    (world units, mm and deg), with x'(0) = x''(0) = 0 imposed through the
+    last harmonic (the program starts and ends at rest, at x(0))."""
+
+    def __init__(self, harmonics, period_s):
+        self.L, self.w = harmonics, 2 * np.pi / period_s
+        self.nfree = 6 * (2 * (harmonics - 1)) + 6
+
+    def coefficients(self, theta):
+        """(x0 (6), a (6, L), b (6, L)) from the free variables."""
+        L = self.L
+        x0 = theta[:6]
+        f = theta[6:].reshape(6, 2, L - 1)
+        l = np.arange(1, L + 1)
+        a = np.zeros((6, L))
+        b = np.zeros((6, L))
+        a[:, :-1], b[:, :-1] = f[:, 0], f[:, 1]
+        a[:, -1] = -a[:, :-1].sum(1)                             # x'(0) = sum a = 0
+        b[:, -1] = -(b[:, :-1] * l[:-1]).sum(1) / L              # x''(0) = w sum l b = 0
+        return x0, a, b
+
+    def eval(self, theta, t):
+        """x, x', x'' (n, 6) at times t (s), world units."""
+        x0, a, b = self.coefficients(theta)
+        l = np.arange(1, self.L + 1)
+        ph = np.outer(t, l) * self.w                             # (n, L)
+        s, c = np.sin(ph), np.cos(ph)
+        lw = l * self.w
+        x = s @ (a / lw).T - c @ (b / lw).T
+        x0c = x0 - (-(b / lw).sum(1))                            # x(0) = x0
+        xd = c @ a.T + s @ b.T
+        xdd = -s @ (a * lw).T + c @ (b * lw).T
+        return x + x0c, xd, xdd
+
+
+class Problem:
+    """Limits of the config and the prior model, evaluated on a time grid."""
+
+    def __init__(self, a, params):
+        joints, axes = hg.read_ini(a.ini)
+        self.margin = a.margin
+        self.lim = {}
+        for ax in AXES:
+            lim = axes.get(ax, {})
+            for key in ("MIN_LIMIT", "MAX_LIMIT", "MAX_VELOCITY", "MAX_ACCELERATION"):
+                if key not in lim:
+                    raise ValueError("%s: [AXIS_%s] has no %s" % (a.ini, ax, key))
+            self.lim[ax] = lim
+        self.jlim = []
+        for j, g in enumerate(joints):
+            for key in ("MIN_LIMIT", "MAX_LIMIT", "MAX_VELOCITY", "MAX_ACCELERATION"):
+                if key not in g:
+                    raise ValueError("%s: [JOINT_%d] has no %s" % (a.ini, j, key))
+            self.jlim.append(g)
+        self.xmin = np.array([self.lim[x]["MIN_LIMIT"] for x in AXES])
+        self.xmax = np.array([self.lim[x]["MAX_LIMIT"] for x in AXES])
+        self.amax = np.array([self.lim[x]["MAX_ACCELERATION"] for x in AXES])
+        # LinuxCNC blends G1 segments that move A B C parabolically (no tangent or arc
+        # blends with rotary motion, src/emc/tp/tp.c): each segment then accelerates
+        # at half the axis limit for at most half its length, so an axis keeps its
+        # speed from segment to segment only below 0.5 a_max * segment duration
+        self.vmax = np.minimum([self.lim[x]["MAX_VELOCITY"] for x in AXES], 0.5 * self.amax * a.segment)
+        self.jmin = np.array([g["MIN_LIMIT"] for g in joints])
+        self.jmax = np.array([g["MAX_LIMIT"] for g in joints])
+        self.jvmax = np.array([g["MAX_VELOCITY"] for g in joints])
+        self.jamax = np.array([g["MAX_ACCELERATION"] for g in joints])
+        self.max_volts = a.max_volts
+        self.params = params
+        self.reg = hid.Regressor(params)
+        self.pi = hid.prior_pi(params)
+        self.fpv = hid.force_per_volt(params)
+        self.base = hid.StructuralBase(self.reg)
+        self.fourier = Fourier(a.harmonics, a.period)
+        self.t_opt = np.linspace(0, a.period, a.grid, endpoint=False)
+
+    def evaluate(self, theta, t):
+        """(regressor rows, joint positions/velocities/accelerations (mm), volts, world x, x', x'')."""
+        x, xd, xdd = self.fourier.eval(theta, t)
+        Y, z, zd, zdd = self.reg.pose(x * TO_SI, xd * TO_SI, xdd * TO_SI)
+        volts = (Y @ self.pi) / self.fpv
+        return Y, z * 1e3, zd * 1e3, zdd * 1e3, volts, x, xd, xdd
+
+    NMARGINS = 54
+
+    def margins(self, theta, t):
+        """Every limit, per axis and joint, as value / limit - margin <= 0 (the
+        largest over t): world position (both ends of the range, the margin
+        split between them), speed, acceleration; the same for the joints;
+        the prior model's drive volts against --max-volts."""
+        x, xd, xdd = self.fourier.eval(theta, t)
+        m = self.margin
+
+        def rng(v, lo, hi):
+            span = hi - lo
+            return [((v - hi) / span).max(0) + (1 - m) / 2, ((lo - v) / span).max(0) + (1 - m) / 2]
+        out = rng(x, self.xmin, self.xmax) + [(np.abs(xd) / self.vmax).max(0) - m,
+                                              (np.abs(xdd) / self.amax).max(0) - m]
+        try:
+            Y, z, zd, zdd = self.reg.pose(x * TO_SI, xd * TO_SI, xdd * TO_SI)
+        except hg.HexaglideError:
+            return np.ones(self.NMARGINS), None
+        z, zd, zdd = z * 1e3, zd * 1e3, zdd * 1e3
+        volts = (Y @ self.pi) / self.fpv
+        out += rng(z, self.jmin, self.jmax) + [(np.abs(zd) / self.jvmax).max(0) - m,
+                                               (np.abs(zdd) / self.jamax).max(0) - m,
+                                               np.abs(volts).max(0) / self.max_volts - 1]
+        return np.concatenate(out), Y
+
+    def cond(self, Y):
+        """Condition number of the base regressor rows Y (n, 6, NCOL)."""
+        return self.base.condition(Y.reshape(-1, Y.shape[-1]))
+
+
+def design(a, prob, rng):
+    """Best of a.starts SLSQP runs from random feasible starts: theta, cond."""
+    from scipy.optimize import minimize
+    F = prob.fourier
+    cache = {}
+
+    def ev(theta):
+        key = theta.tobytes()
+        if key not in cache:
+            if len(cache) > 64:
+                cache.clear()
+            g, Y = prob.margins(theta, prob.t_opt)
+            cache[key] = (g, np.log(prob.cond(Y)) if Y is not None else 50.0)
+        return cache[key]
+
+    best = None
+    for s in range(a.starts):
+        # a random start, scaled down until it is inside every limit
+        theta = np.concatenate([(prob.xmin + prob.xmax) / 2, rng.normal(size=F.nfree - 6)])
+        scale = np.repeat(prob.vmax, 2 * (F.L - 1)) / (2 * F.L)
+        theta[6:] *= scale
+        for _ in range(60):
+            if (ev(theta)[0] <= 0).all():
+                break
+            theta[6:] *= 0.8
+        t0 = time.time()
+        res = minimize(lambda th: ev(th)[1], theta, method="SLSQP",
+                       constraints=[{"type": "ineq", "fun": lambda th: -ev(th)[0]}],
+                       options={"maxiter": a.maxiter, "ftol": 1e-4})
+        th = res.x.copy()
+        for _ in range(40):                      # a slightly violated limit: shrink the motion
+            if (ev(th)[0] <= 0).all():
+                break
+            th[6:] *= 0.99
+        g, lc = ev(th)
+        res.x = th
+        ok = (g <= 0).all()
+        log("start %d: condition number %.0f%s (%d iterations, %.0f s)"
+            % (s + 1, np.exp(lc), "" if ok else " (limits not met: discarded)", res.nit, time.time() - t0))
+        if ok and (best is None or lc < best[1]):
+            best = (res.x, lc)
+    return best
+
+
+def fine_check(prob, theta, period, dt=0.001):
+    """Limits on a 1 ms grid over one period: (margins, cond, volts peak, joint peaks)."""
+    t = np.arange(0, period, dt)
+    g, Y = prob.margins(theta, t)
+    return g, prob.cond(Y) if Y is not None else np.inf
+
+
+def gcode(prob, theta, a, cond):
+    """The program text: approach x(0) at rest, periods x inverse-time segments, back to x(0)."""
+    F = prob.fourier
+    seg = a.segment
+    n = int(round(a.period * a.periods / seg))
+    t = np.arange(n + 1) * seg
+    x, _, _ = F.eval(theta, t)
+    total = n * seg
+    lines = ["( hexaglide excitation for hexaglide identify: docs/identification.md )",
+             "( written by: hexaglide excite %s )" % " ".join(a.argv).replace("(", "").replace(")", ""),
+             "( Fourier series per world axis: %d harmonics of %.4g Hz, %d periods of %.4g s )"
+             % (F.L, 1 / a.period, a.periods, a.period),
+             "( condition number of the base regressor, columns scaled to unit norm: %.1f )" % cond,
+             "( the excitation runs %.1f s in %d inverse-time G1 segments of %.0f ms )"
+             % (total, n, seg * 1e3),
+             "G21 G90 G17 G40 G49 G54 G94",
+             "G64",
+             "G1 %s F600" % " ".join("%s%.4f" % (ax, v) for ax, v in zip(AXES, x[0])),
+             "G4 P0.5",
+             "G93"]
+    fword = 1.0 / (seg / 60.0)
+    for i in range(1, n + 1):
+        lines.append("G1 %s F%.6g" % (" ".join("%s%.4f" % (ax, v) for ax, v in zip(AXES, x[i])), fword))
+    lines += ["G94", "G4 P0.5", "G1 X0 Y0 Z0 A0 B0 C0 F600", "M2", ""]
+    return "\n".join(lines), total
+
+
+def main(argv=None):
+    """hexaglide excite: design, check on 1 ms, write the G-code."""
+    argv = sys.argv[1:] if argv is None else argv
+    ap = argparse.ArgumentParser(prog="hexaglide excite", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--ini", default=os.path.join(ROOT, "configs", "hexaglide.ini"),
+                    help="config with the [AXIS_*] and [JOINT_N] limits (default configs/hexaglide.ini)")
+    ap.add_argument("--output", help="write the G-code here (default: stdout)")
+    ap.add_argument("--period", type=float, default=8.0, help="period of the series, s (default 8)")
+    ap.add_argument("--periods", type=int, default=3, help="periods run (default 3)")
+    ap.add_argument("--harmonics", type=int, default=5, help="harmonics per axis (default 5)")
+    ap.add_argument("--margin", type=float, default=0.8,
+                    help="fraction of every range, speed and acceleration limit used (default 0.8)")
+    ap.add_argument("--max-volts", type=float, default=4.0,
+                    help="peak drive volts the prior model may need (default 4 of the DAC's 10)")
+    ap.add_argument("--segment", type=float, default=0.2,
+                    help="G1 segment duration, s (default 0.2; speeds are held below 0.5 a_max x segment)")
+    ap.add_argument("--starts", type=int, default=4, help="optimisation starts (default 4)")
+    ap.add_argument("--maxiter", type=int, default=200, help="SLSQP iterations per start (default 200)")
+    ap.add_argument("--grid", type=int, default=160, help="time points per period in the optimisation")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                    help="prior parameter (spec name, SI unit as sim --list-params), e.g. m_head=8")
+    a = ap.parse_args(argv)
+    a.argv = argv
+    try:
+        if not (a.period > 0 and a.periods >= 1 and a.harmonics >= 2 and 0 < a.margin <= 1
+                and a.max_volts > 0 and 0 < a.segment <= a.period / 10 and a.grid >= 20):
+            raise ValueError("--period > 0, --periods >= 1, --harmonics >= 2, 0 < --margin <= 1, "
+                             "--max-volts > 0, 0 < --segment <= period/10, --grid >= 20")
+        params = hid.params_with(a.set)
+        prob = Problem(a, params)
+    except ValueError as ex:
+        log(ex)
+        return 2
+    rng = np.random.default_rng(a.seed)
+    log("%d harmonics of %.4g Hz per axis, %d free coefficients, %d starts"
+        % (a.harmonics, 1 / a.period, prob.fourier.nfree, a.starts))
+    best = design(a, prob, rng)
+    if best is None:
+        log("no start met every limit: try more --starts, fewer --harmonics or a longer --period")
+        return 1
+    theta = best[0]
+    g, cond = fine_check(prob, theta, a.period)
+    shrink = 1.0
+    while (g > 0).any() and shrink > 0.5:        # between the grid points: shrink a little
+        shrink *= 0.98
+        theta = np.concatenate([theta[:6], theta[6:] * 0.98])
+        g, cond = fine_check(prob, theta, a.period)
+    if (g > 0).any():
+        log("the trajectory leaves a limit between the optimisation's grid points; use a finer --grid")
+        return 1
+    text, total = gcode(prob, theta, a, cond)
+    if a.output:
+        hid.atomic_write(a.output, lambda f: f.write(text.encode()))
+    else:
+        sys.stdout.write(text)
+    Y, z, zd, zdd, volts, x, xd, xdd = prob.evaluate(theta, np.arange(0, a.period, 0.001))
+    log("condition number %.1f (base regressor, columns scaled to unit norm, 1 ms grid)" % cond)
+    log("runs %.1f s (%d periods of %.4g s) plus the approach and return moves" % (total, a.periods, a.period))
+    log("peaks: world %s; joints %.1f mm, %.1f mm/s, %.0f mm/s^2; drive %.2f V (prior model)"
+        % (" ".join("%s %.1f..%.1f" % (ax, lo, hi) for ax, lo, hi in zip(AXES, x.min(0), x.max(0))),
+           np.abs(z).max(), np.abs(zd).max(), np.abs(zdd).max(), np.abs(volts).max()))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
