@@ -181,6 +181,7 @@ static int friction(const hg_model *m, const hg_dae *f, hg_data *ctx, const doub
         if (f->io != 0) {
             qd1[k] += dz[k];
             q1[k] += 0.5 * dt * dz[k];
+            qdd[k] += dz[k] / dt;
         }
     memcpy(wk->fric_impulse, fo.impulse, sizeof fo.impulse);
     wk->fric_stuck = fo.stuck;
