@@ -178,6 +178,23 @@ _dp = np.ctypeslib.ndpointer(dtype=np.float64, flags="C_CONTIGUOUS")
 _loop_run = _sig("hg_loop_run", C.c_int, _P, _dp, C.c_long, C.c_long, _P, _P, C.POINTER(LoopSummary))
 
 
+class ParamInfo(C.Structure):
+    """hg_param_info: one row of the parameter table (src/hg_params.h)."""
+    _fields_ = [("name", C.c_char_p), ("unit", C.c_char_p), ("what", C.c_char_p), ("offset", C.c_ulong),
+                ("hal_name", C.c_char_p), ("hal_unit", C.c_char_p), ("hal_scale", C.c_double),
+                ("ini_key", C.c_char_p)]
+
+
+_params_table = _sig("hg_params_table", C.POINTER(ParamInfo), C.POINTER(C.c_int))
+
+
+def params_table():
+    """The parameter table: [ParamInfo] (spec name, SI unit, HAL name, HAL unit, HAL scale, INI key)."""
+    n = C.c_int()
+    base = _params_table(C.byref(n))
+    return [base[i] for i in range(n.value)]
+
+
 class Params:
     """hg_params: the machine's parameter set, by spec name (SI), e.g. p["c_visc"]."""
 

@@ -385,16 +385,8 @@ def hg_params_table():
 
 def hal_table():
     """[(spec name, SI unit, HAL name, HAL unit, HAL scale)] of hg_params_table."""
-    tab = hg._sig("hg_params_table", C.c_void_p, C.POINTER(C.c_int))
-    n = C.c_int()
-    base = tab(C.byref(n))
-
-    class Info(C.Structure):
-        _fields_ = [("name", C.c_char_p), ("unit", C.c_char_p), ("what", C.c_char_p), ("offset", C.c_ulong),
-                    ("hal_name", C.c_char_p), ("hal_unit", C.c_char_p), ("hal_scale", C.c_double)]
-    arr = (Info * n.value).from_address(base)
     return [(i.name.decode(), i.unit.decode(), i.hal_name.decode(), i.hal_unit.decode(), i.hal_scale)
-            for i in arr]
+            for i in hg.params_table()]
 
 
 def _sampler_columns(header):
