@@ -29,7 +29,10 @@ typedef char hg_board_rec_8_channels[(HG_BOARD_DACS == 8 && HG_BOARD_ENCODERS ==
                                       HG_BOARD_ADCS == 8 && HG_BOARD_JOINTS == 6 &&
                                       HG_BOARD_INPUTS <= 96) ? 1 : -1];
 
-/* Every field of hg_board_inputs, in its order, then the outputs compared. */
+/* Every field of hg_board_inputs, in its order, then the outputs compared
+ * (the state and what the sensors show; the drive volts and the simulated
+ * time follow from the inputs and the step count, and stay off the pin
+ * budget of sampler's 8 FIFOs of 21 pins). */
 static const hg_board_rec_field fixed[] = {
     {"in.period-ns", HG_BRF_S32, HG_BRS_PERIOD, 0, 0, 0, 0, 0, 0},
     {"in.model", HG_BRF_U32, HG_BRS_MODEL, 0, 0, 0, 0, 0, 0},
@@ -68,7 +71,6 @@ static const hg_board_rec_field fixed[] = {
     OUT("out.estop-in", HG_BRF_BIT, estop_in),
     OUT6("out.z", HG_BRF_F64, z_m),
     OUT6("out.zd", HG_BRF_F64, zd_mps),
-    OUT6("out.volts", HG_BRF_F64, volts),
     OUT6("out.current", HG_BRF_F64, current_a),
     OUT("out.pose-x", HG_BRF_F64, pose[0]),
     OUT("out.pose-y", HG_BRF_F64, pose[1]),
@@ -76,7 +78,6 @@ static const hg_board_rec_field fixed[] = {
     OUT("out.pose-a", HG_BRF_F64, pose[3]),
     OUT("out.pose-b", HG_BRF_F64, pose[4]),
     OUT("out.pose-c", HG_BRF_F64, pose[5]),
-    OUT("out.sim-time", HG_BRF_F64, sim_time_s),
     OUT("out.steps", HG_BRF_U32, steps),
     OUT("out.bars-broken", HG_BRF_U32, bars_broken),
     OUT("out.fault", HG_BRF_BIT, fault),
