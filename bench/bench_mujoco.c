@@ -181,7 +181,7 @@ int main(int argc, char **argv)
     hg_params p;
     int ne = 0, i, r, kind;
 
-    hg_params_default(&p);
+    hgmj_peer_params(&p);   /* both engines run the same physics */
     if (argc > 1 && !strcmp(argv[1], "--mjcf"))
         return print_mjcf(&p);
     if (argc > 1) {

@@ -38,14 +38,13 @@ static void check(int ok, const char *fmt, ...)
         failures++;
 }
 
-/* The default parameter set as the MuJoCo peer models it: Coulomb friction
- * off (hg_mujoco_model.c refuses it); with frictionless, viscous friction
- * off too. Set by name through the parameter table. */
+/* The default parameter set as the MuJoCo peer models it (hgmj_peer_params);
+ * with frictionless, viscous friction off too. */
 static void peer_params(hg_params *p, int frictionless)
 {
-    hg_params_default(p);
-    if (hg_params_set(p, "f_coulomb", 0.0) || (frictionless && hg_params_set(p, "c_visc", 0.0)))
-        check(0, "the parameter table has f_coulomb and c_visc");
+    hgmj_peer_params(p);
+    if (frictionless && hg_params_set(p, "c_visc", 0.0))
+        check(0, "the parameter table has c_visc");
 }
 
 /* ---- closed-form quantities of the parameter set ---- */

@@ -79,6 +79,23 @@ double hgmj_force_per_volt(const hg_params *p)
     return p->ka_a_per_v * p->kt_nm_per_a * 2.0 * M_PI / p->lead_m;
 }
 
+void hgmj_peer_params(hg_params *p)
+{
+    hg_params_default(p);
+    p->f_coulomb_n = 0.0;
+    p->f_static_n = 0.0;
+    p->amp_mode = 0.0;
+    p->l_winding_h = 1e-9;
+    p->v_bus_v = 1e6;
+}
+
+int hgmj_is_peer(const hg_params *p, const hgmj_options *o)
+{
+    return p->f_coulomb_n == 0.0 && p->f_static_n == 0.0 && p->amp_mode == 0.0 &&
+           p->l_winding_h / p->r_winding_ohm < 1e-6 * o->timestep_s &&
+           p->v_bus_v >= 1000.0 * p->r_winding_ohm * p->i_max_a;
+}
+
 int hgmj_write_mjcf(const hg_params *p, const hgmj_options *o, char *buf, size_t n)
 {
     const hg_geometry *g = &p->geo;
@@ -87,7 +104,7 @@ int hgmj_write_mjcf(const hg_params *p, const hgmj_options *o, char *buf, size_t
     /* bar inertia about its COM from the inertia about the carriage joint */
     const double i_bar_com = p->i_bar_kgm2 - p->m_bar_kg * 0.25 * g->l_m * g->l_m;
     /* bar tilt in its post's x-z plane: from B (lb, s e, h) down to A (lp, s e, 0) */
-    const double tilt = atan2(g->lb_m - g->lp_m, g->h_m);
+    const double tilt = atan2(g->lb_m - g->lp_m, hg_home_height(g));
     /* rotor inertia reflected to the carriage: inertia without weight */
     const double rotor_kg = p->j_rotor_kgm2 * pow(2.0 * M_PI / p->lead_m, 2);
     /* the drive saturates at the DAC range or at the amplifier's current limit */
@@ -96,12 +113,12 @@ int hgmj_write_mjcf(const hg_params *p, const hgmj_options *o, char *buf, size_t
     hgmj_text t = {buf, n, 0, 0};
     int i, j;
 
-    if (fabs(g->h_m - hg_home_height(g)) > 1e-9 || !(i_bar_com > 0.0) ||
+    if (!(hg_home_height(g) > 0.0) || !(i_bar_com > 0.0) ||
         !(p->m_head_kg > 0.0) || !(p->m_bar_kg > 0.0) || !(p->m_carriage_kg > 0.0) ||
         !(o->bar_spin_kgm2 > 0.0) || !(p->lead_m > 0.0))
         return -2;
-    if (p->f_coulomb_n != 0.0)
-        return -3; /* the project's smoothed Coulomb law has no MuJoCo twin here */
+    if (!hgmj_is_peer(p, o))
+        return -3; /* stick-slip friction and a real winding have no MuJoCo twin here */
     if (n > 0)
         buf[0] = 0;
 
@@ -119,7 +136,7 @@ int hgmj_write_mjcf(const hg_params *p, const hgmj_options *o, char *buf, size_t
         for (j = 0; j < 2; j++) {
             const char *nm = hgmj_bar_name[2 * i + j];
             hgmj_put(&t, "      <body name=\"carriage%s\" pos=\"%.17g %.17g %.17g\">\n",
-                     nm, g->lb_m, sgn[j] * g->e_m, g->h_m);
+                     nm, g->lb_m, sgn[j] * g->e_m, hg_home_height(g));
             hgmj_put(&t, "        <joint name=\"z%s\" type=\"slide\" axis=\"0 0 1\" armature=\"%.17g\""
                          " damping=\"%.17g\"", nm, rotor_kg, p->c_visc_ns_per_m);
             if (o->hard_stops)
@@ -181,7 +198,8 @@ mjModel *hgmj_load(const hg_params *p, const hgmj_options *o, char *err, int err
         snprintf(err, err_sz, "%s", len == -1 ? "MJCF text longer than the 64 kB buffer"
                  : len == -2 ? "parameters not assembled at HOME (h != sqrt(l^2-(lb-lp)^2)) "
                                "or a mass property not positive: fix the parameter set"
-                 : "f_coulomb is not modelled in the MuJoCo peer: set f_coulomb=0");
+                 : "the MuJoCo peer models neither Coulomb/static friction nor the winding: "
+                   "start from hgmj_peer_params");
         goto out;
     }
     mj_defaultVFS(vfs);

@@ -46,10 +46,20 @@ typedef struct {
 /* The settings used by make bench and tests/engine (see the .c for why). */
 void hgmj_options_default(hgmj_options *o);
 
+/* The default machine as the peer models it: no Coulomb or static friction
+ * (MuJoCo's frictionloss is not the project's stick-slip law) and the
+ * amplifier in torque mode as an ideal current source (a 1 nH winding on a
+ * 1 MV bus: the current reaches its command at the start of each step, so
+ * neither back-EMF nor winding lag acts). Viscous friction stays. */
+void hgmj_peer_params(hg_params *p);
+
+/* 1 when p is such a parameter set (hgmj_write_mjcf refuses any other). */
+int hgmj_is_peer(const hg_params *p, const hgmj_options *o);
+
 /* Write the MJCF of the machine p into buf (size n): the text length, or -1
- * when it does not fit, -2 when p is not assembled at HOME (h does not
- * match l, lb, lp) or a mass property is not positive, -3 when f_coulomb is
- * not 0 (not modelled here). */
+ * when it does not fit, -2 when the head height at HOME is not positive or
+ * a mass property is not positive, -3 when p is not a peer parameter set
+ * (hgmj_is_peer). */
 int hgmj_write_mjcf(const hg_params *p, const hgmj_options *o, char *buf, size_t n);
 
 /* Write the MJCF and compile it with mj_loadXML (from memory, through a
