@@ -43,7 +43,7 @@ typedef struct {
     hal_u32_t *fk_fail_count;
     hal_s32_t *ik_error;
     int geometry_reported_bad;                     /* message already printed */
-    hg_geometry checked;                           /* the geometry last checked ... */
+    hal_float_t checked[HG_PARAMS_MAX];            /* the geometry last checked (as geo) ... */
     int checked_rc, checked_valid;                 /* ... its result; 0: check again */
 } hexaglidekins_hal;
 
@@ -58,14 +58,18 @@ static int current_geometry(hg_geometry *g)
     hg_params p;
     int i, n, rc;
     const hg_param_info *t = hg_params_table(&n);
+    int same = hd->checked_valid;
+    hg_params_default(&p);
     for (i = 0; i < n; i++)
-        if (hg_param_is_geometry(i))
+        if (hg_param_is_geometry(i)) {
             *hg_params_at(&p, i) = hd->geo[i] / t[i].hal_scale;
+            same = same && hd->geo[i] == hd->checked[i];
+            hd->checked[i] = hd->geo[i];
+        }
     *g = p.geo;
-    if (hd->checked_valid && memcmp(g, &hd->checked, sizeof *g) == 0)
+    if (same)
         return hd->checked_rc;           /* unchanged since the last call: same answer */
     rc = hg_geometry_check(g, &field, &why);
-    hd->checked = *g;
     hd->checked_rc = rc;
     hd->checked_valid = 1;
     if (rc && !hd->geometry_reported_bad)

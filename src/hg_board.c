@@ -205,9 +205,10 @@ static void apply_params(hg_board *b, const hg_board_params *want, hg_board_outp
         if (hg_stability_check(&b->m_new.p, b->m_new.integrator, (double)b->stab_period_ns * 1e-9,
                                want->substeps, HG_SUBSTEPS_MAX, &st)) {
             out->events |= HG_EV_PARAM_REFUSED;
-            out->refused_mask = 1ull << param_index(st.param);
+            int pi = param_index(st.param);
+            out->refused_mask = pi >= 0 ? 1ull << pi : 0;
             out->param_rc = HG_ERR_STIFF;
-            out->stiff_param = param_index(st.param);
+            out->stiff_param = pi;
             out->stiff_dt_max_s = st.dt_max_s;
             b->param_error = 1;
             return;

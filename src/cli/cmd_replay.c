@@ -247,6 +247,16 @@ static int parse_sets(const replay_opts *o, unsigned long *off, double *val)
     return 0;
 }
 
+/* 1 when the six joint commands are equal (an idle period). */
+static int same_commands(const double a[6], const double b[6])
+{
+    int k;
+    for (k = 0; k < 6; k++)
+        if (a[k] != b[k])
+            return 0;
+    return 1;
+}
+
 /* 1 if a and b differ in any bit. */
 static int bits_differ(double a, double b)
 {
@@ -798,7 +808,7 @@ int cmd_replay(int argc, char **argv)
             if (prev_latched_rec & 0x3fu) {
                 last_latch = n;
                 still = 0;
-            } else if (n > 0 && memcmp(p->cmd, ring[(n - 1) % RING].cmd, sizeof p->cmd) == 0) {
+            } else if (n > 0 && same_commands(p->cmd, ring[(n - 1) % RING].cmd)) {
                 still++;
             } else {
                 still = 0;
