@@ -409,6 +409,24 @@ static int bar_input_set(const hg_board_inputs *in)
     return -1;
 }
 
+/* A step whose volts are not this period's (no dac-write since the last
+ * step, or one before the encoders were read) twice in a row: the servo
+ * thread's addf order is wrong; said once per load or reset. The first
+ * period of a thread that runs dynamics first is not a fault: two in a row. */
+static void addf_order(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
+{
+    if (in->dac_written && !in->dac_stale) {
+        b->order_bad_run = 0;
+        return;
+    }
+    if (b->order_bad_run < 2)
+        b->order_bad_run++;
+    if (b->order_bad_run == 2 && !b->order_reported) {
+        out->events |= HG_EV_ADDF_ORDER;
+        b->order_reported = 1;
+    }
+}
+
 void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out, long period_ns)
 {
     double volts[6] = {0, 0, 0, 0, 0, 0}, dac_out_v[HG_BOARD_DACS];
@@ -429,6 +447,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
             b->param_error = 0;       /* the input block is tried again */
             apply_params(b, &in->params, out);
             reinit_at_home(b, out);
+            b->order_bad_run = b->order_reported = 0;
             out->events |= HG_EV_RESET_DONE;
         }
     } else if (params_differ(&in->params, &b->last_in)) {
@@ -460,6 +479,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     b->dac_nan = nan_now;
     if (in->dac_written)
         hg_watchdog_dac_write(&b->wd);
+    addf_order(b, in, out);
     expired = hg_watchdog_advance(&b->wd, dt);
     amps_on = !estop_open(in) && !expired && !b->fault;
     b->d.amp_enabled = 0;

@@ -47,6 +47,8 @@ typedef struct {
      * exactly as hal_motenc computes it, before any clamp (NaN, inf allowed) */
     double dac_v[HG_BOARD_DACS];
     int dac_written;                  /* 1 if motenc.B.dac-write ran since the last step (watchdog auto reset) */
+    int dac_stale;                    /* 1 if motenc.B.encoder-read ran after that dac-write: the volts
+                                         are the previous period's (dynamics addf'd before dac-write) */
     unsigned dout_values;             /* bit j = motenc.B.out-JJ (j 0..31) */
     unsigned dout_inverts;            /* bit j = motenc.B.out-JJ-invert */
     int estop_loop_out;               /* motenc-hexaglide.B.estop-loop-out (-1 or out of 0..31: none) */
@@ -92,8 +94,10 @@ enum {
     HG_EV_DAC_NAN = 1u << 8,          /* dac_nan_new: bit ch = channel ch became NaN (outputs 0 V) */
     HG_EV_ENC_SCALE_BAD = 1u << 9,    /* enc_scale_bad: bit ch = scale was 0/NaN, set to 1.0 */
     HG_EV_WATCHDOG_KICKED = 1u << 10, /* watchdog_reset input consumed (glue clears the pin) */
-    HG_EV_SUBSTEPS_AUTO = 1u << 11    /* substeps_run changed: more substeps than asked for, because
+    HG_EV_SUBSTEPS_AUTO = 1u << 11,   /* substeps_run changed: more substeps than asked for, because
                                          stiff_param at the period needs steps of stiff_dt_max_s */
+    HG_EV_ADDF_ORDER = 1u << 12       /* two periods in a row without a fresh dac-write before the
+                                         step (no dac_written, or dac_stale): once per load or reset */
 };
 
 /* Why the fault latched (hg_board_outputs.fault_cause). */
@@ -184,6 +188,8 @@ typedef struct {
     hg_guard_report fault_guard;      /* the limit a failed step crossed */
     int param_error;
     unsigned steps;                   /* servo periods integrated since load */
+    int order_bad_run;                /* consecutive steps without a fresh dac-write (ADDF_ORDER) */
+    int order_reported;               /* ADDF_ORDER already reported since load or reset */
 } hg_board;
 
 /* Power-up: model `kind` with parameter block p (0: spec defaults,

@@ -38,6 +38,7 @@ static const hg_board_rec_field fixed[] = {
     {"in.model", HG_BRF_U32, HG_BRS_MODEL, 0, 0, 0, 0, 0, 0},
     IN8("in.dac-v", HG_BRF_F64, dac_v, 1),
     IN("in.dac-written", HG_BRF_BIT, dac_written, 0),
+    IN("in.dac-stale", HG_BRF_BIT, dac_stale, 0),
     IN("in.dout-values", HG_BRF_U32, dout_values, 0),
     IN("in.dout-inverts", HG_BRF_U32, dout_inverts, 0),
     IN("in.estop-loop-out", HG_BRF_S32, estop_loop_out, 0),

@@ -153,6 +153,7 @@ unsigned long hg_loop_sizeof(int which)
     case 9: return sizeof(hg_board_inputs);
     case 10: return sizeof(hg_board_outputs);
     case 11: return sizeof(hg_pid_state);
+    case 12: return HG_DATA_STATE_BYTES;
     default: return 0;
     }
 }

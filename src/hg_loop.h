@@ -94,6 +94,7 @@ unsigned long hg_loop_sizeof(int which);   /* 0 hg_loop, 1 config, 2 summary, 3 
                                              4 hg_model, 5 hg_data, 6 hg_params,
                                              7 hg_board_params, 8 hg_board,
                                              9 hg_board_inputs, 10 hg_board_outputs,
-                                             11 hg_pid_state; else 0 */
+                                             11 hg_pid_state, 12 HG_DATA_STATE_BYTES
+                                             (hg_data before its scratch); else 0 */
 
 #endif

@@ -68,6 +68,7 @@ typedef struct {
     hal_float_t par[HG_PARAMS_MAX];   /* the model parameters in HAL units */
     double shadow[HG_PARAMS_MAX];     /* what the glue last wrote there */
     hal_u32_t substeps, integrator;
+    hal_bit_t record;                 /* XP.<board>.record: write the rec pins (the recorder sets it) */
     hg_board b;
     hg_board_inputs ins;
     hg_board_outputs o;
@@ -87,6 +88,7 @@ static void encoder_read(void *arg, long period)
     board_t *b = arg;
     int ch;
     (void)period;
+    b->ins.dac_stale |= b->ins.dac_written;   /* read after the volts were written: wrong addf order */
     for (ch = 0; ch < HG_BOARD_ENCODERS; ch++) {
         if (b->o.index_latched[ch])
             *b->enc[ch].index_enable = 0; /* the latch fired: cancel index-enable */
@@ -104,6 +106,7 @@ static void dac_write(void *arg, long period)
     for (ch = 0; ch < HG_BOARD_DACS; ch++)
         b->ins.dac_v[ch] = (*b->dac[ch].value - b->dac[ch].offset) * b->dac[ch].gain;
     b->ins.dac_written = 1;
+    b->ins.dac_stale = 0;
 }
 
 static void adc_read(void *arg, long period)
@@ -144,18 +147,23 @@ static void misc_update(void *arg, long period)
 
 /* --- the extra function: one servo period of the board --- */
 
-/* HAL model parameters that changed since the glue wrote them -> in.params (SI). */
-static void read_params(board_t *b)
+/* HAL model parameters that changed since the glue wrote them -> in.params
+ * (SI); 1 if any did (a setp since the last period). */
+static int read_params(board_t *b)
 {
-    int i, n;
+    int i, n, changed = 0;
     const hg_param_info *t = hg_params_table(&n);
     for (i = 0; i < n; i++) {
         double v = b->par[i];
-        if (memcmp(&v, &b->shadow[i], sizeof v) != 0) // NOLINT(bugprone-suspicious-memory-comparison): bitwise, a NaN a user set equals itself
+        if (memcmp(&v, &b->shadow[i], sizeof v) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise, a NaN a user set equals itself
             *hg_params_at(&b->ins.params.model, i) = v / t[i].hal_scale;
+            changed = 1;
+        }
     }
+    changed |= b->ins.params.substeps != b->substeps || b->ins.params.integrator != b->integrator;
     b->ins.params.substeps = b->substeps;
     b->ins.params.integrator = b->integrator;
+    return changed;
 }
 
 /* Show the block in force: every field the board holds differently is written back. */
@@ -239,6 +247,11 @@ static void report(board_t *b, long period)
         if ((o->enc_scale_bad >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: enc-%02d-scale must be a finite non-zero "
                             "number of counts per unit; set to 1.0 (as hal_motenc)\n", id, k);
+    if (o->events & HG_EV_ADDF_ORDER)
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics ran without a motenc.%d.dac-write "
+                        "before it in the period: the machine gets the volts one period late or not at all; "
+                        "addf motenc.%d.dac-write, then motenc.%d.dynamics, after the PIDs in the same "
+                        "thread (docs/driver.md)\n", id, id, id, id, id);
     if (o->events & HG_EV_SUBSTEPS_AUTO) {
         char what[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&b->b, o, period, 1, what);
@@ -317,7 +330,7 @@ static void dynamics(void *arg, long period)
     board_t *b = arg;
     hg_board_inputs *in = &b->ins;
     long long t0 = rtapi_get_time(), dt_ns;
-    int k;
+    int k, changed;
     in->dout_values = in->dout_inverts = 0;
     for (k = 0; k < HG_BOARD_OUTPUTS; k++) {
         in->dout_values |= (*b->out[k] ? 1u : 0u) << k;
@@ -347,12 +360,13 @@ static void dynamics(void *arg, long period)
         in->enc_glitch[k] = *j->enc_glitch;
         in->bar_broken[k] = *j->bar_broken;
     }
-    read_params(b);
+    changed = read_params(b);
 
     hg_board_step(&b->b, in, &b->o, period);
-    write_rec(b, period);
+    if (b->record)
+        write_rec(b, period);
 
-    in->dac_written = in->adc_read = 0;
+    in->dac_written = in->dac_stale = in->adc_read = 0;
     for (k = 0; k < HG_BOARD_JOINTS; k++)
         if (in->enc_glitch[k])
             *b->joint[k].enc_glitch = 0;  /* applied once */
@@ -361,7 +375,8 @@ static void dynamics(void *arg, long period)
     if (b->o.events & HG_EV_RESET_DONE)
         *b->step_max_ns = 0;
     report(b, period);
-    write_params(b);
+    if (changed || (b->o.events & (HG_EV_PARAM_REFUSED | HG_EV_PARAM_APPLIED | HG_EV_RESET_DONE)))
+        write_params(b);              /* show the block in force only when it may differ */
     publish(b);
 
     dt_ns = rtapi_get_time() - t0;
@@ -507,6 +522,7 @@ static int export_extra(board_t *b)
     }
     PAR(u32, &b->substeps, XP ".%d.substeps", id);
     PAR(u32, &b->integrator, XP ".%d.integrator", id);
+    PAR(bit, &b->record, XP ".%d.record", id);
     b->substeps = b->o.params.substeps;
     b->integrator = b->o.params.integrator;
     TRY(export_rec(b));

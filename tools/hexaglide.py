@@ -91,7 +91,8 @@ class GuardReport(C.Structure):
 
 _DATA_STATE = [("t_s", C.c_double), ("z_m", _d6), ("zd_mps", _d6), ("zdd_mps2", _d6),
                ("pose", _d6), ("posed", _d6), ("bar_rad", C.c_double * 12),
-               ("bar_radps", C.c_double * 12), ("current_a", _d6), ("force_n", _d6),
+               ("bar_radps", C.c_double * 12), ("current_a", _d6), ("vloop_int_m", _d6),
+               ("amp_enabled", C.c_uint), ("stuck", C.c_uint), ("fric_n", _d6), ("force_n", _d6),
                ("residual_m", C.c_double), ("last_error", C.c_int), ("guard", GuardReport),
                ("broken_bars", C.c_uint),
                ("trig_key_rad", C.c_double * 3), ("trig_sc", _d6), ("trig_valid", C.c_int)]
@@ -106,7 +107,7 @@ class Data(C.Structure):
     _fields_ = _DATA_STATE + [("work", C.c_double * max(0, (_sizeof(5) - C.sizeof(_DataState)) // 8))]
 
 
-for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data)):
+for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data), (12, _DataState)):
     if _sizeof(_i) != C.sizeof(_s):
         raise ImportError("%s: layout differs from the library's (%d vs %d bytes): rebuild both"
                           % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
@@ -125,7 +126,7 @@ _j6i, _j6u = C.c_int * 6, C.c_uint * 6
 
 class BoardInputs(C.Structure):
     """hg_board_inputs: one servo period's inputs (src/hg_board.h)."""
-    _fields_ = [("dac_v", _e8d), ("dac_written", C.c_int), ("dout_values", C.c_uint),
+    _fields_ = [("dac_v", _e8d), ("dac_written", C.c_int), ("dac_stale", C.c_int), ("dout_values", C.c_uint),
                 ("dout_inverts", C.c_uint), ("estop_loop_out", C.c_int), ("estop_button", C.c_int),
                 ("reset", C.c_int), ("watchdog_control", C.c_uint), ("watchdog_reset", C.c_int),
                 ("index_enable", _e8i), ("enc_reset", _e8i), ("enc_scale", _e8d), ("adc_read", C.c_int),

@@ -237,8 +237,14 @@ def generated_move(axes, params=None):
 # ------------------------------------------------------------------ model-based start
 def model_start(cmd, params=None):
     """Per joint: FF1 (viscous), FF2 (inertia), BIAS (gravity) and the mass for P/I/D, from
-    the dynamics at poses along the trajectory."""
-    m = hg.Model("reduced-cartesian", params)
+    the dynamics at poses along the trajectory: the linear part of the machine, so Coulomb
+    and static friction are off and each winding starts at its commanded current (a torque-
+    mode amplifier's steady state), leaving volts -> force = fpv."""
+    mech = hg.Params()
+    if params is not None:
+        C.memmove(mech.buf, params.buf, C.sizeof(mech.buf))
+    mech["f_coulomb"] = mech["f_static"] = 0.0
+    m = hg.Model("reduced-cartesian", mech)
     fpv = m.params["ka"] * m.params["kt"] * 2 * np.pi / m.params["lead"]
     idx = np.linspace(0, len(cmd) - 1, 12).astype(int)
     guess = [0, 0, 0, 0, 0, 0]
@@ -256,6 +262,7 @@ def model_start(cmd, params=None):
             p_si = list(np.array(pose[:3]) / 1000.0) + list(np.radians(pose[3:]))
             for k in range(6):
                 d.z_m[k], d.zd_mps[k], d.pose[k], d.posed[k] = cmd[i][k] / 1000.0, 0.0, p_si[k], 0.0
+                d.current_a[k] = m.params["ka"] * volts[k]
             d.trig_valid = 0
             rc = hg._step(m.m, C.byref(d), hg._d6(*volts), 1e-5)
             if rc:

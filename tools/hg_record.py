@@ -170,7 +170,8 @@ def main():
         return 1
     cfgs = ["".join(TYPE_CHAR[p["TYPE"]] for p in g) for g in groups]
     cmds = ["loadrt sampler depth=%s cfg=%s" % (",".join([str(a.depth)] * len(groups)),
-                                                 ",".join(cfgs))]
+                                                 ",".join(cfgs)),
+            "setp motenc-hexaglide.%d.record 1" % a.board]   # the board writes its rec pins
     for f, g in enumerate(groups):
         for i, p in enumerate(g):
             name = p["NAME"]

@@ -455,6 +455,46 @@ static void test_check_all_and_format(void)
     CHECK(strcmp(buf, "0.0731") == 0, "format 0.0731: '%s'", buf);
 }
 
+/* Count of steps in n with the ADDF_ORDER event. */
+static int order_events(int n)
+{
+    int c = 0;
+    while (n-- > 0) {
+        hg_board_step(&b, &in, &out, PERIOD);
+        c += (out.events & HG_EV_ADDF_ORDER) != 0;
+    }
+    return c;
+}
+
+/* The servo thread's addf order, from the dac-write/encoder-read flags the
+ * glue sets: fresh volts every period is quiet; the first period of a
+ * thread that starts with dynamics is quiet; stale or missing volts two
+ * periods in a row are said once, and again after a reset. */
+static void test_addf_order(void)
+{
+    fresh();
+    in.dac_written = 1;
+    CHECK(order_events(200) == 0, "dac-write before dynamics every period: no addf-order event");
+    fresh();
+    in.dac_written = 0;
+    run(1);
+    in.dac_written = 1;
+    CHECK(order_events(200) == 0 && !(out.events & HG_EV_ADDF_ORDER),
+          "only the first period without a dac-write (dynamics first in the thread): no event");
+    fresh();
+    in.dac_written = 1;
+    in.dac_stale = 1;
+    CHECK(order_events(1) == 0 && order_events(1) == 1 && order_events(200) == 0,
+          "dac-write before encoder-read (dynamics between them): one event, at the second period");
+    fresh();
+    in.dac_written = 0;
+    CHECK(order_events(200) == 1, "no dac-write at all: one event");
+    in.reset = 1;
+    run(1);
+    in.reset = 0;
+    CHECK(order_events(200) == 1, "... and one again after a reset");
+}
+
 int main(void)
 {
     test_estop_loop();
@@ -468,5 +508,6 @@ int main(void)
     test_bad_period();
     test_dac_nan_determinism();
     test_check_all_and_format();
+    test_addf_order();
     return hg_test_exit();
 }
