@@ -6,6 +6,7 @@
 #include "hg_errors.h"
 
 #define SLIDE_PASSES 3   /* fixed-point passes of the sliding force over the step's speed range */
+#define STRIBECK_FLAT 6.0 /* beyond 6 v_stribeck exp(-(v/v_s)^2) < 2.4e-16: the curve is f_coulomb */
 
 int hg_friction_on(const hg_params *p)
 {
@@ -15,6 +16,8 @@ int hg_friction_on(const hg_params *p)
 double hg_friction_stribeck(const hg_params *p, double v)
 {
     double x = v / p->v_stribeck_mps;
+    if (!(fabs(x) <= STRIBECK_FLAT))
+        return 0.0;
     return exp(-x * x);
 }
 
@@ -38,14 +41,18 @@ static double erf_pos(double x)
 /* Mean of the Stribeck curve while the speed runs linearly from a to b
  * (a, b >= 0): f_c + (f_s - f_c) mean of exp(-(v/v_s)^2), in closed form
  * (v_s sqrt(pi)/2 (erf(b/v_s) - erf(a/v_s)) / (b - a)); the curve at the
- * mean speed when a and b are too close for the difference. */
+ * mean speed when a and b are too close for the difference (within
+ * 0.01 v_s, where both err by about 1e-5 of f_s - f_c at most). */
 static double sliding_mean(const hg_params *p, double a, double b)
 {
     const double vs = p->v_stribeck_mps, d = b - a;
     double g;
-    if (fabs(d) < 1e-3 * vs)
+    if (p->f_static_n == p->f_coulomb_n || (a > STRIBECK_FLAT * vs && b > STRIBECK_FLAT * vs))
+        return p->f_coulomb_n;            /* on the flat of the curve all step long */
+    if (fabs(d) < 1e-2 * vs)          /* midpoint error (d/vs)^2/12 below erf's 1.2e-7 vs/d */
         return hg_friction_sliding(p, 0.5 * (a + b));
     g = 0.88622692545275801365 * vs * (erf_pos(b / vs) - erf_pos(a / vs)) / d;
+    g = fmax(0.0, fmin(1.0, g));      /* a mean of exp(-x^2): the fit's error must not leave [0, 1] */
     return p->f_coulomb_n + (p->f_static_n - p->f_coulomb_n) * g;
 }
 
@@ -109,6 +116,7 @@ int hg_friction_solve(const hg_params *p, const double W[36], const double vstar
          * end value: a few passes of the Stribeck mean (it varies by at most
          * f_static - f_coulomb) */
         for (pass = 0; pass < SLIDE_PASSES; pass++) {
+            int moved = 0;
             for (k = 0; k < 6; k++)
                 if (!((stuck >> k) & 1u))
                     o->impulse[k] = -sigma[k] * slide[k];
@@ -116,14 +124,18 @@ int hg_friction_solve(const hg_params *p, const double W[36], const double vstar
             if (rc)
                 return rc;
             for (k = 0; k < 6; k++) {
-                double v1 = vstar[k];
+                double v1 = vstar[k], s1;
                 if ((stuck >> k) & 1u)
                     continue;
                 for (j = 0; j < 6; j++)
                     v1 += W[6 * k + j] * o->impulse[j];
-                slide[k] = sliding_mean(p, sigma[k] * v0[k] > 0.0 ? fabs(v0[k]) : 0.0,
-                                        sigma[k] * v1 > 0.0 ? fabs(v1) : 0.0) * dt;
+                s1 = sliding_mean(p, sigma[k] * v0[k] > 0.0 ? fabs(v0[k]) : 0.0,
+                                  sigma[k] * v1 > 0.0 ? fabs(v1) : 0.0) * dt;
+                moved |= s1 != slide[k];
+                slide[k] = s1;
             }
+            if (!moved)
+                break;                     /* a fixed point: further passes change nothing */
         }
         for (k = 0; k < 6; k++)
             if (!((stuck >> k) & 1u))
@@ -176,4 +188,31 @@ int hg_friction_solve(const hg_params *p, const double W[36], const double vstar
     o->stuck = stuck;
     o->iterations = it;
     return 0;
+}
+
+int hg_friction_all_sliding(const hg_params *p, const double vpred[6], const double v0[6],
+                            unsigned at_rest, const double est[6], double m_min, double dt,
+                            hg_friction_out *o)
+{
+    const double flat = STRIBECK_FLAT * p->v_stribeck_mps;
+    double e2 = 0.0, dv;
+    int k;
+    if (at_rest & 0x3fu)
+        return 0;
+    for (k = 0; k < 6; k++) {
+        double sigma = v0[k] < 0.0 ? -1.0 : 1.0;
+        if (!(sigma * v0[k] > flat))
+            return 0;
+        o->impulse[k] = -sigma * (p->f_coulomb_n * dt);
+        e2 += (o->impulse[k] - est[k]) * (o->impulse[k] - est[k]);
+    }
+    dv = sqrt(e2) / m_min;
+    for (k = 0; k < 6; k++)
+        if (!((v0[k] < 0.0 ? -vpred[k] : vpred[k]) - dv > flat))
+            return 0;
+    for (k = 0; k < 6; k++)
+        o->stop[k] = 1.0;
+    o->stuck = 0;
+    o->iterations = 0;
+    return 1;
 }

@@ -55,4 +55,16 @@ double hg_friction_stribeck(const hg_params *p, double v);
 int hg_friction_solve(const hg_params *p, const double W[36], const double vstar[6],
                       const double v0[6], unsigned at_rest, double dt, hg_friction_out *o);
 
+/* The common case without W: when every carriage slides, at the start and
+ * at the end of the step, on the flat of the Stribeck curve (beyond 6
+ * v_stribeck, where it is f_coulomb to the last bit) in the direction it
+ * moves, hg_friction_solve gives impulse_k = -sign(v0_k) f_coulomb dt and
+ * sticks nothing. vpred: the end speeds with the expected impulses est
+ * (N s); m_min: a lower bound of every carriage's effective mass (kg), so
+ * the correction W (impulse - est) moves no speed by more than
+ * |impulse - est| / m_min. 1 and o filled when that holds, else 0. */
+int hg_friction_all_sliding(const hg_params *p, const double vpred[6], const double v0[6],
+                            unsigned at_rest, const double est[6], double m_min, double dt,
+                            hg_friction_out *o);
+
 #endif

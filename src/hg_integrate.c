@@ -146,16 +146,17 @@ void hg_mass_response(const hg_mass_snapshot *s, const double p[6], double *dv, 
  * them: a constant force over the step); every stuck carriage is held at
  * rest where it stopped: where it was for one stuck from the start, after
  * a constant deceleration for one that stopped within the step. 0 or a code. */
-static int friction(const hg_model *m, const hg_dae *f, hg_data *ctx, const double *q0,
-                    const double *qd0, double dt, double *q1, double *qd1, double *qdd)
+/* The step's friction impulses in general: W, the carriages' response to
+ * unit impulses, from the saved mass matrix, the speeds without friction
+ * (the stages held est), then the active-set solve. 0 or a code. */
+static int friction_general(const hg_model *m, hg_data *ctx, const double *qd0, const double *qd1,
+                            const double est[6], double dt, hg_friction_out *fo)
 {
-    hg_work *wk = &ctx->work;
-    double W[36], e[6] = {0, 0, 0, 0, 0, 0}, dv[HG_NQ_REDUCED], dz[6], vfree[6], zstop[6];
-    hg_friction_out fo;
-    int i, k, rc;
+    double W[36], e[6] = {0, 0, 0, 0, 0, 0}, dv[HG_NQ_REDUCED], dz[6], vfree[6];
+    int i, k;
     for (k = 0; k < 6; k++) {             /* W column k: the carriages' response to impulse k */
         e[k] = 1.0;
-        hg_mass_response(&wk->mass, e, dv, dz);
+        hg_mass_response(&ctx->work.mass, e, dv, dz);
         for (i = 0; i < 6; i++)
             W[6 * i + k] = dz[i];
         e[k] = 0.0;
@@ -163,14 +164,37 @@ static int friction(const hg_model *m, const hg_dae *f, hg_data *ctx, const doub
     for (k = 0; k < 6; k++) {             /* the speeds without any sliding or static friction */
         double v = qd1[k];
         for (i = 0; i < 6; i++)
-            v -= W[6 * k + i] * wk->fric_est_n[i] * dt;
+            v -= W[6 * k + i] * est[i];
         vfree[k] = v;
     }
-    rc = hg_friction_solve(&m->p, W, vfree, qd0, ctx->stuck, dt, &fo);
-    if (rc)
-        return rc;
+    return hg_friction_solve(&m->p, W, vfree, qd0, ctx->stuck, dt, fo);
+}
+
+/* Sliding and static friction on the predicted (q1, qd1), whose stages
+ * held the expected sliding friction ctx->work.fric_est_n: the step's
+ * impulses (all sliding on the flat of the Stribeck curve without W, else
+ * friction_general), their difference from the expected ones into the
+ * independent velocities (positions by dt/2 of them: a constant force over
+ * the step); every stuck carriage is held at rest where it stopped: where
+ * it was for one stuck from the start, after a constant deceleration for
+ * one that stopped within the step. 0 or a code. */
+static int friction(const hg_model *m, const hg_dae *f, hg_data *ctx, const double *q0,
+                    const double *qd0, double dt, double *q1, double *qd1, double *qdd)
+{
+    hg_work *wk = &ctx->work;
+    double est[6], e[6], dv[HG_NQ_REDUCED], dz[6], zstop[6];
+    hg_friction_out fo;
+    int i, k, rc;
+    for (k = 0; k < 6; k++)
+        est[k] = wk->fric_est_n[k] * dt;  /* the impulses the stages held */
+    if (!hg_friction_all_sliding(&m->p, qd1, qd0, ctx->stuck, est,
+                                 m->p.m_carriage_kg + m->rotor_mass_kg, dt, &fo)) {
+        rc = friction_general(m, ctx, qd0, qd1, est, dt, &fo);
+        if (rc)
+            return rc;
+    }
     for (k = 0; k < 6; k++)               /* the stages held fric_est_n: correct by the rest */
-        e[k] = fo.impulse[k] - wk->fric_est_n[k] * dt;
+        e[k] = fo.impulse[k] - est[k];
     hg_mass_response(&wk->mass, e, dv, dz);
     for (i = 0; i < f->ni; i++) {
         qd1[f->io + i] += dv[i];
