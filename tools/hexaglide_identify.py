@@ -782,15 +782,23 @@ def consistent_pi(base, est, pi0, info):
     if (feasibility(x) >= 0).all():
         return x, []
 
-    def f(y):
-        z = pi0.copy()
-        z[live] = y
-        r = z - x
-        return r @ H @ r
-    y0 = pi0[live]
-    res = minimize(f, y0, method="SLSQP", options={"maxiter": 500, "ftol": 1e-12},
-                   constraints=[{"type": "ineq", "fun": lambda y: feasibility(np.where(live, _put(pi0, live, y), pi0))}])
-    z = _put(pi0, live, res.x)
+    # SLSQP in scaled variables u (pi = x + scale u on the live entries, the
+    # unconstrained minimum at u = 0) with the objective normalized to 1 at
+    # the prior: H spans many decades (millions of rows against a weak
+    # prior), and unscaled SLSQP stops where it starts
+    sl = scale[live]
+    Hs = H[np.ix_(live, live)] * np.outer(sl, sl)
+    u0 = (pi0[live] - x[live]) / sl
+    f0 = max(u0 @ Hs @ u0, 1e-300)
+
+    def f(u):
+        return u @ Hs @ u / f0
+
+    def jac(u):
+        return 2.0 * (Hs @ u) / f0
+    res = minimize(f, u0, jac=jac, method="SLSQP", options={"maxiter": 500, "ftol": 1e-15},
+                   constraints=[{"type": "ineq", "fun": lambda u: feasibility(_put(x, live, x[live] + sl * u))}])
+    z = _put(x, live, x[live] + sl * res.x)
     gz = feasibility(z)
     labels = (["m_head", "m_end", "m_mid"] + ["m_drive[%d]" % k for k in range(6)] +
               ["head pseudo-inertia"] * 4 + [NAMES[fric_col(n, k)] for n in ("c_visc", "f_coulomb", "f_breakaway")
