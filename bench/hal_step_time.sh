@@ -2,7 +2,7 @@
 # hal_step_time.sh - median step-time-ns of the virtual board's dynamics
 # funct inside HAL (uspace, 1 ms servo thread), the board sinking with the
 # drives off. Needs the modules installed: run it under the install lock,
-#   flock /tmp/hg-install.lock sh -c 'make -s install && bench/hal_step_time.sh reduced-cartesian'
+#   flock /tmp/hg-modules.lock sh -c 'make -s install && bench/hal_step_time.sh reduced-cartesian'
 # Usage: bench/hal_step_time.sh MODEL [SAMPLES] [setp NAME VALUE]...
 # Prints: HALTIME model=<m> <setp...> median_ns=<x> p90_ns=<y> samples=<n>
 . "$(dirname "$0")/../tests/hal/hal_env.sh"   # re-runs this script in its own namespaces

@@ -16,7 +16,7 @@ static void params_default(hg_board_params *p)
     memset(p, 0, sizeof *p);
     hg_params_default(&p->model);
     p->substeps = 1;
-    p->integrator = HG_INTEGRATOR_HEUN;
+    p->integrator = HG_INTEGRATOR_DEFAULT;
 }
 
 int hg_board_params_check(const hg_board_params *p, unsigned long long *mask,

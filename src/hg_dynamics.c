@@ -167,7 +167,7 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
     memset(m, 0, sizeof *m);
     m->p = *p;
     m->kind = kind;
-    m->integrator = HG_INTEGRATOR_HEUN; /* within 1 um of the converged answer at 1 ms */
+    m->integrator = HG_INTEGRATOR_DEFAULT;
     m->force_per_amp_n = p->kt_nm_per_a * screw;
     m->force_per_volt_n = p->ka_a_per_v * m->force_per_amp_n;
     m->rotor_mass_kg = p->j_rotor_kgm2 * screw * screw;

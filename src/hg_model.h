@@ -31,6 +31,10 @@ typedef enum {
     HG_INTEGRATOR_COUNT = 3
 } hg_integrator;
 
+/* The scheme of hg_model_init and of the board at load: Heun, within 1 um
+ * of the converged answer at the 1 ms servo period (tests/unit/test_integrate). */
+#define HG_INTEGRATOR_DEFAULT HG_INTEGRATOR_HEUN
+
 #define HG_MAX_CONSTS 256   /* room for hoisted parameter-only subexpressions */
 #define HG_MAX_LUMPED_CONSTS 64 /* room for the lumped-bar model's */
 

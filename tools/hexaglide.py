@@ -113,6 +113,7 @@ for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data), (12,
                           % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
 
 _NP = _sizeof(6) // 8          # doubles in hg_params
+DEFAULT_INTEGRATOR = _sizeof(13)  # HG_INTEGRATOR_DEFAULT: the board's scheme at load
 
 
 class BoardParams(C.Structure):
@@ -215,7 +216,7 @@ class Params:
         if _params_set(self.buf, name.encode(), float(value)):
             raise KeyError("unknown parameter or bad value: %s=%r" % (name, value))
 
-    def board_params(self, substeps=1, integrator=1):
+    def board_params(self, substeps=1, integrator=DEFAULT_INTEGRATOR):
         """hg_board_params: these model parameters + the board's substeps and integrator."""
         buf = C.create_string_buffer(_sizeof(7))
         C.memmove(buf, self.buf, _params_copy_sz)
@@ -313,7 +314,7 @@ class Board:
         out.z_m[:], out.position[:6], out.count[:6], out.amps_on
     b.inputs is the full hg_board_inputs record (fault injection, index-enable, ...)."""
 
-    def __init__(self, kind="reduced-cartesian", params=None, substeps=1, integrator=1, period_ns=1000000,
+    def __init__(self, kind="reduced-cartesian", params=None, substeps=1, integrator=DEFAULT_INTEGRATOR, period_ns=1000000,
                  estop_closed=True):
         k = _model_from_name(kind.encode())
         if k < 0:
@@ -447,7 +448,7 @@ class Loop:
     values (Pgain 1, the rest 0). None: configs/hexaglide.ini's gains."""
 
     def __init__(self, gains=None, params=None, ferror_limit_mm=0.0, period_ns=1000000,
-                 model="reduced-cartesian", substeps=1, integrator=0):
+                 model="reduced-cartesian", substeps=1, integrator=DEFAULT_INTEGRATOR):
         self.cfg = LoopConfig()
         _loop_default(C.byref(self.cfg))
         self.cfg.ferror_limit_mm = ferror_limit_mm
