@@ -5,11 +5,15 @@
  * after a warm-up; median and 99th percentile. Also prints the paper's
  * Table 1 (2011 PC) with the ratios, and the flop counts of the
  * generated functions each step calls (SymPy count_ops, from the
- * generator). Machine lines:
- *   BENCH dyn_<model> median_us=<x> p99_us=<y> flops=<n> iters=<n> */
+ * generator). Then one hg_board_step of the whole board, defaults and
+ * the drives off (the machine sinking from HOME, reset every 3 s), what
+ * bench/hal_step_time.sh measures inside HAL. Machine lines:
+ *   BENCH dyn_<model> median_us=<x> p99_us=<y> flops=<n> iters=<n>
+ *   BENCH board_<model> median_us=<x> p99_us=<y> iters=<n> */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include "hg_board.h"
 #include "hg_dynamics.h"
 #include "hg_errors.h"
 #include "hg_gen_reduced.h"
@@ -52,6 +56,34 @@ static int bench(hg_model_kind kind, double *ns, double *median, double *p99)
         t1 = bench_now_us();
         if (rc)
             return rc;
+        if (s >= WARMUP)
+            ns[s - WARMUP] = t1 - t0;
+    }
+    bench_percentiles(ns, BENCH_STEPS, median, p99);
+    return 0;
+}
+
+/* Median and p99 (us) of BENCH_STEPS hg_board_step calls with the drives
+ * off (E-STOP loop open): the machine sinks from HOME; a reset every 3000
+ * periods keeps it far from the stops. */
+static int bench_board(hg_model_kind kind, double *ns, double *median, double *p99)
+{
+    static hg_board b;
+    static hg_board_inputs in;
+    static hg_board_outputs out;
+    int s, rc = hg_board_init(&b, kind, 0);
+    if (rc)
+        return rc;
+    hg_board_inputs_default(&b, &in);
+    in.dac_written = 1;
+    for (s = 0; s < WARMUP + BENCH_STEPS; s++) {
+        double t0, t1;
+        in.reset = s % 3000 == 0;
+        t0 = bench_now_us();
+        hg_board_step(&b, &in, &out, 1000000L);
+        t1 = bench_now_us();
+        if (out.fault)
+            return out.fault_code;
         if (s >= WARMUP)
             ns[s - WARMUP] = t1 - t0;
     }
@@ -105,5 +137,19 @@ int main(void)
     for (kind = 0; kind < HG_MODEL_COUNT && !failed; kind++)
         printf("BENCH dyn_%s median_us=%.3f p99_us=%.3f flops=%d iters=%d\n",
                hg_model_name((hg_model_kind)kind), med[kind], p99[kind], flops[kind], BENCH_STEPS);
+    printf("\none hg_board_step (the whole board: drives off, the machine sinking), %d timed periods\n",
+           BENCH_STEPS);
+    for (kind = 0; kind < HG_MODEL_COUNT; kind++) {
+        double bm = 0.0, bp = 0.0;
+        int rc = bench_board((hg_model_kind)kind, ns, &bm, &bp);
+        if (rc) {
+            printf("%-18s failed: %s\n", hg_model_name((hg_model_kind)kind), hg_strerror(rc));
+            failed = 1;
+            continue;
+        }
+        printf("%-18s %10.3f %10.3f\n", hg_model_name((hg_model_kind)kind), bm, bp);
+        printf("BENCH board_%s median_us=%.3f p99_us=%.3f iters=%d\n", hg_model_name((hg_model_kind)kind),
+               bm, bp, BENCH_STEPS);
+    }
     return failed;
 }

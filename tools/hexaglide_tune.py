@@ -312,20 +312,38 @@ def gains_from_x(x, prob=None):
     return out
 
 
-def lead_in(cmd, settle):
+APPROACH_MM = 0.03         # the runs after the first come to the start from +-this per joint
+
+
+def lead_in(cmd, settle, approach=None):
     """(commands, index where cmd starts): from HOME at rest a smooth move to
-    cmd's first row (RAMP periods), settle periods there, then cmd."""
+    cmd's first row (RAMP periods), settle periods there, then cmd. With
+    approach (mm per joint) the move goes to first row + approach, then in
+    RAMP/2 periods to the first row: the carriages come to rest from that
+    side, so static friction holds them at another point of its band."""
     c0 = cmd[:1]
-    ramp = (0.5 - 0.5 * np.cos(np.pi * np.arange(RAMP) / RAMP))[:, None] * c0
-    return np.vstack([ramp, np.repeat(c0, settle, 0), cmd]), RAMP + settle
+    s = (0.5 - 0.5 * np.cos(np.pi * np.arange(RAMP) / RAMP))[:, None]
+    if approach is None:
+        return np.vstack([s * c0, np.repeat(c0, settle, 0), cmd]), RAMP + settle
+    a = np.asarray(approach, float)[None, :]
+    h = s[::2]
+    parts = [s * (c0 + a), c0 + a - h * a, np.repeat(c0, settle, 0), cmd]
+    return np.vstack(parts), RAMP + len(h) + settle
+
+
+def approach_of(i):
+    """Run i's approach (mm per joint): none for run 0, else +-APPROACH_MM by the bits of i."""
+    return None if i == 0 else APPROACH_MM * np.array([1.0 if (i >> j) & 1 else -1.0 for j in range(6)])
 
 
 def trajectory_runs(gains, prob, settles, keep=False):
-    """Closed-loop runs over the trajectory after different settle times (the
-    encoder and DAC quantization make single runs differ by about a count)."""
+    """Closed-loop runs over the trajectory after different settle times and
+    approaches to the start (the encoder and DAC quantization and where
+    static friction holds each carriage make single runs differ by about a
+    count)."""
     res = []
-    for settle in settles:
-        seq, s = lead_in(prob["cmd"], settle)
+    for i, settle in enumerate(settles):
+        seq, s = lead_in(prob["cmd"], settle, approach_of(i))
         loop = hg.Loop(gains, ferror_limit_mm=prob["ferror_limit"])
         r = loop.run(seq, start=s, keep=keep)
         if keep and r.ferror_mm is not None:
