@@ -269,12 +269,14 @@ static void report(board_t *b, long period)
     } else if (o->events & HG_EV_FAULT_LATCHED) {
         char what[HG_GUARD_TEXT_LEN];
         hg_guard_describe(&o->fault_guard, 1, what);
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s: %s (code %d)%s%s; drives off, state frozen; "
+        /* what struck says more than the code's text, and LinuxCNC's error
+         * channel keeps only the first 255 characters: then the code alone */
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s (code %d): %s; drives off, state frozen; "
                         "set " XP ".%d.reset to restart at HOME\n", id,
                         o->fault_cause == HG_FAULT_PERIOD ? "bad thread period"
                         : o->fault_cause == HG_FAULT_HOME ? "reset at HOME failed"
                         : o->fault_guard.kind ? "the machine struck a mechanical limit" : "dynamics step failed",
-                        hg_strerror(o->fault_code), o->fault_code, what[0] ? ": " : "", what, id);
+                        o->fault_code, what[0] ? what : hg_strerror(o->fault_code), id);
     }
 }
 

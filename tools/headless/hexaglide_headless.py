@@ -19,6 +19,7 @@ Settings (environment):
                         home again, one MDI move (docs/reliability.md)
   HG_SAMPLE     1: sample HAL pins to HG_OUT/HG_TAG.csv (default 1; 0 when
                 HG_RECORD is set: the replay recorder has `sampler`)
+  HG_SAMPLE_EXTRA  more pins to sample, space separated
   HG_TAG        file name stem of outputs (default: the scenario)
   HG_TIMEOUT    seconds allowed for the program (default 300)
   HG_SETP       "pin value;pin value..." set with halcmd before estop reset
@@ -121,6 +122,7 @@ def sampled_pins():
              "hexaglidekins.fk-fault", "hexaglidekins.fk-fail-count",
              "hexaglidekins.fk-residual",
              "motion.motion-enabled", "halui.program.is-running"]
+    want += os.environ.get("HG_SAMPLE_EXTRA", "").split()   # more pins a test asks for
     return want
 
 
