@@ -25,7 +25,8 @@
 
 #include "hg_board.h"
 
-#define HG_BOARD_REC_MAX 160          /* entries; sampler records 8 x 20 pins at most */
+#define HG_BOARD_REC_MAX 160          /* entries; sampler records 8 FIFOs x 21 pins at most,
+                                         and the recorder adds the 6 joint commands */
 #define HG_BOARD_REC_NAME 32          /* bytes of a name, NUL included */
 #define HG_BOARD_REC_NF_WORDS 5       /* in.nonfinite-0..4: up to 80 fields that may be NaN/inf */
 

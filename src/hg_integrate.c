@@ -139,13 +139,6 @@ void hg_mass_response(const hg_mass_snapshot *s, const double p[6], double *dv, 
     }
 }
 
-/* Sliding and static friction on the predicted (q1, qd1), whose stages
- * held the expected sliding friction ctx->work.fric_est_n: the step's
- * impulses solved on the speeds without friction, their difference from
- * the expected ones into the independent velocities (positions by dt/2 of
- * them: a constant force over the step); every stuck carriage is held at
- * rest where it stopped: where it was for one stuck from the start, after
- * a constant deceleration for one that stopped within the step. 0 or a code. */
 /* The step's friction impulses in general: W, the carriages' response to
  * unit impulses, from the saved mass matrix, the speeds without friction
  * (the stages held est), then the active-set solve. 0 or a code. */

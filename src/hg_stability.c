@@ -1,12 +1,12 @@
 /* hg_stability.c - linear stability of the board's step on the stiff
  * test systems of one carriage (hg_stability.h). */
+#include <float.h>
 #include "hg_math.h"
 #include "hg_stability.h"
 #include "hg_integrate.h"
 #include "hg_errors.h"
 #include "hg_units.h"
 
-#define JURY_MARGIN 1e-12     /* strictly inside the unit circle */
 #define BISECT_ITER 40        /* the largest stable step, to 1e-12 of the period */
 
 /* One carriage with one stiff part: m x'' = f - c x' - k x, f the drive's
@@ -63,34 +63,61 @@ static void step(const test_system *s, hg_integrator scheme, double dt, double y
     y[2] = w1;
 }
 
-/* 1 when every eigenvalue of the step's map lies inside the unit circle.
+/* x > 0 beyond rounding: x was summed from terms whose magnitudes add to s. */
+static int positive(double x, double s)
+{
+    return x > 64.0 * DBL_EPSILON * s;
+}
+
+/* 1 when every eigenvalue of the step's map G lies inside the unit circle.
  * Without a spring the position is neutral (eigenvalue 1, it only
  * accumulates), so the map is taken on (v, w); with one on (x, v, w); the
- * velocity loop ties its integral to x, so its map is on (x, v). */
+ * velocity loop ties its integral to x, so its map is on (x, v). Jury's
+ * conditions are written in D = G - I (trace t, second invariant m,
+ * determinant d), taken from the step's increments: as dt shrinks the
+ * eigenvalues approach 1, and the coefficients of G's polynomial would
+ * cancel to rounding against 1 while D's invariants keep their precision. */
 static int stable(const test_system *s, hg_integrator scheme, double dt)
 {
-    double G[3][3];
+    double D[3][3];
     int j, r, n = s->drive == 2 ? 2 : s->k > 0.0 ? 3 : 2, off = s->drive == 2 ? 0 : 3 - n;
-    for (j = 0; j < n; j++) {          /* column j: the image of unit vector j */
+    for (j = 0; j < n; j++) {          /* column j: the increment of unit vector j */
         double y[3] = {0, 0, 0};
         y[off + j] = 1.0;
         step(s, scheme, dt, y);
+        y[off + j] -= 1.0;
         for (r = 0; r < n; r++)
-            G[r][j] = y[off + r];
+            D[r][j] = y[off + r];
     }
-    if (n == 2) {                      /* z^2 + a1 z + a0 */
-        double a1 = -(G[0][0] + G[1][1]), a0 = G[0][0] * G[1][1] - G[0][1] * G[1][0];
-        return fabs(a0) < 1.0 - JURY_MARGIN && 1.0 + a1 + a0 > JURY_MARGIN && 1.0 - a1 + a0 > JURY_MARGIN;
-    } else {                           /* z^3 + a2 z^2 + a1 z + a0, Jury's conditions */
-        double tr = G[0][0] + G[1][1] + G[2][2];
-        double m2 = G[0][0] * G[1][1] - G[0][1] * G[1][0] + G[0][0] * G[2][2] - G[0][2] * G[2][0] +
-                    G[1][1] * G[2][2] - G[1][2] * G[2][1];
-        double det = G[0][0] * (G[1][1] * G[2][2] - G[1][2] * G[2][1]) -
-                     G[0][1] * (G[1][0] * G[2][2] - G[1][2] * G[2][0]) +
-                     G[0][2] * (G[1][0] * G[2][1] - G[1][1] * G[2][0]);
-        double a2 = -tr, a1 = m2, a0 = -det;
-        return 1.0 + a2 + a1 + a0 > JURY_MARGIN && 1.0 - a2 + a1 - a0 > JURY_MARGIN &&
-               fabs(a0) < 1.0 - JURY_MARGIN && fabs(a0 * a0 - 1.0) > fabs(a0 * a2 - a1) + JURY_MARGIN;
+    if (n == 2) {                      /* p(z) = z^2 + a1 z + a0, G = I + D */
+        double t = D[0][0] + D[1][1], ts = fabs(D[0][0]) + fabs(D[1][1]);
+        double d = D[0][0] * D[1][1] - D[0][1] * D[1][0];
+        double ds = fabs(D[0][0] * D[1][1]) + fabs(D[0][1] * D[1][0]);
+        return positive(d, ds) &&                      /* p(1) = d */
+               positive(4.0 + 2.0 * t + d, 4.0) &&     /* p(-1) */
+               positive(-(t + d), ts + ds) &&          /* det G = 1 + t + d < 1 */
+               positive(2.0 + t + d, 2.0);             /* det G > -1 */
+    } else {                           /* p(z) = z^3 + a2 z^2 + a1 z + a0 */
+        double t = D[0][0] + D[1][1] + D[2][2], ts = fabs(D[0][0]) + fabs(D[1][1]) + fabs(D[2][2]);
+        double p01 = D[0][0] * D[1][1] - D[0][1] * D[1][0], p02 = D[0][0] * D[2][2] - D[0][2] * D[2][0];
+        double p12 = D[1][1] * D[2][2] - D[1][2] * D[2][1];
+        double m = p01 + p02 + p12;
+        double ms = fabs(D[0][0] * D[1][1]) + fabs(D[0][1] * D[1][0]) + fabs(D[0][0] * D[2][2]) +
+                    fabs(D[0][2] * D[2][0]) + fabs(D[1][1] * D[2][2]) + fabs(D[1][2] * D[2][1]);
+        double d = D[0][0] * p12 - D[0][1] * (D[1][0] * D[2][2] - D[1][2] * D[2][0]) +
+                   D[0][2] * (D[1][0] * D[2][1] - D[1][1] * D[2][0]);
+        double ds = fabs(D[0][0]) * (fabs(D[1][1] * D[2][2]) + fabs(D[1][2] * D[2][1])) +
+                    fabs(D[0][1]) * (fabs(D[1][0] * D[2][2]) + fabs(D[1][2] * D[2][0])) +
+                    fabs(D[0][2]) * (fabs(D[1][0] * D[2][1]) + fabs(D[1][1] * D[2][0]));
+        double g = t + m + d, gs = ts + ms + ds;    /* det G - 1 */
+        /* Jury's last condition |a0^2 - 1| > |a0 a2 - a1| in D's invariants */
+        double lhs = fabs(g * (2.0 + g));
+        double rhs = fabs(2.0 * t + t * t + 2.0 * m + t * m + 3.0 * d + t * d);
+        double rs = 2.0 * ts + ts * ts + 2.0 * ms + ts * ms + 3.0 * ds + ts * ds;
+        return positive(-d, ds) &&                                  /* p(1) = -d */
+               positive(8.0 + 4.0 * t + 2.0 * m + d, 8.0) &&        /* -p(-1) */
+               positive(-g, gs) && positive(2.0 + g, 2.0) &&        /* |det G| < 1 */
+               positive(lhs - rhs, gs * (2.0 + gs) + rs);
     }
 }
 
@@ -135,38 +162,43 @@ static int first_unstable(const test_system *s, int n, hg_integrator scheme, dou
     return -1;
 }
 
+/* The longest stable step of system s below hi (bisection). */
+static double longest_step(const test_system *s, hg_integrator scheme, double hi)
+{
+    double lo = 0.0;
+    int k;
+    for (k = 0; k < BISECT_ITER; k++) {
+        double mid = 0.5 * (lo + hi);
+        if (stable(s, scheme, mid))
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
 int hg_stability_check(const hg_params *p, hg_integrator scheme, double period_s, unsigned substeps_min,
                        unsigned substeps_max, hg_stability *out)
 {
     test_system s[6];
-    int n = test_systems(p, s), first;
+    int n = test_systems(p, s), limiting = -1;
     unsigned k;
-    double lo, hi;
     if (substeps_min < 1)
         substeps_min = 1;
     out->substeps = 0;
     out->param = 0;
     out->dt_max_s = 0.0;
-    first = first_unstable(s, n, scheme, period_s / substeps_min);
-    if (first < 0) {
-        out->substeps = substeps_min;
-        return 0;
-    }
-    out->param = s[first].param;
-    lo = 0.0;                          /* the largest stable step of the limiting system */
-    hi = period_s / substeps_min;
-    for (k = 0; k < BISECT_ITER; k++) {
-        double mid = 0.5 * (lo + hi);
-        if (stable(&s[first], scheme, mid))
-            lo = mid;
-        else
-            hi = mid;
-    }
-    out->dt_max_s = lo;
-    for (k = substeps_min + 1; k <= substeps_max; k++)
-        if (first_unstable(s, n, scheme, period_s / k) < 0) {
+    for (k = substeps_min; k <= substeps_max; k++) {
+        int u = first_unstable(s, n, scheme, period_s / k);
+        if (u < 0) {
             out->substeps = k;
-            return 0;
+            break;
         }
-    return HG_ERR_STIFF;
+        limiting = u;                  /* the last one still unstable: it sets the count */
+    }
+    if (limiting >= 0) {
+        out->param = s[limiting].param;
+        out->dt_max_s = longest_step(&s[limiting], scheme, period_s / substeps_min);
+    }
+    return out->substeps ? 0 : HG_ERR_STIFF;
 }

@@ -274,8 +274,8 @@ def log(*a):
 MIN_SAMPLES = 2000            # usable servo periods (2 s at 1 ms) a recording must have
 # what a user must know beforehand: read from the record (in.param-*) or
 # --set; everything else is unknown to identify (its prior: the defaults)
-KNOWN = ["l", "lb", "e", "lp", "h", "g", "ka", "kt", "lead", "i_max", "counts_per_rev",
-         "v_coulomb", "v_stribeck"]
+KNOWN = ["l", "lb", "e", "lp", "g", "ka", "kt", "lead", "i_max", "counts_per_rev", "v_stribeck",
+         "r_winding", "l_winding", "v_bus", "amp_mode"]
 
 
 class Run:

@@ -18,7 +18,7 @@ of `replay` it checks that the loops are wired as configs/hexaglide.hal
 wires them (header line "# closed-loop ...") and polls the pid settings
 and DAC scales in force (pid.N.Pgain ..., motenc.<board>.dac-CC-gain,
 -offset), written after the last row as "# name value" lines. It loads LinuxCNC's `sampler` with those pins
-(at most 20 per FIFO), adds the sampler functions to the end of the servo
+(at most 21 per FIFO), adds the sampler functions to the end of the servo
 thread, reads the FIFOs through the HAL stream API (hal.stream) and writes
 floats with repr(), the shortest text that reads back to the same double.
 (halsampler prints "%f": six decimals, most bits lost.)

@@ -154,8 +154,36 @@ static void test_refused_and_board(void)
           "c_visc = c_stop = 0 at 1 ms with heun: refused (code %d), naming c_stop, the set in force kept", out.param_rc);
 }
 
+/* Short periods are stable (the check must not cancel to rounding as the
+ * eigenvalues approach 1); the parameter named is the one that sets the
+ * substep count: its longest step lies between period/k and period/(k-1). */
+static void test_short_periods_and_naming(void)
+{
+    static const double periods[] = {1e-3, 1e-4, 1e-5, 1e-6, 3e-7, 1e-8};
+    hg_params p;
+    hg_stability st;
+    int s, i, bad = 0;
+    hg_params_default(&p);
+    for (s = 0; s < HG_INTEGRATOR_COUNT; s++)
+        for (i = 0; i < (int)(sizeof periods / sizeof periods[0]); i++)
+            if (hg_stability_check(&p, (hg_integrator)s, periods[i], 1, 1, &st) || st.substeps != 1) {
+                printf("# %s at %g s: substeps %u, %s\n", hg_integrator_name((hg_integrator)s), periods[i],
+                       st.substeps, st.param ? st.param : "-");
+                bad++;
+            }
+    CHECK(bad == 0, "the defaults are stable with every scheme at 1 ms down to 10 ns periods (%d refused)", bad);
+    for (s = 0; s < HG_INTEGRATOR_COUNT; s++) {
+        int rc = hg_stability_check(&p, (hg_integrator)s, 10e-3, 1, 64, &st);
+        unsigned k = st.substeps;
+        CHECK(rc == 0 && k > 1 && st.param && st.dt_max_s >= 10e-3 / k && st.dt_max_s < 10e-3 / (k - 1),
+              "%s at 10 ms: %u substeps, named %s whose longest step %.4f ms lies in [period/%u, period/%u)",
+              hg_integrator_name((hg_integrator)s), k, st.param ? st.param : "-", st.dt_max_s * 1e3, k, k - 1);
+    }
+}
+
 int main(void)
 {
+    test_short_periods_and_naming();
     test_bounds();
     test_refused_and_board();
     return hg_test_exit();
