@@ -42,6 +42,8 @@ typedef struct {
     hal_bit_t *fk_fault;
     hal_u32_t *fk_fail_count;
     hal_s32_t *ik_error;
+    hal_u32_t *board_geometry;                     /* the board's geometry-fingerprint, 0: unconnected */
+    int mismatch_calls;                            /* consecutive calls that found a mismatch */
     int geometry_reported_bad;                     /* message already printed */
     hal_float_t checked[HG_PARAMS_MAX];            /* the geometry last checked (as geo) ... */
     int checked_rc, checked_valid;                 /* ... its result; 0: check again */
@@ -49,6 +51,27 @@ typedef struct {
 
 static hexaglidekins_hal *hd; /* the module's one instance, in HAL shared memory */
 static int comp_id;
+
+#define MISMATCH_CALLS 200   /* calls (about 0.1 s of servo periods) a mismatch must last: a
+                                geometry set on both in one HAL file reaches the board a period later */
+
+/* Say once (again after they matched) that the board connected to
+ * hexaglidekins.board-geometry simulates another geometry than g. */
+static void board_mismatch(const hg_geometry *g)
+{
+    unsigned board = *hd->board_geometry;
+    if (board == 0 || board == hg_geometry_fingerprint(g)) {
+        hd->mismatch_calls = 0;
+        return;
+    }
+    if (hd->mismatch_calls <= MISMATCH_CALLS)
+        hd->mismatch_calls++;            /* stops one past: the message comes once */
+    if (hd->mismatch_calls == MISMATCH_CALLS)
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: the geometry differs from the board's "
+                        "(hexaglidekins.board-geometry): LinuxCNC would drive another machine than the one "
+                        "simulated; set both from the same [HEXAGLIDE] keys (compare halcmd show param "
+                        "hexaglidekins. and motenc-hexaglide.0.)\n");
+}
 
 /* Geometry from the HAL parameters (HAL units -> SI); HG_ERR_BAD_PARAM,
  * reported once on the RTAPI log, when the user set an impossible one. */
@@ -67,6 +90,7 @@ static int current_geometry(hg_geometry *g)
             hd->checked[i] = hd->geo[i];
         }
     *g = p.geo;
+    board_mismatch(g);
     if (same)
         return hd->checked_rc;           /* unchanged since the last call: same answer */
     rc = hg_geometry_check(g, &field, &why);
@@ -176,6 +200,7 @@ static int export_hal(void)
     r |= hal_pin_bit_newf(HAL_OUT, &hd->fk_fault, comp_id, "hexaglidekins.fk-fault");
     r |= hal_pin_u32_newf(HAL_OUT, &hd->fk_fail_count, comp_id, "hexaglidekins.fk-fail-count");
     r |= hal_pin_s32_newf(HAL_OUT, &hd->ik_error, comp_id, "hexaglidekins.ik-error");
+    r |= hal_pin_u32_newf(HAL_IN, &hd->board_geometry, comp_id, "hexaglidekins.board-geometry");
     if (r)
         return r;
     *hd->fk_max_iterations = o.max_iterations;
@@ -186,6 +211,8 @@ static int export_hal(void)
     *hd->fk_fault = 0;
     *hd->fk_fail_count = 0;
     *hd->ik_error = 0;
+    *hd->board_geometry = 0;
+    hd->mismatch_calls = 0;
     hd->geometry_reported_bad = 0;
     return 0;
 }

@@ -263,6 +263,18 @@ static int first_failure(const check_report *r, const char **bad_field, const ch
     return HG_ERR_BAD_PARAM;
 }
 
+unsigned hg_geometry_fingerprint(const hg_geometry *g)
+{
+    const double f[7] = {g->l_m, g->lb_m, g->e_m, g->lp_m, g->cone_carriage_rad, g->cone_head_rad,
+                         g->d_bar_m};
+    const unsigned char *b = (const unsigned char *)f;
+    unsigned h = 2166136261u;
+    unsigned long i;
+    for (i = 0; i < sizeof f; i++)
+        h = (h ^ b[i]) * 16777619u;
+    return h ? h : 1u;
+}
+
 int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char **why)
 {
     check_report r = {0, 0, 0, 0};

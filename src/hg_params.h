@@ -111,6 +111,11 @@ int hg_params_set(hg_params *p, const char *name, double value);
  * the offending field and *why saying what is wrong (static strings). */
 int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char **why);
 
+/* A fingerprint of the geometry (FNV-1a over its fields' bits, never 0):
+ * two components that must simulate one machine (hexaglidekins and the
+ * board) compare it to find a mismatch. */
+unsigned hg_geometry_fingerprint(const hg_geometry *g);
+
 /* Check the whole set (geometry, positive masses, ordered strokes, ...). */
 int hg_params_check(const hg_params *p, const char **bad_field, const char **why);
 

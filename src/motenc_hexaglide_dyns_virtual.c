@@ -61,6 +61,7 @@ typedef struct {
     joint_hal joint[HG_BOARD_JOINTS];
     hal_float_t *head[6], *sim_time, *residual;
     hal_u32_t *steps, *step_ns, *step_max_ns, *dout_word, *bars_broken, *substeps_run;
+    hal_u32_t *geometry;              /* hg_geometry_fingerprint of the geometry in force */
     hal_bit_t *fault, *reset, *amps_on, *estop_button, *watchdog_expired, *param_error, *dac_nan;
     hal_s32_t *fault_code;
     hal_s32_t estop_loop_out;
@@ -182,6 +183,7 @@ static void write_params(board_t *b)
     }
     b->ins.params.substeps = b->substeps = b->o.params.substeps;
     b->ins.params.integrator = b->integrator = b->o.params.integrator;
+    *b->geometry = hg_geometry_fingerprint(&b->o.params.model.geo);
 }
 
 /* Say, once, why the parameter change was refused: every field, its value, the rule. */
@@ -503,6 +505,8 @@ static int export_extra(board_t *b)
     PIN(u32, HAL_OUT, &b->steps, XP ".%d.steps", id);
     PIN(u32, HAL_OUT, &b->substeps_run, XP ".%d.substeps-run", id);
     PIN(u32, HAL_OUT, &b->bars_broken, XP ".%d.bars-broken", id);
+    PIN(u32, HAL_OUT, &b->geometry, XP ".%d.geometry-fingerprint", id);
+    *b->geometry = hg_geometry_fingerprint(&b->o.params.model.geo);
     PIN(u32, HAL_OUT, &b->step_ns, XP ".%d.step-time-ns", id);
     PIN(u32, HAL_IO, &b->step_max_ns, XP ".%d.step-time-max-ns", id);
     PIN(bit, HAL_OUT, &b->fault, XP ".%d.fault", id);
