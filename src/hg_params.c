@@ -267,11 +267,14 @@ unsigned hg_geometry_fingerprint(const hg_geometry *g)
 {
     const double f[7] = {g->l_m, g->lb_m, g->e_m, g->lp_m, g->cone_carriage_rad, g->cone_head_rad,
                          g->d_bar_m};
-    const unsigned char *b = (const unsigned char *)f;
     unsigned h = 2166136261u;
-    unsigned long i;
-    for (i = 0; i < sizeof f; i++)
-        h = (h ^ b[i]) * 16777619u;
+    int i, k;
+    for (i = 0; i < 7; i++) {
+        unsigned long long bits;
+        memcpy(&bits, &f[i], sizeof bits);
+        for (k = 0; k < 8; k++, bits >>= 8)
+            h = (h ^ (unsigned)(bits & 0xffu)) * 16777619u;
+    }
     return h ? h : 1u;
 }
 

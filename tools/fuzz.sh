@@ -6,6 +6,10 @@
 # With clang: libFuzzer + ASan + UBSan. Without: gcc, ASan + UBSan and a
 # seeded random driver (tests/fuzz/standalone_driver.c).
 # Usage: tools/fuzz.sh [RUNS per target, default 1000000] [MAX_SECONDS per target, default 900]
+# FUZZ_BUDGET=test (tests/check/test_fuzz, inside make test): a fixed share
+# per target instead, about 10 minutes on 2 cores: 1,000,000 inputs for the
+# fast targets (kinematics, parameters, record), 300,000 for the dynamics
+# step, 200,000 for the CLI, 100,000 input sequences for the board.
 # Prints "ok - ..."/"not ok - ..." per target with inputs tried and inputs per second.
 cd "$(dirname "$0")/.." || exit 1
 if [ "$1" = --run ]; then MODE=run; NAME=$2; else MODE=all; RUNS=${1:-1000000}; MAXT=${2:-900}; fi
@@ -21,7 +25,7 @@ elif command -v clang >/dev/null && echo 'int LLVMFuzzerTestOneInput(const char*
 else
     ENGINE=standalone
 fi
-[ $MODE = all ] && echo "# fuzz engine: $ENGINE, $RUNS inputs per target, at most $MAXT s each, ${FUZZ_JOBS:-2} at a time"
+[ $MODE = all ] && echo "# fuzz engine: $ENGINE, $([ "$FUZZ_BUDGET" = test ] && echo "make test's budget" || echo "$RUNS inputs") per target, at most $MAXT s each, ${FUZZ_JOBS:-2} at a time"
 JOBS=${FUZZ_JOBS:-2}
 
 # build_core: compile the project's sources once, instrumented for fuzzing
@@ -54,7 +58,12 @@ build_target() {
 
 # runs_for NAME: inputs for this target (the dynamics step and the board share one budget)
 runs_for() {
-    case $1 in fuzz_dynamics|fuzz_board) echo $((RUNS / 2)) ;; *) echo "$RUNS" ;; esac
+    if [ "$FUZZ_BUDGET" = test ]; then
+        case $1 in fuzz_dynamics) echo 300000 ;; fuzz_cli) echo 200000 ;; fuzz_board) echo 100000 ;;
+            *) echo 1000000 ;; esac
+    else
+        case $1 in fuzz_dynamics|fuzz_board) echo $((RUNS / 2)) ;; *) echo "$RUNS" ;; esac
+    fi
 }
 
 # run_target NAME: fuzz it and print one ok / not ok line
@@ -102,7 +111,7 @@ for src in tests/fuzz/fuzz_*.c; do
         echo "not ok - $name: build failed: $(head -3 "$OUT/$name.build.log" | tr '\n' ' ')"; status=1
     fi
 done
-export ENGINE RUNS MAXT
+export ENGINE RUNS MAXT FUZZ_BUDGET
 # JOBS targets at a time (one per core)
 for name in $targets; do echo "$name"; done | xargs -P "$JOBS" -I{} "$0" --run {} >"$OUT/results.txt"
 cat "$OUT/results.txt"

@@ -132,9 +132,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             fail("an output is not finite");
         if (out.fault_code > 0 || out.fault_code < HG_ERR_LAST || (out.fault == 0) != (out.fault_code == 0))
             fail("fault code out of range or inconsistent with the fault flag");
-        if (out.events >= (HG_EV_WATCHDOG_KICKED << 1))
+        if (out.events >= (HG_EV_ADDF_ORDER << 1))
             fail("unknown event bit");
-        if (out.fault_cause < HG_FAULT_NONE || out.fault_cause > HG_FAULT_HOME ||
+        if (out.fault_cause < HG_FAULT_NONE || out.fault_cause > HG_FAULT_STIFF ||
             out.reset_refused_joint < -1 || out.reset_refused_joint > 5 || out.bars_broken > HG_BARS_ALL)
             fail("event data out of range");
         if (hg_board_params_check(&out.params, 0, 0) != HG_OK)

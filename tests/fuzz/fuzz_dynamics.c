@@ -70,7 +70,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (!state_finite(&d))
             fail("state not finite after a step");
         if (rc != HG_OK) {
-            before.last_error = d.last_error;
+            before.last_error = d.last_error;     /* the failure's report: code and what struck */
+            before.guard = d.guard;
             if (memcmp(&before, &d, HG_DATA_STATE_BYTES) != 0) /* the scratch d.work may change */
                 fail("failed step changed the state");
             break;

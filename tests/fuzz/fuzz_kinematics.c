@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include "fuzz_input.h"
 #include "hg_errors.h"
+#include "hg_guard.h"
 #include "hg_kinematics.h"
 
 static void fail(const char *what)
@@ -20,6 +21,12 @@ static int known_code(int rc)
     return rc == HG_OK || rc == HG_ERR_NONFINITE_INPUT || rc == HG_ERR_UNREACHABLE ||
            rc == HG_ERR_EULER_SINGULAR || rc == HG_ERR_NO_CONVERGENCE ||
            rc == HG_ERR_WRONG_BRANCH || rc == HG_ERR_SINGULAR_JACOBIAN || rc == HG_ERR_DIVERGED;
+}
+
+/* forward also refuses an answer outside the joints' ranges or with bars touching */
+static int known_forward_code(int rc)
+{
+    return known_code(rc) || rc == HG_ERR_JOINT_RANGE || rc == HG_ERR_BAR_CLEARANCE;
 }
 
 /* largest |phi| / (2 l): bar-length error in metres to first order */
@@ -69,7 +76,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     o.max_iterations = (int)(fuzz_byte(&in) % 140) - 10; /* also zero, negative, above the cap */
     o.tolerance_m = fuzz_double(&in, 0, 1e-6);
     rc = hg_forward_kinematics(&p.geo, z, guess, &o, &rep);
-    if (!known_code(rc))
+    if (!known_forward_code(rc))
         fail("forward returned an unknown code");
     if (rep.iterations < 0 || rep.iterations > 100)
         fail("forward iterations out of bounds");
@@ -79,6 +86,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 fail("forward returned a non-finite pose");
         if (worst_phi(&p.geo, z, guess) > 1e-6 + 1e3 * o.tolerance_m)
             fail("forward answer does not satisfy the bar equations");
+        if (hg_guard_check(&p.geo, z, guess, 0, 0) != 0)
+            fail("forward answer outside the joints' ranges or with bars touching");
     } else if (memcmp(guess, before, sizeof guess) != 0) {
         fail("failed forward touched its output");
     }
