@@ -407,9 +407,10 @@ static void project(void)
             dz_fine = max_abs_diff(pr.z, mj[s].z, 6);
             check(dz_servo < CONVERGENCE_FLOOR_M || dz_servo > CONVERGENCE_MIN_RATIO * dz_fine,
                   "%s, %s: converges to MuJoCo as dt shrinks: |dz| %.3g m at %g ms, %.3g m at %g ms, ratio %.1f "
-                  "(want > %.0f: integration error, not a model difference)",
+                  "(want > %.0f: integration error, not a model difference; or already below %g m at the "
+                  "servo period, MuJoCo's own error)",
                   kn, sc->what, dz_servo, DT_S * 1e3, dz_fine, fine * 1e3, dz_servo / dz_fine,
-                  CONVERGENCE_MIN_RATIO);
+                  CONVERGENCE_MIN_RATIO, CONVERGENCE_FLOOR_M);
             if (sc->sens_param && kind == HG_MODEL_REDUCED_CARTESIAN) {
                 double dz = max_abs_diff(pr.z, mj_sens[s].z, 6);
                 check(dz > sc->fine_tol_z_m,
