@@ -85,13 +85,35 @@ static int solve_stuck(const double W[36], const double vstar[6], unsigned stuck
     return 0;
 }
 
+/* The impulses of a stick/slip set: the sliding carriages' from their
+ * sliding friction (sigma, slide), the stuck ones' from solve_stuck. */
+static int set_impulses(const double W[36], const double vstar[6], unsigned stuck,
+                        const double sigma[6], const double slide[6], double impulse[6])
+{
+    int k;
+    for (k = 0; k < 6; k++)
+        if (!((stuck >> k) & 1u))
+            impulse[k] = -sigma[k] * slide[k];
+    return solve_stuck(W, vstar, stuck, impulse);
+}
+
+/* Carriage k's speed at the step's end under the impulses: v*_k + (W p)_k. */
+static double end_speed(const double W[36], const double vstar[6], const double impulse[6], int k)
+{
+    double v = vstar[k];
+    int j;
+    for (j = 0; j < 6; j++)
+        v += W[6 * k + j] * impulse[j];
+    return v;
+}
+
 int hg_friction_solve(const hg_params *p, const double W[36], const double vstar[6],
                       const double v0[6], unsigned at_rest, double dt, hg_friction_out *o)
 {
     const double ps = p->f_static_n * dt;          /* the most static friction can give */
     double slide[6], sigma[6], vrev[6];
     unsigned stuck = 0, rest = at_rest;
-    int k, j, it, rc;
+    int k, it, rc;
     for (k = 0; k < 6; k++) {
         if (v0[k] == 0.0)
             rest |= 1u << k;
@@ -117,18 +139,14 @@ int hg_friction_solve(const hg_params *p, const double W[36], const double vstar
          * f_static - f_coulomb) */
         for (pass = 0; pass < SLIDE_PASSES; pass++) {
             int moved = 0;
-            for (k = 0; k < 6; k++)
-                if (!((stuck >> k) & 1u))
-                    o->impulse[k] = -sigma[k] * slide[k];
-            rc = solve_stuck(W, vstar, stuck, o->impulse);
+            rc = set_impulses(W, vstar, stuck, sigma, slide, o->impulse);
             if (rc)
                 return rc;
             for (k = 0; k < 6; k++) {
-                double v1 = vstar[k], s1;
+                double v1, s1;
                 if ((stuck >> k) & 1u)
                     continue;
-                for (j = 0; j < 6; j++)
-                    v1 += W[6 * k + j] * o->impulse[j];
+                v1 = end_speed(W, vstar, o->impulse, k);
                 s1 = sliding_mean(p, sigma[k] * v0[k] > 0.0 ? fabs(v0[k]) : 0.0,
                                   sigma[k] * v1 > 0.0 ? fabs(v1) : 0.0) * dt;
                 moved |= s1 != slide[k];
@@ -137,10 +155,7 @@ int hg_friction_solve(const hg_params *p, const double W[36], const double vstar
             if (!moved)
                 break;                     /* a fixed point: further passes change nothing */
         }
-        for (k = 0; k < 6; k++)
-            if (!((stuck >> k) & 1u))
-                o->impulse[k] = -sigma[k] * slide[k];
-        rc = solve_stuck(W, vstar, stuck, o->impulse);
+        rc = set_impulses(W, vstar, stuck, sigma, slide, o->impulse);
         if (rc)
             return rc;
         for (k = 0; k < 6; k++)          /* a stuck carriage the load breaks away */
@@ -155,11 +170,10 @@ int hg_friction_solve(const hg_params *p, const double W[36], const double vstar
         } else {
             double most = 0.0;
             for (k = 0; k < 6; k++) {        /* a sliding carriage that friction would reverse */
-                double v = vstar[k];
+                double v;
                 if ((stuck >> k) & 1u)
                     continue;
-                for (j = 0; j < 6; j++)
-                    v += W[6 * k + j] * o->impulse[j];
+                v = end_speed(W, vstar, o->impulse, k);
                 if (sigma[k] * v < most) {
                     most = sigma[k] * v;
                     worst = k;
@@ -175,10 +189,7 @@ int hg_friction_solve(const hg_params *p, const double W[36], const double vstar
             break;
     }
     if (it == HG_FRICTION_MAX_ITER) {    /* no set settled: the impulses of the last one */
-        for (k = 0; k < 6; k++)
-            if (!((stuck >> k) & 1u))
-                o->impulse[k] = -sigma[k] * slide[k];
-        rc = solve_stuck(W, vstar, stuck, o->impulse);
+        rc = set_impulses(W, vstar, stuck, sigma, slide, o->impulse);
         if (rc)
             return rc;
     }

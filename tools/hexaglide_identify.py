@@ -1024,11 +1024,8 @@ def plots(outdir, eqs, est, base, pi0, vdata):
     import matplotlib.pyplot as plt
     paths = []
 
-    def save(fig, name):
-        p = os.path.join(outdir, name)
-        atomic_write(p, lambda f: fig.savefig(f, format="png", dpi=100))
-        plt.close(fig)
-        paths.append(p)
+    import hexaglide_tune
+    save = hexaglide_tune.png_saver(outdir, paths)
 
     def fit_plot(e, res, title, name, res0=None):
         fig = plt.figure(figsize=(11, 8))

@@ -523,6 +523,19 @@ def predict(gains, prob, settles):
             "volts": v.max(0), "volts_median": np.median(v.max(1)), "runs": len(runs)}, None
 
 
+def png_saver(outdir, paths):
+    """save(fig, name): write matplotlib figure fig as outdir/name (PNG, via
+    atomic_write), close it and append its path to paths."""
+    import matplotlib.pyplot as plt
+
+    def save(fig, name):
+        p = os.path.join(outdir, name)
+        atomic_write(p, lambda f: fig.savefig(f, format="png", dpi=100))
+        plt.close(fig)
+        paths.append(p)
+    return save
+
+
 def plots(outdir, cur, sug, prob, source):
     """step.png, ferror.png, bode.png in outdir (each written to a temp, then renamed)."""
     import matplotlib
@@ -530,11 +543,7 @@ def plots(outdir, cur, sug, prob, source):
     import matplotlib.pyplot as plt
     paths = []
 
-    def save(fig, name):
-        p = os.path.join(outdir, name)
-        atomic_write(p, lambda f: fig.savefig(f, format="png", dpi=100))
-        plt.close(fig)
-        paths.append(p)
+    save = png_saver(outdir, paths)
 
     fig, ax = plt.subplots(figsize=(8, 4.5))
     for lab, g, st in (("current", cur, "-"), ("suggested", sug, "-")):
