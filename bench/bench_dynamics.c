@@ -7,9 +7,12 @@
  * generated functions each step calls (SymPy count_ops, from the
  * generator). Then one hg_board_step of the whole board, defaults and
  * the drives off (the machine sinking from HOME, reset every 3 s), what
- * bench/hal_step_time.sh measures inside HAL. Machine lines:
+ * bench/hal_step_time.sh measures inside HAL. Last, hg_board_step in
+ * periods that each apply a new geometry (the most a parameter change
+ * costs the servo thread). Machine lines:
  *   BENCH dyn_<model> median_us=<x> p99_us=<y> flops=<n> iters=<n>
- *   BENCH board_<model> median_us=<x> p99_us=<y> iters=<n> */
+ *   BENCH board_<model> median_us=<x> p99_us=<y> iters=<n>
+ *   BENCH change_<model> median_us=<x> p99_us=<y> max_us=<z> iters=<n> */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -91,6 +94,44 @@ static int bench_board(hg_model_kind kind, double *ns, double *median, double *p
     return 0;
 }
 
+/* Median, p99 and largest (us) of BENCH_CHANGES periods that each apply a new
+ * geometry (l alternates by 1 mm): the check, the model rebuild, the
+ * stability test at the running period, the restart at HOME and the step,
+ * the worst a parameter change costs the servo thread. */
+#define BENCH_CHANGES 2000
+static int bench_board_change(hg_model_kind kind, double *ns, double *median, double *p99,
+                              double *worst)
+{
+    static hg_board b;
+    static hg_board_inputs in;
+    static hg_board_outputs out;
+    int s, rc = hg_board_init(&b, kind, 0);
+    double l0;
+    if (rc)
+        return rc;
+    hg_board_inputs_default(&b, &in);
+    in.dac_written = 1;
+    l0 = in.params.model.geo.l_m;
+    hg_board_step(&b, &in, &out, 1000000L);     /* the running period is known */
+    for (s = 0; s < BENCH_CHANGES; s++) {
+        double t0, t1;
+        in.params.model.geo.l_m = l0 + (s % 2 == 0 ? 1e-3 : 0.0);
+        t0 = bench_now_us();
+        hg_board_step(&b, &in, &out, 1000000L);
+        t1 = bench_now_us();
+        if (out.fault)
+            return out.fault_code;
+        if (!(out.events & HG_EV_GEOMETRY_RESTART))
+            return HG_ERR_BAD_PARAM;            /* the change was not applied */
+        ns[s] = t1 - t0;
+    }
+    bench_percentiles(ns, BENCH_CHANGES, median, p99);
+    *worst = ns[0];
+    for (s = 1; s < BENCH_CHANGES; s++)
+        *worst = ns[s] > *worst ? ns[s] : *worst;
+    return 0;
+}
+
 int main(void)
 {
     static double ns[BENCH_STEPS];
@@ -150,6 +191,21 @@ int main(void)
         printf("%-18s %10.3f %10.3f\n", hg_model_name((hg_model_kind)kind), bm, bp);
         printf("BENCH board_%s median_us=%.3f p99_us=%.3f iters=%d\n", hg_model_name((hg_model_kind)kind),
                bm, bp, BENCH_STEPS);
+    }
+    printf("\none hg_board_step that applies a new geometry (l by 1 mm, a restart at HOME), %d periods\n",
+           BENCH_CHANGES);
+    printf("%-18s %10s %10s %10s\n", "model", "median us", "p99 us", "max us");
+    for (kind = 0; kind < HG_MODEL_COUNT; kind++) {
+        double cm = 0.0, cp = 0.0, cw = 0.0;
+        int rc = bench_board_change((hg_model_kind)kind, ns, &cm, &cp, &cw);
+        if (rc) {
+            printf("%-18s failed: %s\n", hg_model_name((hg_model_kind)kind), hg_strerror(rc));
+            failed = 1;
+            continue;
+        }
+        printf("%-18s %10.3f %10.3f %10.3f\n", hg_model_name((hg_model_kind)kind), cm, cp, cw);
+        printf("BENCH change_%s median_us=%.3f p99_us=%.3f max_us=%.3f iters=%d\n",
+               hg_model_name((hg_model_kind)kind), cm, cp, cw, BENCH_CHANGES);
     }
     return failed;
 }
