@@ -532,8 +532,13 @@ void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out,
     hg_text_add(buf, n, hg_integrator_name(b->m.integrator));
     if (out->stiff_dt_max_s > 0.0) {
         hg_text_add(buf, n, " is stable with it in steps of at most ");
-        hg_text_add_value(buf, n, floor(out->stiff_dt_max_s * 1e9 + 0.5) / 1e6);
-        hg_text_add(buf, n, " ms");
+        if (out->stiff_dt_max_s >= 1e-3) {   /* ms to the ns, else us to the ps */
+            hg_text_add_value(buf, n, floor(out->stiff_dt_max_s * 1e9 + 0.5) / 1e6);
+            hg_text_add(buf, n, " ms");
+        } else {
+            hg_text_add_value(buf, n, out->stiff_dt_max_s * 1e6);
+            hg_text_add(buf, n, " us");
+        }
     } else {
         hg_text_add(buf, n, " is unstable with it at any step (the mode needs damping)");
     }
