@@ -32,6 +32,8 @@ static char *model = "reduced-cartesian";
 RTAPI_MP_STRING(model, "parametrization: standard, reduced-joints, reduced-cartesian, fused-cartesian");
 static int board = 0;
 RTAPI_MP_INT(board, "board id 0..3, the <board> in motenc.<board>. names");
+static int record = 0;
+RTAPI_MP_INT(record, "1: also export the record pins motenc-hexaglide.<board>.rec.* and the record parameter (tools/hg_record.py)");
 
 #define MODNAME "motenc_hexaglide_dyns_virtual"
 #define XP "motenc-hexaglide"          /* prefix of the pins the real board lacks */
@@ -69,12 +71,13 @@ typedef struct {
     hal_float_t par[HG_PARAMS_MAX];   /* the model parameters in HAL units */
     double shadow[HG_PARAMS_MAX];     /* what the glue last wrote there */
     hal_u32_t substeps, integrator;
-    hal_bit_t record;                 /* XP.<board>.record: write the rec pins (the recorder sets it) */
+    hal_bit_t record;                 /* XP.<board>.record: write the rec pins (the recorder sets it;
+                                         exists with loadrt record=1 only, else stays 0) */
     hg_board b;
     hg_board_inputs ins;
     hg_board_outputs o;
     int id;
-    hg_board_rec_field rec[HG_BOARD_REC_MAX]; /* the record pin set (docs/replay.md) */
+    hg_board_rec_field rec[HG_BOARD_REC_MAX]; /* the record pin set (docs/replay.md; nrec 0 without record=1) */
     rec_pin rec_pin[HG_BOARD_REC_MAX]; /* XP.<board>.rec.<name>, type as rec[i].type */
     int nrec;
     int model;                        /* hg_model_kind loaded */
@@ -528,10 +531,12 @@ static int export_extra(board_t *b)
     }
     PAR(u32, &b->substeps, XP ".%d.substeps", id);
     PAR(u32, &b->integrator, XP ".%d.integrator", id);
-    PAR(bit, &b->record, XP ".%d.record", id);
     b->substeps = b->o.params.substeps;
     b->integrator = b->o.params.integrator;
-    TRY(export_rec(b));
+    if (record) {                     /* asked for at loadrt: the recorder's pins */
+        PAR(bit, &b->record, XP ".%d.record", id);
+        TRY(export_rec(b));
+    }
     TRY(export_funct(b, "dynamics", dynamics, 1));
     return 0;
 }
@@ -548,6 +553,11 @@ int rtapi_app_main(void)
     }
     if (board < 0 || board > 3) {
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board=%d: a MOTENC board id is 0..3\n", board);
+        return -EINVAL;
+    }
+    if (record != 0 && record != 1) {
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": record=%d: use record=1 to export the record pins, "
+                        "or leave it out\n", record);
         return -EINVAL;
     }
     comp_id = hal_init(MODNAME);

@@ -148,8 +148,8 @@ def main():
     pins = sorted((p for p in allpins if p["NAME"].startswith(prefix)),
                   key=lambda p: p["NAME"])
     if not pins:
-        log("no pin %s*: load motenc_hexaglide_dyns_virtual (a version with record pins) "
-            "before this recorder" % prefix)
+        log("no pin %s*: load the board with its record pins, 'loadrt "
+            "motenc_hexaglide_dyns_virtual record=1', before this recorder" % prefix)
         return 1
     byname = {p["NAME"]: p for p in allpins}
     sig = pin_signals()
