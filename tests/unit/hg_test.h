@@ -2,11 +2,13 @@
  * CHECK(cond, fmt, ...) prints "ok - ..." or "not ok - ..."; the exit code
  * of main should be hg_test_exit(); hg_test_uniform, hg_test_frictionless
  * and hg_test_solve are a deterministic random source, a machine without
- * dissipation and a plain dense solver. */
+ * dissipation and a plain dense solver; hg_test_bar_angles the standard
+ * model's bar angles of a pose. */
 #ifndef HG_TEST_H
 #define HG_TEST_H
 #include <math.h>
 #include <stdio.h>
+#include "hg_kinematics.h"
 #include "hg_params.h"
 
 static int hg_test_failures;
@@ -77,4 +79,21 @@ static inline void hg_test_solve(int n, double *a, double *b)
         b[k] /= a[k * n + k];
     }
 }
+/* The standard model's two angles of each bar for carriage heights z and
+ * head pose: a[2k] = atan2(u_y, -u_z), a[2k+1] = asin(-u_x) of bar k's unit
+ * vector u from its carriage joint to its head joint. */
+static inline void hg_test_bar_angles(const hg_params *p, const double z[6], const double pose[6],
+                                      double a[12])
+{
+    double B[6][3], A[6][3];
+    int k;
+    hg_joint_points(&p->geo, z, pose, B, A);
+    for (k = 0; k < 6; k++) {
+        double u[3] = {(A[k][0] - B[k][0]) / p->geo.l_m, (A[k][1] - B[k][1]) / p->geo.l_m,
+                       (A[k][2] - B[k][2]) / p->geo.l_m};
+        a[2 * k] = atan2(u[1], -u[2]);
+        a[2 * k + 1] = asin(-u[0]);
+    }
+}
+
 #endif

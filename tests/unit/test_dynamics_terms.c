@@ -27,20 +27,6 @@ static void state_at(const hg_params *p, const double c[6], const double cd[6], 
     hg_inverse_kinematics(&p->geo, pose, z);
 }
 
-/* bar angles of the standard model for (z, pose) */
-static void angles_at(const hg_params *p, const double z[6], const double pose[6], double a[12])
-{
-    double B[6][3], A[6][3];
-    int k;
-    hg_joint_points(&p->geo, z, pose, B, A);
-    for (k = 0; k < 6; k++) {
-        double u[3] = {(A[k][0] - B[k][0]) / p->geo.l_m, (A[k][1] - B[k][1]) / p->geo.l_m,
-                       (A[k][2] - B[k][2]) / p->geo.l_m};
-        a[2 * k] = atan2(u[1], -u[2]);
-        a[2 * k + 1] = asin(-u[0]);
-    }
-}
-
 /* Koenig kinetic energy and gravity potential of the state c + s cd. */
 static void reference_energy(const hg_params *p, const double c[6], const double cd[6],
                              double *T, double *V)
@@ -113,9 +99,9 @@ static void make_data(const hg_model *m, const double c[6], const double cd[6], 
         d->zd_mps[i] = (z1[i] - z0[i]) / (2 * EPS);
         d->posed[i] = cd[i];
     }
-    angles_at(&m->p, d->z_m, d->pose, d->bar_rad);
-    angles_at(&m->p, z0, p0, a0);
-    angles_at(&m->p, z1, p1, a1);
+    hg_test_bar_angles(&m->p, d->z_m, d->pose, d->bar_rad);
+    hg_test_bar_angles(&m->p, z0, p0, a0);
+    hg_test_bar_angles(&m->p, z1, p1, a1);
     for (i = 0; i < 12; i++)
         d->bar_radps[i] = (a1[i] - a0[i]) / (2 * EPS);
 }

@@ -45,20 +45,6 @@ static void pi_of(const hg_params *p, double pi[HG_REG_NCOL])
     }
 }
 
-/* bar angles of the standard model for (z, pose), as test_dynamics_terms */
-static void angles_at(const hg_params *p, const double z[6], const double pose[6], double a[12])
-{
-    double B[6][3], A[6][3];
-    int k;
-    hg_joint_points(&p->geo, z, pose, B, A);
-    for (k = 0; k < 6; k++) {
-        double u[3] = {(A[k][0] - B[k][0]) / p->geo.l_m, (A[k][1] - B[k][1]) / p->geo.l_m,
-                       (A[k][2] - B[k][2]) / p->geo.l_m};
-        a[2 * k] = atan2(u[1], -u[2]);
-        a[2 * k + 1] = asin(-u[0]);
-    }
-}
-
 /* A random parameter set around the spec's, friction on. */
 static void random_params(hg_params *p)
 {
@@ -121,9 +107,9 @@ static double one_case(hg_model_kind kind, double *fscale)
     memcpy(d.pose, c, sizeof c);
     memcpy(d.posed, cd, sizeof cd);
     if (kind == HG_MODEL_STANDARD) {
-        angles_at(&p, z, c, a);
-        angles_at(&p, zp, cp, ap);
-        angles_at(&p, zm, cm, am);
+        hg_test_bar_angles(&p, z, c, a);
+        hg_test_bar_angles(&p, zp, cp, ap);
+        hg_test_bar_angles(&p, zm, cm, am);
         for (i = 0; i < 12; i++) {
             d.bar_rad[i] = a[i];
             d.bar_radps[i] = (ap[i] - am[i]) / (2 * FD);
