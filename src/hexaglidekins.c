@@ -43,6 +43,7 @@ typedef struct {
     hal_u32_t *fk_fail_count;
     hal_s32_t *ik_error;
     hal_u32_t *board_geometry;                     /* the board's geometry-fingerprint, 0: unconnected */
+    unsigned fingerprint;                          /* hg_geometry_fingerprint of the checked geometry */
     int mismatch_calls;                            /* consecutive calls that found a mismatch */
     int geometry_reported_bad;                     /* message already printed */
     hal_float_t checked[HG_PARAMS_MAX];            /* the geometry last checked (as geo) ... */
@@ -51,27 +52,6 @@ typedef struct {
 
 static hexaglidekins_hal *hd; /* the module's one instance, in HAL shared memory */
 static int comp_id;
-
-#define MISMATCH_CALLS 200   /* calls (about 0.1 s of servo periods) a mismatch must last: a
-                                geometry set on both in one HAL file reaches the board a period later */
-
-/* Say once (again after they matched) that the board connected to
- * hexaglidekins.board-geometry simulates another geometry than g. */
-static void board_mismatch(const hg_geometry *g)
-{
-    unsigned board = *hd->board_geometry;
-    if (board == 0 || board == hg_geometry_fingerprint(g)) {
-        hd->mismatch_calls = 0;
-        return;
-    }
-    if (hd->mismatch_calls <= MISMATCH_CALLS)
-        hd->mismatch_calls++;            /* stops one past: the message comes once */
-    if (hd->mismatch_calls == MISMATCH_CALLS)
-        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: the geometry differs from the board's "
-                        "(hexaglidekins.board-geometry): LinuxCNC would drive another machine than the one "
-                        "simulated; set both from the same [HEXAGLIDE] keys (compare halcmd show param "
-                        "hexaglidekins. and motenc-hexaglide.0.)\n");
-}
 
 /* Geometry from the HAL parameters (HAL units -> SI); HG_ERR_BAD_PARAM,
  * reported once on the RTAPI log, when the user set an impossible one. */
@@ -90,7 +70,13 @@ static int current_geometry(hg_geometry *g)
             hd->checked[i] = hd->geo[i];
         }
     *g = p.geo;
-    board_mismatch(g);
+    if (!same)
+        hd->fingerprint = hg_geometry_fingerprint(g);
+    if (hg_geometry_mismatch(*hd->board_geometry, hd->fingerprint, &hd->mismatch_calls))
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: the geometry differs from the board's "
+                        "(hexaglidekins.board-geometry): LinuxCNC would drive another machine than the one "
+                        "simulated; set both from the same [HEXAGLIDE] keys (compare halcmd show param "
+                        "hexaglidekins. and motenc-hexaglide.0.)\n");
     if (same)
         return hd->checked_rc;           /* unchanged since the last call: same answer */
     rc = hg_geometry_check(g, &field, &why);

@@ -62,6 +62,11 @@ const char *hg_integrator_name(hg_integrator which)
     return name_of(integrator_names, HG_INTEGRATOR_COUNT, (int)which);
 }
 
+int hg_integrator_default(void)
+{
+    return HG_INTEGRATOR_DEFAULT;
+}
+
 int hg_integrator_from_name(const char *name)
 {
     return index_of(integrator_names, HG_INTEGRATOR_COUNT, name);

@@ -28,6 +28,9 @@ int hg_model_from_name(const char *name);
 /* Name of a scheme ("improved-euler", "heun", "rk4"); 0 for an invalid one. */
 const char *hg_integrator_name(hg_integrator which);
 
+/* HG_INTEGRATOR_DEFAULT, for bindings that cannot read a macro (Python). */
+int hg_integrator_default(void);
+
 /* Scheme for a name, or -1 when the name is unknown. */
 int hg_integrator_from_name(const char *name);
 

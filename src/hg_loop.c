@@ -154,7 +154,6 @@ unsigned long hg_loop_sizeof(int which)
     case 10: return sizeof(hg_board_outputs);
     case 11: return sizeof(hg_pid_state);
     case 12: return HG_DATA_STATE_BYTES;
-    case 13: return HG_INTEGRATOR_DEFAULT;  /* not a size: the default scheme */
     default: return 0;
     }
 }

@@ -95,7 +95,6 @@ unsigned long hg_loop_sizeof(int which);   /* 0 hg_loop, 1 config, 2 summary, 3 
                                              7 hg_board_params, 8 hg_board,
                                              9 hg_board_inputs, 10 hg_board_outputs,
                                              11 hg_pid_state, 12 HG_DATA_STATE_BYTES
-                                             (hg_data before its scratch), 13 (not a size)
-                                             HG_INTEGRATOR_DEFAULT; else 0 */
+                                             (hg_data before its scratch); else 0 */
 
 #endif

@@ -278,6 +278,17 @@ unsigned hg_geometry_fingerprint(const hg_geometry *g)
     return h ? h : 1u;
 }
 
+int hg_geometry_mismatch(unsigned board_fp, unsigned own_fp, int *calls)
+{
+    if (board_fp == 0 || board_fp == own_fp) {
+        *calls = 0;
+        return 0;
+    }
+    if (*calls <= HG_GEOMETRY_MISMATCH_CALLS)
+        (*calls)++;                   /* stops one past: the report comes once */
+    return *calls == HG_GEOMETRY_MISMATCH_CALLS;
+}
+
 int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char **why)
 {
     check_report r = {0, 0, 0, 0};

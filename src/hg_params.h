@@ -116,6 +116,17 @@ int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char *
  * board) compare it to find a mismatch. */
 unsigned hg_geometry_fingerprint(const hg_geometry *g);
 
+/* Calls a fingerprint mismatch must last before it is reported (about
+ * 0.1 s of servo periods): a geometry set on both components in one HAL
+ * file reaches the board a period after the kinematics. */
+#define HG_GEOMETRY_MISMATCH_CALLS 200
+
+/* One comparison of the board's fingerprint (0: not connected) with our
+ * own; *calls counts consecutive mismatches (0 at load). 1 exactly on the
+ * HG_GEOMETRY_MISMATCH_CALLS-th of them, the call to report it on (again
+ * after the two matched), else 0. */
+int hg_geometry_mismatch(unsigned board_fp, unsigned own_fp, int *calls);
+
 /* Check the whole set (geometry, positive masses, ordered strokes, ...). */
 int hg_params_check(const hg_params *p, const char **bad_field, const char **why);
 

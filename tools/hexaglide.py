@@ -113,7 +113,7 @@ for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data), (12,
                           % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
 
 _NP = _sizeof(6) // 8          # doubles in hg_params
-DEFAULT_INTEGRATOR = _sizeof(13)  # HG_INTEGRATOR_DEFAULT: the board's scheme at load
+DEFAULT_INTEGRATOR = _sig("hg_integrator_default", C.c_int)()  # the board's scheme at load
 
 
 class BoardParams(C.Structure):

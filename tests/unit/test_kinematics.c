@@ -374,6 +374,45 @@ static void test_refusals(const hg_params *p)
     }
 }
 
+/* The geometry fingerprint: equal for an equal geometry, different when
+ * any of its seven fields moves by one ulp; a mismatch with the board is
+ * reported once, on its HG_GEOMETRY_MISMATCH_CALLS-th consecutive call,
+ * again after a match, and never for an unconnected board (0). */
+static void test_geometry_mismatch(const hg_params *p)
+{
+    double *f[7];
+    hg_geometry g = p->geo, h = p->geo;
+    unsigned own = hg_geometry_fingerprint(&g);
+    int i, calls = 0, said = 0, first = -1;
+    f[0] = &h.l_m; f[1] = &h.lb_m; f[2] = &h.e_m; f[3] = &h.lp_m;
+    f[4] = &h.cone_carriage_rad; f[5] = &h.cone_head_rad; f[6] = &h.d_bar_m;
+    CHECK(own != 0 && own == hg_geometry_fingerprint(&h), "an equal geometry has the same fingerprint (never 0)");
+    for (i = 0; i < 7; i++) {
+        double keep = *f[i];
+        *f[i] = nextafter(keep, 2.0 * keep);
+        said += hg_geometry_fingerprint(&h) != own;
+        *f[i] = keep;
+    }
+    CHECK(said == 7, "one ulp in any of the 7 geometry fields changes the fingerprint (%d of 7)", said);
+    said = 0;
+    for (i = 0; i < 3 * HG_GEOMETRY_MISMATCH_CALLS; i++)
+        if (hg_geometry_mismatch(own + 1u, own, &calls)) {
+            said++;
+            first = first < 0 ? i + 1 : first;
+        }
+    CHECK(said == 1 && first == HG_GEOMETRY_MISMATCH_CALLS, "a lasting mismatch is reported once (%d), on call %d "
+          "(HG_GEOMETRY_MISMATCH_CALLS %d)", said, first, HG_GEOMETRY_MISMATCH_CALLS);
+    said = hg_geometry_mismatch(own, own, &calls);
+    for (i = 0; i < HG_GEOMETRY_MISMATCH_CALLS; i++)
+        said += hg_geometry_mismatch(own + 1u, own, &calls);
+    CHECK(said == 1, "after a match a new lasting mismatch is reported again (%d)", said);
+    calls = 0;
+    said = 0;
+    for (i = 0; i < 3 * HG_GEOMETRY_MISMATCH_CALLS; i++)
+        said += hg_geometry_mismatch(0u, own, &calls) + hg_geometry_mismatch(own, own, &calls);
+    CHECK(said == 0, "no board connected (0) or a matching one: never reported (%d)", said);
+}
+
 int main(void)
 {
     hg_params p, wide;
@@ -392,5 +431,6 @@ int main(void)
     test_fk_guard(&p);
     test_jacobian_fd(&p);
     test_refusals(&p);
+    test_geometry_mismatch(&p);
     return hg_test_exit();
 }
