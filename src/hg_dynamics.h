@@ -25,15 +25,6 @@ const char *hg_model_name(hg_model_kind kind);
 /* Kind for a name, or -1 when the name is unknown. */
 int hg_model_from_name(const char *name);
 
-/* Name of a scheme ("improved-euler", "heun", "rk4"); 0 for an invalid one. */
-const char *hg_integrator_name(hg_integrator which);
-
-/* HG_INTEGRATOR_DEFAULT, for bindings that cannot read a macro (Python). */
-int hg_integrator_default(void);
-
-/* Scheme for a name, or -1 when the name is unknown. */
-int hg_integrator_from_name(const char *name);
-
 /* Check p and build the model: 0, or HG_ERR_BAD_PARAM with *bad_field and
  * *why naming the cause (static strings), or another negative code. */
 int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
