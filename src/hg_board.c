@@ -73,10 +73,10 @@ const char *hg_board_param_hal_name(const hg_board *b, int bit)
     return bit >= 0 && bit < n ? t[bit].hal_name : 0;
 }
 
-/* Latch the fault with code rc (first cause wins; event once). */
+/* Latch the fault with code rc (first cause wins; event once, into out if given). */
 static void latch_fault(hg_board *b, hg_board_outputs *out, int rc, int cause)
 {
-    if (!b->fault) {
+    if (!b->fault && out) {
         out->events |= HG_EV_FAULT_LATCHED;
         out->fault_cause = cause;
     }
@@ -105,8 +105,6 @@ static void reinit_at_home(hg_board *b, hg_board_outputs *out)
 
 int hg_board_init(hg_board *b, int plant, int variant, const hg_board_params *p)
 {
-    hg_board_params def;
-    hg_board_outputs scratch;
     const hg_plant *pl = hg_plant_at(plant);
     const char *field, *why;
     int k, rc;
@@ -115,9 +113,9 @@ int hg_board_init(hg_board *b, int plant, int variant, const hg_board_params *p)
         return HG_ERR_BAD_PARAM;
     b->plant = plant;
     b->variant = variant;
-    if (!p) {
-        hg_board_params_default(plant, &def);
-        p = &def;
+    if (!p) {                         /* the defaults, built where the block in force lives */
+        hg_board_params_default(plant, &b->last_in);
+        p = &b->last_in;
     }
     if (hg_board_params_check(b, p, 0, 0))
         return HG_ERR_BAD_PARAM;
@@ -130,12 +128,12 @@ int hg_board_init(hg_board *b, int plant, int variant, const hg_board_params *p)
     b->integrator = (int)p->integrator;
     b->substeps = b->substeps_run = p->substeps;
     b->stiff_param = -1;
-    b->last_in = *p;
+    if (p != &b->last_in)
+        b->last_in = *p;
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         b->enc_scale[k] = b->enc_scale_in[k] = 1.0;
     hg_watchdog_init(&b->wd);
-    memset(&scratch, 0, sizeof scratch);
-    reinit_at_home(b, &scratch);
+    reinit_at_home(b, 0);
     return b->fault ? b->fault_code : HG_OK;
 }
 

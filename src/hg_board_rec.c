@@ -244,8 +244,8 @@ unsigned hg_board_rec_fingerprint(const hg_board_params *p, int n)
 {
     unsigned h = 2166136261u;
     int i, k;
-    for (i = 0; i < n + 2; i++) {
-        double v = hg_board_rec_entry(p, n, (unsigned)i);
+    for (i = 0; i < n + 2; i++) {     /* the plant's entries, substeps, integrator */
+        double v = i < n ? p->plant.v[i] : i == n ? (double)p->substeps : (double)p->integrator;
         unsigned long long bits;
         memcpy(&bits, &v, sizeof bits);
         for (k = 0; k < 8; k++, bits >>= 8)
@@ -256,20 +256,13 @@ unsigned hg_board_rec_fingerprint(const hg_board_params *p, int n)
 
 double hg_board_rec_entry(const hg_board_params *p, int n, unsigned e)
 {
-    if (e < (unsigned)n && e < HG_PLANT_PARAMS_MAX)
-        return p->plant.v[e];
-    return e == (unsigned)n ? (double)p->substeps : e == (unsigned)n + 1 ? (double)p->integrator : 0.0;
+    return e < (unsigned)n && e < HG_PLANT_PARAMS_MAX ? p->plant.v[e] : 0.0;
 }
 
 void hg_board_rec_entry_set(hg_board_params *p, int n, unsigned e, double v)
 {
-    unsigned u = v >= 0.0 && v <= 4294967295.0 ? (unsigned)v : 0u;
     if (e < (unsigned)n && e < HG_PLANT_PARAMS_MAX)
         p->plant.v[e] = v;
-    else if (e == (unsigned)n)
-        p->substeps = u;
-    else if (e == (unsigned)n + 1)
-        p->integrator = u;
 }
 
 void hg_board_rec_stream_start(hg_board_rec_stream *s)
@@ -304,7 +297,7 @@ void hg_board_rec_stream_step(hg_board_rec_stream *s, const hg_board_params *p, 
     int k;
     if (s->started)
         s->period++;
-    for (e = 0; e < (unsigned)n + 2; e++) {  /* everything at the start, then what changed */
+    for (e = 0; e < (unsigned)n; e++) {  /* everything at the start, then what changed */
         double v = hg_board_rec_entry(p, n, e), w = hg_board_rec_entry(&s->told, n, e);
         if (!s->started || memcmp(&v, &w, sizeof v) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise, a NaN equals itself
             enqueue(s, e, v);

@@ -30,8 +30,9 @@
  *     ("in.pev-S-entry": 0 empty, else the entry + 1, the value's
  *     non-finite code in bits 16..17; "in.pev-S-value"; "in.pev-S-age":
  *     periods since the value took effect). The stream
- *     (hg_board_rec_stream) sends the whole block from the period it
- *     starts, then every entry that changes, in order; a replay reads
+ *     (hg_board_rec_stream) sends the plant's whole block from the period
+ *     it starts, then every entry that changes, in order (substeps and
+ *     integrator stay columns, as in format 1); a replay reads
  *     ahead, applies each value at the period it took effect and checks
  *     the fingerprint of every period ("in.plant" names the plant).
  *
@@ -92,7 +93,7 @@ int hg_board_rec_fields(hg_board_rec_field *f, int max, int plant, int format);
 
 /* One parameter event (format 2). */
 typedef struct {
-    unsigned entry;                   /* table entry, then n: substeps, n + 1: integrator */
+    unsigned entry;                   /* the plant's table entry */
     double value;
     unsigned long at;                 /* the stream period it took effect in */
 } hg_board_rec_event;
@@ -113,10 +114,10 @@ typedef struct {
  * (FNV-1a over the bits, never 0). */
 unsigned hg_board_rec_fingerprint(const hg_board_params *p, int n);
 
-/* The value of stream entry e of p (n plant entries, then substeps, integrator). */
+/* The value of the plant's entry e (of n) in p (0 past them). */
 double hg_board_rec_entry(const hg_board_params *p, int n, unsigned e);
 
-/* Set stream entry e of p to v. */
+/* Set the plant's entry e (of n) of p to v (none past them). */
 void hg_board_rec_entry_set(hg_board_params *p, int n, unsigned e, double v);
 
 /* Start the stream (nothing told yet: the first period sends the whole block). */

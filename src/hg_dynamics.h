@@ -18,6 +18,9 @@
 #include "hg_model.h"
 #include "hg_kinematics.h"
 
+/* The names of the kinds, in hg_model_kind's order (hg_model_name). */
+extern const char *const hg_model_names[HG_MODEL_COUNT];
+
 /* Name used on the command line and in HAL ("standard", "reduced-joints",
  * "reduced-cartesian", "fused-cartesian"); 0 for an invalid kind. */
 const char *hg_model_name(hg_model_kind kind);

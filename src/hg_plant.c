@@ -69,3 +69,9 @@ const char *hg_plant_name_at(int plant)
     const hg_plant *p = hg_plant_at(plant);
     return p ? p->name : 0;
 }
+
+int hg_plant_variant_named(int plant, const char *name)
+{
+    const hg_plant *p = hg_plant_at(plant);
+    return p ? hg_plant_variant(p, name) : -1;
+}

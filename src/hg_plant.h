@@ -170,6 +170,7 @@ int hg_plant_variant(const hg_plant *p, const char *name);
 const hg_param_info *hg_plant_params_table(int plant, int *count);
 int hg_plant_params_defaults(int plant, hg_plant_params *v);
 const char *hg_plant_name_at(int plant);
+int hg_plant_variant_named(int plant, const char *name);   /* hg_plant_variant of plant i, -1 if unknown */
 
 /* Switch bits (HG_SW_*) of a load at pos with limit switches at limit_min
  * (tripped at or below) and limit_max (at or above) and a home switch on

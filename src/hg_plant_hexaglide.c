@@ -19,10 +19,6 @@ typedef char hg_hexaglide_fits[(sizeof(hg_model) <= sizeof(hg_plant_model) &&
                                 sizeof(hg_data) <= sizeof(hg_plant_data) &&
                                 HG_PARAMS_MAX <= HG_PLANT_PARAMS_MAX && CHANNELS <= HG_CHANNELS_MAX) ? 1 : -1];
 
-static const char *const variants[HG_MODEL_COUNT] = {
-    "standard", "reduced-joints", "reduced-cartesian", "fused-cartesian",
-};
-
 /* sense.extra[] of the Hexaglide, in this order */
 enum { X_HEAD = 0, X_RESIDUAL = 6, X_BARS_BROKEN = 7, X_GEOMETRY = 8, X_COUNT = 9 };
 static const hg_plant_output outputs[X_COUNT] = {
@@ -242,7 +238,7 @@ const hg_plant hg_plant_hexaglide = {
     "HEXAGLIDE",
     CHANNELS,
     HG_MODEL_COUNT,
-    variants,
+    hg_model_names,
     HG_MODEL_REDUCED_CARTESIAN,
     outputs,
     X_COUNT,
