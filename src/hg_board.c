@@ -378,7 +378,9 @@ static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outpu
     out->watchdog_expired = b->wd.expired;
     out->param_error = b->param_error;
     out->dac_nan = b->dac_nan != 0;
-    out->params = b->in_force;
+    memcpy(out->params.plant.v, b->in_force.plant.v, (unsigned long)nparams(hg_board_plant(b)) * sizeof(double));
+    out->params.substeps = b->in_force.substeps;    /* (the entries past the plant's stay 0) */
+    out->params.integrator = b->in_force.integrator;
     out->substeps_run = b->substeps_run;
     if (out->stiff_param < 0 || !(out->events & HG_EV_PARAM_REFUSED)) {
         out->stiff_param = b->substeps_run > b->substeps || b->fault_code == HG_ERR_STIFF ? b->stiff_param : -1;

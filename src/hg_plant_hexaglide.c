@@ -15,7 +15,14 @@
 
 #define CHANNELS 6
 
-typedef char hg_hexaglide_fits[(sizeof(hg_model) <= sizeof(hg_plant_model) &&
+/* The plant's model: the dynamics' and what the sensors derive from the
+ * parameters once per build (not per period). */
+typedef struct {
+    hg_model m;
+    unsigned geometry_fp;            /* hg_geometry_fingerprint of m.p.geo */
+} hexaglide_model;
+
+typedef char hg_hexaglide_fits[(sizeof(hexaglide_model) <= sizeof(hg_plant_model) &&
                                 sizeof(hg_data) <= sizeof(hg_plant_data) &&
                                 HG_PARAMS_MAX <= HG_PLANT_PARAMS_MAX && CHANNELS <= HG_CHANNELS_MAX) ? 1 : -1];
 
@@ -39,7 +46,8 @@ static const hg_plant_injection injections[1] = {
 };
 
 /* The model and data laid over the board's storage. */
-static const hg_model *model_of(const hg_plant_model *m) { return (const hg_model *)m->store; }
+static const hexaglide_model *hmodel_of(const hg_plant_model *m) { return (const hexaglide_model *)m->store; }
+static const hg_model *model_of(const hg_plant_model *m) { return &hmodel_of(m)->m; }
 const hg_model *hg_hexaglide_model(const hg_plant_model *m) { return model_of(m); }
 const hg_data *hg_hexaglide_data(const hg_plant_data *d) { return (const hg_data *)d->store; }
 static hg_data *data_of(hg_plant_data *d) { return (hg_data *)d->store; }
@@ -87,22 +95,23 @@ static int channels(const hg_plant_params *v)
 static int build(hg_plant_model *m, const hg_plant_params *v, int variant, int integrator,
                  const char **field, const char **why)
 {
-    hg_model *hm = (hg_model *)m->store;
+    hexaglide_model *hm = (hexaglide_model *)m->store;
     hg_params p;
     int rc;
     params_from(v, &p);
-    rc = hg_model_init(hm, &p, (hg_model_kind)variant, field, why);
-    if (rc == 0 && hg_model_set_integrator(hm, integrator)) {
+    rc = hg_model_init(&hm->m, &p, (hg_model_kind)variant, field, why);
+    if (rc == 0 && hg_model_set_integrator(&hm->m, integrator)) {
         *field = "integrator";
         *why = "must be 0 (improved-euler), 1 (heun) or 2 (rk4)";
         rc = HG_ERR_BAD_PARAM;
     }
+    hm->geometry_fp = hg_geometry_fingerprint(&p.geo);
     return rc;
 }
 
 static int set_integrator(hg_plant_model *m, int integrator)
 {
-    return hg_model_set_integrator((hg_model *)m->store, integrator);
+    return hg_model_set_integrator(&((hexaglide_model *)m->store)->m, integrator);
 }
 
 static void params_of(const hg_plant_model *m, hg_plant_params *v)
@@ -215,7 +224,7 @@ static void sense(const hg_plant_model *m, const hg_plant_data *d, hg_plant_sens
         s->extra[X_HEAD + k] = finite_or_zero(hd->pose[k]);
     s->extra[X_RESIDUAL] = finite_or_zero(hd->residual_m);
     s->extra[X_BARS_BROKEN] = (double)hd->broken_bars;
-    s->extra[X_GEOMETRY] = (double)hg_geometry_fingerprint(&p->geo);
+    s->extra[X_GEOMETRY] = (double)hmodel_of(m)->geometry_fp;
     s->sim_time_s = finite_or_zero(hd->t_s);
 }
 
@@ -244,7 +253,7 @@ const hg_plant hg_plant_hexaglide = {
     X_COUNT,
     injections,
     1,
-    sizeof(hg_model),
+    sizeof(hexaglide_model),
     sizeof(hg_data),
     HG_DATA_STATE_BYTES,
     hg_params_table,

@@ -119,7 +119,7 @@ void cli_board_defaults(int plant, hg_board_params *bp);
 /* 0 if v is a valid machine of plant, else 1 after one message per invalid field. */
 int cli_params_check(const char *cmd, int plant, const hg_plant_params *v);
 
-/* A board (malloc'd; free() it) of plant with model variant and block p,
+/* A board (malloc'd; free() it) of plant with model variant and block p (0: the plant's defaults),
  * or 0 after a message on stderr naming every invalid field (spec names,
  * SI units). */
 hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_params *p);

@@ -109,7 +109,7 @@ hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_
         return 0;
     }
     b->plant = plant;                 /* the checks need the plant */
-    if (hg_board_params_check(b, p, &bad, why)) {
+    if (p && hg_board_params_check(b, p, &bad, why)) {
         report_refused(cmd, plant, &bad, why);
         free(b);
         return 0;

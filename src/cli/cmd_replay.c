@@ -41,6 +41,7 @@ typedef struct {
     int open_loop;                    /* --open-loop: recorded DAC volts, no pid */
     long from;                        /* --from: first sample of the f-error statistics, -1 auto */
     long spread;                      /* --spread: closed loops with the program started later */
+    int format;                       /* --list-columns --format: the record format listed */
 } replay_opts;
 
 /* What a closed loop consumes in one period, kept for the delayed --spread loops. */
@@ -92,7 +93,7 @@ const char cli_usage_replay[] =
     "usage: hexaglide replay FILE [--csv OUT] [--plot PNG] [--set name=value]...\n"
     "                        [--model NAME] [--substeps N] [--integrator NAME]\n"
     "                        [--open-loop] [--from SAMPLE] [--spread K] [--plant NAME]\n"
-    "       hexaglide replay --list-columns [--plant NAME]   (the record pin set)\n"
+    "       hexaglide replay --list-columns [--plant NAME] [--format 1|2]   (the record pin set)\n"
     "--plant: the machine the record must be of (the record names its own, in.plant);\n"
     "a record of another plant is refused.\n"
     "FILE: a record of tools/hg_record.py (docs/replay.md). Without --set, --model,\n"
@@ -108,13 +109,13 @@ const char cli_usage_replay[] =
     "--plot runs tools/plot_replay.py under the first python3 that imports numpy and\n"
     "matplotlib ($HEXAGLIDE_PYTHON, else $PATH).\n";
 
-/* The record pin set of plant (the format the glue records): one line per
- * column, name, HAL type, direction. */
-static void list_columns(int plant)
+/* The record pin set of plant in format (2: what the glue records): one
+ * line per column, name, HAL type, direction. */
+static void list_columns(int plant, int format)
 {
     static hg_board_rec_field f[HG_BOARD_REC_MAX];
     static const char *const type[] = {"float", "s32", "u32", "bit", "u32"};
-    int i, n = hg_board_rec_fields(f, HG_BOARD_REC_MAX, plant, HG_BOARD_REC_FORMAT);
+    int i, n = hg_board_rec_fields(f, HG_BOARD_REC_MAX, plant, format);
     for (i = 0; i < n; i++)
         printf("%-28s %-5s %s%s\n", f[i].name, type[f[i].type],
                f[i].side == HG_BRS_OUT ? "output, compared" : "input of hg_board_step",
@@ -124,10 +125,10 @@ static void list_columns(int plant)
 }
 
 enum { OPT_CSV, OPT_PLOT, OPT_SET, OPT_MODEL, OPT_SUBSTEPS, OPT_INTEGRATOR, OPT_FROM, OPT_SPREAD,
-       OPT_OPEN, OPT_LIST, OPT_PLANT };
+       OPT_OPEN, OPT_LIST, OPT_PLANT, OPT_FORMAT };
 static const cli_opt replay_options[] = {
     {"--csv", 1}, {"--plot", 1}, {"--set", 1}, {"--model", 1}, {"--substeps", 1}, {"--integrator", 1},
-    {"--from", 1}, {"--spread", 1}, {"--open-loop", 0}, {"--list-columns", 0}, {"--plant", 1}, {0, 0},
+    {"--from", 1}, {"--spread", 1}, {"--open-loop", 0}, {"--list-columns", 0}, {"--plant", 1}, {"--format", 1}, {0, 0},
 };
 
 /* An integer option in lo..hi; 0, or 2 after a message saying what to give. */
@@ -154,6 +155,7 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
     o->integrator = -1;
     o->from = -1;
     o->spread = 1;
+    o->format = HG_BOARD_REC_FORMAT;
     cli_args_init(&a, "replay", cli_usage_replay, replay_options, argc, argv);
     while ((opt = cli_next(&a, &v)) != CLI_DONE) {
         switch (opt) {
@@ -187,6 +189,13 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
         case OPT_PLANT:
             o->plant = v;
             break;
+        case OPT_FORMAT: {
+            long n;
+            if (int_opt("--format", v, 1, HG_BOARD_REC_FORMAT, "1 (d20d9e5 and before) or 2", &n))
+                return 2;
+            o->format = (int)n;
+            break;
+        }
         case OPT_SUBSTEPS: {
             long n;
             if (int_opt("--substeps", v, 1, (long)HG_SUBSTEPS_MAX, "an integer 1..64", &n))
@@ -223,7 +232,11 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
         int p = cli_plant("replay", o->plant);
         if (p < 0)
             return 2;
-        list_columns(p);
+        if (o->format == 1 && p != 0) {
+            fprintf(stderr, "hexaglide replay: --format 1 was the Hexaglide's only\n");
+            return 2;
+        }
+        list_columns(p, o->format);
         return -1;
     }
     if (!o->file) {

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cli.h"
+#include "hg_board_rec.h"
 #include "hg_scheme.h"
 #include "hg_errors.h"
 #include "hg_units.h"
@@ -16,7 +17,7 @@ const char cli_usage_sim[] =
     "usage: hexaglide sim [--plant hexaglide] [--model standard|reduced-joints|reduced-cartesian|fused-cartesian]\n"
     "                     [--time S] [--dt S] [--volts V0,V1,V2,V3,V4,V5]\n"
     "                     [--substeps N] [--integrator improved-euler|heun|rk4]\n"
-    "                     [--ini FILE] [--set name=value]... [--csv FILE] [--list-params]\n"
+    "                     [--ini FILE] [--set name=value]... [--csv FILE] [--record FILE] [--list-params]\n"
     "  the virtual board with constant DAC volts, amplifiers on, one CSV row per servo period:\n"
     "  t_s, z0_mm..z5_mm (joints), zd0_mm_s..zd5_mm_s (joint velocities), x_mm y_mm z_mm,\n"
     "  a_deg b_deg c_deg (head pose); a rotary channel's columns are in deg, deg_s\n"
@@ -24,7 +25,8 @@ const char cli_usage_sim[] =
     "CSV to stdout; --volts takes one value per channel of the plant; --substeps and --integrator\n"
     "as the board loads them (motenc-hexaglide.N.substeps, .integrator).\n"
     "--dt is the board's servo period (whole ns); --volts go through the board's 13-bit DAC;\n"
-    "--list-params prints every parameter: spec name, SI unit, default, HAL name and INI key\n"
+    "--list-params prints every parameter: spec name, SI unit, default, HAL name and INI key;\n"
+    "--record FILE writes the run as a record of the board's rec pins (hexaglide replay FILE)\n"
     CLI_USAGE_MODEL;
 
 static void list_params(int plant)
@@ -78,11 +80,57 @@ static void write_header(FILE *f, const hg_plant *pl, const hg_board_outputs *o)
     fputc('\n', f);
 }
 
+/* A record of the run in the format the HAL glue's rec pins carry (for
+ * `hexaglide replay`): the table, the parameters' event stream, one row per period. */
+typedef struct {
+    cli_out out;
+    hg_board_rec_field f[HG_BOARD_REC_MAX];
+    int n, np;
+    hg_board_rec_stream stream;
+} sim_record;
+
+/* Open path and write the record's header; 0, or -1 after a message. */
+static int record_open(sim_record *r, const char *path, const hg_board *b)
+{
+    int k;
+    r->n = hg_board_rec_fields(r->f, HG_BOARD_REC_MAX, b->plant, HG_BOARD_REC_FORMAT);
+    hg_board_plant(b)->table(&r->np);
+    if (r->n < 0 || cli_out_open("sim", path, &r->out))
+        return -1;
+    hg_board_rec_stream_start(&r->stream);
+    fprintf(r->out.f, "# hexaglide-record %d\n# source hexaglide sim (open loop, constant volts)\n# board 0\n"
+                      "# plant %s\n# closed-loop no: an open-loop run of hexaglide sim\nsample",
+            HG_BOARD_REC_FORMAT, hg_board_plant(b)->name);
+    for (k = 0; k < r->n; k++)
+        fprintf(r->out.f, ",%s", r->f[k].name);
+    fputc('\n', r->out.f);
+    return 0;
+}
+
+/* One row: period s's inputs and outputs, exactly (%.17g). */
+static void record_row(sim_record *r, long s, const hg_board *b, const hg_board_inputs *in,
+                       const hg_board_outputs *out, long period_ns)
+{
+    hg_board_rec_ctx c;
+    int k;
+    hg_board_rec_stream_step(&r->stream, &in->params, r->np);
+    c.in = in;
+    c.out = out;
+    c.period_ns = period_ns;
+    c.plant = b->plant;
+    c.variant = b->variant;
+    c.stream = &r->stream;
+    fprintf(r->out.f, "%ld", s);
+    for (k = 0; k < r->n; k++)
+        fprintf(r->out.f, ",%.17g", hg_board_rec_get(r->f, r->n, k, &c));
+    fputc('\n', r->out.f);
+}
+
 enum { OPT_MODEL, OPT_TIME, OPT_DT, OPT_VOLTS, OPT_SUBSTEPS, OPT_INTEGRATOR, OPT_INI, OPT_SET, OPT_CSV,
-       OPT_LIST, OPT_PLANT };
+       OPT_LIST, OPT_PLANT, OPT_RECORD };
 static const cli_opt sim_opts[] = {
     {"--model", 1}, {"--time", 1}, {"--dt", 1}, {"--volts", 1}, {"--substeps", 1}, {"--integrator", 1},
-    {"--ini", 1}, {"--set", 1}, {"--csv", 1}, {"--list-params", 0}, {"--plant", 1}, {0, 0},
+    {"--ini", 1}, {"--set", 1}, {"--csv", 1}, {"--list-params", 0}, {"--plant", 1}, {"--record", 1}, {0, 0},
 };
 static const char *const volt_names[HG_CHANNELS_MAX] = {"V0", "V1", "V2", "V3", "V4", "V5", "V6", "V7"};
 
@@ -95,7 +143,8 @@ int cmd_sim(int argc, char **argv)
     cli_args a;
     cli_out csv;
     double t_end = 1.0, dt = 0.001, volts[HG_CHANNELS_MAX] = {0, 0, 0, 0, 0, 0, 0, 0}, substeps = 1;
-    const char *csv_path = 0, *ini = 0, *v, *model = 0, *volts_text = 0, *integrator = 0;
+    const char *csv_path = 0, *ini = 0, *v, *model = 0, *volts_text = 0, *integrator = 0, *record = 0;
+    static sim_record rec;
     char *sets[argc > 0 ? argc : 1];
     int plant = 0, variant, k, o, nset = 0, rc = 0, list = 0, given_substeps = 0;
     long n, s, period_ns;
@@ -159,6 +208,9 @@ int cmd_sim(int argc, char **argv)
         case OPT_SET:
             sets[nset++] = (char *)v;
             break;
+        case OPT_RECORD:
+            record = v;
+            break;
         default:                       /* OPT_CSV */
             csv_path = v;
         }
@@ -198,6 +250,12 @@ int cmd_sim(int argc, char **argv)
     b = cli_board_new("sim", plant, variant, &bp);
     if (!b)
         return 2;
+    if (record) {                      /* as at loadrt: the spec's defaults, the block applied by the first period */
+        free(b);
+        b = cli_board_new("sim", plant, variant, 0);
+        if (!b)
+            return 2;
+    }
     if (volts_text && cli_parse_list("sim", "--volts", volts_text, volt_names, b->sense.channels, volts)) {
         free(b);
         return 2;
@@ -206,7 +264,13 @@ int cmd_sim(int argc, char **argv)
         free(b);
         return 1;
     }
+    if (record && record_open(&rec, record, b)) {
+        cli_out_close("sim", &csv, 0);
+        free(b);
+        return 1;
+    }
     hg_board_inputs_default(b, &in);
+    in.params = bp;                            /* (in force already unless recording) */
     in.dout_values = 1u << in.estop_loop_out;   /* E-STOP loop closed: amplifiers on */
     for (k = 0; k < b->sense.channels; k++)
         in.dac_v[k] = volts[k];
@@ -215,6 +279,8 @@ int cmd_sim(int argc, char **argv)
     write_row(csv.f, 0.0, pl, &out);
     for (s = 0; s < n; s++) {
         hg_board_step(b, &in, &out, period_ns);
+        if (record)
+            record_row(&rec, s, b, &in, &out, period_ns);
         if (out.events & HG_EV_SUBSTEPS_AUTO) {
             char why[HG_BOARD_TEXT_LEN];
             hg_board_describe_stiffness(b, &out, period_ns, 0, why);
@@ -242,6 +308,8 @@ int cmd_sim(int argc, char **argv)
         write_row(csv.f, (double)(s + 1) * dt, pl, &out);   /* no drift from summing dt */
     }
     if (cli_out_close("sim", &csv, 1))       /* the rows before a failure are kept */
+        rc = rc ? rc : -1;
+    if (record && cli_out_close("sim", &rec.out, 1))
         rc = rc ? rc : -1;
     free(b);
     return rc ? 1 : 0;
