@@ -216,9 +216,9 @@ int hg_board_rec_fields(hg_board_rec_field *f, int max, int plant, int format)
         int s;
         add(&t, "in.params-fp", "", HG_BRF_U32, HG_BRS_PARAMS_FP, 0);
         for (s = 0; s < HG_BOARD_REC_SLOTS; s++) {
-            add(&t, slot_name[s][0], "", HG_BRF_U32, HG_BRS_EVENT, (unsigned long)(3 * s));
-            add(&t, slot_name[s][1], "", HG_BRF_F64, HG_BRS_EVENT, (unsigned long)(3 * s + 1));
-            add(&t, slot_name[s][2], "", HG_BRF_U32, HG_BRS_EVENT, (unsigned long)(3 * s + 2));
+            add(&t, slot_name[s][0], "", HG_BRF_U32, HG_BRS_EVENT, 3ul * (unsigned long)s);
+            add(&t, slot_name[s][1], "", HG_BRF_F64, HG_BRS_EVENT, 3ul * (unsigned long)s + 1ul);
+            add(&t, slot_name[s][2], "", HG_BRF_U32, HG_BRS_EVENT, 3ul * (unsigned long)s + 2ul);
         }
     }
     return finish(&t);

@@ -750,6 +750,8 @@ int cmd_replay(int argc, char **argv)
         return 1;
     }
     memset(&cols, 0, sizeof cols);
+    memset(&out_x, 0, sizeof out_x);   /* (the rows start at sample 0, which builds the boards) */
+    memset(&in, 0, sizeof in);
     cols.plant = pl;
     for (k = 0; k < pl->channels_max; k++) {
         snprintf(text, sizeof text, "out.z-%d", k);
