@@ -16,21 +16,17 @@ const hg_plant *hg_board_plant(const hg_board *b)
     return hg_plant_at(b->plant);
 }
 
-/* Entries of plant p's parameter table. */
-static int nparams(const hg_plant *p)
+/* Entries of b's parameter table. */
+static int nparams(const hg_board *b)
 {
-    int n;
-    p->table(&n);
-    return n;
+    return hg_board_plant(b)->nparams(b->variant);
 }
 
-int hg_board_params_default(int plant, hg_board_params *p)
+int hg_board_params_default(int plant, int variant, hg_board_params *p)
 {
-    const hg_plant *pl = hg_plant_at(plant);
     memset(p, 0, sizeof *p);
-    if (!pl)
+    if (hg_plant_defaults_at(plant, variant, &p->plant))
         return HG_ERR_BAD_PARAM;
-    pl->defaults(&p->plant);
     p->substeps = 1;
     p->integrator = HG_INTEGRATOR_DEFAULT;
     return HG_OK;
@@ -46,7 +42,7 @@ int hg_board_params_check(const hg_board *b, const hg_board_params *p, hg_bitset
         for (i = 0; i < HG_BOARD_WHY_LEN; i++)
             why[i] = 0;
     hg_bitset_clear(&s);
-    pl->check(&p->plant, &s, why);
+    pl->check(b->variant, &p->plant, &s, why);
     if (!(p->substeps >= 1 && p->substeps <= HG_SUBSTEPS_MAX)) {
         hg_bitset_set(&s, HG_BOARD_BIT_SUBSTEPS);
         if (why)
@@ -64,13 +60,12 @@ int hg_board_params_check(const hg_board *b, const hg_board_params *p, hg_bitset
 
 const char *hg_board_param_hal_name(const hg_board *b, int bit)
 {
-    int n;
-    const hg_param_info *t = hg_board_plant(b)->table(&n);
+    hg_param_info e;
     if (bit == HG_BOARD_BIT_SUBSTEPS)
         return "substeps";
     if (bit == HG_BOARD_BIT_INTEGRATOR)
         return "integrator";
-    return bit >= 0 && bit < n ? t[bit].hal_name : 0;
+    return hg_plant_param(hg_board_plant(b), b->variant, bit, &e) == 0 ? e.hal_name : 0;
 }
 
 /* Latch the fault with code rc (first cause wins; event once, into out if given). */
@@ -109,12 +104,12 @@ int hg_board_init(hg_board *b, int plant, int variant, const hg_board_params *p)
     const char *field, *why;
     int k, rc;
     memset(b, 0, sizeof *b);
-    if (!pl || variant < 0 || variant >= pl->nvariants)
+    if (!pl || !hg_plant_nparams_at(plant, variant))
         return HG_ERR_BAD_PARAM;
     b->plant = plant;
     b->variant = variant;
     if (!p) {                         /* the defaults, built where the block in force lives */
-        hg_board_params_default(plant, &b->last_in);
+        hg_board_params_default(plant, variant, &b->last_in);
         p = &b->last_in;
     }
     if (hg_board_params_check(b, p, 0, 0))
@@ -151,9 +146,9 @@ void hg_board_inputs_default(const hg_board *b, hg_board_inputs *in)
 }
 
 /* 1 when the parameter blocks of plant p differ bitwise (a NaN equals itself). */
-static int params_differ(const hg_plant *p, const hg_board_params *a, const hg_board_params *c)
+static int params_differ(const hg_board *b, const hg_board_params *a, const hg_board_params *c)
 {
-    return memcmp(a->plant.v, c->plant.v, (unsigned long)nparams(p) * sizeof(double)) != 0 || // NOLINT(bugprone-suspicious-memory-comparison): all doubles, bitwise on purpose
+    return memcmp(a->plant.v, c->plant.v, (unsigned long)nparams(b) * sizeof(double)) != 0 || // NOLINT(bugprone-suspicious-memory-comparison): all doubles, bitwise on purpose
            a->substeps != c->substeps || a->integrator != c->integrator;
 }
 
@@ -166,7 +161,7 @@ static void find_substeps(hg_board *b, long period_ns, hg_board_outputs *out)
     int rc;
     if (b->stab_period_ns == period_ns)
         return;
-    rc = hg_board_plant(b)->stability(&b->in_force.plant, b->integrator, (double)period_ns * 1e-9,
+    rc = hg_board_plant(b)->stability(b->variant, &b->in_force.plant, b->integrator, (double)period_ns * 1e-9,
                                       b->substeps, HG_SUBSTEPS_MAX, &need, &b->stiff_param,
                                       &b->stiff_dt_max_s);
     b->stab_period_ns = period_ns;
@@ -198,7 +193,7 @@ static void apply_params(hg_board *b, const hg_board_params *want, hg_board_outp
         refuse(b, out, HG_ERR_BAD_PARAM);
         return;
     }
-    if (!params_differ(pl, want, &b->in_force))
+    if (!params_differ(b, want, &b->in_force))
         return;                       /* back to the block in force: nothing to do */
     rc = pl->build(&b->m_new, &want->plant, b->variant, (int)want->integrator, &field, &why);
     if (rc) {                         /* passed the checks, could not be built */
@@ -210,7 +205,7 @@ static void apply_params(hg_board *b, const hg_board_params *want, hg_board_outp
         unsigned need;
         int param;
         double dt_max;
-        if (pl->stability(&want->plant, (int)want->integrator, (double)b->stab_period_ns * 1e-9,
+        if (pl->stability(b->variant, &want->plant, (int)want->integrator, (double)b->stab_period_ns * 1e-9,
                           want->substeps, HG_SUBSTEPS_MAX, &need, &param, &dt_max)) {
             hg_bitset_clear(&out->refused);
             hg_bitset_set(&out->refused, param);
@@ -220,7 +215,7 @@ static void apply_params(hg_board *b, const hg_board_params *want, hg_board_outp
             return;
         }
     }
-    change = pl->change(&b->in_force.plant, &want->plant);
+    change = pl->change(b->variant, &b->in_force.plant, &want->plant);
     b->m = b->m_new;
     pl->params_of(&b->m, &b->in_force.plant);
     b->in_force.substeps = want->substeps;
@@ -378,7 +373,7 @@ static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outpu
     out->watchdog_expired = b->wd.expired;
     out->param_error = b->param_error;
     out->dac_nan = b->dac_nan != 0;
-    memcpy(out->params.plant.v, b->in_force.plant.v, (unsigned long)nparams(hg_board_plant(b)) * sizeof(double));
+    memcpy(out->params.plant.v, b->in_force.plant.v, (unsigned long)nparams(b) * sizeof(double));
     out->params.substeps = b->in_force.substeps;    /* (the entries past the plant's stay 0) */
     out->params.integrator = b->in_force.integrator;
     out->substeps_run = b->substeps_run;
@@ -461,7 +456,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
             b->order_bad_run = b->order_reported = 0;
             out->events |= HG_EV_RESET_DONE;
         }
-    } else if (params_differ(pl, &in->params, &b->last_in)) {
+    } else if (params_differ(b, &in->params, &b->last_in)) {
         apply_params(b, &in->params, out);
     }
     b->prev_reset = in->reset != 0;
@@ -527,9 +522,8 @@ void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out,
                                  char buf[HG_BOARD_TEXT_LEN])
 {
     const unsigned long n = HG_BOARD_TEXT_LEN;
-    int np;
-    const hg_param_info *t = hg_board_plant(b)->table(&np);
-    const hg_param_info *e = out->stiff_param >= 0 && out->stiff_param < np ? &t[out->stiff_param] : 0;
+    hg_param_info info;
+    const hg_param_info *e = hg_plant_param(hg_board_plant(b), b->variant, out->stiff_param, &info) == 0 ? &info : 0;
     buf[0] = '\0';
     if (!e)
         return;

@@ -207,9 +207,10 @@ typedef struct {
 /* The plant of a board (the registry's entry). */
 const hg_plant *hg_board_plant(const hg_board *b);
 
-/* The spec's parameter block of plant `plant` (registry index): its
- * defaults, 1 substep, Heun. 0, or HG_ERR_BAD_PARAM for an unknown plant. */
-int hg_board_params_default(int plant, hg_board_params *p);
+/* The spec's parameter block of plant `plant` (registry index) with model
+ * variant `variant`: its defaults, 1 substep, Heun. 0, or
+ * HG_ERR_BAD_PARAM for an unknown plant or variant. */
+int hg_board_params_default(int plant, int variant, hg_board_params *p);
 
 /* Power-up: plant `plant` (registry index, hg_plants.h) with model
  * variant `variant` and parameter block p (0: the plant's defaults, 1

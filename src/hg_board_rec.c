@@ -119,21 +119,21 @@ static void inputs(builder *t, int nch)
     array(t, "in.enc-glitch", HG_BRF_S32, HG_BRS_IN, IN_OFF(enc_glitch), sizeof(int), nch, 1, 0);
 }
 
-/* The plant's injections, one packed column each. */
-static void injections(builder *t, const hg_plant *p)
+/* The plant's injections, one packed column each (nch: its channels). */
+static void injections(builder *t, const hg_plant *p, int nch)
 {
     int i;
     for (i = 0; i < p->ninjections; i++) {
         char name[HG_BOARD_REC_NAME];
         join(name, "in.", p->injections[i].hal_name);
-        pack(t, name, HG_BRS_IN, IN_OFF(inject), p->channels_max, 1, sizeof(int), i);
+        pack(t, name, HG_BRS_IN, IN_OFF(inject), nch, 1, sizeof(int), i);
     }
 }
 
 /* The outputs replay compares: the sensors, the state, the plant's own. */
-static void outputs(builder *t, const hg_plant *p, int motor_pos)
+static void outputs(builder *t, const hg_plant *p, int nch, int motor_pos)
 {
-    int nch = p->channels_max, i;
+    int i;
     array(t, "out.count", HG_BRF_S32, HG_BRS_OUT, OUT_OFF(count), sizeof(int), HG_BOARD_ENCODERS, 2, 0);
     pack(t, "out.index", HG_BRS_OUT, OUT_OFF(index), HG_BOARD_ENCODERS, 1, sizeof(int), 0);
     pack(t, "out.index-latched", HG_BRS_OUT, OUT_OFF(index_latched), HG_BOARD_ENCODERS, 1, sizeof(int), 0);
@@ -180,31 +180,33 @@ static int finish(builder *t)
     return t->n;
 }
 
-int hg_board_rec_fields(hg_board_rec_field *f, int max, int plant, int format)
+int hg_board_rec_fields(hg_board_rec_field *f, int max, int plant, int variant, int format)
 {
     const hg_plant *p = hg_plant_at(plant);
     builder t;
-    int k, np;
-    const hg_param_info *pt;
+    int k, np, nch;
     t.f = f;
     t.n = 0;
     t.max = max;
-    if (!p || (format == 1 && plant != 0) || format < 1 || format > 2)
+    if (!p || !hg_plant_nparams_at(plant, variant) || (format == 1 && plant != 0) || format < 1 || format > 2)
         return -1;
-    pt = p->table(&np);
+    np = p->nparams(variant);
+    nch = p->channels(variant);
     add(&t, "in.period-ns", "", HG_BRF_S32, HG_BRS_PERIOD, 0);
     if (format == 2)
         add(&t, "in.plant", "", HG_BRF_U32, HG_BRS_PLANT, 0);
     add(&t, "in.model", "", HG_BRF_U32, HG_BRS_MODEL, 0);
-    inputs(&t, p->channels_max);
-    injections(&t, p);
+    inputs(&t, nch);
+    injections(&t, p, nch);
     in1(&t, "in.substeps", HG_BRF_U32, IN_OFF(params.substeps), 0);
     in1(&t, "in.integrator", HG_BRF_U32, IN_OFF(params.integrator), 0);
-    outputs(&t, p, format == 2);
+    outputs(&t, p, nch, format == 2);
     if (format == 1) {                /* every parameter, every period */
         for (k = 0; k < np; k++) {
-            hg_board_rec_field *e = add(&t, "in.param-", pt[k].hal_name, HG_BRF_F64, HG_BRS_PARAM,
-                                        (unsigned long)k);
+            hg_param_info e0;
+            hg_board_rec_field *e;
+            p->param(variant, k, &e0);
+            e = add(&t, "in.param-", e0.hal_name, HG_BRF_F64, HG_BRS_PARAM, (unsigned long)k);
             if (e)
                 e->nonfinite = 1;
         }

@@ -86,10 +86,10 @@ typedef struct {
 } hg_board_rec_field;
 
 /* Fill f[0..max) with the table of `format` (1 or 2) for the plant at
- * registry index `plant` (format 1: the Hexaglide only); returns the
- * number of entries, or -1 if max is too small or the plant or format is
- * unknown. */
-int hg_board_rec_fields(hg_board_rec_field *f, int max, int plant, int format);
+ * registry index `plant` with model variant `variant` (its channels;
+ * format 1: the Hexaglide only); returns the number of entries, or -1 if
+ * max is too small or the plant, variant or format is unknown. */
+int hg_board_rec_fields(hg_board_rec_field *f, int max, int plant, int variant, int format);
 
 /* One parameter event (format 2). */
 typedef struct {

@@ -23,7 +23,7 @@ int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p)
     int k, rc;
     if (c->period_ns <= 0 || c->period_ns > HG_PERIOD_MAX_NS)
         return HG_ERR_BAD_DT;
-    if (!pl || c->variant < 0 || c->variant >= pl->nvariants)
+    if (!pl || !hg_plant_nparams_at(c->plant, c->variant))
         return HG_ERR_BAD_PARAM;
     L->cfg = *c;
     rc = hg_board_init(&L->board, c->plant, c->variant, p);

@@ -25,11 +25,20 @@ int hg_plant_find(const char *name)
 
 int hg_plant_variant(const hg_plant *p, const char *name)
 {
-    int i;
-    if (!name)
-        return p->default_variant;
-    for (i = 0; i < p->nvariants; i++)
-        if (strcmp(p->variants[i], name) == 0)
+    return name ? p->variant_of(name) : p->default_variant;
+}
+
+int hg_plant_param(const hg_plant *p, int variant, int i, hg_param_info *out)
+{
+    return i >= 0 && i < p->nparams(variant) ? p->param(variant, i, out) : -1;
+}
+
+int hg_plant_param_find(const hg_plant *p, int variant, const char *name)
+{
+    hg_param_info e;
+    int i, n = p->nparams(variant);
+    for (i = 0; name && i < n; i++)
+        if (p->param(variant, i, &e) == 0 && strcmp(e.name, name) == 0)
             return i;
     return -1;
 }
@@ -48,19 +57,25 @@ unsigned hg_plant_switches(double pos, double limit_min, double limit_max, doubl
     return s;
 }
 
-const hg_param_info *hg_plant_params_table(int plant, int *count)
+int hg_plant_nparams_at(int plant, int variant)
 {
     const hg_plant *p = hg_plant_at(plant);
-    *count = 0;
-    return p ? p->table(count) : 0;
+    char buf[HG_PLANT_TEXT_LEN];
+    return p && p->variant_name(variant, buf, (int)sizeof buf) == 0 ? p->nparams(variant) : 0;
 }
 
-int hg_plant_params_defaults(int plant, hg_plant_params *v)
+int hg_plant_param_at(int plant, int variant, int i, hg_param_info *out)
 {
     const hg_plant *p = hg_plant_at(plant);
-    if (!p)
+    return p && i < hg_plant_nparams_at(plant, variant) ? hg_plant_param(p, variant, i, out) : -1;
+}
+
+int hg_plant_defaults_at(int plant, int variant, hg_plant_params *v)
+{
+    const hg_plant *p = hg_plant_at(plant);
+    if (!hg_plant_nparams_at(plant, variant))
         return -1;
-    p->defaults(v);
+    p->defaults(variant, v);
     return 0;
 }
 

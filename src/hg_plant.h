@@ -98,55 +98,62 @@ enum {
     HG_PLANT_CHANGE_RESCALE = 1u << 1  /* the encoders' turns per unit of travel changed */
 };
 
-/* Everything the board needs of a plant. */
+/* Everything the board needs of a plant. The model variant (the
+ * Hexaglide's parametrization; a serial machine's axes, "XYZC") is fixed
+ * at load: the parameter table, the channels in use and their units may
+ * depend on it. */
 typedef struct {
     const char *name;                /* "hexaglide" */
     const char *what;                /* one line */
     const char *ini_section;         /* the INI section of its parameters ("HEXAGLIDE") */
-    int channels_max;                /* channels it can use (HAL exports joint-0..channels_max-1) */
-    int nvariants;                   /* model variants (parametrizations), at least 1 */
-    const char *const *variants;     /* their names */
-    int default_variant;             /* the one a board loads without being told */
+    const char *variants_help;       /* what model= takes, for messages */
+    int default_variant;             /* the variant a board loads without being told */
     const hg_plant_output *outputs;  /* its extra outputs (sense.extra[i]) */
     int noutputs;
     const hg_plant_injection *injections; /* its per-channel fault injections (bit i of inject[ch]) */
     int ninjections;
     unsigned long model_bytes, data_bytes; /* sizes of its model and data types (<= the storage) */
     unsigned long state_bytes;       /* the first state_bytes of its data are its whole state */
-    /* its parameter table and length */
-    const hg_param_info *(*table)(int *count);
+    /* the variant called name (model=), or -1 */
+    int (*variant_of)(const char *name);
+    /* its name into buf (len bytes): 0, or -1 for no such variant */
+    int (*variant_name)(int variant, char *buf, int len);
+    /* channels in use (1..HG_CHANNELS_MAX): HAL exports joint-0 .. joint-(n-1) */
+    int (*channels)(int variant);
+    /* entries of its parameter table, and entry i (units as the variant
+     * has them: a rotary axis's positions in rad, deg on HAL): 0 or -1 */
+    int (*nparams)(int variant);
+    int (*param)(int variant, int i, hg_param_info *out);
     /* the spec's defaults into v */
-    void (*defaults)(hg_plant_params *v);
+    void (*defaults)(int variant, hg_plant_params *v);
     /* check v: 0, or HG_ERR_BAD_PARAM with every invalid entry's bit set in
      * *bad and, if why is given, why[i] its reason (static strings) */
-    int (*check)(const hg_plant_params *v, hg_bitset *bad, const char *why[HG_PLANT_PARAMS_MAX]);
-    /* channels in use with parameters v (a valid block) */
-    int (*channels)(const hg_plant_params *v);
+    int (*check)(int variant, const hg_plant_params *v, hg_bitset *bad, const char *why[HG_PLANT_PARAMS_MAX]);
     /* build the model: 0, or a code with *field, *why naming the cause */
     int (*build)(hg_plant_model *m, const hg_plant_params *v, int variant, int integrator,
                  const char **field, const char **why);
-    /* the scheme of a built model: change it (0 or HG_ERR_BAD_PARAM) */
-    int (*set_integrator)(hg_plant_model *m, int integrator);
     /* the parameter block of a built model */
     void (*params_of)(const hg_plant_model *m, hg_plant_params *v);
     /* HOME at rest: 0 or a code */
     int (*reset)(const hg_plant_model *m, hg_plant_data *d);
     /* a change from parameters a to b: HG_PLANT_CHANGE_* bits */
-    unsigned (*change)(const hg_plant_params *a, const hg_plant_params *b);
+    unsigned (*change)(int variant, const hg_plant_params *a, const hg_plant_params *b);
     /* how many steps of one period the scheme needs to integrate v stably
      * (substeps_min..substeps_max): 0 and *substeps, or HG_ERR_STIFF; both
      * name the limiting table entry (*param, -1 if none) and its longest
      * stable step *dt_max_s */
-    int (*stability)(const hg_plant_params *v, int integrator, double period_s, unsigned substeps_min,
-                     unsigned substeps_max, unsigned *substeps, int *param, double *dt_max_s);
+    int (*stability)(int variant, const hg_plant_params *v, int integrator, double period_s,
+                     unsigned substeps_min, unsigned substeps_max, unsigned *substeps, int *param,
+                     double *dt_max_s);
     /* apply injections inject[ch] (bits of the injection table) before a
      * step; returns per injection entry i a mask of the channels it newly
      * acted on in acted[i] */
     void (*inject)(const hg_plant_model *m, hg_plant_data *d, const unsigned inject[HG_CHANNELS_MAX],
                    unsigned acted[HG_PLANT_INJECT_MAX]);
     /* one step of dt with drive commands volts[ch] (DAC volts; the amplifier
-     * of channel ch is on when bit ch of enabled is set): 0, or a code with
-     * d's state unchanged and *r (may be 0) naming what was struck */
+     * of channel ch is on when bit ch of enabled is set): 0, or a code
+     * (the caller restores the state it saved) with *r (may be 0) naming
+     * what was struck */
     int (*step)(const hg_plant_model *m, hg_plant_data *d, const double volts[HG_CHANNELS_MAX],
                 unsigned enabled, double dt_s, hg_plant_report *r);
     /* what the sensors show */
@@ -164,13 +171,22 @@ int hg_plant_find(const char *name);
 /* Variant called name of plant p (its default for a null name), or -1. */
 int hg_plant_variant(const hg_plant *p, const char *name);
 
-/* For bindings that cannot follow the struct (Python): plant i's
- * parameter table (0 and *count 0 for an unknown plant), its defaults (0,
- * or -1 for an unknown plant) and its name (0 if unknown). */
-const hg_param_info *hg_plant_params_table(int plant, int *count);
-int hg_plant_params_defaults(int plant, hg_plant_params *v);
+/* Entry i of plant p's table with model variant v (units as the variant
+ * has them) into *out: 0, or -1 past the table. */
+int hg_plant_param(const hg_plant *p, int variant, int i, hg_param_info *out);
+
+/* Index of the entry called name, or -1. */
+int hg_plant_param_find(const hg_plant *p, int variant, const char *name);
+
+/* The same by registry index, for bindings that cannot follow the struct
+ * (Python): the number of entries (0 for an unknown plant or variant),
+ * entry i (0 or -1), the defaults (0 or -1), the name (0 if unknown) and
+ * the variant called name (-1 if unknown). */
+int hg_plant_nparams_at(int plant, int variant);
+int hg_plant_param_at(int plant, int variant, int i, hg_param_info *out);
+int hg_plant_defaults_at(int plant, int variant, hg_plant_params *v);
 const char *hg_plant_name_at(int plant);
-int hg_plant_variant_named(int plant, const char *name);   /* hg_plant_variant of plant i, -1 if unknown */
+int hg_plant_variant_named(int plant, const char *name);
 
 /* Switch bits (HG_SW_*) of a load at pos with limit switches at limit_min
  * (tripped at or below) and limit_max (at or above) and a home switch on

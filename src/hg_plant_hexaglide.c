@@ -72,24 +72,63 @@ static void params_to(const hg_params *p, hg_plant_params *v)
         v->v[i] = hg_params_get(p, i);
 }
 
-static void defaults(hg_plant_params *v)
+/* The variants are the parametrizations (hg_model_names). */
+static int variant_of(const char *name)
+{
+    return hg_model_from_name(name);
+}
+
+static int variant_name(int variant, char *buf, int len)
+{
+    const char *n = hg_model_name((hg_model_kind)variant);
+    int k;
+    if (!n || len < 1)
+        return -1;
+    for (k = 0; n[k] && k < len - 1; k++)
+        buf[k] = n[k];
+    buf[k] = '\0';
+    return 0;
+}
+
+static int channels(int variant)
+{
+    (void)variant;
+    return CHANNELS;
+}
+
+static int nparams(int variant)
+{
+    int n;
+    (void)variant;
+    hg_params_table(&n);
+    return n;
+}
+
+static int param(int variant, int i, hg_param_info *out)
+{
+    int n;
+    const hg_param_info *t = hg_params_table(&n);
+    (void)variant;
+    if (i < 0 || i >= n)
+        return -1;
+    *out = t[i];
+    return 0;
+}
+
+static void defaults(int variant, hg_plant_params *v)
 {
     hg_params p;
+    (void)variant;
     hg_params_default(&p);
     params_to(&p, v);
 }
 
-static int check(const hg_plant_params *v, hg_bitset *bad, const char *why[HG_PLANT_PARAMS_MAX])
+static int check(int variant, const hg_plant_params *v, hg_bitset *bad, const char *why[HG_PLANT_PARAMS_MAX])
 {
     hg_params p;
+    (void)variant;
     params_from(v, &p);
     return hg_params_check_all(&p, bad, why);
-}
-
-static int channels(const hg_plant_params *v)
-{
-    (void)v;
-    return CHANNELS;
 }
 
 static int build(hg_plant_model *m, const hg_plant_params *v, int variant, int integrator,
@@ -109,11 +148,6 @@ static int build(hg_plant_model *m, const hg_plant_params *v, int variant, int i
     return rc;
 }
 
-static int set_integrator(hg_plant_model *m, int integrator)
-{
-    return hg_model_set_integrator(&((hexaglide_model *)m->store)->m, integrator);
-}
-
 static void params_of(const hg_plant_model *m, hg_plant_params *v)
 {
     params_to(&model_of(m)->p, v);
@@ -127,10 +161,11 @@ static int reset(const hg_plant_model *m, hg_plant_data *d)
 /* The machine's shape (l, lb, e, lp: where HOME is) restarts it; the
  * joints' ranges and the bar diameter are limits, not shape. A new lead
  * or counts-per-rev rescales the encoders. */
-static unsigned change(const hg_plant_params *a, const hg_plant_params *b)
+static unsigned change(int variant, const hg_plant_params *a, const hg_plant_params *b)
 {
     hg_params p, q;
     unsigned c = 0;
+    (void)variant;
     params_from(a, &p);
     params_from(b, &q);
     if (p.geo.l_m != q.geo.l_m || p.geo.lb_m != q.geo.lb_m || p.geo.e_m != q.geo.e_m || p.geo.lp_m != q.geo.lp_m)
@@ -140,17 +175,19 @@ static unsigned change(const hg_plant_params *a, const hg_plant_params *b)
     return c;
 }
 
-static int stability(const hg_plant_params *v, int integrator, double period_s, unsigned substeps_min,
-                     unsigned substeps_max, unsigned *substeps, int *param, double *dt_max_s)
+static int stability(int variant, const hg_plant_params *v, int integrator, double period_s,
+                     unsigned substeps_min, unsigned substeps_max, unsigned *substeps, int *limit,
+                     double *dt_max_s)
 {
     hg_stability st;
     hg_params p;
     int n, rc;
     const hg_param_info *t = hg_params_table(&n);
+    (void)variant;
     params_from(v, &p);
     rc = hg_stability_check(&p, (hg_integrator)integrator, period_s, substeps_min, substeps_max, &st);
     *substeps = st.substeps;
-    *param = hg_param_find(t, n, st.param);
+    *limit = hg_param_find(t, n, st.param);
     *dt_max_s = st.dt_max_s;
     return rc;
 }
@@ -245,9 +282,7 @@ const hg_plant hg_plant_hexaglide = {
     "hexaglide",
     "the UPNa Hexaglide: six ball-screw carriages on three posts, six bars, a head",
     "HEXAGLIDE",
-    CHANNELS,
-    HG_MODEL_COUNT,
-    hg_model_names,
+    "standard, reduced-joints, reduced-cartesian (the default) or fused-cartesian",
     HG_MODEL_REDUCED_CARTESIAN,
     outputs,
     X_COUNT,
@@ -256,12 +291,14 @@ const hg_plant hg_plant_hexaglide = {
     sizeof(hexaglide_model),
     sizeof(hg_data),
     HG_DATA_STATE_BYTES,
-    hg_params_table,
+    variant_of,
+    variant_name,
+    channels,
+    nparams,
+    param,
     defaults,
     check,
-    channels,
     build,
-    set_integrator,
     params_of,
     reset,
     change,

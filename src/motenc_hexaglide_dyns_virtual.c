@@ -89,6 +89,7 @@ typedef struct {
     int recording;                    /* record was TRUE in the last period */
     const char *why[HG_BOARD_WHY_LEN]; /* a refusal's reasons (too large for the stack) */
     int nparams;                      /* entries of the plant's parameter table */
+    hg_param_info info[HG_PLANT_PARAMS_MAX]; /* that table as the loaded model has it (units) */
 } board_t;
 
 static int comp_id;
@@ -163,8 +164,8 @@ static void misc_update(void *arg, long period)
  * (SI); 1 if any did (a setp since the last period). */
 static int read_params(board_t *b)
 {
-    int i, n, changed = 0;
-    const hg_param_info *t = hg_board_plant(&b->b)->table(&n);
+    const hg_param_info *t = b->info;
+    int i, n = b->nparams, changed = 0;
     for (i = 0; i < n; i++) {
         double v = b->par[i];
         if (memcmp(&v, &b->shadow[i], sizeof v) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise, a NaN a user set equals itself
@@ -181,8 +182,8 @@ static int read_params(board_t *b)
 /* Show the block in force: every field the board holds differently is written back. */
 static void write_params(board_t *b)
 {
-    int i, n;
-    const hg_param_info *t = hg_board_plant(&b->b)->table(&n);
+    const hg_param_info *t = b->info;
+    int i, n = b->nparams;
     for (i = 0; i < n; i++) {
         double *want = &b->ins.params.plant.v[i];
         double got = b->o.params.plant.v[i];
@@ -201,8 +202,8 @@ static void report_refusal(board_t *b, long period)
 {
     hg_bitset bad;
     char v[HG_TEXT_VALUE_LEN];
-    int i, n;
-    const hg_param_info *t = hg_board_plant(&b->b)->table(&n);
+    const hg_param_info *t = b->info;
+    int i, n = b->nparams;
     if (b->o.param_rc != HG_ERR_BAD_PARAM) {
         char what[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&b->b, &b->o, period, 1, what);
@@ -299,7 +300,7 @@ static void publish(board_t *b)
     const hg_board_outputs *o = &b->o;
     const hg_plant *pl = hg_board_plant(&b->b);
     int k;
-    for (k = 0; k < pl->channels_max; k++) {
+    for (k = 0; k < o->channels; k++) {
         joint_hal *j = &b->joint[k];
         double unit = (o->rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M; /* machine units */
         *j->pos = o->pos[k] * unit;
@@ -379,7 +380,7 @@ static void dynamics(void *arg, long period)
         in->adc_offset[k] = b->adc[k].offset;
     }
     in->adc_volts_per_amp = b->adc_volts_per_amp;
-    for (k = 0; k < hg_board_plant(&b->b)->channels_max; k++) {
+    for (k = 0; k < b->o.channels; k++) {
         joint_hal *j = &b->joint[k];
         int i;
         in->amp_fail[k] = *j->amp_fail;
@@ -399,7 +400,7 @@ static void dynamics(void *arg, long period)
     b->recording = b->record;
 
     in->dac_written = in->dac_stale = in->adc_read = 0;
-    for (k = 0; k < hg_board_plant(&b->b)->channels_max; k++)
+    for (k = 0; k < b->o.channels; k++)
         if (in->enc_glitch[k])
             *b->joint[k].enc_glitch = 0;  /* applied once */
     if (b->o.events & HG_EV_WATCHDOG_KICKED)
@@ -487,7 +488,7 @@ static int export_motenc(board_t *b)
 static int export_rec(board_t *b)
 {
     int rc, i;
-    b->nrec = hg_board_rec_fields(b->rec, HG_BOARD_REC_MAX, b->b.plant, HG_BOARD_REC_FORMAT);
+    b->nrec = hg_board_rec_fields(b->rec, HG_BOARD_REC_MAX, b->b.plant, b->b.variant, HG_BOARD_REC_FORMAT);
     if (b->nrec < 0)
         return -EINVAL;
     for (i = 0; i < b->nrec; i++) {
@@ -508,9 +509,11 @@ static int export_extra(board_t *b)
 {
     static const char *const sw[3] = {"min", "max", "home"};
     const hg_plant *pl = hg_board_plant(&b->b);
-    int rc, k, i, n, id = b->id;
-    const hg_param_info *t = pl->table(&n);
-    for (k = 0; k < pl->channels_max; k++) {
+    int rc, k, i, n = pl->nparams(b->b.variant), id = b->id;
+    const hg_param_info *t = b->info;
+    for (k = 0; k < n; k++)
+        pl->param(b->b.variant, k, &b->info[k]);
+    for (k = 0; k < b->o.channels; k++) {
         joint_hal *j = &b->joint[k];
         PIN(float, HAL_OUT, &j->pos, XP ".%d.joint-%d.pos", id, k);
         PIN(float, HAL_OUT, &j->vel, XP ".%d.joint-%d.vel", id, k);
@@ -584,10 +587,8 @@ int rtapi_app_main(void)
     }
     kind = hg_plant_variant(pl, model);
     if (kind < 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": model=%s unknown for plant=%s; use", model, pl->name);
-        for (k = 0; k < pl->nvariants; k++)
-            rtapi_print_msg(RTAPI_MSG_ERR, "%s %s", k ? "," : "", pl->variants[k]);
-        rtapi_print_msg(RTAPI_MSG_ERR, "\n");
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": model=%s unknown for plant=%s; use %s\n", model, pl->name,
+                        pl->variants_help);
         return -EINVAL;
     }
     if (board < 0 || board > 3) {
@@ -632,8 +633,11 @@ int rtapi_app_main(void)
     encoder_read(b, 0);
     digital_in_read(b, 0);
     misc_update(b, 0);
-    rtapi_print_msg(RTAPI_MSG_INFO, MODNAME ": board %d, plant %s, model %s, ready\n", board, pl->name,
-                    pl->variants[kind]);
+    {
+        char vn[HG_PLANT_TEXT_LEN];
+        pl->variant_name(kind, vn, (int)sizeof vn);
+        rtapi_print_msg(RTAPI_MSG_INFO, MODNAME ": board %d, plant %s, model %s, ready\n", board, pl->name, vn);
+    }
     hal_ready(comp_id);
     return 0;
 }

@@ -213,14 +213,21 @@ class ParamInfo(C.Structure):
                 ("ini_key", C.c_char_p)]
 
 
-_params_table = _sig("hg_params_table", C.POINTER(ParamInfo), C.POINTER(C.c_int))
+_plant_nparams = _sig("hg_plant_nparams_at", C.c_int, C.c_int, C.c_int)
+_plant_param = _sig("hg_plant_param_at", C.c_int, C.c_int, C.c_int, C.c_int, C.POINTER(ParamInfo))
 
 
-def params_table():
-    """The parameter table: [ParamInfo] (spec name, SI unit, HAL name, HAL unit, HAL scale, INI key)."""
-    n = C.c_int()
-    base = _params_table(C.byref(n))
-    return [base[i] for i in range(n.value)]
+def params_table(plant=0, variant=None):
+    """A plant's parameter table (default the Hexaglide's): [ParamInfo] (spec name, SI unit, HAL name,
+    HAL unit, HAL scale, INI key), units as the model variant (default the plant's) has them."""
+    if variant is None:
+        variant = _plant_variant_named(plant, None)
+    out = []
+    for i in range(_plant_nparams(plant, variant)):
+        e = ParamInfo()
+        _plant_param(plant, variant, i, C.byref(e))
+        out.append(e)
+    return out
 
 
 class Params:

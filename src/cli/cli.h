@@ -89,7 +89,7 @@ int cli_parse_list(const char *cmd, const char *opt, const char *text, const cha
 /* Apply "name=value" (spec name of plant's table, SI unit) to v: the
  * table entry set, or -1 with a message "hexaglide CMD: --set: ..."
  * naming the problem. */
-int cli_parse_set(const char *cmd, const char *text, int plant, hg_plant_params *v);
+int cli_parse_set(const char *cmd, const char *text, int plant, int variant, hg_plant_params *v);
 
 /* ---- the machine (cli_board.c) ---- */
 
@@ -101,12 +101,12 @@ int cli_plant(const char *cmd, const char *name);
  * or -1 after a message naming the variants there are. */
 int cli_variant(const char *cmd, int plant, const char *name);
 
-/* The model parameters of plant: the spec's defaults, then the plant's
+/* The model parameters of plant with model variant: the spec's defaults, then the plant's
  * section of the INI file ini (0: none; [HEXAGLIDE] for the Hexaglide),
  * then each of the nset "name=value" in sets (HOME is at pose 0 for any
  * Hexaglide geometry: h follows l, lb, lp). Not checked (the board or
  * cli_params_check do). 0, or 2 after a message. */
-int cli_params_build(const char *cmd, int plant, const char *ini, char *const *sets, int nset,
+int cli_params_build(const char *cmd, int plant, int variant, const char *ini, char *const *sets, int nset,
                      hg_plant_params *v);
 
 /* The same for the Hexaglide as its own parameter set (ik, fk), checked:
@@ -114,10 +114,10 @@ int cli_params_build(const char *cmd, int plant, const char *ini, char *const *s
 int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, int nset, hg_params *p);
 
 /* The board's parameter block of plant as HAL loads it (spec defaults, substeps, integrator). */
-void cli_board_defaults(int plant, hg_board_params *bp);
+void cli_board_defaults(int plant, int variant, hg_board_params *bp);
 
 /* 0 if v is a valid machine of plant, else 1 after one message per invalid field. */
-int cli_params_check(const char *cmd, int plant, const hg_plant_params *v);
+int cli_params_check(const char *cmd, int plant, int variant, const hg_plant_params *v);
 
 /* A board (malloc'd; free() it) of plant with model variant and block p (0: the plant's defaults),
  * or 0 after a message on stderr naming every invalid field (spec names,
@@ -163,7 +163,7 @@ int cli_ini_number(const char *cmd, const cli_ini *ini, const cli_ini_entry *e, 
 /* The plant's section ([HEXAGLIDE] for the Hexaglide) onto v (keys in
  * their HAL unit, mm for lengths); every unknown key, repeated key and
  * non-number is named. 0 or -1. */
-int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, hg_plant_params *v);
+int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int variant, hg_plant_params *v);
 
 /* [JOINT_0]..[JOINT_{joints-1}] gains and scales onto c, as
  * configs/hexaglide.hal wires them (absent keys keep c's values); each

@@ -22,27 +22,25 @@ int cli_plant(const char *cmd, const char *name)
 int cli_variant(const char *cmd, int plant, const char *name)
 {
     const hg_plant *p = hg_plant_at(plant);
-    int i, v = hg_plant_variant(p, name);
+    int v = hg_plant_variant(p, name);
     if (v >= 0)
         return v;
-    fprintf(stderr, "hexaglide %s: --model %s: not a model of the %s; use", cmd, name, p->name);
-    for (i = 0; i < p->nvariants; i++)
-        fprintf(stderr, "%s %s", i ? "," : "", p->variants[i]);
-    fprintf(stderr, "\n");
+    fprintf(stderr, "hexaglide %s: --model %s: not a model of the %s; use %s\n", cmd, name, p->name,
+            p->variants_help);
     return -1;
 }
 
-int cli_params_build(const char *cmd, int plant, const char *ini, char *const *sets, int nset,
+int cli_params_build(const char *cmd, int plant, int variant, const char *ini, char *const *sets, int nset,
                      hg_plant_params *v)
 {
     int i;
-    hg_plant_params_defaults(plant, v);
+    hg_plant_defaults_at(plant, variant, v);
     if (ini) {
         cli_ini f;
         int rc;
         if (cli_ini_read(cmd, ini, &f))
             return 2;
-        rc = cli_ini_apply_plant(cmd, &f, plant, v);
+        rc = cli_ini_apply_plant(cmd, &f, plant, variant, v);
         cli_ini_free(&f);
         if (rc) {
             fprintf(stderr, "hexaglide %s: fix the [%s] section of %s\n", cmd, hg_plant_at(plant)->ini_section, ini);
@@ -50,7 +48,7 @@ int cli_params_build(const char *cmd, int plant, const char *ini, char *const *s
         }
     }
     for (i = 0; i < nset; i++)
-        if (cli_parse_set(cmd, sets[i], plant, v) < 0)
+        if (cli_parse_set(cmd, sets[i], plant, variant, v) < 0)
             return 2;
     return 0;
 }
@@ -59,7 +57,8 @@ int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, in
 {
     hg_plant_params v;
     int i, n;
-    if (cli_params_build(cmd, 0, ini, sets, nset, &v) || cli_params_check(cmd, 0, &v))
+    const int variant = hg_plant_at(0)->default_variant;
+    if (cli_params_build(cmd, 0, variant, ini, sets, nset, &v) || cli_params_check(cmd, 0, variant, &v))
         return 2;
     hg_params_table(&n);
     hg_params_default(p);
@@ -68,33 +67,36 @@ int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, in
     return 0;
 }
 
-void cli_board_defaults(int plant, hg_board_params *bp)
+void cli_board_defaults(int plant, int variant, hg_board_params *bp)
 {
-    hg_board_params_default(plant, bp);
+    hg_board_params_default(plant, variant, bp);
 }
 
 /* One line per set bit: bit i < table length is parameter i, then the
  * board's substeps / integrator bits. */
-static void report_refused(const char *cmd, int plant, const hg_bitset *bad, const char *const *why)
+static void report_refused(const char *cmd, int plant, int variant, const hg_bitset *bad, const char *const *why)
 {
-    int i, n;
-    const hg_param_info *t = hg_plant_params_table(plant, &n);
-    for (i = 0; i < HG_BOARD_WHY_LEN; i++)
-        if (hg_bitset_has(bad, i))
-            fprintf(stderr, "hexaglide %s: bad parameter '%s': %s\n", cmd,
-                    i < n ? t[i].name : i == HG_BOARD_BIT_SUBSTEPS ? "--substeps" : "--integrator",
-                    why[i] ? why[i] : "invalid");
+    int i;
+    for (i = 0; i < HG_BOARD_WHY_LEN; i++) {
+        hg_param_info e;
+        if (!hg_bitset_has(bad, i))
+            continue;
+        fprintf(stderr, "hexaglide %s: bad parameter '%s': %s\n", cmd,
+                hg_plant_param_at(plant, variant, i, &e) == 0 ? e.name
+                : i == HG_BOARD_BIT_SUBSTEPS ? "--substeps" : "--integrator",
+                why[i] ? why[i] : "invalid");
+    }
 }
 
-int cli_params_check(const char *cmd, int plant, const hg_plant_params *v)
+int cli_params_check(const char *cmd, int plant, int variant, const hg_plant_params *v)
 {
     static const char *why[HG_BOARD_WHY_LEN];
     hg_bitset bad;
     memset(why, 0, sizeof why);
     hg_bitset_clear(&bad);
-    if (!hg_plant_at(plant)->check(v, &bad, why))
+    if (!hg_plant_at(plant)->check(variant, v, &bad, why))
         return 0;
-    report_refused(cmd, plant, &bad, why);
+    report_refused(cmd, plant, variant, &bad, why);
     return 1;
 }
 
@@ -108,9 +110,10 @@ hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_
         fprintf(stderr, "hexaglide %s: out of memory\n", cmd);
         return 0;
     }
-    b->plant = plant;                 /* the checks need the plant */
+    b->plant = plant;                 /* the checks need the plant and variant */
+    b->variant = variant;
     if (p && hg_board_params_check(b, p, &bad, why)) {
-        report_refused(cmd, plant, &bad, why);
+        report_refused(cmd, plant, variant, &bad, why);
         free(b);
         return 0;
     }

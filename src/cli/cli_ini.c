@@ -279,13 +279,15 @@ static void key_list(const hg_param_info *t, int n, char *buf, size_t len)
         used += (size_t)snprintf(buf + used, len - used, " %s", other_keys[k]);
 }
 
-int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, hg_plant_params *v)
+int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int variant, hg_plant_params *v)
 {
     const hg_plant *pl = hg_plant_at(plant);
     const char *sec = pl->ini_section;
-    int i, n, bad = 0;
-    const hg_param_info *t = pl->table(&n);
-    char keys[2048];
+    static hg_param_info t[HG_PLANT_PARAMS_MAX];
+    int i, n = pl->nparams(variant), bad = 0;
+    char keys[4096];
+    for (i = 0; i < n; i++)
+        pl->param(variant, i, &t[i]);
     size_t k;
     key_list(t, n, keys, sizeof keys);
     for (i = 0; i < ini->n; i++) {     /* every key of the section is one of ours */

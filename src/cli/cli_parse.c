@@ -130,20 +130,19 @@ int cli_parse_list(const char *cmd, const char *opt, const char *text, const cha
     return 0;
 }
 
-int cli_parse_set(const char *cmd, const char *text, int plant, hg_plant_params *p)
+int cli_parse_set(const char *cmd, const char *text, int plant, int variant, hg_plant_params *p)
 {
     char name[64];
     const char *eq = strchr(text, '=');
     double v;
-    int n, i;
-    const hg_param_info *t = hg_plant_params_table(plant, &n);
+    int i;
     if (!eq || eq == text || (size_t)(eq - text) >= sizeof name) {
         fprintf(stderr, "hexaglide %s: --set: expected name=value, got '%s'\n", cmd, text);
         return -1;
     }
     memcpy(name, text, (size_t)(eq - text));
     name[eq - text] = '\0';
-    i = hg_param_find(t, n, name);
+    i = hg_plant_param_find(hg_plant_at(plant), variant, name);
     if (i < 0) {
         fprintf(stderr, "hexaglide %s: --set: unknown parameter '%s' of the %s (hexaglide sim --list-params "
                 "lists them)\n", cmd, name, hg_plant_name_at(plant));

@@ -115,7 +115,7 @@ static void list_columns(int plant, int format)
 {
     static hg_board_rec_field f[HG_BOARD_REC_MAX];
     static const char *const type[] = {"float", "s32", "u32", "bit", "u32"};
-    int i, n = hg_board_rec_fields(f, HG_BOARD_REC_MAX, plant, format);
+    int i, n = hg_board_rec_fields(f, HG_BOARD_REC_MAX, plant, hg_plant_at(plant)->default_variant, format);
     for (i = 0; i < n; i++)
         printf("%-28s %-5s %s%s\n", f[i].name, type[f[i].type],
                f[i].side == HG_BRS_OUT ? "output, compared" : "input of hg_board_step",
@@ -247,12 +247,12 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
 }
 
 /* The --set options as (table entry of plant, value) pairs; 0 or 2 with a message. */
-static int parse_sets(const replay_opts *o, int plant, int *idx, double *val)
+static int parse_sets(const replay_opts *o, int plant, int variant, int *idx, double *val)
 {
     int i;
     for (i = 0; i < o->nset; i++) {
         hg_plant_params p;
-        idx[i] = cli_parse_set("replay", o->set[i], plant, &p);
+        idx[i] = cli_parse_set("replay", o->set[i], plant, variant, &p);
         if (idx[i] < 0)
             return 2;
         val[i] = p.v[idx[i]];
@@ -578,27 +578,37 @@ static void spread_step(hg_loop *L, int *ie, long *lag, int l, long n, long hold
             pk[k] = fabs(smp.ferror_mm[k]);
 }
 
-/* The record's plant (in.plant of its first row; format 1: the Hexaglide)
- * and, for format 2, its parameter events in the order they took effect
- * (*ev malloc'd; free() it): one pass over the rows before the replay.
- * 0, or 1 after a message. Rows it cannot read are left to the replay's
- * own pass, which names them. */
-static int prescan(const char *file, const char *buf, size_t len, int *plant, hg_board_rec_event **ev,
-                   long *nev)
+/* The record's plant and model variant (in.plant and in.model of its
+ * first row; format 1: the Hexaglide) and, for format 2, its parameter
+ * events in the order they took effect (*ev malloc'd; free() it): one
+ * pass over the rows before the replay. 0, or 1 after a message. Rows it
+ * cannot read are left to the replay's own pass, which names them. */
+static int prescan(const char *file, const char *buf, size_t len, int *plant, int *variant, long *line0,
+                   hg_board_rec_event **ev, long *nev)
 {
     static hg_record r;
     static double row[HG_RECORD_MAX_COLS];
     hg_record_error e;
-    int cp, cs[HG_BOARD_REC_SLOTS][3], s, k;
+    int cp = -1, cm, cs[HG_BOARD_REC_SLOTS][3], s, k;
     long cap = 0;
     *plant = 0;
+    *variant = hg_plant_at(0)->default_variant;
     *ev = 0;
     *nev = 0;
-    if (hg_record_open(&r, buf, len, &e) || r.format == 1)
+    *line0 = 0;
+    if (hg_record_open(&r, buf, len, &e))
         return 0;
-    if ((cp = hg_record_need(&r, "in.plant", &e)) < 0) {
+    if ((cm = hg_record_need(&r, "in.model", &e)) < 0 ||
+        (r.format == 2 && (cp = hg_record_need(&r, "in.plant", &e)) < 0)) {
         fprintf(stderr, "hexaglide replay: %s: %s\n", file, e.msg);
         return 1;
+    }
+    if (r.format == 1) {               /* the Hexaglide; its parameters are columns */
+        if (hg_record_next(&r, row, &e) == 1) {
+            *variant = row[cm] >= 0 && row[cm] < 1000 ? (int)row[cm] : -1;
+            *line0 = r.line;
+        }
+        return 0;
     }
     for (s = 0; s < HG_BOARD_REC_SLOTS; s++)
         for (k = 0; k < 3; k++) {
@@ -612,8 +622,11 @@ static int prescan(const char *file, const char *buf, size_t len, int *plant, hg
         }
     while (hg_record_next(&r, row, &e) == 1) {
         unsigned long n = (unsigned long)row[0];
-        if (n == 0)
+        if (n == 0) {
             *plant = row[cp] >= 0 && row[cp] < 1000 ? (int)row[cp] : -1;
+            *variant = row[cm] >= 0 && row[cm] < 1e6 ? (int)row[cm] : -1;
+            *line0 = r.line;
+        }
         for (s = 0; s < HG_BOARD_REC_SLOTS; s++) {
             hg_board_rec_event x;
             if (!hg_board_rec_event_of(row[cs[s][0]], row[cs[s][1]], row[cs[s][2]], n, &x))
@@ -634,6 +647,16 @@ static int prescan(const char *file, const char *buf, size_t len, int *plant, hg
                 "recorder?); use that version's hexaglide\n", file, *plant);
         return 1;
     }
+    return 0;
+}
+
+/* 1 if the variant is one of plant's, else 0 after a message naming the record and its line. */
+static int variant_known(const char *file, long line, int plant, int variant)
+{
+    if (hg_plant_nparams_at(plant, variant))
+        return 1;
+    fprintf(stderr, "hexaglide replay: %s: line %ld: in.model %d is not a model of the %s; the record is "
+            "damaged\n", file, line, variant, hg_plant_name_at(plant));
     return 0;
 }
 
@@ -663,14 +686,14 @@ int cmd_replay(int argc, char **argv)
     hg_board_outputs out_w, out_x;
     hg_board_rec_ctx ctx;
     hg_board_rec_event *ev = 0;
-    long nev = 0, next_ev = 0;
+    long nev = 0, next_ev = 0, line0;
     hg_loop_config lc;
     int set_idx[REPLAY_MAX_SETS];
     double set_val[REPLAY_MAX_SETS];
     replay_stats st = {0, 0, 0.0, 0.0, -1, 0}, stx = {0, 0, 0.0, 0.0, -1, 0};
     joint_stats js[HG_CHANNELS_MAX];
     double prev_cmd[HG_CHANNELS_MAX] = {0}, fe[2][HG_CHANNELS_MAX], volts[2][HG_CHANNELS_MAX];
-    int nf, np, i, k, rc, whatif, closed, kind = -1, status = 0, plant, variant_w = -1, nj;
+    int nf, np, i, k, rc, whatif, closed, kind = -1, status = 0, plant, variant, variant_w = -1, nj;
     unsigned prev_ie_rec = 0, prev_latched_rec = 0, jmask;
     long period = 0, win_from = 0;
     long settings_from = 0, first_enabled = -1, last_enabled = -1;
@@ -705,13 +728,14 @@ int cmd_replay(int argc, char **argv)
         free(buf);
         return 1;
     }
-    if (prescan(o.file, buf, len, &plant, &ev, &nev)) {
+    if (prescan(o.file, buf, len, &plant, &variant, &line0, &ev, &nev) ||
+        !variant_known(o.file, line0, plant, variant)) {
         free(buf);
         free(ev);
         return 1;
     }
     pl = hg_plant_at(plant);
-    pl->table(&np);
+    np = pl->nparams(variant);
     if (o.plant && hg_plant_find(o.plant) != plant) {
         fprintf(stderr, "hexaglide replay: %s is a record of the %s (in.plant %d), not of the %s: a replay "
                 "runs the machine that was recorded; drop --plant or give the right record\n", o.file,
@@ -720,14 +744,14 @@ int cmd_replay(int argc, char **argv)
     }
     if (!status && o.model && (variant_w = cli_variant("replay", plant, o.model)) < 0)
         status = 2;
-    if (!status && parse_sets(&o, plant, set_idx, set_val))
+    if (!status && parse_sets(&o, plant, variant_w >= 0 ? variant_w : variant, set_idx, set_val))
         status = 2;
     if (status) {
         free(buf);
         free(ev);
         return status;
     }
-    nf = hg_board_rec_fields(fld, HG_BOARD_REC_MAX, plant, r.format);
+    nf = hg_board_rec_fields(fld, HG_BOARD_REC_MAX, plant, variant, r.format);
     if (nf < 0) {
         fprintf(stderr, "hexaglide replay: internal: record table too long\n");
         free(buf);
@@ -753,7 +777,7 @@ int cmd_replay(int argc, char **argv)
     memset(&out_x, 0, sizeof out_x);   /* (the rows start at sample 0, which builds the boards) */
     memset(&in, 0, sizeof in);
     cols.plant = pl;
-    for (k = 0; k < pl->channels_max; k++) {
+    for (k = 0; k < pl->channels(variant); k++) {
         snprintf(text, sizeof text, "out.z-%d", k);
         cols.z[k] = hg_record_column(&r, text);
         snprintf(text, sizeof text, "out.count-%02d", k);
@@ -761,11 +785,11 @@ int cmd_replay(int argc, char **argv)
         snprintf(text, sizeof text, "joint.%d.motor-pos-cmd", k);
         cols.cmd[k] = hg_record_column(&r, text);
     }
-    for (nj = 0; nj < pl->channels_max && cols.cmd[nj] >= 0; nj++)
+    for (nj = 0; nj < pl->channels(variant) && cols.cmd[nj] >= 0; nj++)
         ;                              /* the joints whose commands were recorded */
     has_cmd = nj > 0;
     if (!has_cmd)
-        nj = pl->channels_max;
+        nj = pl->channels(variant);
     cols.nj = nj;
     jmask = (1u << nj) - 1u;
     for (k = 0; k < pl->noutputs && k < HG_PLANT_EXTRA_MAX; k++) {
@@ -834,9 +858,7 @@ int cmd_replay(int argc, char **argv)
         unsigned ie_rec, latched_rec;
         if (n == 0) {                  /* power-up, as at loadrt: model and defaults */
             kind = (int)row[col_model];   /* the recorded run is replayed as recorded */
-            if (kind < 0 || kind >= pl->nvariants) {
-                fprintf(stderr, "hexaglide replay: %s: line %ld: in.model %d is not a model of the %s (0..%d); "
-                        "the record is damaged\n", o.file, r.line, kind, pl->name, pl->nvariants - 1);
+            if (kind != variant) {        /* (the prescan read the same row) */
                 status = 1;
                 break;
             }

@@ -29,18 +29,18 @@ const char cli_usage_sim[] =
     "--record FILE writes the run as a record of the board's rec pins (hexaglide replay FILE)\n"
     CLI_USAGE_MODEL;
 
-static void list_params(int plant)
+static void list_params(int plant, int variant)
 {
     const hg_plant *pl = hg_plant_at(plant);
     hg_plant_params v;
-    int i, n;
-    const hg_param_info *t = pl->table(&n);
-    pl->defaults(&v);
+    int i, n = pl->nparams(variant);
+    pl->defaults(variant, &v);
     for (i = 0; i < n; i++) {
-        printf("%-16s %-8s %-14.9g %s (HAL: %s, %s", t[i].name, t[i].unit, v.v[i], t[i].what, t[i].hal_name,
-               t[i].hal_unit);
-        if (t[i].ini_key)
-            printf("; INI: [%s]%s, %s", pl->ini_section, t[i].ini_key, t[i].hal_unit);
+        hg_param_info t;
+        pl->param(variant, i, &t);
+        printf("%-16s %-8s %-14.9g %s (HAL: %s, %s", t.name, t.unit, v.v[i], t.what, t.hal_name, t.hal_unit);
+        if (t.ini_key)
+            printf("; INI: [%s]%s, %s", pl->ini_section, t.ini_key, t.hal_unit);
         printf(")\n");
     }
 }
@@ -93,8 +93,8 @@ typedef struct {
 static int record_open(sim_record *r, const char *path, const hg_board *b)
 {
     int k;
-    r->n = hg_board_rec_fields(r->f, HG_BOARD_REC_MAX, b->plant, HG_BOARD_REC_FORMAT);
-    hg_board_plant(b)->table(&r->np);
+    r->n = hg_board_rec_fields(r->f, HG_BOARD_REC_MAX, b->plant, b->variant, HG_BOARD_REC_FORMAT);
+    r->np = hg_board_plant(b)->nparams(b->variant);
     if (r->n < 0 || cli_out_open("sim", path, &r->out))
         return -1;
     hg_board_rec_stream_start(&r->stream);
@@ -216,18 +216,18 @@ int cmd_sim(int argc, char **argv)
         }
     }
     pl = hg_plant_at(plant);
-    if (list) {
-        list_params(plant);
-        return 0;
-    }
     if ((variant = cli_variant("sim", plant, model)) < 0)
         return 2;
-    cli_board_defaults(plant, &bp);
+    if (list) {
+        list_params(plant, variant);
+        return 0;
+    }
+    cli_board_defaults(plant, variant, &bp);
     if (given_substeps)
         bp.substeps = (unsigned)substeps;
     if (integrator)
         bp.integrator = (unsigned)hg_integrator_from_name(integrator);
-    if (cli_params_build("sim", plant, ini, sets, nset, &bp.plant))
+    if (cli_params_build("sim", plant, variant, ini, sets, nset, &bp.plant))
         return 2;
     if (!(t_end >= 0.0)) {
         fprintf(stderr, "hexaglide sim: --time must be >= 0 s, got %g\n", t_end);

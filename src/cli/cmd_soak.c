@@ -244,8 +244,9 @@ int cmd_soak(int argc, char **argv)
         return 1;
     }
     /* the board's load-time block (substeps, integrator), the model's parameters from the config */
-    cli_board_defaults(0, &bp);
-    if (cli_params_build("soak", 0, ini, sets, nset, &bp.plant) || cli_params_check("soak", 0, &bp.plant)) {
+    cli_board_defaults(0, kind, &bp);
+    if (cli_params_build("soak", 0, kind, ini, sets, nset, &bp.plant) ||
+        cli_params_check("soak", 0, kind, &bp.plant)) {
         free(L);
         return 2;
     }

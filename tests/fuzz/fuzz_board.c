@@ -114,14 +114,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static hg_board_outputs out, prev;
     static const char *why[HG_BOARD_WHY_LEN];
     fuzz_input f = {data, size, 0};
-    int n, i, k, steps, nplants = 0, plant;
+    int n, i, k, steps, nplants = 0, plant, variant, nch;
     const hg_plant *pl;
     while (hg_plant_at(nplants))
         nplants++;
     plant = fuzz_byte(&f) % nplants;
     pl = hg_plant_at(plant);
-    pl->table(&n);
-    if (hg_board_init(&b, plant, fuzz_byte(&f) % pl->nvariants, 0))
+    variant = fuzz_byte(&f);             /* the plant's default when it is none of its variants */
+    if (!hg_plant_nparams_at(plant, variant))
+        variant = pl->default_variant;
+    n = pl->nparams(variant);
+    nch = pl->channels(variant);
+    if (hg_board_init(&b, plant, variant, 0))
         fail("the default board does not build");
     hg_board_inputs_default(&b, &in);
     in.dout_values = 1u << 7;
@@ -145,12 +149,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (out.events >= (HG_EV_ADDF_ORDER << 1))
             fail("unknown event bit");
         if (out.fault_cause < HG_FAULT_NONE || out.fault_cause > HG_FAULT_STIFF ||
-            out.reset_refused_channel < -1 || out.reset_refused_channel >= pl->channels_max ||
+            out.reset_refused_channel < -1 || out.reset_refused_channel >= nch ||
             out.reset_refused_injection < -1 || out.reset_refused_injection >= pl->ninjections ||
-            out.channels < 1 || out.channels > pl->channels_max)
+            out.channels != nch)
             fail("event data out of range");
         for (k = 0; k < HG_PLANT_INJECT_MAX; k++)
-            if (out.injected[k] >> pl->channels_max || (k >= pl->ninjections && out.injected[k]))
+            if (out.injected[k] >> nch || (k >= pl->ninjections && out.injected[k]))
                 fail("an injection acted on no channel of the plant or is no injection of it");
         if (hg_board_params_check(&b, &out.params, 0, 0) != HG_OK)
             fail("the block in force does not pass validation");

@@ -334,17 +334,18 @@ static void test_overflow(int n)
 
 int main(void)
 {
-    int n1, n = hg_board_rec_fields(f, HG_BOARD_REC_MAX, 0, 2);
+    int n1, n = hg_board_rec_fields(f, HG_BOARD_REC_MAX, 0, HG_MODEL_REDUCED_CARTESIAN, 2);
     CHECK(n > 0, "the table has %d entries", n);
     if (n <= 0)
         return hg_test_exit();
-    CHECK(hg_board_rec_fields(f, 10, 0, 2) == -1 && hg_board_rec_fields(f, HG_BOARD_REC_MAX, 0, 3) == -1 &&
-              hg_board_rec_fields(f, HG_BOARD_REC_MAX, 99, 2) == -1,
-          "a too small array, an unknown format and an unknown plant are refused");
-    n1 = hg_board_rec_fields(f, HG_BOARD_REC_MAX, 0, 1);
+    CHECK(hg_board_rec_fields(f, 10, 0, HG_MODEL_REDUCED_CARTESIAN, 2) == -1 && hg_board_rec_fields(f, HG_BOARD_REC_MAX, 0, HG_MODEL_REDUCED_CARTESIAN, 3) == -1 &&
+              hg_board_rec_fields(f, HG_BOARD_REC_MAX, 99, 0, 2) == -1 &&
+              hg_board_rec_fields(f, HG_BOARD_REC_MAX, 0, 99, 2) == -1,
+          "a too small array, an unknown format, plant and model variant are refused");
+    n1 = hg_board_rec_fields(f, HG_BOARD_REC_MAX, 0, HG_MODEL_REDUCED_CARTESIAN, 1);
     CHECK(n1 == 151, "format 1 has the 151 columns of d20d9e5's recorder (%d)", n1);
     test_coverage(n1, 1);
-    n = hg_board_rec_fields(f, HG_BOARD_REC_MAX, 0, 2);
+    n = hg_board_rec_fields(f, HG_BOARD_REC_MAX, 0, HG_MODEL_REDUCED_CARTESIAN, 2);
     test_coverage(n, 2);
     test_pack(n);
     test_round_trip(n);
