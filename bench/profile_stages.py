@@ -21,7 +21,7 @@ STAGES = [
     ("accelerations (2 Heun stages)", ["hg_cartesian_accel", "hg_fused_accel"]),
     ("friction", ["friction", "hg_integrate_friction"]),
     ("stabilization", ["hg_cartesian_stabilize"]),
-    ("guard", ["hg_guard_check", "hg_guard_check_fast", "hg_guard_run"]),
+    ("guard", ["hg_guard_check", "hg_guard_check_sc"]),
 ]
 # (stage, part, functions or patterns): the innermost match on a chain wins
 PARTS = {
@@ -43,6 +43,7 @@ PARTS = {
         ("generated constraint terms", ["hg_gen_reduced_stabilize"])],
     "guard": [
         ("segment distances", ["hg_segment_distance"]),
+        ("clearance bound (memo)", ["clearance", "end_moved"]),
         ("joint cosines", ["joint_cosines"]),
         ("joint points", ["hg_joint_points", "joint_points"]),
         ("rotation and its sin/cos", ["hg_rotation", r"__sin.*", r"__cos.*"])],

@@ -150,6 +150,7 @@ int hg_data_reset(const hg_model *m, hg_data *d)
     d->amp_enabled = HG_BARS_ALL;      /* amplifiers on, no current yet */
     d->stuck = HG_BARS_ALL;            /* at rest: every carriage held by static friction */
     d->residual_m = hg_bar_length_error(&m->p.geo, d->z_m, d->pose);
+    d->work.guard.valid = 0;
     return 0;
 }
 
@@ -176,6 +177,7 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
     m->force_per_amp_n = p->kt_nm_per_a * screw;
     m->force_per_volt_n = p->ka_a_per_v * m->force_per_amp_n;
     m->rotor_mass_kg = p->j_rotor_kgm2 * screw * screw;
+    hg_guard_prepare(&p->geo, &m->guard);
     if (kind == HG_MODEL_STANDARD)
         hg_gen_standard_init(p, m->k);
     else
@@ -299,8 +301,13 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
         rc = HG_ERR_STATE_NONFINITE;
     if (rc == 0 && !(res <= HG_STAB_MAX_RESIDUAL_M))
         rc = HG_ERR_STABILIZATION;
-    if (rc == 0)                       /* the machine's mechanical limits, intact or broken */
-        rc = hg_guard_check(&m->p.geo, q1, q1 + n - 6, d->broken_bars, &d->guard);
+    if (rc == 0) {                     /* the machine's mechanical limits, intact or broken */
+        double sc[6];
+        if (!trig)                     /* the Cartesian kinds' stabilization has them */
+            hg_head_trig(q1 + n - 6, sc);
+        rc = hg_guard_check_sc(&m->guard, q1, q1 + n - 6, trig ? d->work.sc1 : sc, d->broken_bars,
+                               &d->work.guard, &d->guard);
+    }
     if (rc) {
         d->last_error = rc;
         return rc;

@@ -46,6 +46,7 @@ typedef struct {
     double force_per_volt_n;     /* ka kt 2 pi / lead (N/V) */
     double rotor_mass_kg;        /* j_rotor (2 pi / lead)^2, inertia without weight */
     double potential_home_j;     /* gravity potential at HOME (energies are relative to it) */
+    hg_guard_geo guard;          /* the guard's constants of p.geo (hg_guard_prepare) */
     double k[HG_MAX_CONSTS];     /* generated init: parameter-only subexpressions */
     double k_lumped[HG_MAX_LUMPED_CONSTS]; /* the lumped-bar model's (broken-bar step), any kind */
     double potential_lumped_home_j; /* lumped-bar gravity potential at HOME */
@@ -87,6 +88,9 @@ typedef struct {
     double fric_est_n[6];        /* friction hg_step expects and holds in the stages (N) */
     double fric_impulse[6];      /* friction impulses of the step (N s), committed by hg_step */
     unsigned fric_stuck;         /* carriages stuck at the step's end */
+    /* caches that outlive the call: each holds a self-contained fact (valid
+     * in any copy of the hg_data, whatever its state), emptied by hg_data_reset */
+    hg_guard_memo guard;         /* the bar-clearance bound's reference state (hg_guard.h) */
 } hg_work;
 
 typedef struct {
@@ -117,8 +121,9 @@ typedef struct {
     double trig_key_rad[3];      /* the angles trig_sc belongs to */
     double trig_sc[6];           /* sin A, cos A, sin B, cos B, sin C, cos C */
     int trig_valid;              /* 0: recompute */
-    /* scratch of hg_step (contents undefined between calls; last, so that a
-     * copy of the state alone is memcpy(dst, src, HG_DATA_STATE_BYTES)) */
+    /* scratch of hg_step (contents undefined between calls but for its
+     * caches; last, so that a copy of the state alone is
+     * memcpy(dst, src, HG_DATA_STATE_BYTES)) */
     hg_work work;
 } hg_data;
 
