@@ -5,10 +5,10 @@
  * apart) at 1 ms: `step`, hg_step alone as bench_dynamics times it;
  * `board`, the virtual board (hg_board_step, the code LinuxCNC runs every
  * servo period: the DAC's 13 bits, the step, encoders, switches, ADC) with
- * the amplifiers on. WARMUP periods, then PERIODS profiled ones
- * (callgrind --toggle-collect=hg_step or hg_board_step counts only those
- * calls; the warm-up's are as cheap). Prints the periods and how many of
- * them ended with a carriage stuck.
+ * the amplifiers on. WARMUP periods, then PERIODS profiled ones, each
+ * through profiled_step or profiled_board (callgrind
+ * --toggle-collect=profiled_* counts only those). Prints the periods and
+ * how many of them ended with a carriage stuck.
  * Usage: profile_step step|board [PERIODS] */
 #include <math.h>
 #include <stdio.h>
@@ -32,6 +32,19 @@ static void servo(const hg_model *m, double t, const double z[6], double v[6])
     }
 }
 
+/* hg_step and hg_board_step of the profiled periods (never inlined: the
+ * profile counts only what runs inside them). */
+__attribute__((noinline)) int profiled_step(const hg_model *m, hg_data *d, const double v[6])
+{
+    return hg_step(m, d, v, 1e-3);
+}
+
+__attribute__((noinline)) void profiled_board(hg_board *b, const hg_board_inputs *in,
+                                              hg_board_outputs *out)
+{
+    hg_board_step(b, in, out, 1000000L);
+}
+
 /* PERIODS hg_steps after WARMUP: 0, or 1 when a step fails. */
 static int run_step(long n)
 {
@@ -46,7 +59,7 @@ static int run_step(long n)
         double v[6];
         int rc;
         servo(&m, d.t_s, d.z_m, v);
-        if ((rc = hg_step(&m, &d, v, 1e-3)) != 0) {
+        if ((rc = s < WARMUP ? hg_step(&m, &d, v, 1e-3) : profiled_step(&m, &d, v)) != 0) {
             fprintf(stderr, "profile_step: hg_step failed (code %d) at step %ld\n", rc, s);
             return 1;
         }
@@ -74,7 +87,10 @@ static int run_board(long n)
         for (k = 6; k < HG_BOARD_DACS; k++)
             in.dac_v[k] = 0.0;
         in.dac_written = 1;
-        hg_board_step(&b, &in, &out, 1000000L);
+        if (s < WARMUP)
+            hg_board_step(&b, &in, &out, 1000000L);
+        else
+            profiled_board(&b, &in, &out);
         if (out.fault) {
             fprintf(stderr, "profile_step: the board faulted (code %d) at period %ld\n", out.fault_code, s);
             return 1;

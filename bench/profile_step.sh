@@ -22,10 +22,10 @@ fi
 n=${1:-10000}
 command -v valgrind >/dev/null || { echo "profile_step.sh: valgrind is not installed (make profile installs it)"; exit 1; }
 for mode in step board; do
-    root=hg_step; [ $mode = board ] && root=hg_board_step
+    root=profiled_step; [ $mode = board ] && root=profiled_board
     out=build/bench/callgrind.$tree.$mode
     mkdir -p build/bench
-    echo "== $tree: $mode ($root under the servo motion; callgrind --toggle-collect=$root)"
+    echo "== $tree: $mode (callgrind --toggle-collect=$root: hg_step or hg_board_step under the servo motion)"
     valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect=$root --separate-callers=12 \
         --compress-strings=no --compress-pos=no "$bin" $mode "$n" 2>/dev/null || exit 1
     /usr/bin/python3 bench/profile_stages.py "$out" "$n" | sed "s/^BENCH profile_board_step/BENCH profile_${tree}_$mode/"

@@ -66,10 +66,12 @@ void hg_mass_save_reduced(hg_mass_snapshot *s, const double ldl[36], const doubl
                           const double *T)
 {
     int i, j;
-    for (i = 0; i < 6; i++)           /* the factors live in the lower triangle: the rest is stale */
-        for (j = 0; j < 6; j++)
-            s->ldl[6 * i + j] = j <= i ? ldl[6 * i + j] : 0.0;
-    memcpy(s->inv_d, inv_d, sizeof s->inv_d);
+    if (ldl != s->ldl)                /* else factored in place */
+        for (i = 0; i < 6; i++)       /* the factors live in the lower triangle: the rest is stale */
+            for (j = 0; j < 6; j++)
+                s->ldl[6 * i + j] = j <= i ? ldl[6 * i + j] : 0.0;
+    if (inv_d != s->inv_d)
+        memcpy(s->inv_d, inv_d, sizeof s->inv_d);
     s->t_identity = T == 0;
     if (T)
         memcpy(s->T, T, sizeof s->T);

@@ -68,9 +68,10 @@ int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_da
                  const double fz0[6], double dt, double *q1, double *qd1, double *qdd,
                  double *residual_m);
 
-/* Save the reduced mass matrix (factored by hg_spd6_factor) and the map
- * T from independent to carriage velocities (0: the identity) as the
- * step's mass data. */
+/* Save the reduced mass matrix (factored by hg_spd6_factor; ldl and
+ * inv_d may be s's own arrays, factored in place) and the map T from
+ * independent to carriage velocities (0: the identity) as the step's mass
+ * data. */
 void hg_mass_save_reduced(hg_mass_snapshot *s, const double ldl[36], const double inv_d[6],
                           const double *T);
 
