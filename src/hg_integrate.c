@@ -10,6 +10,7 @@
 #include "hg_spd6.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
+#include "hg_unroll.h"
 
 /* Stage vectors laid over hg_work.stage. */
 typedef struct {
@@ -141,21 +142,53 @@ void hg_mass_response(const hg_mass_snapshot *s, const double p[6], double *dv, 
     }
 }
 
+void hg_mass_response_matrix(const hg_mass_snapshot *s, double W[36])
+{
+    double e[6] = {0, 0, 0, 0, 0, 0}, dv[HG_NQ_REDUCED], dz[6], X[36];
+    int i, j, k;
+    if (s->kind != 1 || (!s->t_identity && !hg_all_finite(36, s->T))) {
+        for (k = 0; k < 6; k++) {         /* column k: the response to impulse k */
+            e[k] = 1.0;
+            hg_mass_response(s, e, dv, dz);
+            for (i = 0; i < 6; i++)
+                W[6 * i + k] = dz[i];
+            e[k] = 0.0;
+        }
+        return;
+    }
+    /* hg_mass_response's T^T e_k, 0 + T[j][i] e_k[j] summed over j, is
+     * T[k][i] + 0 for a finite T (the identity's: e_k itself) */
+    for (i = 0; i < 6; i++)
+        for (k = 0; k < 6; k++)
+            X[6 * i + k] = s->t_identity ? (i == k ? 1.0 : 0.0) : s->T[6 * k + i] + 0.0;
+    hg_spd6_apply6(s->ldl, s->inv_d, X);
+    if (s->t_identity) {
+        memcpy(W, X, sizeof X);
+        return;
+    }
+    HG_UNROLL
+    for (i = 0; i < 6; i++) {             /* W[i][k] = 0 + T[i][j] X[j][k] summed in j order */
+        hg_v2 w[3] = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+        HG_UNROLL
+        for (j = 0; j < 6; j++)
+            HG_UNROLL
+            for (k = 0; k < 3; k++)
+                w[k] += hg_v2_dup(s->T[6 * i + j]) * hg_v2_load(X + 6 * j + 2 * k);
+        HG_UNROLL
+        for (k = 0; k < 3; k++)
+            hg_v2_store(W + 6 * i + 2 * k, w[k]);
+    }
+}
+
 /* The step's friction impulses in general: W, the carriages' response to
  * unit impulses, from the saved mass matrix, the speeds without friction
  * (the stages held est), then the active-set solve. 0 or a code. */
 static int friction_general(const hg_model *m, hg_data *ctx, const double *qd0, const double *qd1,
                             const double est[6], double dt, hg_friction_out *fo)
 {
-    double W[36], e[6] = {0, 0, 0, 0, 0, 0}, dv[HG_NQ_REDUCED], dz[6], vfree[6];
+    double W[36], vfree[6];
     int i, k;
-    for (k = 0; k < 6; k++) {             /* W column k: the carriages' response to impulse k */
-        e[k] = 1.0;
-        hg_mass_response(&ctx->work.mass, e, dv, dz);
-        for (i = 0; i < 6; i++)
-            W[6 * i + k] = dz[i];
-        e[k] = 0.0;
-    }
+    hg_mass_response_matrix(&ctx->work.mass, W);
     for (k = 0; k < 6; k++) {             /* the speeds without any sliding or static friction */
         double v = qd1[k];
         for (i = 0; i < 6; i++)

@@ -89,4 +89,10 @@ void hg_hold_independent(const hg_model *m, hg_data *ctx, const double z0[6], un
  * start (0 for kind 0: no data). */
 void hg_mass_response(const hg_mass_snapshot *s, const double p[6], double *dv, double dz[6]);
 
+/* W (6x6 row-major): column k the carriage speed changes dz of
+ * hg_mass_response for a unit impulse on carriage k, bit for bit, for all
+ * six columns at once where the mass data allow (kind 1 with a finite T),
+ * else column by column. */
+void hg_mass_response_matrix(const hg_mass_snapshot *s, double W[36]);
+
 #endif

@@ -1,0 +1,131 @@
+/* test_shortcuts.c - every shortcut of the step's speed work (issue 23)
+ * against the reference path it replaces, bit for bit, on random cases:
+ * the reference is the code the step ran before (kept as the general
+ * path), so the check is that the fast path gives the same bits:
+ *  - hg_rotation_sc of hg_head_trig's sin/cos and hg_rotation;
+ *  - hg_spd6_apply6 (six columns, two at a time) and hg_spd6_apply;
+ *  - hg_mass_response_matrix and six hg_mass_response columns (a full T,
+ *    the identity, broken bars' KKT factors, a T with an inf);
+ * (the guard's clearance bound: test_guard; golden states: test_golden). */
+#include <string.h>
+#include "hg_test.h"
+#include "hg_integrate.h"
+#include "hg_spd6.h"
+#include "hg_linalg.h"
+#include "hg_kinematics.h"
+
+/* 1 when the n doubles are bit for bit equal. */
+static int same_bits(const double *a, const double *b, int n)
+{
+    return memcmp(a, b, (size_t)n * sizeof *a) == 0;
+}
+
+/* A random symmetric positive definite 6x6 matrix, factored (hg_spd6_factor). */
+static void random_factored(double M[36], double inv_d[6])
+{
+    double X[36];
+    int i, j, k;
+    for (i = 0; i < 36; i++)
+        X[i] = hg_test_uniform(-1, 1) * (i % 7 == 0 ? 30.0 : 1.0);
+    for (i = 0; i < 6; i++)
+        for (j = 0; j < 6; j++) {
+            double v = i == j ? 0.1 : 0.0;
+            for (k = 0; k < 6; k++)
+                v += X[6 * i + k] * X[6 * j + k];
+            M[6 * i + j] = v;
+        }
+    hg_spd6_factor(M, inv_d);
+}
+
+static void test_rotation(void)
+{
+    int n, same = 0;
+    for (n = 0; n < 10000; n++) {
+        double c[6] = {0, 0, 0, hg_test_uniform(-3, 3), hg_test_uniform(-1.5, 1.5), hg_test_uniform(-7, 7)};
+        double sc[6], R1[9], R2[9];
+        hg_head_trig(c, sc);
+        hg_rotation_sc(sc, R1);
+        hg_rotation(c[3], c[4], c[5], R2);
+        same += same_bits(R1, R2, 9);
+    }
+    CHECK(same == 10000, "hg_rotation_sc of hg_head_trig: hg_rotation's bits on %d of 10000 random angles", same);
+}
+
+static void test_apply6(void)
+{
+    int n, same = 0;
+    for (n = 0; n < 2000; n++) {
+        double M[36], inv_d[6], B0[36], B[36], col[6];
+        int i, c, ok = 1;
+        random_factored(M, inv_d);
+        for (i = 0; i < 36; i++)
+            B[i] = B0[i] = hg_test_uniform(-5, 5);
+        hg_spd6_apply6(M, inv_d, B);
+        for (c = 0; c < 6 && ok; c++) {
+            double want[6];
+            for (i = 0; i < 6; i++)
+                want[i] = B0[6 * i + c];
+            hg_spd6_apply(M, inv_d, want);
+            for (i = 0; i < 6; i++)
+                col[i] = B[6 * i + c];
+            ok = same_bits(col, want, 6);
+        }
+        same += ok;
+    }
+    CHECK(same == 2000, "hg_spd6_apply6: hg_spd6_apply's bits in every column on %d of 2000 random systems", same);
+}
+
+/* W column by column with hg_mass_response, the reference. */
+static void w_reference(const hg_mass_snapshot *s, double W[36])
+{
+    double e[6] = {0, 0, 0, 0, 0, 0}, dv[12], dz[6];
+    int i, k;
+    for (k = 0; k < 6; k++) {
+        e[k] = 1.0;
+        hg_mass_response(s, e, dv, dz);
+        for (i = 0; i < 6; i++)
+            W[6 * i + k] = dz[i];
+        e[k] = 0.0;
+    }
+}
+
+static void test_response_matrix(void)
+{
+    static hg_mass_snapshot s;
+    int n, same[4] = {0, 0, 0, 0};
+    for (n = 0; n < 4000; n++) {
+        double M[36], inv_d[6], T[36], W1[36], W2[36];
+        int i, kind = n % 4;
+        memset(&s, 0, sizeof s);
+        random_factored(M, inv_d);
+        for (i = 0; i < 36; i++)
+            T[i] = i % 5 == 0 ? 0.0 : hg_test_uniform(-2, 2);   /* zeros: their sign must not change */
+        if (kind == 3)
+            T[7] = INFINITY;
+        if (kind == 2) {                   /* broken bars: LU of a KKT-shaped 13 x 13 */
+            double a[13 * 13];
+            int piv[13];
+            for (i = 0; i < 13 * 13; i++)
+                a[i] = hg_test_uniform(-1, 1) + (i % 14 == 0 ? 5.0 : 0.0);
+            hg_lu_factor(13, a, piv);
+            hg_mass_save_kkt(&s, 13, a, piv);
+        } else {
+            hg_mass_save_reduced(&s, M, inv_d, kind == 1 ? 0 : T);
+        }
+        w_reference(&s, W1);
+        hg_mass_response_matrix(&s, W2);
+        same[kind] += same_bits(W1, W2, 36);
+    }
+    CHECK(same[0] == 1000 && same[1] == 1000 && same[2] == 1000 && same[3] == 1000,
+          "hg_mass_response_matrix: six hg_mass_response columns' bits on %d (a full T), %d (identity), "
+          "%d (broken bars' KKT), %d (a T with an inf) of 1000 random cases each", same[0], same[1],
+          same[2], same[3]);
+}
+
+int main(void)
+{
+    test_rotation();
+    test_apply6();
+    test_response_matrix();
+    return hg_test_exit();
+}
