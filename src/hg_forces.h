@@ -10,8 +10,7 @@
 
 #include "hg_model.h"
 
-/* The drives' (and the MOTENC-100 DAC's) command range: +-10 V. */
-#define HG_DAC_VOLTS_MAX 10.0
+#include "hg_drive.h"     /* HG_DAC_VOLTS_MAX: the drives' (and the DAC's) +-10 V */
 
 /* Net smooth force on each carriage (N, +z up): drive_n (the drive's force
  * over the step) - c_visc z' + the hard stops: k_stop times the

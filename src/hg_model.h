@@ -13,6 +13,7 @@
 #include <stddef.h>
 #include "hg_params.h"
 #include "hg_guard.h"
+#include "hg_drive.h"
 
 /* The parametrizations of the paper's section 7, plus the fused one. */
 typedef enum {
@@ -42,8 +43,9 @@ typedef struct {
     hg_params p;                 /* the parameter set this model was built from */
     hg_model_kind kind;
     hg_integrator integrator;    /* scheme of hg_step (hg_model_init: Heun) */
-    double force_per_amp_n;      /* kt 2 pi / lead: carriage force per motor ampere (N/A) */
-    double force_per_volt_n;     /* ka kt 2 pi / lead (N/V) */
+    hg_drive_channel drive[6];   /* the six drives, alike (hg_drive_init of p's drive fields):
+                                    force per ampere kt 2 pi / lead, winding time constant */
+    double force_per_volt_n;     /* ka kt 2 pi / lead (N/V): torque mode, every drive alike */
     double rotor_mass_kg;        /* j_rotor (2 pi / lead)^2, inertia without weight */
     double potential_home_j;     /* gravity potential at HOME (energies are relative to it) */
     hg_guard_geo guard;          /* the guard's constants of p.geo (hg_guard_prepare) */
@@ -91,6 +93,7 @@ typedef struct {
     /* caches that outlive the call: each holds a self-contained fact (valid
      * in any copy of the hg_data, whatever its state), emptied by hg_data_reset */
     hg_guard_memo guard;         /* the bar-clearance bound's reference state (hg_guard.h) */
+    hg_drive_memo drive;         /* the windings' exp(-dt / tau) for the last step length */
 } hg_work;
 
 typedef struct {

@@ -6,6 +6,8 @@
  *  - hg_spd6_apply6 (six columns, two at a time) and hg_spd6_apply;
  *  - hg_mass_response_matrix and six hg_mass_response columns (a full T,
  *    the identity, broken bars' KKT factors, a T with an inf);
+ *  - hg_drive_step with its memo of exp(-dt / tau) (kept over calls of
+ *    changing step lengths and channels) and without;
  * (the guard's clearance bound: test_guard; golden states: test_golden). */
 #include <string.h>
 #include "hg_test.h"
@@ -13,6 +15,7 @@
 #include "hg_spd6.h"
 #include "hg_linalg.h"
 #include "hg_kinematics.h"
+#include "hg_drive.h"
 
 /* 1 when the n doubles are bit for bit equal. */
 static int same_bits(const double *a, const double *b, int n)
@@ -122,10 +125,60 @@ static void test_response_matrix(void)
           same[2], same[3]);
 }
 
+/* Random drive channels (either mode, a bus that limits or not). */
+static void random_channel(hg_drive_channel *c, int k)
+{
+    hg_drive_params p;
+    p.kt_nm_per_a = hg_test_uniform(0.1, 1.0);
+    p.lead_m = hg_test_uniform(0.005, 0.02);
+    p.r_winding_ohm = hg_test_uniform(0.5, 4.0);
+    p.l_winding_h = k % 3 == 0 ? 1e-9 : hg_test_uniform(1e-3, 1e-2);
+    p.amp_mode = k % 2;
+    p.ka_a_per_v = hg_test_uniform(0.2, 1.5);
+    p.i_max_a = hg_test_uniform(2, 10);
+    p.v_bus_v = hg_test_uniform(20, 200);
+    p.v_rated_mps = hg_test_uniform(0.05, 0.3);
+    p.kp_vel_as_per_m = hg_test_uniform(10, 500);
+    p.ki_vel_a_per_m = hg_test_uniform(0, 1e4);
+    hg_drive_init(c, &p);
+}
+
+static void test_drive_memo(void)
+{
+    static hg_drive_memo memo;           /* empty: zeros */
+    hg_drive_channel c[HG_DRIVE_MAX];
+    int n, k, same = 0;
+    for (k = 0; k < HG_DRIVE_MAX; k++)
+        random_channel(&c[k], k);
+    for (n = 0; n < 20000; n++) {
+        static const double dts[3] = {1e-3, 2.5e-4, 1e-3 / 3.0};
+        double v[HG_DRIVE_MAX], i0[HG_DRIVE_MAX], zd[HG_DRIVE_MAX], xi[HG_DRIVE_MAX];
+        hg_drive_out a, b;
+        double dt = dts[(n / 50) % 3];     /* runs of one step length, then another */
+        int ch = 1 + n % HG_DRIVE_MAX;
+        if (n % 997 == 0)                  /* new parameters now and then: the memo must notice */
+            random_channel(&c[n % HG_DRIVE_MAX], n);
+        for (k = 0; k < HG_DRIVE_MAX; k++) {
+            v[k] = n % 7 == 0 ? 10.0 : hg_test_uniform(-12, 12);
+            i0[k] = hg_test_uniform(-10, 10);
+            zd[k] = hg_test_uniform(-0.3, 0.3);
+            xi[k] = hg_test_uniform(-1e-3, 1e-3);
+        }
+        memset(&a, 0, sizeof a);
+        memset(&b, 0, sizeof b);
+        hg_drive_step(c, ch, v, i0, zd, xi, 0xffu, dt, &memo, &a);
+        hg_drive_step(c, ch, v, i0, zd, xi, 0xffu, dt, 0, &b);
+        same += memcmp(&a, &b, sizeof a) == 0;
+    }
+    CHECK(same == 20000, "hg_drive_step with its exp memo (step lengths and parameters changing): the "
+          "bits without it on %d of 20000 random calls of 1..8 channels", same);
+}
+
 int main(void)
 {
     test_rotation();
     test_apply6();
     test_response_matrix();
+    test_drive_memo();
     return hg_test_exit();
 }
