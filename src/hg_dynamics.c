@@ -155,6 +155,20 @@ int hg_data_reset(const hg_model *m, hg_data *d)
     return 0;
 }
 
+void hg_friction_channel_of(const hg_params *p, hg_friction_channel *c)
+{
+    c->f_static_n = p->f_static_n;
+    c->f_coulomb_n = p->f_coulomb_n;
+    c->v_stribeck_mps = p->v_stribeck_mps;
+}
+
+double hg_friction_stribeck(const hg_params *p, double v)
+{
+    hg_friction_channel c;
+    hg_friction_channel_of(p, &c);
+    return hg_friction_shape(&c, v);
+}
+
 /* The drive fields of the Hexaglide's parameter set (every drive alike). */
 static void drive_params_of(const hg_params *p, hg_drive_params *dp)
 {
@@ -196,6 +210,8 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
     for (i = 0; i < 6; i++)
         hg_drive_init(&m->drive[i], &dp);
     m->force_per_volt_n = p->ka_a_per_v * m->drive[0].force_per_amp_n;
+    for (i = 0; i < 6; i++)
+        hg_friction_channel_of(p, &m->fric[i]);
     m->rotor_mass_kg = p->j_rotor_kgm2 * screw * screw;
     hg_guard_prepare(&p->geo, &m->guard);
     if (kind == HG_MODEL_STANDARD)
@@ -265,7 +281,7 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
     double q0[HG_NQ_MAX], qd0[HG_NQ_MAX], q1[HG_NQ_MAX], qd1[HG_NQ_MAX], qdd[HG_NQ_MAX];
     double fz[6], drive_n[6], res = 0.0;
     hg_drive_out drv;
-    int n = hg_system_nq(m), rc, trig = 0, k, fric = hg_friction_on(&m->p);
+    int n = hg_system_nq(m), rc, trig = 0, k, fric = hg_friction_any(m->fric, 6);
     if (!(isfinite(dt_s) && dt_s > 0.0 && dt_s <= HG_DT_MAX_S)) {
         d->last_error = HG_ERR_BAD_DT;
         return HG_ERR_BAD_DT;

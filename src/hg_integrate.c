@@ -195,7 +195,7 @@ static int friction_general(const hg_model *m, hg_data *ctx, const double *qd0, 
             v -= W[6 * k + i] * est[i];
         vfree[k] = v;
     }
-    return hg_friction_solve(&m->p, W, vfree, qd0, ctx->stuck, dt, fo);
+    return hg_friction_solve(m->fric, 6, W, vfree, qd0, ctx->stuck, dt, fo);
 }
 
 /* Sliding and static friction on the predicted (q1, qd1), whose stages
@@ -215,7 +215,7 @@ static int friction(const hg_model *m, const hg_dae *f, hg_data *ctx, const doub
     int i, k, rc;
     for (k = 0; k < 6; k++)
         est[k] = wk->fric_est_n[k] * dt;  /* the impulses the stages held */
-    if (!hg_friction_all_sliding(&m->p, qd1, qd0, ctx->stuck, est,
+    if (!hg_friction_all_sliding(m->fric, 6, qd1, qd0, ctx->stuck, est,
                                  m->p.m_carriage_kg + m->rotor_mass_kg, dt, &fo)) {
         rc = friction_general(m, ctx, qd0, qd1, est, dt, &fo);
         if (rc)
@@ -235,7 +235,7 @@ static int friction(const hg_model *m, const hg_dae *f, hg_data *ctx, const doub
             q1[k] += 0.5 * dt * dz[k];
             qdd[k] += dz[k] / dt;
         }
-    memcpy(wk->fric_impulse, fo.impulse, sizeof fo.impulse);
+    memcpy(wk->fric_impulse, fo.impulse, sizeof wk->fric_impulse);
     wk->fric_stuck = fo.stuck;
     if (fo.stuck) {                       /* where the stuck carriages stay */
         for (k = 0; k < 6; k++)
@@ -252,7 +252,7 @@ int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_da
 {
     stage_ws *w = (stage_ws *)ctx->work.stage;
     const double *c, *b;
-    const int fric = hg_friction_on(&m->p);
+    const int fric = hg_friction_any(m->fric, 6);
     int n = f->n, i, s, ns, rc;
     ctx->work.mass.want = fric;
     ctx->work.mass.kind = 0;

@@ -14,6 +14,7 @@
 #include "hg_params.h"
 #include "hg_guard.h"
 #include "hg_drive.h"
+#include "hg_friction.h"
 
 /* The parametrizations of the paper's section 7, plus the fused one. */
 typedef enum {
@@ -46,6 +47,7 @@ typedef struct {
     hg_drive_channel drive[6];   /* the six drives, alike (hg_drive_init of p's drive fields):
                                     force per ampere kt 2 pi / lead, winding time constant */
     double force_per_volt_n;     /* ka kt 2 pi / lead (N/V): torque mode, every drive alike */
+    hg_friction_channel fric[6]; /* each carriage's sliding and static friction (p's, alike) */
     double rotor_mass_kg;        /* j_rotor (2 pi / lead)^2, inertia without weight */
     double potential_home_j;     /* gravity potential at HOME (energies are relative to it) */
     hg_guard_geo guard;          /* the guard's constants of p.geo (hg_guard_prepare) */
