@@ -3,7 +3,7 @@
  * d20d9e5's, the step before issue 23's speed work, built in the same run
  * from git (bench/baseline.sh) with the same compiler and flags, timed
  * INTERLEAVED as bench_mujoco does: every round gives each engine one
- * block of steps (about 0.5 ms of wall time, each continuing its own run
+ * block of steps (about 0.15 ms of wall time, each continuing its own run
  * of the same servo motion), the per-step time of a block is its time over
  * its steps, the ratio of two engines is taken within each round, then the
  * median over the rounds. Also a yardstick that needs no history: today's
@@ -24,10 +24,10 @@
 #include "hg_dynamics.h"
 #include "bench_timing.h"
 
-#define ROUNDS 1000
+#define ROUNDS 4000
 #define WARMUP_STEPS 1500
 #define CHECK_STEPS 5000
-#define BLOCK_US 500.0
+#define BLOCK_US 150.0             /* short blocks, many rounds: load changes hit both engines of a round */
 #define DT_S 1e-3
 #define REF_STEPS 2000              /* the 0.5 Hz reference, one period at 1 ms */
 
@@ -132,11 +132,16 @@ int main(void)
         printf("BENCH baseline_same_answers steps=%d max_dz_m=%.3g\n", CHECK_STEPS, dz);
     }
 #endif
-    for (i = 0; i < ne; i++) {         /* warm up; block sizes from the warm-up's speed */
-        double t0 = bench_now_us(), t;
+    for (i = 0; i < ne; i++) {         /* warm up; block sizes from the fastest of 5 trial blocks */
+        double t = INFINITY;
         if (run(&eng[i], WARMUP_STEPS))
             return 1;
-        t = (bench_now_us() - t0) / WARMUP_STEPS;
+        for (r = 0; r < 5; r++) {
+            double t0 = bench_now_us();
+            if (run(&eng[i], 100))
+                return 1;
+            t = fmin(t, (bench_now_us() - t0) / 100.0);
+        }
         eng[i].block = (int)fmax(5.0, fmin(20000.0, BLOCK_US / t));
     }
     for (r = 0; r < ROUNDS; r++)

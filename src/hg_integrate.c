@@ -105,27 +105,36 @@ void hg_hold_independent(const hg_model *m, hg_data *ctx, const double z0[6], un
 void hg_mass_response(const hg_mass_snapshot *s, const double p[6], double *dv, double dz[6])
 {
     int i, j;
-    if (s->kind == 1) {
+    if (s->kind == 1 && s->t_identity) {
         double g[6];
-        for (i = 0; i < 6; i++) {          /* generalized impulse T^T p */
-            double v = 0.0;
-            if (s->t_identity)
-                v = p[i];
-            else
-                for (j = 0; j < 6; j++)
-                    v += s->T[6 * j + i] * p[j];
-            g[i] = v;
-        }
+        memcpy(g, p, sizeof g);
         hg_spd6_apply(s->ldl, s->inv_d, g);
-        for (i = 0; i < 6; i++) {
-            double v = 0.0;
-            dv[i] = g[i];
-            if (s->t_identity)
-                v = g[i];
-            else
-                for (j = 0; j < 6; j++)
-                    v += s->T[6 * i + j] * g[j];
-            dz[i] = v;
+        memcpy(dv, g, sizeof g);
+        memcpy(dz, g, sizeof g);
+    } else if (s->kind == 1) {
+        /* g = T^T p and dz = T g, each entry summed from 0 in j order, two
+         * entries per vector (hg_v2: the scalar loops' bits) */
+        hg_v2 t[3] = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+        double g[6];
+        HG_UNROLL
+        for (j = 0; j < 6; j++)
+            HG_UNROLL
+            for (i = 0; i < 3; i++)
+                t[i] += hg_v2_load(s->T + 6 * j + 2 * i) * hg_v2_dup(p[j]);
+        HG_UNROLL
+        for (i = 0; i < 3; i++)
+            hg_v2_store(g + 2 * i, t[i]);
+        hg_spd6_apply(s->ldl, s->inv_d, g);
+        memcpy(dv, g, sizeof g);
+        HG_UNROLL
+        for (i = 0; i < 3; i++) {
+            hg_v2 v = {0.0, 0.0};
+            HG_UNROLL
+            for (j = 0; j < 6; j++) {
+                const hg_v2 rows = {s->T[12 * i + j], s->T[12 * i + 6 + j]};
+                v += rows * hg_v2_dup(g[j]);
+            }
+            hg_v2_store(dz + 2 * i, v);
         }
     } else if (s->kind == 2) {
         double b[HG_KKT_MAX];
@@ -245,6 +254,50 @@ static int friction(const hg_model *m, const hg_dae *f, hg_data *ctx, const doub
     return 0;
 }
 
+/* The explicit Runge-Kutta scheme of ns stages (c, b) whose stage i starts
+ * from y0 + c_i dt k_(i-1), n known where it is inlined: 0 or the first
+ * failing accel's code. */
+static inline __attribute__((always_inline)) int
+runge_kutta(const int n, int ns, const double *c, const double *b, const hg_model *m,
+            const hg_dae *f, hg_data *ctx, stage_ws *w, const double *q0, const double *qd0,
+            const double drive_n[6], const double fz0[6], double dt, double *q1, double *qd1,
+            double *qdd)
+{
+    int i, s, rc;
+    for (s = 0; s < ns; s++) {
+        if (s == 0) {
+            rc = f->accel(m, ctx, q0, qd0, fz0, w->a);
+            ctx->work.mass.want = 0;
+            for (i = 0; i < n; i++) {
+                w->vs[i] = qd0[i];
+                w->sq[i] = 0.0;
+                w->sv[i] = 0.0;
+            }
+        } else {
+            const double h = c[s] * dt;
+            double vprev;
+            for (i = 0; i < n; i++) {  /* k_(s-1) = (vs, a) of the previous stage */
+                vprev = w->vs[i];
+                w->qs[i] = q0[i] + h * vprev;
+                w->vs[i] = qd0[i] + h * w->a[i];
+            }
+            rc = stage_accel(m, f, ctx, w, drive_n);
+        }
+        if (rc)
+            return rc;
+        for (i = 0; i < n; i++) {
+            w->sq[i] += b[s] * w->vs[i];
+            w->sv[i] += b[s] * w->a[i];
+        }
+    }
+    for (i = 0; i < n; i++) {
+        q1[i] = q0[i] + dt * w->sq[i];
+        qd1[i] = qd0[i] + dt * w->sv[i];
+        qdd[i] = w->sv[i];
+    }
+    return 0;
+}
+
 int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_data *ctx,
                  const double *q0, const double *qd0, const double drive_n[6],
                  const double fz0[6], double dt, double *q1, double *qd1, double *qdd,
@@ -253,7 +306,7 @@ int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_da
     stage_ws *w = (stage_ws *)ctx->work.stage;
     const double *c, *b;
     const int fric = hg_friction_any(m->fric, 6);
-    int n = f->n, i, s, ns, rc;
+    int n = f->n, ns, rc;
     ctx->work.mass.want = fric;
     ctx->work.mass.kind = 0;
     ctx->work.fric_stuck = 0;
@@ -271,38 +324,13 @@ int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_da
         ns = hg_scheme_tableau(scheme, &c, &b);
         if (ns == 0)
             return HG_ERR_BAD_PARAM;
-        /* explicit Runge-Kutta whose stage i starts from y0 + c_i dt k_(i-1) */
-        for (s = 0; s < ns; s++) {
-            if (s == 0) {
-                rc = f->accel(m, ctx, q0, qd0, fz0, w->a);
-                ctx->work.mass.want = 0;
-                for (i = 0; i < n; i++) {
-                    w->vs[i] = qd0[i];
-                    w->sq[i] = 0.0;
-                    w->sv[i] = 0.0;
-                }
-            } else {
-                const double h = c[s] * dt;
-                double vprev;
-                for (i = 0; i < n; i++) {  /* k_(s-1) = (vs, a) of the previous stage */
-                    vprev = w->vs[i];
-                    w->qs[i] = q0[i] + h * vprev;
-                    w->vs[i] = qd0[i] + h * w->a[i];
-                }
-                rc = stage_accel(m, f, ctx, w, drive_n);
-            }
-            if (rc)
-                return rc;
-            for (i = 0; i < n; i++) {
-                w->sq[i] += b[s] * w->vs[i];
-                w->sv[i] += b[s] * w->a[i];
-            }
-        }
-        for (i = 0; i < n; i++) {
-            q1[i] = q0[i] + dt * w->sq[i];
-            qd1[i] = qd0[i] + dt * w->sv[i];
-            qdd[i] = w->sv[i];
-        }
+        if (n == HG_NQ_REDUCED)        /* a constant length lets the compiler unroll */
+            rc = runge_kutta(HG_NQ_REDUCED, ns, c, b, m, f, ctx, w, q0, qd0, drive_n, fz0, dt, q1,
+                             qd1, qdd);
+        else
+            rc = runge_kutta(n, ns, c, b, m, f, ctx, w, q0, qd0, drive_n, fz0, dt, q1, qd1, qdd);
+        if (rc)
+            return rc;
     }
     if (fric) {
         rc = friction(m, f, ctx, q0, qd0, dt, q1, qd1, qdd);

@@ -4,8 +4,9 @@
  * path), so the check is that the fast path gives the same bits:
  *  - hg_rotation_sc of hg_head_trig's sin/cos and hg_rotation;
  *  - hg_spd6_apply6 (six columns, two at a time) and hg_spd6_apply;
- *  - hg_mass_response_matrix and six hg_mass_response columns (a full T,
- *    the identity, broken bars' KKT factors, a T with an inf);
+ *  - hg_mass_response_matrix and hg_mass_response against d20d9e5's
+ *    scalar mass response, copied here (a full T, the identity, broken
+ *    bars' KKT factors, a T with an inf);
  *  - hg_drive_step with its memo of exp(-dt / tau) (kept over calls of
  *    changing step lengths and channels) and without;
  * (the guard's clearance bound: test_guard; golden states: test_golden). */
@@ -78,14 +79,53 @@ static void test_apply6(void)
     CHECK(same == 2000, "hg_spd6_apply6: hg_spd6_apply's bits in every column on %d of 2000 random systems", same);
 }
 
-/* W column by column with hg_mass_response, the reference. */
+/* hg_mass_response as commit d20d9e5 wrote it (scalar loops, kind 1 and
+ * 2), the reference of the vectorized one. */
+static void response_d20d9e5(const hg_mass_snapshot *s, const double p[6], double *dv, double dz[6])
+{
+    int i, j;
+    if (s->kind == 1) {
+        double g[6];
+        for (i = 0; i < 6; i++) {
+            double v = 0.0;
+            if (s->t_identity)
+                v = p[i];
+            else
+                for (j = 0; j < 6; j++)
+                    v += s->T[6 * j + i] * p[j];
+            g[i] = v;
+        }
+        hg_spd6_apply(s->ldl, s->inv_d, g);
+        for (i = 0; i < 6; i++) {
+            double v = 0.0;
+            dv[i] = g[i];
+            if (s->t_identity)
+                v = g[i];
+            else
+                for (j = 0; j < 6; j++)
+                    v += s->T[6 * i + j] * g[j];
+            dz[i] = v;
+        }
+    } else {
+        double b[HG_KKT_MAX];
+        for (i = 0; i < s->nkkt; i++)
+            b[i] = i < 6 ? p[i] : 0.0;
+        hg_lu_solve(s->nkkt, s->kkt, s->piv, 1, b);
+        for (i = 0; i < 12; i++)
+            dv[i] = b[i];
+        for (i = 0; i < 6; i++)
+            dz[i] = b[i];
+    }
+}
+
+/* W column by column with d20d9e5's mass response, the reference. */
 static void w_reference(const hg_mass_snapshot *s, double W[36])
 {
     double e[6] = {0, 0, 0, 0, 0, 0}, dv[12], dz[6];
     int i, k;
     for (k = 0; k < 6; k++) {
         e[k] = 1.0;
-        hg_mass_response(s, e, dv, dz);
+        response_d20d9e5(s, e, dv, dz);
         for (i = 0; i < 6; i++)
             W[6 * i + k] = dz[i];
         e[k] = 0.0;
@@ -117,10 +157,17 @@ static void test_response_matrix(void)
         }
         w_reference(&s, W1);
         hg_mass_response_matrix(&s, W2);
-        same[kind] += same_bits(W1, W2, 36);
+        {                                  /* and one random impulse through hg_mass_response */
+            double pimp[6], dv1[12], dv2[12], dz1[6], dz2[6];
+            for (i = 0; i < 6; i++)
+                pimp[i] = hg_test_uniform(-0.1, 0.1);
+            response_d20d9e5(&s, pimp, dv1, dz1);
+            hg_mass_response(&s, pimp, dv2, dz2);
+            same[kind] += same_bits(W1, W2, 36) && same_bits(dv1, dv2, 6) && same_bits(dz1, dz2, 6);
+        }
     }
     CHECK(same[0] == 1000 && same[1] == 1000 && same[2] == 1000 && same[3] == 1000,
-          "hg_mass_response_matrix: six hg_mass_response columns' bits on %d (a full T), %d (identity), "
+          "hg_mass_response_matrix and hg_mass_response: d20d9e5's scalar response's bits on %d (a full T), %d (identity), "
           "%d (broken bars' KKT), %d (a T with an inf) of 1000 random cases each", same[0], same[1],
           same[2], same[3]);
 }
