@@ -309,6 +309,7 @@ int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_da
     int n = f->n, ns, rc;
     ctx->work.mass.want = fric;
     ctx->work.mass.kind = 0;
+    ctx->work.sc1_valid = 0;
     ctx->work.fric_stuck = 0;
     memset(ctx->work.fric_impulse, 0, sizeof ctx->work.fric_impulse);
     if (scheme == HG_INTEGRATOR_IMPROVED_EULER) {

@@ -88,6 +88,8 @@ typedef struct {
     double stage[HG_WORK_STAGE]; /* hg_integrate's stage states and sums */
     double step[HG_WORK_STEP];   /* the parametrization's accelerations/stabilization */
     double sc1[6];               /* Reduced Cartesian: sin/cos of the stabilized head angles */
+    double sc1_key[3];           /* ... the angles sc1 holds when sc1_valid (set by the hold, */
+    int sc1_valid;               /*     whose last angles the stabilization keeps) */
     hg_mass_snapshot mass;       /* the step start's mass data (friction) */
     double fric_est_n[6];        /* friction hg_step expects and holds in the stages (N) */
     double fric_impulse[6];      /* friction impulses of the step (N s), committed by hg_step */

@@ -5,6 +5,7 @@
  * stabilization is one diagonal Newton step per carriage. The fused
  * variant is the whole improved-Euler step as one generated function. */
 #include "hg_math.h"
+#include "hg_string.h"
 #include "hg_step_cartesian.h"
 #include "hg_system.h"
 #include "hg_spd6.h"
@@ -27,7 +28,9 @@ int hg_cartesian_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd
     double phi[6], pz[6], vc[6], worst = 0.0, *sc1 = d->work.sc1;
     const double r2l = 1.0 / (2.0 * m->p.geo.l_m);
     int k;
-    hg_head_trig(q1 + 6, sc1);
+    if (!(d->work.sc1_valid && memcmp(d->work.sc1_key, q1 + 9, sizeof d->work.sc1_key) == 0))
+        hg_head_trig(q1 + 6, sc1);     /* else the hold's last ones are these angles' (same bits) */
+    d->work.sc1_valid = 0;
     hg_gen_reduced_stabilize(m->k, q1, qd1, sc1, phi, pz, vc);
     HG_UNROLL
     for (k = 0; k < 6; k++) {
@@ -164,6 +167,9 @@ void hg_cartesian_hold(const hg_model *m, hg_data *d, const double z0[6], unsign
     for (it = 0; it <= HOLD_NEWTON_ITER; it++) {
         double worst = 0.0;
         hg_head_trig(q1 + 6, sc);
+        memcpy(d->work.sc1, sc, sizeof sc);  /* the stabilization's, if these angles stay */
+        memcpy(d->work.sc1_key, q1 + 9, sizeof d->work.sc1_key);
+        d->work.sc1_valid = 1;
         hg_gen_reduced_constraints(m->k, q1, sc, phi, pz, pc);
         for (i = 0; i < n; i++) {       /* Y = Mh^-1 J^T, G = J Y with J = Phi_c's held rows */
             double y[6];
