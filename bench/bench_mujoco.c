@@ -11,8 +11,11 @@
  *
  * Engines: MuJoCo RK4 (the accurate setting used by tests/engine), MuJoCo
  * Euler (its cheapest), and hg_step of every model kind with the paper's
- * improved Euler (plus Heun for reduced- and fused-cartesian). Also prints the largest
- * loop-closure error MuJoCo leaves. Machine lines:
+ * improved Euler (plus Heun for reduced- and fused-cartesian: the default
+ * step), all on the peer set with Coulomb friction (hgmj_peer_params_friction:
+ * MuJoCo's frictionloss on each slide, the project's stick-slip law with
+ * f_static = f_coulomb; the current limit as the motors' force range). Also
+ * prints the largest loop-closure error MuJoCo leaves. Machine lines:
  *   BENCH mujoco median_us=<x> p99_us=<y> iters=<n>
  *   BENCH mujoco_euler median_us=<x> p99_us=<y> iters=<n>
  *   BENCH ratio_<engine> rk4_over=<r> euler_over=<r>
@@ -181,7 +184,7 @@ int main(int argc, char **argv)
     hg_params p;
     int ne = 0, i, r, kind;
 
-    hgmj_peer_params(&p);   /* both engines run the same physics */
+    hgmj_peer_params_friction(&p);   /* both engines run the same physics, Coulomb friction included */
     if (argc > 1 && !strcmp(argv[1], "--mjcf"))
         return print_mjcf(&p);
     if (argc > 1) {
