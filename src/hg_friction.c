@@ -162,9 +162,10 @@ solve(const int n, const hg_friction_channel *c, const double *W, const double *
     x.c = c;
     x.dt = dt;
     f.key = ~0u;
+    for (k = 0; k < HG_FRICTION_MAX_N; k++)
+        x.erf_key[k] = x.erf_val[k] = NAN;
     for (k = 0; k < n; k++) {
         ps[k] = c[k].f_static_n * dt;
-        x.erf_key[k] = NAN;
         if (v0[k] == 0.0)
             rest |= 1u << k;
         slide[k] = hg_friction_curve(&c[k], fabs(v0[k])) * dt;

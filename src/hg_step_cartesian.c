@@ -28,7 +28,8 @@ int hg_cartesian_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd
     double phi[6], pz[6], vc[6], worst = 0.0, *sc1 = d->work.sc1;
     const double r2l = 1.0 / (2.0 * m->p.geo.l_m);
     int k;
-    if (!(d->work.sc1_valid && memcmp(d->work.sc1_key, q1 + 9, sizeof d->work.sc1_key) == 0))
+    if (!(d->work.sc1_valid &&
+          memcmp(d->work.sc1_key, q1 + 9, sizeof d->work.sc1_key) == 0)) // NOLINT(bugprone-suspicious-memory-comparison): bitwise on purpose, the same bits give the same sin/cos
         hg_head_trig(q1 + 6, sc1);     /* else the hold's last ones are these angles' (same bits) */
     d->work.sc1_valid = 0;
     hg_gen_reduced_stabilize(m->k, q1, qd1, sc1, phi, pz, vc);
@@ -119,6 +120,7 @@ static void cartesian_system(const hg_model *m, hg_data *d, const double *q, con
     for (i = 0; i < 6; i++)
         HG_UNROLL
         for (j = 0; j <= i; j++)
+            // cppcheck-suppress uninitvar ; P is written above through hg_v2_store (memcpy)
             Mh[6 * i + j] = Mcc[6 * i + j] + P[6 * i + j] + P[6 * j + i];
 }
 
