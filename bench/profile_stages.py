@@ -45,13 +45,14 @@ PARTS = {
         ("segment distances", ["hg_segment_distance"]),
         ("clearance bound (memo)", ["clearance", "end_moved"]),
         ("joint cosines", ["joint_cosines"]),
-        ("joint points", ["hg_joint_points", "joint_points"]),
-        ("rotation and its sin/cos", ["hg_rotation", r"__sin.*", r"__cos.*"])],
+        ("joint points", ["hg_joint_points", "hg_joint_points_rot", "head_offsets"]),
+        ("rotation and its sin/cos", ["hg_rotation", "hg_rotation_sc", r"__sin.*", r"__cos.*"])],
 }
 REST = {"accelerations (2 Heun stages)": "solve, z'' = A c'' + b",
         "friction": "mass responses (the correction; W where not split out), rest",
         "stabilization": "Newton step on z, z' = A c'",
-        "drive (windings)": "amplifiers, windings"}
+        "drive (windings)": "amplifiers, windings",
+        "guard": "cone checks, clearance bound (inlined parts)"}
 
 
 def matches(name, pats):
