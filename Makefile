@@ -5,7 +5,7 @@
 #   make test     all tests; ends with "N passed, N failed, N skipped"
 #   make demo     the virtual machine: home, run G-code, plots in out/
 #   make run      the same machine in AXIS
-#   make bench    speed of kinematics and dynamics
+#   make bench    speed of kinematics and dynamics; make profile: the step by stage (callgrind)
 #   make check    sanitizers and static analysis; make fuzz; make soak
 # Every entry point first installs the Debian packages it needs.
 
@@ -38,7 +38,7 @@ BENCH_BINS := $(patsubst bench/%.c,$(BUILD)/bench/%,$(BENCH_SRCS))
 MANDIR  ?= /usr/local/share/man
 MAN9    := $(wildcard docs/man/man9/*.9)
 
-.PHONY: all deps modules host lib install uninstall test check fuzz soak demo run bench clean unit-tests
+.PHONY: all deps modules host lib install uninstall test check fuzz soak demo run bench profile clean unit-tests
 
 all: deps host modules
 
@@ -117,6 +117,27 @@ $(BUILD)/bench/%: bench/%.c bench/bench_timing.h $(CORE_OBJS)
 	$(CC) $(CFLAGS_HOST) -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST) $(if $(findstring mujoco,$*),-lmujoco)
 # ... and includes the MuJoCo model generator
 $(filter $(BUILD)/bench/bench_mujoco%,$(BENCH_BINS)): bench/hg_mujoco_model.c bench/hg_mujoco_model.h
+# bench_baseline also links commit d20d9e5's core, built from git into
+# $(BUILD)/baseline with the same compiler and flags (bench/baseline.sh);
+# without that commit in the repository it runs its yardstick alone
+BENCH_CODE_FLAGS := $(filter-out -I% -MMD -MP,$(CFLAGS_HOST))
+$(BUILD)/bench/bench_baseline: bench/bench_baseline.c bench/engine_shim.c bench/baseline.sh bench/bench_timing.h $(CORE_OBJS)
+	@mkdir -p $(dir $@)
+	@if bench/baseline.sh $(BUILD)/baseline $(CC) $(BENCH_CODE_FLAGS); then \
+	    $(CC) $(CFLAGS_HOST) -DHG_HAVE_BASELINE -o $@ bench/bench_baseline.c bench/engine_shim.c \
+	        $(BUILD)/baseline/engine_old.o $(CORE_OBJS) $(LDLIBS_HOST); \
+	else \
+	    $(CC) $(CFLAGS_HOST) -o $@ bench/bench_baseline.c bench/engine_shim.c $(CORE_OBJS) $(LDLIBS_HOST); \
+	fi
+
+# where the default step's time goes: callgrind instruction counts by stage
+# (bench/profile_step.sh; PROFILE_ARGS=--baseline profiles d20d9e5's step)
+profile: host
+	@tools/install-deps.sh bench
+	@bench/profile_step.sh $(PROFILE_ARGS)
+$(BUILD)/bench/profile_step: bench/profile_step.c $(CORE_OBJS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_HOST) -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST)
 
 demo: all
 	@tools/install-deps.sh demo

@@ -12,10 +12,12 @@
  * costs the servo thread). Machine lines:
  *   BENCH dyn_<model> median_us=<x> p99_us=<y> flops=<n> iters=<n>
  *   BENCH board_<model> median_us=<x> p99_us=<y> iters=<n>
- *   BENCH change_<model> median_us=<x> p99_us=<y> max_us=<z> iters=<n> */
+ *   BENCH change_<model> median_us=<x> p99_us=<y> max_us=<z> iters=<n>
+ * bench_dynamics board MODEL prints the board line of that model alone. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include "hg_board.h"
 #include "hg_dynamics.h"
 #include "hg_errors.h"
@@ -132,7 +134,28 @@ static int bench_board_change(hg_model_kind kind, double *ns, double *median, do
     return 0;
 }
 
-int main(void)
+/* bench_dynamics board MODEL: the board line of one model alone (what
+ * run_bench.sh measures just before and after the in-HAL run, so that
+ * both see the same load on the machine). */
+static int board_only(const char *name)
+{
+    static double ns[BENCH_STEPS];
+    double bm = 0.0, bp = 0.0;
+    int kind = hg_model_from_name(name), rc;
+    if (kind < 0) {
+        fprintf(stderr, "bench_dynamics: unknown model '%s'\n", name);
+        return 2;
+    }
+    rc = bench_board((hg_model_kind)kind, ns, &bm, &bp);
+    if (rc) {
+        printf("%-18s failed: %s\n", name, hg_strerror(rc));
+        return 1;
+    }
+    printf("BENCH board_%s median_us=%.3f p99_us=%.3f iters=%d\n", name, bm, bp, BENCH_STEPS);
+    return 0;
+}
+
+int main(int argc, char **argv)
 {
     static double ns[BENCH_STEPS];
     static const double paper_us[HG_MODEL_COUNT] = {144.6, 76.8, 40.6, 40.6};
@@ -145,6 +168,8 @@ int main(void)
         HG_GEN_FUSED_STEP_FLOPS};
     double timer, med[HG_MODEL_COUNT], p99[HG_MODEL_COUNT];
     int kind, i, failed = 0;
+    if (argc == 3 && strcmp(argv[1], "board") == 0)
+        return board_only(argv[2]);
     {   /* the cost of the two clock reads around each step */
         double t0 = bench_now_us(), t1;
         for (i = 0; i < 1000000; i++)

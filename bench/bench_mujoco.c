@@ -11,11 +11,15 @@
  *
  * Engines: MuJoCo RK4 (the accurate setting used by tests/engine), MuJoCo
  * Euler (its cheapest), and hg_step of every model kind with the paper's
- * improved Euler (plus Heun for reduced- and fused-cartesian). Also prints the largest
- * loop-closure error MuJoCo leaves. Machine lines:
+ * improved Euler (plus Heun for reduced- and fused-cartesian: the default
+ * step), all on the peer set with Coulomb friction (hgmj_peer_params_friction:
+ * MuJoCo's frictionloss on each slide, the project's stick-slip law with
+ * f_static = f_coulomb; the current limit as the motors' force range). Also
+ * prints the largest loop-closure error MuJoCo leaves. Machine lines:
  *   BENCH mujoco median_us=<x> p99_us=<y> iters=<n>
  *   BENCH mujoco_euler median_us=<x> p99_us=<y> iters=<n>
  *   BENCH ratio_<engine> rk4_over=<r> euler_over=<r>
+ *   BENCH ratio_mujoco_friction with_over_without=<r>   (MuJoCo RK4, frictionloss on / off)
  * bench_mujoco --mjcf prints the generated model instead. */
 #define _GNU_SOURCE
 #include <math.h>
@@ -31,7 +35,7 @@
 #define BLOCK_US 500.0              /* wall time per engine per round */
 #define DT_S 1e-3
 #define REF_STEPS 2000              /* the 0.5 Hz reference, one period at 1 ms */
-#define MAX_ENGINES 8
+#define MAX_ENGINES 9
 
 /* Servo motion: a P controller (kp V/m) on a 20 mm, 0.5 Hz sine per
  * carriage, phases a sixth of a period apart (the head translates and
@@ -181,7 +185,7 @@ int main(int argc, char **argv)
     hg_params p;
     int ne = 0, i, r, kind;
 
-    hgmj_peer_params(&p);   /* both engines run the same physics */
+    hgmj_peer_params_friction(&p);   /* both engines run the same physics, Coulomb friction included */
     if (argc > 1 && !strcmp(argv[1], "--mjcf"))
         return print_mjcf(&p);
     if (argc > 1) {
@@ -201,6 +205,13 @@ int main(int argc, char **argv)
         ne++;
     if (engine_project(&eng[ne], &p, HG_MODEL_FUSED_CARTESIAN, HG_INTEGRATOR_HEUN) == 0)
         ne++;
+    {   /* last: MuJoCo RK4 without the friction, what frictionloss costs MuJoCo */
+        hg_params q;
+        hgmj_peer_params(&q);
+        if (engine_mujoco(&eng[ne], &q, "RK4"))
+            return 1;
+        snprintf(eng[ne++].name, sizeof eng[0].name, "mujoco RK4 frictionless");
+    }
     for (i = 0; i < ne; i++) {          /* warm up; block sizes from the warm-up's speed */
         double t0 = bench_now_us(), t;
         if (engine_run(&eng[i], &servo, WARMUP_STEPS, 0))
@@ -234,7 +245,7 @@ int main(int argc, char **argv)
     }
     printf("\n%-28s %12s %8s %16s %16s\n", "project hg_step", "median us", "block",
            "MuJoCo RK4 / it", "MuJoCo Euler / it");
-    for (i = 2; i < ne; i++) {
+    for (i = 2; i < ne - 1; i++) {
         double r4 = ratio(&eng[0], &eng[i]), re = ratio(&eng[1], &eng[i]);
         char tag[40];
         printf("%-28s %12.3f %8d %15.1fx %15.1fx\n", eng[i].name, median_of(eng[i].us, ROUNDS),
@@ -245,6 +256,9 @@ int main(int argc, char **argv)
                 tag[r] = '_';
         printf("BENCH ratio_%s rk4_over=%.1f euler_over=%.1f\n", tag, r4, re);
     }
+    printf("\nMuJoCo RK4 with frictionloss / without (%s): %.2f\n", eng[ne - 1].name,
+           ratio(&eng[0], &eng[ne - 1]));
+    printf("BENCH ratio_mujoco_friction with_over_without=%.2f\n", ratio(&eng[0], &eng[ne - 1]));
     for (i = 0; i < ne; i++) {
         if (eng[i].mm) {
             mj_deleteData(eng[i].md);

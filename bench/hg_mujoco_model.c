@@ -89,9 +89,18 @@ void hgmj_peer_params(hg_params *p)
     p->v_bus_v = 1e6;
 }
 
+void hgmj_peer_params_friction(hg_params *p)
+{
+    hg_params d;
+    hgmj_peer_params(p);
+    hg_params_default(&d);
+    p->f_coulomb_n = d.f_coulomb_n;
+    p->f_static_n = d.f_coulomb_n;
+}
+
 int hgmj_is_peer(const hg_params *p, const hgmj_options *o)
 {
-    return p->f_coulomb_n == 0.0 && p->f_static_n == 0.0 && p->amp_mode == 0.0 &&
+    return p->f_coulomb_n >= 0.0 && p->f_static_n == p->f_coulomb_n && p->amp_mode == 0.0 &&
            p->l_winding_h / p->r_winding_ohm < 1e-6 * o->timestep_s &&
            p->v_bus_v >= 1000.0 * p->r_winding_ohm * p->i_max_a;
 }
@@ -107,8 +116,8 @@ int hgmj_write_mjcf(const hg_params *p, const hgmj_options *o, char *buf, size_t
     const double tilt = atan2(g->lb_m - g->lp_m, hg_home_height(g));
     /* rotor inertia reflected to the carriage: inertia without weight */
     const double rotor_kg = p->j_rotor_kgm2 * pow(2.0 * M_PI / p->lead_m, 2);
-    /* the drive saturates at the DAC range or at the amplifier's current limit */
-    const double v_max = fmin(10.0, p->i_max_a / p->ka_a_per_v);
+    /* the drive saturates at the DAC range and at the amplifier's current limit */
+    const double f_max = p->i_max_a * p->kt_nm_per_a * 2.0 * M_PI / p->lead_m;
     const double tiny = 1e-6; /* carriage rotational inertia: the slide cannot rotate */
     hgmj_text t = {buf, n, 0, 0};
     int i, j;
@@ -118,7 +127,7 @@ int hgmj_write_mjcf(const hg_params *p, const hgmj_options *o, char *buf, size_t
         !(o->bar_spin_kgm2 > 0.0) || !(p->lead_m > 0.0))
         return -2;
     if (!hgmj_is_peer(p, o))
-        return -3; /* stick-slip friction and a real winding have no MuJoCo twin here */
+        return -3; /* breakaway friction and a real winding have no MuJoCo twin here */
     if (n > 0)
         buf[0] = 0;
 
@@ -141,6 +150,10 @@ int hgmj_write_mjcf(const hg_params *p, const hgmj_options *o, char *buf, size_t
                          " damping=\"%.17g\"", nm, rotor_kg, p->c_visc_ns_per_m);
             if (o->hard_stops)
                 hgmj_put(&t, " limited=\"true\" range=\"%.17g %.17g\"", p->stop_min_m, p->stop_max_m);
+            if (p->f_coulomb_n > 0.0)   /* dry friction, as stiff as the loops */
+                hgmj_put(&t, " frictionloss=\"%.17g\" solreffriction=\"%.17g 1\""
+                             " solimpfriction=\"%.17g %.17g 0.001 0.5 2\"", p->f_coulomb_n,
+                         o->eq_timeconst_s, o->eq_impedance, o->eq_impedance);
             hgmj_put(&t, "/>\n");
             hgmj_put(&t, "        <inertial pos=\"0 0 0\" mass=\"%.17g\" diaginertia=\"%g %g %g\"/>\n",
                      p->m_carriage_kg, tiny, tiny, tiny);
@@ -175,8 +188,8 @@ int hgmj_write_mjcf(const hg_params *p, const hgmj_options *o, char *buf, size_t
     hgmj_put(&t, "  </equality>\n  <actuator>\n");
     for (i = 0; i < 6; i++)
         hgmj_put(&t, "    <motor name=\"drive%s\" joint=\"z%s\" gear=\"%.17g\" ctrllimited=\"true\""
-                     " ctrlrange=\"%.17g %.17g\"/>\n",
-                 hgmj_bar_name[i], hgmj_bar_name[i], hgmj_force_per_volt(p), -v_max, v_max);
+                     " ctrlrange=\"-10 10\" forcelimited=\"true\" forcerange=\"%.17g %.17g\"/>\n",
+                 hgmj_bar_name[i], hgmj_bar_name[i], hgmj_force_per_volt(p), -f_max, f_max);
     hgmj_put(&t, "  </actuator>\n</mujoco>\n");
     return t.overflow ? -1 : (int)t.len;
 }
@@ -198,8 +211,8 @@ mjModel *hgmj_load(const hg_params *p, const hgmj_options *o, char *err, int err
         snprintf(err, err_sz, "%s", len == -1 ? "MJCF text longer than the 64 kB buffer"
                  : len == -2 ? "parameters not assembled at HOME (h != sqrt(l^2-(lb-lp)^2)) "
                                "or a mass property not positive: fix the parameter set"
-                 : "the MuJoCo peer models neither Coulomb/static friction nor the winding: "
-                   "start from hgmj_peer_params");
+                 : "the MuJoCo peer models neither breakaway (f_static above f_coulomb) nor the "
+                   "winding: start from hgmj_peer_params or hgmj_peer_params_friction");
         goto out;
     }
     mj_defaultVFS(vfs);

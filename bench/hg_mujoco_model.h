@@ -29,6 +29,8 @@ typedef struct {
     double tolerance;         /* solver tolerance (relative cost improvement) */
     double eq_timeconst_s;    /* connect solref[0]: constraint time constant */
     double eq_impedance;      /* connect solimp[0] = solimp[1]: 1 is a hard constraint */
+                              /* (the same two for the slides' frictionloss: solreffriction,
+                                 solimpfriction) */
     double bar_spin_kgm2;     /* bar inertia about its own axis (neglected by the project) */
     int hard_stops;           /* 1: slide range [stop_min, stop_max] limited="true" */
 } hgmj_options;
@@ -47,13 +49,21 @@ typedef struct {
 void hgmj_options_default(hgmj_options *o);
 
 /* The default machine as the peer models it: no Coulomb or static friction
- * (MuJoCo's frictionloss is not the project's stick-slip law) and the
+ * (the closed-form facts of tests/engine are frictionless) and the
  * amplifier in torque mode as an ideal current source (a 1 nH winding on a
  * 1 MV bus: the current reaches its command at the start of each step, so
  * neither back-EMF nor winding lag acts). Viscous friction stays. */
 void hgmj_peer_params(hg_params *p);
 
-/* 1 when p is such a parameter set (hgmj_write_mjcf refuses any other). */
+/* The same with the default Coulomb friction f_coulomb on every carriage,
+ * the law both engines have: MuJoCo's dry friction (frictionloss) on each
+ * slide, the project's stick-slip law with f_static = f_coulomb (no
+ * breakaway above the sliding force, so no Stribeck curve either). What
+ * bench_mujoco times. */
+void hgmj_peer_params_friction(hg_params *p);
+
+/* 1 when p is such a parameter set (hgmj_write_mjcf refuses any other):
+ * the ideal current source, and f_static = f_coulomb (0 or not). */
 int hgmj_is_peer(const hg_params *p, const hgmj_options *o);
 
 /* Write the MJCF of the machine p into buf (size n): the text length, or -1

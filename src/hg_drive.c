@@ -1,7 +1,7 @@
 /* hg_drive.c - servo amplifiers and windings over one step (hg_drive.h). */
 #include "hg_math.h"
 #include "hg_drive.h"
-#include "hg_forces.h"
+#include "hg_units.h"
 
 double hg_drive_log(double x)
 {
@@ -17,13 +17,42 @@ double hg_drive_log(double x)
     return s * y * (1.0 - y * (0.5 - y * (1.0 / 3.0 - y * (0.25 - y * 0.2))));
 }
 
-/* The winding from current i0 over dt with command iref, back-EMF e (V),
- * bus v, resistance r, time constant tau: mean and end current. The
- * amplifier applies u = +-v towards iref (i relaxes to (u - e) / r) until
- * the current gets there, then holds it if |r iref + e| <= v. */
-static void winding(double i0, double iref, double e, double v, double r, double tau, double dt,
-                    double *mean, double *end, int *limited)
+void hg_drive_init(hg_drive_channel *c, const hg_drive_params *p)
 {
+    c->p = *p;
+    c->force_per_amp_n = p->kt_nm_per_a * (2.0 * HG_PI / p->lead_m);
+    c->tau_s = p->l_winding_h / p->r_winding_ohm;
+}
+
+/* x clamped to [-lim, lim], lim > 0, x finite: libm's fmax(-lim, fmin(lim, x)) bit for bit. */
+static inline double clamp(double x, double lim)
+{
+    return x > lim ? lim : (x < -lim ? -lim : x);
+}
+
+/* exp(-dt / tau) of channel k, from the memo when it holds them. */
+static double decay_of(hg_drive_memo *memo, int k, double dt, double tau)
+{
+    double e;
+    if (memo && memo->dt_s[k] == dt && memo->tau_s[k] == tau)
+        return memo->decay[k];
+    e = exp(-dt / tau);
+    if (memo) {
+        memo->dt_s[k] = dt;
+        memo->tau_s[k] = tau;
+        memo->decay[k] = e;
+    }
+    return e;
+}
+
+/* The winding of channel k (c) from current i0 over dt with command
+ * iref, back-EMF e (V): mean and end current. The amplifier applies
+ * u = +-v_bus towards iref (i relaxes to (u - e) / r) until the current
+ * gets there, then holds it if |r iref + e| <= v_bus. */
+static void winding(const hg_drive_channel *c, int k, double i0, double iref, double e, double dt,
+                    hg_drive_memo *memo, double *mean, double *end, int *limited)
+{
+    const double v = c->p.v_bus_v, r = c->p.r_winding_ohm, tau = c->tau_s;
     double u, is, decay, iend, ts;
     *limited = 0;
     if (i0 < iref || (i0 == iref && r * iref + e > v))
@@ -35,7 +64,7 @@ static void winding(double i0, double iref, double e, double v, double r, double
         return;
     }
     is = (u - e) / r;                           /* where full voltage takes the current */
-    decay = exp(-dt / tau);
+    decay = decay_of(memo, k, dt, tau);
     iend = is + (i0 - is) * decay;
     if ((u > 0.0 && is > iref && iend >= iref) || (u < 0.0 && is < iref && iend <= iref)) {
         /* reaches the command at ts = tau ln((is - i0) / (is - iref)) < dt, then holds */
@@ -52,42 +81,41 @@ static void winding(double i0, double iref, double e, double v, double r, double
     *limited = 1;
 }
 
-void hg_drive_step(const hg_model *m, const hg_data *d, const double volts[6], double dt,
-                   hg_drive_out *o)
+void hg_drive_step(const hg_drive_channel *c, int n, const double *volts, const double *current_a,
+                   const double *speed_mps, const double *vloop_int_m, unsigned enabled, double dt,
+                   hg_drive_memo *memo, hg_drive_out *o)
 {
-    const hg_params *p = &m->p;
-    const double tau = p->l_winding_h / p->r_winding_ohm;
     int k;
     o->limited = 0;
-    for (k = 0; k < 6; k++) {
-        double v = isfinite(volts[k]) ? fmax(-HG_DAC_VOLTS_MAX, fmin(HG_DAC_VOLTS_MAX, volts[k])) : 0.0;
-        double iref, e = m->force_per_amp_n * d->zd_mps[k];   /* back-EMF: kt (2 pi / lead) z' */
+    for (k = 0; k < n && k < HG_DRIVE_MAX; k++) {
+        const hg_drive_params *p = &c[k].p;
+        double v = isfinite(volts[k]) ? clamp(volts[k], HG_DAC_VOLTS_MAX) : 0.0;
+        double iref, e = c[k].force_per_amp_n * speed_mps[k];   /* back-EMF: kt (2 pi / lead) z' */
         int lim, wl;
         o->v_ref[k] = v * p->v_rated_mps / HG_DAC_VOLTS_MAX;
-        if (!((d->amp_enabled >> k) & 1u)) {
+        if (!((enabled >> k) & 1u)) {
             o->i_mean[k] = o->i_end[k] = o->i_ref[k] = 0.0;
             continue;
         }
         if (p->amp_mode == 1.0)
-            iref = p->kp_vel_as_per_m * (o->v_ref[k] - d->zd_mps[k]) + p->ki_vel_a_per_m * d->vloop_int_m[k];
+            iref = p->kp_vel_as_per_m * (o->v_ref[k] - speed_mps[k]) + p->ki_vel_a_per_m * vloop_int_m[k];
         else
             iref = p->ka_a_per_v * v;
         lim = !(fabs(iref) <= p->i_max_a);
-        iref = fmax(-p->i_max_a, fmin(p->i_max_a, isfinite(iref) ? iref : 0.0));
+        iref = clamp(isfinite(iref) ? iref : 0.0, p->i_max_a);
         o->i_ref[k] = iref;
-        winding(d->current_a[k], iref, e, p->v_bus_v, p->r_winding_ohm, tau, dt, &o->i_mean[k],
-                &o->i_end[k], &wl);
+        winding(&c[k], k, current_a[k], iref, e, dt, memo, &o->i_mean[k], &o->i_end[k], &wl);
         if (lim || wl)
             o->limited |= 1u << k;
     }
 }
 
-void hg_drive_integral(const hg_model *m, unsigned enabled, const hg_drive_out *o,
-                       const double z0[6], const double z1[6], double dt, double vint[6])
+void hg_drive_integral(const hg_drive_channel *c, int n, unsigned enabled, const hg_drive_out *o,
+                       const double *z0, const double *z1, double dt, double *vint)
 {
     int k;
-    for (k = 0; k < 6; k++) {
-        if (m->p.amp_mode != 1.0 || !((enabled >> k) & 1u))
+    for (k = 0; k < n && k < HG_DRIVE_MAX; k++) {
+        if (c[k].p.amp_mode != 1.0 || !((enabled >> k) & 1u))
             vint[k] = 0.0;
         else if (!((o->limited >> k) & 1u))
             vint[k] += o->v_ref[k] * dt - (z1[k] - z0[k]);

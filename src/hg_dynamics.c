@@ -131,7 +131,39 @@ int hg_data_reset(const hg_model *m, hg_data *d)
     d->amp_enabled = HG_BARS_ALL;      /* amplifiers on, no current yet */
     d->stuck = HG_BARS_ALL;            /* at rest: every carriage held by static friction */
     d->residual_m = hg_bar_length_error(&m->p.geo, d->z_m, d->pose);
+    d->work.guard.valid = 0;
+    memset(&d->work.drive, 0, sizeof d->work.drive);
     return 0;
+}
+
+void hg_friction_channel_of(const hg_params *p, hg_friction_channel *c)
+{
+    c->f_static_n = p->f_static_n;
+    c->f_coulomb_n = p->f_coulomb_n;
+    c->v_stribeck_mps = p->v_stribeck_mps;
+}
+
+double hg_friction_stribeck(const hg_params *p, double v)
+{
+    hg_friction_channel c;
+    hg_friction_channel_of(p, &c);
+    return hg_friction_shape(&c, v);
+}
+
+/* The drive fields of the Hexaglide's parameter set (every drive alike). */
+static void drive_params_of(const hg_params *p, hg_drive_params *dp)
+{
+    dp->kt_nm_per_a = p->kt_nm_per_a;
+    dp->lead_m = p->lead_m;
+    dp->r_winding_ohm = p->r_winding_ohm;
+    dp->l_winding_h = p->l_winding_h;
+    dp->amp_mode = p->amp_mode;
+    dp->ka_a_per_v = p->ka_a_per_v;
+    dp->i_max_a = p->i_max_a;
+    dp->v_bus_v = p->v_bus_v;
+    dp->v_rated_mps = p->v_rated_mps;
+    dp->kp_vel_as_per_m = p->kp_vel_as_per_m;
+    dp->ki_vel_a_per_m = p->ki_vel_a_per_m;
 }
 
 int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
@@ -139,7 +171,8 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
 {
     const double screw = 2.0 * HG_PI / p->lead_m;
     double q[HG_NQ_MAX], qd[HG_NQ_MAX], t;
-    int rc;
+    hg_drive_params dp;
+    int rc, i;
     if ((int)kind < 0 || kind >= HG_MODEL_COUNT) {
         if (bad_field)
             *bad_field = "model";
@@ -154,9 +187,14 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
     m->p = *p;
     m->kind = kind;
     m->integrator = HG_INTEGRATOR_DEFAULT;
-    m->force_per_amp_n = p->kt_nm_per_a * screw;
-    m->force_per_volt_n = p->ka_a_per_v * m->force_per_amp_n;
+    drive_params_of(p, &dp);
+    for (i = 0; i < 6; i++)
+        hg_drive_init(&m->drive[i], &dp);
+    m->force_per_volt_n = p->ka_a_per_v * m->drive[0].force_per_amp_n;
+    for (i = 0; i < 6; i++)
+        hg_friction_channel_of(p, &m->fric[i]);
     m->rotor_mass_kg = p->j_rotor_kgm2 * screw * screw;
+    hg_guard_prepare(&p->geo, &m->guard);
     if (kind == HG_MODEL_STANDARD)
         hg_gen_standard_init(p, m->k);
     else
@@ -179,7 +217,6 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
     }
     hg_model_energy(m, q, qd, &t, &m->potential_home_j);
     if (kind == HG_MODEL_STANDARD) {   /* [z, c] of the lumped-bar model */
-        int i;
         for (i = 0; i < 6; i++)
             q[6 + i] = q[18 + i];
     }
@@ -225,16 +262,17 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
     double q0[HG_NQ_MAX], qd0[HG_NQ_MAX], q1[HG_NQ_MAX], qd1[HG_NQ_MAX], qdd[HG_NQ_MAX];
     double fz[6], drive_n[6], res = 0.0;
     hg_drive_out drv;
-    int n = hg_system_nq(m), rc, trig = 0, k, fric = hg_friction_on(&m->p);
+    int n = hg_system_nq(m), rc, trig = 0, k, fric = hg_friction_any(m->fric, 6);
     if (!(isfinite(dt_s) && dt_s > 0.0 && dt_s <= HG_DT_MAX_S)) {
         d->last_error = HG_ERR_BAD_DT;
         return HG_ERR_BAD_DT;
     }
     pack(m, d, q0, qd0);
-    hg_drive_step(m, d, volts, dt_s, &drv);
+    hg_drive_step(m->drive, 6, volts, d->current_a, d->zd_mps, d->vloop_int_m, d->amp_enabled, dt_s,
+                  &d->work.drive, &drv);
     for (k = 0; k < 6; k++) {          /* drive, and the friction of the last step, held */
         d->work.fric_est_n[k] = fric ? d->fric_n[k] : 0.0;
-        drive_n[k] = drv.i_mean[k] * m->force_per_amp_n + d->work.fric_est_n[k];
+        drive_n[k] = drv.i_mean[k] * m->drive[k].force_per_amp_n + d->work.fric_est_n[k];
     }
     hg_carriage_forces(m, d->z_m, d->zd_mps, drive_n, fz);
     switch (d->broken_bars & HG_BARS_ALL ? HG_MODEL_COUNT : m->kind) {
@@ -280,20 +318,25 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
         rc = HG_ERR_STATE_NONFINITE;
     if (rc == 0 && !(res <= HG_STAB_MAX_RESIDUAL_M))
         rc = HG_ERR_STABILIZATION;
-    if (rc == 0)                       /* the machine's mechanical limits, intact or broken */
-        rc = hg_guard_check(&m->p.geo, q1, q1 + n - 6, d->broken_bars, &d->guard);
+    if (rc == 0) {                     /* the machine's mechanical limits, intact or broken */
+        double sc[6];
+        if (!trig)                     /* the Cartesian kinds' stabilization has them */
+            hg_head_trig(q1 + n - 6, sc);
+        rc = hg_guard_check_sc(&m->guard, q1, q1 + n - 6, trig ? d->work.sc1 : sc, d->broken_bars,
+                               &d->work.guard, &d->guard);
+    }
     if (rc) {
         d->last_error = rc;
         return rc;
     }
-    hg_drive_integral(m, d->amp_enabled, &drv, q0, q1, dt_s, d->vloop_int_m);
+    hg_drive_integral(m->drive, 6, d->amp_enabled, &drv, q0, q1, dt_s, d->vloop_int_m);
     unpack(m, q1, qd1, qdd, d);
     d->trig_valid = trig;
     if (trig) {
         memcpy(d->trig_key_rad, d->pose + 3, sizeof d->trig_key_rad);
         memcpy(d->trig_sc, d->work.sc1, sizeof d->trig_sc);
     }
-    memcpy(d->current_a, drv.i_end, sizeof drv.i_end);
+    memcpy(d->current_a, drv.i_end, sizeof d->current_a);
     for (k = 0; k < 6; k++) {          /* the step's mean force: smooth part at the start + friction */
         d->fric_n[k] = d->work.fric_impulse[k] / dt_s;
         d->force_n[k] = fz[k] - d->work.fric_est_n[k] + d->fric_n[k];

@@ -63,6 +63,13 @@ int hg_data_reset(const hg_model *m, hg_data *d);
  * not restored). Substeps: call it n times with dt_s / n. */
 int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s);
 
+/* The friction channel of a carriage of p (every carriage alike). */
+void hg_friction_channel_of(const hg_params *p, hg_friction_channel *c);
+
+/* The Stribeck shape exp(-(v / v_stribeck)^2) of p's carriages
+ * (hg_friction_shape of their channel). */
+double hg_friction_stribeck(const hg_params *p, double v);
+
 /* Kinetic energy (J, rotor included) and potential energy (J, gravity,
  * zero at HOME) of the state in d (of the lumped-bar model when a bar is
  * broken). */

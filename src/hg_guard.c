@@ -26,14 +26,12 @@ static void home_directions(const hg_geometry *g, double u0[6][3])
             u0[k][r] = (A[k][r] - B[k][r]) / g->l_m;
 }
 
-/* Cosines of every bar's angle in its carriage joint (cc) and head joint (ch). */
-static void joint_cosines(const hg_geometry *g, const double B[6][3], const double A[6][3],
-                          const double pose[6], double cc[6], double ch[6])
+/* Cosines of every bar's angle in its carriage joint (cc) and head joint
+ * (ch), R the head's rotation. */
+static void joint_cosines(const hg_guard_geo *gg, const double B[6][3], const double A[6][3],
+                          const double R[9], double cc[6], double ch[6])
 {
-    double u0[6][3], R[9];
     int k, r;
-    home_directions(g, u0);
-    hg_rotation(pose[3], pose[4], pose[5], R);
     for (k = 0; k < 6; k++) {
         double u[3], uh[3], n;
         for (r = 0; r < 3; r++)
@@ -43,9 +41,18 @@ static void joint_cosines(const hg_geometry *g, const double B[6][3], const doub
             u[r] /= n;
         for (r = 0; r < 3; r++)      /* R^T u: the bar in head axes */
             uh[r] = R[r] * u[0] + R[3 + r] * u[1] + R[6 + r] * u[2];
-        cc[k] = dot3(u, u0[k]);
-        ch[k] = dot3(uh, u0[k]);
+        cc[k] = dot3(u, gg->u0[k]);
+        ch[k] = dot3(uh, gg->u0[k]);
     }
+}
+
+void hg_guard_prepare(const hg_geometry *g, hg_guard_geo *gg)
+{
+    gg->g = *g;
+    hg_frame_of(g, &gg->f);
+    gg->cos_carriage = cos(g->cone_carriage_rad);
+    gg->cos_head = cos(g->cone_head_rad);
+    home_directions(g, gg->u0);
 }
 
 /* Angle (rad) whose cosine is c, c clamped to [-1, 1]. */
@@ -57,10 +64,14 @@ static double angle_of(double c)
 void hg_guard_joint_angles(const hg_geometry *g, const double z[6], const double pose[6],
                            double carriage_rad[6], double head_rad[6])
 {
-    double B[6][3], A[6][3], cc[6], ch[6];
+    hg_guard_geo gg;
+    double B[6][3], A[6][3], cc[6], ch[6], sc[6], R[9];
     int k;
-    hg_joint_points(g, z, pose, B, A);
-    joint_cosines(g, B, A, pose, cc, ch);
+    hg_guard_prepare(g, &gg);
+    hg_head_trig(pose, sc);
+    hg_rotation_sc(sc, R);
+    hg_joint_points_rot(&gg.f, R, z, pose, B, A);
+    joint_cosines(&gg, B, A, R, cc, ch);
     for (k = 0; k < 6; k++) {
         carriage_rad[k] = angle_of(cc[k]);
         head_rad[k] = angle_of(ch[k]);
@@ -140,12 +151,74 @@ static int region_check(const double z[6], const double pose[6], hg_guard_report
     return 0;
 }
 
-int hg_guard_check(const hg_geometry *g, const double z[6], const double pose[6],
-                   unsigned broken, hg_guard_report *r)
+/* Largest displacement of bar k's ends from the memo's reference state (m). */
+static double end_moved(const hg_guard_memo *memo, const double B[6][3], const double A[6][3], int k)
 {
-    const double cos_c = cos(g->cone_carriage_rad), cos_h = cos(g->cone_head_rad);
-    double B[6][3], A[6][3], cc[6], ch[6];
-    int j, k, rc;
+    double b = 0.0, a = 0.0;
+    int r;
+    for (r = 0; r < 3; r++) {
+        b += (B[k][r] - memo->B[k][r]) * (B[k][r] - memo->B[k][r]);
+        a += (A[k][r] - memo->A[k][r]) * (A[k][r] - memo->A[k][r]);
+    }
+    return sqrt(b > a ? b : a);
+}
+
+/* Bar clearances of the joint points B, A, intact bars only: 0 or
+ * BAR_CLEARANCE with the first pair (in pair order) closer than d_bar; the
+ * memo's bound skips pairs it clears (hg_guard_memo), and the memo takes
+ * this state when some pair was measured and none touches. */
+static int clearance(const hg_guard_geo *gg, const double B[6][3], const double A[6][3],
+                     unsigned broken, hg_guard_memo *memo, hg_guard_report *r)
+{
+    const double d_bar = gg->g.d_bar_m, clear = d_bar + HG_GUARD_SLACK_M;
+    double moved[6], dist[HG_GUARD_PAIRS], most = 0.0;
+    unsigned measured = 0;
+    int j, k, p, known = memo && memo->valid;
+    for (k = 0; known && k < 6; k++) {
+        moved[k] = end_moved(memo, B, A, k);
+        most = moved[k] > most ? moved[k] : most;
+    }
+    if (known && memo->dist_min - 2.0 * most >= clear)
+        return 0;                         /* no pair can touch */
+    for (j = 0, p = 0; j < 6; j++)
+        for (k = j + 1; k < 6; k++, p++) {
+            if ((broken >> j) & 1u || (broken >> k) & 1u)
+                continue;
+            if (known && memo->dist[p] - moved[j] - moved[k] >= clear)
+                continue;                 /* cannot touch: not measured */
+            dist[p] = hg_segment_distance(B[j], A[j], B[k], A[k]);
+            measured |= 1u << p;
+            if (!(dist[p] >= d_bar)) {
+                report(r, HG_GUARD_BARS, j, k, dist[p], d_bar);
+                return HG_ERR_BAR_CLEARANCE;
+            }
+        }
+    if (memo && (!known || measured)) {    /* this state becomes the reference */
+        for (j = 0, p = 0; j < 6; j++)
+            for (k = j + 1; k < 6; k++, p++)
+                if ((broken >> j) & 1u || (broken >> k) & 1u)
+                    memo->dist[p] = NAN;
+                else
+                    memo->dist[p] = (measured >> p) & 1u ? dist[p]
+                                    : hg_segment_distance(B[j], A[j], B[k], A[k]);
+        memo->dist_min = memo->dist[0];
+        for (p = 1; p < HG_GUARD_PAIRS; p++)   /* a NaN (a broken bar's pair) stays: no shortcut */
+            if (isnan(memo->dist[p]) || memo->dist[p] < memo->dist_min)
+                memo->dist_min = isnan(memo->dist_min) ? memo->dist_min : memo->dist[p];
+        memcpy(memo->B, B, sizeof memo->B);
+        memcpy(memo->A, A, sizeof memo->A);
+        memo->valid = 1;
+        memo->refreshed++;
+    }
+    return 0;
+}
+
+int hg_guard_check_sc(const hg_guard_geo *gg, const double z[6], const double pose[6],
+                      const double sc[6], unsigned broken, hg_guard_memo *memo,
+                      hg_guard_report *r)
+{
+    double B[6][3], A[6][3], cc[6], ch[6], R[9];
+    int k, rc;
     report(r, HG_GUARD_NONE, -1, -1, 0.0, 0.0);
     if (!(hg_all_finite(6, z) && hg_all_finite(6, pose))) {
         report(r, HG_GUARD_REGION, -1, -1, NAN, 0.0);
@@ -156,32 +229,33 @@ int hg_guard_check(const hg_geometry *g, const double z[6], const double pose[6]
         if (rc)
             return rc;
     }
-    hg_joint_points(g, z, pose, B, A);
-    joint_cosines(g, B, A, pose, cc, ch);
+    hg_rotation_sc(sc, R);
+    hg_joint_points_rot(&gg->f, R, z, pose, B, A);
+    joint_cosines(gg, B, A, R, cc, ch);
     for (k = 0; k < 6; k++) {
         if (broken & (1u << k))
             continue;
-        if (!(cc[k] >= cos_c)) {
-            report(r, HG_GUARD_CARRIAGE_JOINT, k, -1, angle_of(cc[k]), g->cone_carriage_rad);
+        if (!(cc[k] >= gg->cos_carriage)) {
+            report(r, HG_GUARD_CARRIAGE_JOINT, k, -1, angle_of(cc[k]), gg->g.cone_carriage_rad);
             return HG_ERR_JOINT_RANGE;
         }
-        if (!(ch[k] >= cos_h)) {
-            report(r, HG_GUARD_HEAD_JOINT, k, -1, angle_of(ch[k]), g->cone_head_rad);
+        if (!(ch[k] >= gg->cos_head)) {
+            report(r, HG_GUARD_HEAD_JOINT, k, -1, angle_of(ch[k]), gg->g.cone_head_rad);
             return HG_ERR_JOINT_RANGE;
         }
     }
-    for (j = 0; j < 6; j++)
-        for (k = j + 1; k < 6; k++) {
-            double dist;
-            if ((broken >> j) & 1u || (broken >> k) & 1u)
-                continue;
-            dist = hg_segment_distance(B[j], A[j], B[k], A[k]);
-            if (!(dist >= g->d_bar_m)) {
-                report(r, HG_GUARD_BARS, j, k, dist, g->d_bar_m);
-                return HG_ERR_BAR_CLEARANCE;
-            }
-        }
-    return 0;
+    return clearance(gg, B, A, broken, memo, r);
+}
+
+int hg_guard_check(const hg_geometry *g, const double z[6], const double pose[6],
+                   unsigned broken, hg_guard_report *r)
+{
+    hg_guard_geo gg;
+    double sc[6] = {0, 1, 0, 1, 0, 1};
+    hg_guard_prepare(g, &gg);
+    if (hg_all_finite(6, pose))       /* else the check refuses the state before using them */
+        hg_head_trig(pose, sc);
+    return hg_guard_check_sc(&gg, z, pose, sc, broken, 0, r);
 }
 
 double hg_guard_home_clearance(const hg_geometry *g)

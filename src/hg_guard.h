@@ -44,6 +44,10 @@ typedef struct {
     double limit;                 /* the limit it crossed (rad or m) */
 } hg_guard_report;
 
+/* after hg_guard_report, which hg_kinematics.h uses (it defines hg_frame,
+ * used below, before it includes this file) */
+#include "hg_kinematics.h"
+
 /* Check the state (carriage heights z, head pose) against the limits of
  * g; bars whose bit is set in `broken` are left out (region check
  * instead). 0, HG_ERR_JOINT_RANGE, HG_ERR_BAR_CLEARANCE or
@@ -51,6 +55,50 @@ typedef struct {
  * crossed; a non-finite state is HG_ERR_OUT_OF_VOLUME. */
 int hg_guard_check(const hg_geometry *g, const double z[6], const double pose[6],
                    unsigned broken, hg_guard_report *r);
+
+/* What the check needs of a geometry, computed once (hg_guard_prepare):
+ * the dynamics keep it in their model. */
+typedef struct {
+    hg_geometry g;                /* the geometry */
+    hg_frame f;                   /* its fixed points (hg_frame_of) */
+    double cos_carriage, cos_head; /* cosines of the cone half-angles */
+    double u0[6][3];              /* each bar's direction at HOME, carriage to head joint */
+} hg_guard_geo;
+
+#define HG_GUARD_PAIRS 15         /* pairs of bars, (0,1) (0,2) .. (4,5) */
+/* Safety slack (m) of the clearance bound below: far above the rounding of
+ * the distances and displacements (1e-15 m), above the most the segment
+ * distance's near-parallel branch can overstate a distance (|d1| 1e-6 = 1 um
+ * for 1 m bars), far below any bar diameter. */
+#define HG_GUARD_SLACK_M 1e-5
+
+/* The bar-clearance memo of a state that is being stepped: the joint
+ * points of a reference state and the distances between the bar axes
+ * there (hg_segment_distance). Points of a segment move by at most the
+ * larger of its ends' displacements, so a state whose bars' ends moved by
+ * at most m_j, m_k from the reference has the bars j, k at least
+ * dist - m_j - m_k apart: a pair with dist - m_j - m_k >= d_bar +
+ * HG_GUARD_SLACK_M cannot touch and is not measured. A fact about the
+ * points it holds, valid in any copy; valid 0 = empty (hg_data_reset). */
+typedef struct {
+    int valid;
+    double B[6][3], A[6][3];      /* the reference state's joint points */
+    double dist[HG_GUARD_PAIRS];  /* distances of the bar axes there (NaN: a broken bar's pair) */
+    double dist_min;              /* the smallest of them (NaN when one is NaN) */
+    unsigned long refreshed;      /* times the memo was (re)written: a measure of its use */
+} hg_guard_memo;
+
+/* Fill gg for g. */
+void hg_guard_prepare(const hg_geometry *g, hg_guard_geo *gg);
+
+/* hg_guard_check with gg prepared, the pose's sin/cos sc given
+ * (hg_head_trig of pose: the stabilization has them) and memo (may be 0):
+ * the same code, the same report. A pair the memo's bound clears is not
+ * measured; when some pair had to be measured and the state passes, the
+ * memo is rewritten with this state and all its distances. */
+int hg_guard_check_sc(const hg_guard_geo *gg, const double z[6], const double pose[6],
+                      const double sc[6], unsigned broken, hg_guard_memo *memo,
+                      hg_guard_report *r);
 
 /* Angles (rad) of every bar in its carriage joint and in its head joint. */
 void hg_guard_joint_angles(const hg_geometry *g, const double z[6], const double pose[6],

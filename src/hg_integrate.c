@@ -10,6 +10,7 @@
 #include "hg_spd6.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
+#include "hg_unroll.h"
 
 /* Stage vectors laid over hg_work.stage. */
 typedef struct {
@@ -66,10 +67,12 @@ void hg_mass_save_reduced(hg_mass_snapshot *s, const double ldl[36], const doubl
                           const double *T)
 {
     int i, j;
-    for (i = 0; i < 6; i++)           /* the factors live in the lower triangle: the rest is stale */
-        for (j = 0; j < 6; j++)
-            s->ldl[6 * i + j] = j <= i ? ldl[6 * i + j] : 0.0;
-    memcpy(s->inv_d, inv_d, sizeof s->inv_d);
+    if (ldl != s->ldl)                /* else factored in place */
+        for (i = 0; i < 6; i++)       /* the factors live in the lower triangle: the rest is stale */
+            for (j = 0; j < 6; j++)
+                s->ldl[6 * i + j] = j <= i ? ldl[6 * i + j] : 0.0;
+    if (inv_d != s->inv_d)
+        memcpy(s->inv_d, inv_d, sizeof s->inv_d);
     s->t_identity = T == 0;
     if (T)
         memcpy(s->T, T, sizeof s->T);
@@ -102,27 +105,36 @@ void hg_hold_independent(const hg_model *m, hg_data *ctx, const double z0[6], un
 void hg_mass_response(const hg_mass_snapshot *s, const double p[6], double *dv, double dz[6])
 {
     int i, j;
-    if (s->kind == 1) {
+    if (s->kind == 1 && s->t_identity) {
         double g[6];
-        for (i = 0; i < 6; i++) {          /* generalized impulse T^T p */
-            double v = 0.0;
-            if (s->t_identity)
-                v = p[i];
-            else
-                for (j = 0; j < 6; j++)
-                    v += s->T[6 * j + i] * p[j];
-            g[i] = v;
-        }
+        memcpy(g, p, sizeof g);
         hg_spd6_apply(s->ldl, s->inv_d, g);
-        for (i = 0; i < 6; i++) {
-            double v = 0.0;
-            dv[i] = g[i];
-            if (s->t_identity)
-                v = g[i];
-            else
-                for (j = 0; j < 6; j++)
-                    v += s->T[6 * i + j] * g[j];
-            dz[i] = v;
+        memcpy(dv, g, sizeof g);
+        memcpy(dz, g, sizeof g);
+    } else if (s->kind == 1) {
+        /* g = T^T p and dz = T g, each entry summed from 0 in j order, two
+         * entries per vector (hg_v2: the scalar loops' bits) */
+        hg_v2 t[3] = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+        double g[6];
+        HG_UNROLL
+        for (j = 0; j < 6; j++)
+            HG_UNROLL
+            for (i = 0; i < 3; i++)
+                t[i] += hg_v2_load(s->T + 6 * j + 2 * i) * hg_v2_dup(p[j]);
+        HG_UNROLL
+        for (i = 0; i < 3; i++)
+            hg_v2_store(g + 2 * i, t[i]);
+        hg_spd6_apply(s->ldl, s->inv_d, g);
+        memcpy(dv, g, sizeof g);
+        HG_UNROLL
+        for (i = 0; i < 3; i++) {
+            hg_v2 v = {0.0, 0.0};
+            HG_UNROLL
+            for (j = 0; j < 6; j++) {
+                const hg_v2 rows = {s->T[12 * i + j], s->T[12 * i + 6 + j]};
+                v += rows * hg_v2_dup(g[j]);
+            }
+            hg_v2_store(dz + 2 * i, v);
         }
     } else if (s->kind == 2) {
         double b[HG_KKT_MAX];
@@ -139,28 +151,60 @@ void hg_mass_response(const hg_mass_snapshot *s, const double p[6], double *dv, 
     }
 }
 
+void hg_mass_response_matrix(const hg_mass_snapshot *s, double W[36])
+{
+    double e[6] = {0, 0, 0, 0, 0, 0}, dv[HG_NQ_REDUCED], dz[6], X[36];
+    int i, j, k;
+    if (s->kind != 1 || (!s->t_identity && !hg_all_finite(36, s->T))) {
+        for (k = 0; k < 6; k++) {         /* column k: the response to impulse k */
+            e[k] = 1.0;
+            hg_mass_response(s, e, dv, dz);
+            for (i = 0; i < 6; i++)
+                W[6 * i + k] = dz[i];
+            e[k] = 0.0;
+        }
+        return;
+    }
+    /* hg_mass_response's T^T e_k, 0 + T[j][i] e_k[j] summed over j, is
+     * T[k][i] + 0 for a finite T (the identity's: e_k itself) */
+    for (i = 0; i < 6; i++)
+        for (k = 0; k < 6; k++)
+            X[6 * i + k] = s->t_identity ? (i == k ? 1.0 : 0.0) : s->T[6 * k + i] + 0.0;
+    hg_spd6_apply6(s->ldl, s->inv_d, X);
+    if (s->t_identity) {
+        memcpy(W, X, sizeof X);
+        return;
+    }
+    HG_UNROLL
+    for (i = 0; i < 6; i++) {             /* W[i][k] = 0 + T[i][j] X[j][k] summed in j order */
+        hg_v2 w[3] = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+        HG_UNROLL
+        for (j = 0; j < 6; j++)
+            HG_UNROLL
+            for (k = 0; k < 3; k++)
+                w[k] += hg_v2_dup(s->T[6 * i + j]) * hg_v2_load(X + 6 * j + 2 * k);
+        HG_UNROLL
+        for (k = 0; k < 3; k++)
+            hg_v2_store(W + 6 * i + 2 * k, w[k]);
+    }
+}
+
 /* The step's friction impulses in general: W, the carriages' response to
  * unit impulses, from the saved mass matrix, the speeds without friction
  * (the stages held est), then the active-set solve. 0 or a code. */
 static int friction_general(const hg_model *m, hg_data *ctx, const double *qd0, const double *qd1,
                             const double est[6], double dt, hg_friction_out *fo)
 {
-    double W[36], e[6] = {0, 0, 0, 0, 0, 0}, dv[HG_NQ_REDUCED], dz[6], vfree[6];
+    double W[36], vfree[6];
     int i, k;
-    for (k = 0; k < 6; k++) {             /* W column k: the carriages' response to impulse k */
-        e[k] = 1.0;
-        hg_mass_response(&ctx->work.mass, e, dv, dz);
-        for (i = 0; i < 6; i++)
-            W[6 * i + k] = dz[i];
-        e[k] = 0.0;
-    }
+    hg_mass_response_matrix(&ctx->work.mass, W);
     for (k = 0; k < 6; k++) {             /* the speeds without any sliding or static friction */
         double v = qd1[k];
         for (i = 0; i < 6; i++)
             v -= W[6 * k + i] * est[i];
         vfree[k] = v;
     }
-    return hg_friction_solve(&m->p, W, vfree, qd0, ctx->stuck, dt, fo);
+    return hg_friction_solve(m->fric, 6, W, vfree, qd0, ctx->stuck, dt, fo);
 }
 
 /* Sliding and static friction on the predicted (q1, qd1), whose stages
@@ -180,7 +224,7 @@ static int friction(const hg_model *m, const hg_dae *f, hg_data *ctx, const doub
     int i, k, rc;
     for (k = 0; k < 6; k++)
         est[k] = wk->fric_est_n[k] * dt;  /* the impulses the stages held */
-    if (!hg_friction_all_sliding(&m->p, qd1, qd0, ctx->stuck, est,
+    if (!hg_friction_all_sliding(m->fric, 6, qd1, qd0, ctx->stuck, est,
                                  m->p.m_carriage_kg + m->rotor_mass_kg, dt, &fo)) {
         rc = friction_general(m, ctx, qd0, qd1, est, dt, &fo);
         if (rc)
@@ -200,12 +244,56 @@ static int friction(const hg_model *m, const hg_dae *f, hg_data *ctx, const doub
             q1[k] += 0.5 * dt * dz[k];
             qdd[k] += dz[k] / dt;
         }
-    memcpy(wk->fric_impulse, fo.impulse, sizeof fo.impulse);
+    memcpy(wk->fric_impulse, fo.impulse, sizeof wk->fric_impulse);
     wk->fric_stuck = fo.stuck;
     if (fo.stuck) {                       /* where the stuck carriages stay */
         for (k = 0; k < 6; k++)
             zstop[k] = q0[k] + ((ctx->stuck >> k) & 1u ? 0.0 : 0.5 * qd0[k] * fo.stop[k] * dt);
         f->hold(m, ctx, zstop, fo.stuck, q1, qd1);
+    }
+    return 0;
+}
+
+/* The explicit Runge-Kutta scheme of ns stages (c, b) whose stage i starts
+ * from y0 + c_i dt k_(i-1), n known where it is inlined: 0 or the first
+ * failing accel's code. */
+static inline __attribute__((always_inline)) int
+runge_kutta(const int n, int ns, const double *c, const double *b, const hg_model *m,
+            const hg_dae *f, hg_data *ctx, stage_ws *w, const double *q0, const double *qd0,
+            const double drive_n[6], const double fz0[6], double dt, double *q1, double *qd1,
+            double *qdd)
+{
+    int i, s, rc;
+    for (s = 0; s < ns; s++) {
+        if (s == 0) {
+            rc = f->accel(m, ctx, q0, qd0, fz0, w->a);
+            ctx->work.mass.want = 0;
+            for (i = 0; i < n; i++) {
+                w->vs[i] = qd0[i];
+                w->sq[i] = 0.0;
+                w->sv[i] = 0.0;
+            }
+        } else {
+            const double h = c[s] * dt;
+            double vprev;
+            for (i = 0; i < n; i++) {  /* k_(s-1) = (vs, a) of the previous stage */
+                vprev = w->vs[i];
+                w->qs[i] = q0[i] + h * vprev;
+                w->vs[i] = qd0[i] + h * w->a[i];
+            }
+            rc = stage_accel(m, f, ctx, w, drive_n);
+        }
+        if (rc)
+            return rc;
+        for (i = 0; i < n; i++) {
+            w->sq[i] += b[s] * w->vs[i];
+            w->sv[i] += b[s] * w->a[i];
+        }
+    }
+    for (i = 0; i < n; i++) {
+        q1[i] = q0[i] + dt * w->sq[i];
+        qd1[i] = qd0[i] + dt * w->sv[i];
+        qdd[i] = w->sv[i];
     }
     return 0;
 }
@@ -217,10 +305,11 @@ int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_da
 {
     stage_ws *w = (stage_ws *)ctx->work.stage;
     const double *c, *b;
-    const int fric = hg_friction_on(&m->p);
-    int n = f->n, i, s, ns, rc;
+    const int fric = hg_friction_any(m->fric, 6);
+    int n = f->n, ns, rc;
     ctx->work.mass.want = fric;
     ctx->work.mass.kind = 0;
+    ctx->work.sc1_valid = 0;
     ctx->work.fric_stuck = 0;
     memset(ctx->work.fric_impulse, 0, sizeof ctx->work.fric_impulse);
     if (scheme == HG_INTEGRATOR_IMPROVED_EULER) {
@@ -236,38 +325,13 @@ int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_da
         ns = hg_scheme_tableau(scheme, &c, &b);
         if (ns == 0)
             return HG_ERR_BAD_PARAM;
-        /* explicit Runge-Kutta whose stage i starts from y0 + c_i dt k_(i-1) */
-        for (s = 0; s < ns; s++) {
-            if (s == 0) {
-                rc = f->accel(m, ctx, q0, qd0, fz0, w->a);
-                ctx->work.mass.want = 0;
-                for (i = 0; i < n; i++) {
-                    w->vs[i] = qd0[i];
-                    w->sq[i] = 0.0;
-                    w->sv[i] = 0.0;
-                }
-            } else {
-                const double h = c[s] * dt;
-                double vprev;
-                for (i = 0; i < n; i++) {  /* k_(s-1) = (vs, a) of the previous stage */
-                    vprev = w->vs[i];
-                    w->qs[i] = q0[i] + h * vprev;
-                    w->vs[i] = qd0[i] + h * w->a[i];
-                }
-                rc = stage_accel(m, f, ctx, w, drive_n);
-            }
-            if (rc)
-                return rc;
-            for (i = 0; i < n; i++) {
-                w->sq[i] += b[s] * w->vs[i];
-                w->sv[i] += b[s] * w->a[i];
-            }
-        }
-        for (i = 0; i < n; i++) {
-            q1[i] = q0[i] + dt * w->sq[i];
-            qd1[i] = qd0[i] + dt * w->sv[i];
-            qdd[i] = w->sv[i];
-        }
+        if (n == HG_NQ_REDUCED)        /* a constant length lets the compiler unroll */
+            rc = runge_kutta(HG_NQ_REDUCED, ns, c, b, m, f, ctx, w, q0, qd0, drive_n, fz0, dt, q1,
+                             qd1, qdd);
+        else
+            rc = runge_kutta(n, ns, c, b, m, f, ctx, w, q0, qd0, drive_n, fz0, dt, q1, qd1, qdd);
+        if (rc)
+            return rc;
     }
     if (fric) {
         rc = friction(m, f, ctx, q0, qd0, dt, q1, qd1, qdd);

@@ -68,9 +68,10 @@ int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_da
                  const double fz0[6], double dt, double *q1, double *qd1, double *qdd,
                  double *residual_m);
 
-/* Save the reduced mass matrix (factored by hg_spd6_factor) and the map
- * T from independent to carriage velocities (0: the identity) as the
- * step's mass data. */
+/* Save the reduced mass matrix (factored by hg_spd6_factor; ldl and
+ * inv_d may be s's own arrays, factored in place) and the map T from
+ * independent to carriage velocities (0: the identity) as the step's mass
+ * data. */
 void hg_mass_save_reduced(hg_mass_snapshot *s, const double ldl[36], const double inv_d[6],
                           const double *T);
 
@@ -87,5 +88,11 @@ void hg_hold_independent(const hg_model *m, hg_data *ctx, const double z0[6], un
  * for carriage impulses p[6] (N s), from the mass data s of the step's
  * start (0 for kind 0: no data). */
 void hg_mass_response(const hg_mass_snapshot *s, const double p[6], double *dv, double dz[6]);
+
+/* W (6x6 row-major): column k the carriage speed changes dz of
+ * hg_mass_response for a unit impulse on carriage k, bit for bit, for all
+ * six columns at once where the mass data allow (kind 1 with a finite T),
+ * else column by column. */
+void hg_mass_response_matrix(const hg_mass_snapshot *s, double W[36]);
 
 #endif

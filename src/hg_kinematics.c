@@ -49,12 +49,30 @@ void hg_head_point(const hg_geometry *g, int k, double out[3])
     post_point(k, g->lp_m, g->e_m, out);
 }
 
-void hg_rotation(double a, double b, double c, double R[9])
+void hg_head_trig(const double *c, double sc[6])
 {
-    double ca = cos(a), sa = sin(a), cb = cos(b), sb = sin(b), cc = cos(c), sc = sin(c);
+    sc[0] = sin(c[3]);
+    sc[1] = cos(c[3]);
+    sc[2] = sin(c[4]);
+    sc[3] = cos(c[4]);
+    sc[4] = sin(c[5]);
+    sc[5] = cos(c[5]);
+}
+
+void hg_rotation_sc(const double t[6], double R[9])
+{
+    const double sa = t[0], ca = t[1], sb = t[2], cb = t[3], sc = t[4], cc = t[5];
     R[0] = cc * cb; R[1] = cc * sb * sa - sc * ca; R[2] = cc * sb * ca + sc * sa;
     R[3] = sc * cb; R[4] = sc * sb * sa + cc * ca; R[5] = sc * sb * ca - cc * sa;
     R[6] = -sb;     R[7] = cb * sa;                R[8] = cb * ca;
+}
+
+void hg_rotation(double a, double b, double c, double R[9])
+{
+    const double pose[6] = {0.0, 0.0, 0.0, a, b, c};
+    double sc[6];
+    hg_head_trig(pose, sc);
+    hg_rotation_sc(sc, R);
 }
 
 /* World offsets w[k] = R r_k of the head joints from Op. */
@@ -69,19 +87,37 @@ static void head_offsets(const hg_geometry *g, const double R[9], double w[6][3]
     }
 }
 
+void hg_frame_of(const hg_geometry *g, hg_frame *f)
+{
+    int k;
+    f->h = hg_home_height(g);
+    for (k = 0; k < HG_NBARS; k++) {
+        hg_guide_point(g, k, f->guide[k]);
+        hg_head_point(g, k, f->head[k]);
+    }
+}
+
 void hg_joint_points(const hg_geometry *g, const double z[6], const double pose[6],
                      double B[6][3], double A[6][3])
 {
-    const double h = hg_home_height(g);
-    double R[9], w[6][3];
-    int k, r;
+    hg_frame f;
+    double R[9];
+    hg_frame_of(g, &f);
     hg_rotation(pose[3], pose[4], pose[5], R);
-    head_offsets(g, R, w);
+    hg_joint_points_rot(&f, R, z, pose, B, A);
+}
+
+void hg_joint_points_rot(const hg_frame *f, const double R[9], const double z[6],
+                         const double pose[6], double B[6][3], double A[6][3])
+{
+    int k, r;
     for (k = 0; k < HG_NBARS; k++) {
-        hg_guide_point(g, k, B[k]);
-        B[k][2] = h + z[k];
-        for (r = 0; r < 3; r++)
-            A[k][r] = pose[r] + w[k][r];
+        const double *p = f->head[k];
+        B[k][0] = f->guide[k][0];
+        B[k][1] = f->guide[k][1];
+        B[k][2] = f->h + z[k];
+        for (r = 0; r < 3; r++)        /* Op + R r_k, as head_offsets */
+            A[k][r] = pose[r] + (R[3 * r] * p[0] + R[3 * r + 1] * p[1] + R[3 * r + 2] * p[2]);
     }
 }
 
@@ -101,13 +137,14 @@ void hg_constraint_jacobian(const hg_geometry *g, const double z[6], const doubl
                             double jac_pose[36], double dphi_dz[6])
 {
     const double h = hg_home_height(g);
-    double R[9], w[6][3];
+    double R[9], w[6][3], sc[6];
     double axis[3][3]; /* d(R r)/d(A,B,C) = axis_m x (R r) */
     int k, m;
-    hg_rotation(pose[3], pose[4], pose[5], R);
+    hg_head_trig(pose, sc);
+    hg_rotation_sc(sc, R);
     head_offsets(g, R, w);
     axis[0][0] = R[0]; axis[0][1] = R[3]; axis[0][2] = R[6];          /* Rz Ry e_x */
-    axis[1][0] = -sin(pose[5]); axis[1][1] = cos(pose[5]); axis[1][2] = 0; /* Rz e_y */
+    axis[1][0] = -sc[4]; axis[1][1] = sc[5]; axis[1][2] = 0;          /* Rz e_y */
     axis[2][0] = 0; axis[2][1] = 0; axis[2][2] = 1;                   /* e_z */
     for (k = 0; k < HG_NBARS; k++) {
         double d[3], wxd[3], b[3];

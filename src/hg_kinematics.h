@@ -16,6 +16,17 @@
 #define HG_KINEMATICS_H
 
 #include "hg_geometry.h"
+
+/* The points of a geometry that do not move: home height, guide and head
+ * joint points (hg_frame_of). */
+typedef struct {
+    double h;                  /* hg_home_height */
+    double guide[6][3];        /* hg_guide_point of each bar */
+    double head[6][3];         /* hg_head_point of each bar */
+} hg_frame;
+
+/* after hg_frame, which hg_guard.h uses (hg_guard.h in turn defines its
+ * report before it includes this file) */
 #include "hg_guard.h"
 
 #define HG_NBARS 6
@@ -48,12 +59,27 @@ void hg_guide_point(const hg_geometry *g, int k, double out[3]);
 /* Head joint k in head coordinates: Rz(alpha_i)(lp, s_j e, 0). */
 void hg_head_point(const hg_geometry *g, int k, double out[3]);
 
+/* sc = sin A, cos A, sin B, cos B, sin C, cos C of pose c = X Y Z A B C. */
+void hg_head_trig(const double *c, double sc[6]);
+
 /* Rotation matrix R = Rz(c) Ry(b) Rx(a), row-major R[3*row+col]. */
 void hg_rotation(double a, double b, double c, double R[9]);
+
+/* The same R from the angles' sin/cos sc (hg_head_trig's order): the same
+ * bits as hg_rotation of those angles. */
+void hg_rotation_sc(const double sc[6], double R[9]);
 
 /* World positions of the carriage joints B[k] and head joints A[k]. */
 void hg_joint_points(const hg_geometry *g, const double z[6], const double pose[6],
                      double B[6][3], double A[6][3]);
+
+/* Fill f for g. */
+void hg_frame_of(const hg_geometry *g, hg_frame *f);
+
+/* hg_joint_points with the frame f and the pose's rotation R
+ * (hg_rotation_sc) given: the same bits. */
+void hg_joint_points_rot(const hg_frame *f, const double R[9], const double z[6],
+                         const double pose[6], double B[6][3], double A[6][3]);
 
 /* Bar constraints Phi_k = |B_k - A_k|^2 - l^2 (m^2). */
 void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6],

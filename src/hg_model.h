@@ -14,6 +14,8 @@
 #include "hg_params.h"
 #include "hg_guard.h"
 #include "hg_scheme.h"
+#include "hg_drive.h"
+#include "hg_friction.h"
 
 /* The parametrizations of the paper's section 7, plus the fused one. */
 typedef enum {
@@ -32,10 +34,13 @@ typedef struct {
     hg_params p;                 /* the parameter set this model was built from */
     hg_model_kind kind;
     hg_integrator integrator;    /* scheme of hg_step (hg_model_init: Heun) */
-    double force_per_amp_n;      /* kt 2 pi / lead: carriage force per motor ampere (N/A) */
-    double force_per_volt_n;     /* ka kt 2 pi / lead (N/V) */
+    hg_drive_channel drive[6];   /* the six drives, alike (hg_drive_init of p's drive fields):
+                                    force per ampere kt 2 pi / lead, winding time constant */
+    double force_per_volt_n;     /* ka kt 2 pi / lead (N/V): torque mode, every drive alike */
+    hg_friction_channel fric[6]; /* each carriage's sliding and static friction (p's, alike) */
     double rotor_mass_kg;        /* j_rotor (2 pi / lead)^2, inertia without weight */
     double potential_home_j;     /* gravity potential at HOME (energies are relative to it) */
+    hg_guard_geo guard;          /* the guard's constants of p.geo (hg_guard_prepare) */
     double k[HG_MAX_CONSTS];     /* generated init: parameter-only subexpressions */
     double k_lumped[HG_MAX_LUMPED_CONSTS]; /* the lumped-bar model's (broken-bar step), any kind */
     double potential_lumped_home_j; /* lumped-bar gravity potential at HOME */
@@ -73,10 +78,16 @@ typedef struct {
     double stage[HG_WORK_STAGE]; /* hg_integrate's stage states and sums */
     double step[HG_WORK_STEP];   /* the parametrization's accelerations/stabilization */
     double sc1[6];               /* Reduced Cartesian: sin/cos of the stabilized head angles */
+    double sc1_key[3];           /* ... the angles sc1 holds when sc1_valid (set by the hold, */
+    int sc1_valid;               /*     whose last angles the stabilization keeps) */
     hg_mass_snapshot mass;       /* the step start's mass data (friction) */
     double fric_est_n[6];        /* friction hg_step expects and holds in the stages (N) */
     double fric_impulse[6];      /* friction impulses of the step (N s), committed by hg_step */
     unsigned fric_stuck;         /* carriages stuck at the step's end */
+    /* caches that outlive the call: each holds a self-contained fact (valid
+     * in any copy of the hg_data, whatever its state), emptied by hg_data_reset */
+    hg_guard_memo guard;         /* the bar-clearance bound's reference state (hg_guard.h) */
+    hg_drive_memo drive;         /* the windings' exp(-dt / tau) for the last step length */
 } hg_work;
 
 typedef struct {
@@ -107,8 +118,9 @@ typedef struct {
     double trig_key_rad[3];      /* the angles trig_sc belongs to */
     double trig_sc[6];           /* sin A, cos A, sin B, cos B, sin C, cos C */
     int trig_valid;              /* 0: recompute */
-    /* scratch of hg_step (contents undefined between calls; last, so that a
-     * copy of the state alone is memcpy(dst, src, HG_DATA_STATE_BYTES)) */
+    /* scratch of hg_step (contents undefined between calls but for its
+     * caches; last, so that a copy of the state alone is
+     * memcpy(dst, src, HG_DATA_STATE_BYTES)) */
     hg_work work;
 } hg_data;
 

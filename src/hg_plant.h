@@ -29,7 +29,7 @@
 #define HG_PLANT_PARAMS_MAX 256      /* entries of a plant's parameter block */
 #define HG_PLANT_EXTRA_MAX 16        /* plant-specific outputs (head pose, ...) */
 #define HG_PLANT_INJECT_MAX 4        /* plant-specific fault injections per channel */
-#define HG_PLANT_MODEL_DOUBLES 512   /* storage of a plant's model (doubles) */
+#define HG_PLANT_MODEL_DOUBLES 768   /* storage of a plant's model (doubles) */
 #define HG_PLANT_DATA_DOUBLES 2048   /* storage of a plant's data: state, then scratch (doubles) */
 #define HG_PLANT_TEXT_LEN 240        /* a plant's sentences (fault descriptions) */
 

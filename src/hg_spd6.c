@@ -3,6 +3,7 @@
 #include "hg_spd6.h"
 #include "hg_errors.h"
 #include "hg_unroll.h"
+#include "hg_linalg.h"
 
 
 #define HG_SPD6_MIN_PIVOT 1e-13   /* relative to the diagonal entry */
@@ -48,6 +49,41 @@ void hg_spd6_apply(const double M[36], const double inv_d[6], double b[6])
         HG_UNROLL
         for (k = i + 1; k < 6; k++)
             b[i] -= M[6 * k + i] * b[k];
+}
+
+void hg_spd6_apply6(const double M[36], const double inv_d[6], double B[36])
+{
+    hg_v2 b[6][3];
+    int i, k, c;
+    HG_UNROLL
+    for (i = 0; i < 6; i++)
+        HG_UNROLL
+        for (c = 0; c < 3; c++)
+            b[i][c] = hg_v2_load(B + 6 * i + 2 * c);
+    HG_UNROLL
+    for (i = 0; i < 6; i++)            /* L y = b */
+        HG_UNROLL
+        for (k = 0; k < i; k++)
+            HG_UNROLL
+            for (c = 0; c < 3; c++)
+                b[i][c] -= hg_v2_dup(M[6 * i + k]) * b[k][c];
+    HG_UNROLL
+    for (i = 0; i < 6; i++)            /* D z = y */
+        HG_UNROLL
+        for (c = 0; c < 3; c++)
+            b[i][c] *= hg_v2_dup(inv_d[i]);
+    HG_UNROLL
+    for (i = 5; i >= 0; i--)           /* L^T x = z */
+        HG_UNROLL
+        for (k = i + 1; k < 6; k++)
+            HG_UNROLL
+            for (c = 0; c < 3; c++)
+                b[i][c] -= hg_v2_dup(M[6 * k + i]) * b[k][c];
+    HG_UNROLL
+    for (i = 0; i < 6; i++)
+        HG_UNROLL
+        for (c = 0; c < 3; c++)
+            hg_v2_store(B + 6 * i + 2 * c, b[i][c]);
 }
 
 int hg_spd6_solve(double M[36], double b[6])

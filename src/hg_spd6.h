@@ -13,6 +13,10 @@ int hg_spd6_factor(double M[36], double inv_d[6]);
 /* Solve with a factored M (hg_spd6_factor) for b in place. */
 void hg_spd6_apply(const double M[36], const double inv_d[6], double b[6]);
 
+/* hg_spd6_apply on each of the six columns of B (row-major 6x6) in
+ * place, two at a time: each column gets hg_spd6_apply's bits. */
+void hg_spd6_apply6(const double M[36], const double inv_d[6], double B[36]);
+
 /* Factor M in place and solve for b in place: 0 or HG_ERR_SINGULAR_MASS. */
 int hg_spd6_solve(double M[36], double b[6]);
 

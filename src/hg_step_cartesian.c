@@ -5,6 +5,7 @@
  * stabilization is one diagonal Newton step per carriage. The fused
  * variant is the whole improved-Euler step as one generated function. */
 #include "hg_math.h"
+#include "hg_string.h"
 #include "hg_step_cartesian.h"
 #include "hg_system.h"
 #include "hg_spd6.h"
@@ -27,7 +28,10 @@ int hg_cartesian_stabilize(const hg_model *m, hg_data *d, double *q1, double *qd
     double phi[6], pz[6], vc[6], worst = 0.0, *sc1 = d->work.sc1;
     const double r2l = 1.0 / (2.0 * m->p.geo.l_m);
     int k;
-    hg_head_trig(q1 + 6, sc1);
+    if (!(d->work.sc1_valid &&
+          memcmp(d->work.sc1_key, q1 + 9, sizeof d->work.sc1_key) == 0)) // NOLINT(bugprone-suspicious-memory-comparison): bitwise on purpose, the same bits give the same sin/cos
+        hg_head_trig(q1 + 6, sc1);     /* else the hold's last ones are these angles' (same bits) */
+    d->work.sc1_valid = 0;
     hg_gen_reduced_stabilize(m->k, q1, qd1, sc1, phi, pz, vc);
     HG_UNROLL
     for (k = 0; k < 6; k++) {
@@ -69,6 +73,7 @@ static void cartesian_system(const hg_model *m, hg_data *d, const double *q, con
     cartesian_ws *w = (cartesian_ws *)d->work.step;
     const double *mzz = w->mzz, *Mzc = w->Mzc, *Mcc = w->Mcc, *Q = w->Q, *A = w->A, *b = w->b;
     double W[36], P[36];
+    hg_v2 r[3];
     const double *sc = head_trig(d, q, w->sc); /* the last stabilization's, if q is its state */
     int i, j, k;
     /* A = -Phi_z^-1 Phi_c and b = -Phi_z^-1 gamma come generated */
@@ -77,41 +82,45 @@ static void cartesian_system(const hg_model *m, hg_data *d, const double *q, con
      * (rows of A): with W_k = M_zc,k + M_zz,k A_k / 2 and P = A^T W,
      *   M_cc + M_cz A + (M_cz A)^T + A^T M_zz A = M_cc + P + P^T,
      *   Q_c + A^T Q_z - (M_cz + A^T M_zz) b = Q_c + A^T (Q_z - M_zz b) - M_cz b. */
+    /* two columns at a time (hg_v2: each entry's operations in the scalar order) */
     HG_UNROLL
-    for (i = 0; i < 6; i++)
-        rhs[i] = Q[6 + i];
+    for (j = 0; j < 6; j += 2)
+        r[j / 2] = hg_v2_load(Q + 6 + j);
     HG_UNROLL
     for (k = 0; k < 6; k++) {
-        const double hm = 0.5 * mzz[k];
-        double t;
+        const hg_v2 hm = hg_v2_dup(0.5 * mzz[k]), bk = hg_v2_dup(b[k]);
+        const hg_v2 t = hg_v2_dup(Q[k] + fz[k] - mzz[k] * b[k]);
         HG_UNROLL
-        for (j = 0; j < 6; j++)
-            W[6 * k + j] = Mzc[6 * k + j] + hm * A[6 * k + j];
-        t = Q[k] + fz[k] - mzz[k] * b[k];
-        HG_UNROLL
-        for (i = 0; i < 6; i++)
-            rhs[i] += A[6 * k + i] * t - Mzc[6 * k + i] * b[k];
+        for (j = 0; j < 6; j += 2) {
+            const hg_v2 a = hg_v2_load(A + 6 * k + j), mzc = hg_v2_load(Mzc + 6 * k + j);
+            hg_v2_store(W + 6 * k + j, mzc + hm * a);
+            r[j / 2] += a * t - mzc * bk;
+        }
     }
+    HG_UNROLL
+    for (j = 0; j < 6; j += 2)
+        hg_v2_store(rhs + j, r[j / 2]);
     /* P[i][j] = sum over k (in k order) of A[k][i] W[k][j], one row at a time */
     HG_UNROLL
     for (i = 0; i < 6; i++) {
-        double pr[6];
+        hg_v2 pr[3];
         HG_UNROLL
-        for (j = 0; j < 6; j++)
-            pr[j] = A[i] * W[j];
+        for (j = 0; j < 3; j++)
+            pr[j] = hg_v2_dup(A[i]) * hg_v2_load(W + 2 * j);
         HG_UNROLL
         for (k = 1; k < 6; k++)
             HG_UNROLL
-            for (j = 0; j < 6; j++)
-                pr[j] += A[6 * k + i] * W[6 * k + j];
+            for (j = 0; j < 3; j++)
+                pr[j] += hg_v2_dup(A[6 * k + i]) * hg_v2_load(W + 6 * k + 2 * j);
         HG_UNROLL
-        for (j = 0; j < 6; j++)
-            P[6 * i + j] = pr[j];
+        for (j = 0; j < 3; j++)
+            hg_v2_store(P + 6 * i + 2 * j, pr[j]);
     }
     HG_UNROLL
     for (i = 0; i < 6; i++)
         HG_UNROLL
         for (j = 0; j <= i; j++)
+            // cppcheck-suppress uninitvar ; P is written above through hg_v2_store (memcpy)
             Mh[6 * i + j] = Mcc[6 * i + j] + P[6 * i + j] + P[6 * j + i];
 }
 
@@ -119,15 +128,17 @@ int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const dou
                        const double fz[6], double *qdd)
 {
     cartesian_ws *w = (cartesian_ws *)d->work.step;
-    double Mh[36], rhs[6], inv_d[6];
+    hg_mass_snapshot *s = &d->work.mass;
+    double own[36], rhs[6], own_d[6];
+    double *Mh = s->want ? s->ldl : own, *inv_d = s->want ? s->inv_d : own_d; /* friction's: in place */
     int j, k, rc;
     cartesian_system(m, d, q, qd, fz, Mh, rhs);
     rc = hg_spd6_factor(Mh, inv_d);
     if (rc)
         return rc;
     hg_spd6_apply(Mh, inv_d, rhs);
-    if (d->work.mass.want)            /* the step's start: friction's mass data, z' = A c' */
-        hg_mass_save_reduced(&d->work.mass, Mh, inv_d, w->A);
+    if (s->want)                      /* the step's start: friction's mass data, z' = A c' */
+        hg_mass_save_reduced(s, Mh, inv_d, w->A);
     HG_UNROLL
     for (k = 0; k < 6; k++) {          /* z'' = A c'' + b */
         double v = w->b[k];
@@ -158,6 +169,9 @@ void hg_cartesian_hold(const hg_model *m, hg_data *d, const double z0[6], unsign
     for (it = 0; it <= HOLD_NEWTON_ITER; it++) {
         double worst = 0.0;
         hg_head_trig(q1 + 6, sc);
+        memcpy(d->work.sc1, sc, sizeof sc);  /* the stabilization's, if these angles stay */
+        memcpy(d->work.sc1_key, q1 + 9, sizeof d->work.sc1_key);
+        d->work.sc1_valid = 1;
         hg_gen_reduced_constraints(m->k, q1, sc, phi, pz, pc);
         for (i = 0; i < n; i++) {       /* Y = Mh^-1 J^T, G = J Y with J = Phi_c's held rows */
             double y[6];
@@ -213,13 +227,14 @@ int hg_fused_accel(const hg_model *m, hg_data *d, const double *q, const double 
     double buf[6];
     if (d->work.mass.want) {          /* friction's mass data: built as hg_cartesian_accel does */
         cartesian_ws *w = (cartesian_ws *)d->work.step;
-        double Mh[36], rhs[6], inv_d[6];
+        hg_mass_snapshot *s = &d->work.mass;
+        double rhs[6];
         int rc;
-        cartesian_system(m, d, q, qd, fz, Mh, rhs);
-        rc = hg_spd6_factor(Mh, inv_d);
+        cartesian_system(m, d, q, qd, fz, s->ldl, rhs);
+        rc = hg_spd6_factor(s->ldl, s->inv_d);
         if (rc)
             return rc;
-        hg_mass_save_reduced(&d->work.mass, Mh, inv_d, w->A);
+        hg_mass_save_reduced(s, s->ldl, s->inv_d, w->A);
     }
     return hg_gen_fused_accel(m->k, q, qd, head_trig(d, q, buf), fz, qdd);
 }

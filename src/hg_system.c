@@ -1,6 +1,6 @@
-/* hg_system.c - what every parametrization's step shares: head sin/cos,
- * the full Newton-Raphson position solve, bar angles and the energies
- * (from the generated blocks, no dense matrices). */
+/* hg_system.c - what every parametrization's step shares: the full
+ * Newton-Raphson position solve, bar angles and the energies (from the
+ * generated blocks, no dense matrices). */
 #include "hg_math.h"
 #include "hg_system.h"
 #include "hg_kinematics.h"
@@ -15,16 +15,6 @@
 int hg_system_nq(const hg_model *m)
 {
     return m->kind == HG_MODEL_STANDARD ? HG_NQ_STANDARD : HG_NQ_REDUCED;
-}
-
-void hg_head_trig(const double *c, double sc[6])
-{
-    sc[0] = sin(c[3]);
-    sc[1] = cos(c[3]);
-    sc[2] = sin(c[4]);
-    sc[3] = cos(c[4]);
-    sc[4] = sin(c[5]);
-    sc[5] = cos(c[5]);
 }
 
 void hg_bar_angles(const hg_params *p, const double z[6], const double c[6], double a[12])

@@ -1,12 +1,14 @@
 /* hg_system.h - what every parametrization's step shares: the state
- * vector layouts, the head's sin/cos, the full Newton-Raphson position
- * solve (reset at HOME), bar angles from the geometry, and the energies.
+ * vector layouts, the full Newton-Raphson position solve (reset at HOME),
+ * bar angles from the geometry, and the energies (the head's sin/cos:
+ * hg_head_trig, hg_kinematics.h).
  * State vectors: reduced models q = [z(6), c(6)], standard
  * q = [z(6), a(12), c(6)] (a = phi_k, theta_k per bar), all SI. */
 #ifndef HG_SYSTEM_H
 #define HG_SYSTEM_H
 
 #include "hg_model.h"
+#include "hg_kinematics.h"   /* hg_head_trig */
 
 #define HG_NQ_REDUCED 12
 #define HG_NQ_STANDARD 24
@@ -14,9 +16,6 @@
 
 /* Number of coordinates of m's parametrization (12 or 24). */
 int hg_system_nq(const hg_model *m);
-
-/* sc = sin A, cos A, sin B, cos B, sin C, cos C of pose c = X Y Z A B C. */
-void hg_head_trig(const double *c, double sc[6]);
 
 /* Bar angles a[12] (phi_k, theta_k: u_k = (A_k - B_k)/l = Rx(phi) Ry(theta)
  * (0,0,-1)) of the geometry at carriage heights z and head pose c; a bar

@@ -99,11 +99,11 @@ static void test_winding(void)
     tau = p.l_winding_h / p.r_winding_ohm;
     is = p.v_bus_v / p.r_winding_ohm;          /* where +V alone would take the current */
     t_reach = -tau * log(1.0 - p.i_max_a / is);  /* 0 -> 8 A at full bus voltage */
-    hg_drive_step(&m, &d, v, 1e-5, &o);
+    hg_drive_step(m.drive, 6, v, d.current_a, d.zd_mps, d.vloop_int_m, d.amp_enabled, 1e-5, 0, &o);
     CHECK(fabs(o.i_end[0] - is * (1.0 - exp(-1e-5 / tau))) < 1e-12,
           "after 10 us from 0 A towards 8 A: i = (V/R)(1 - exp(-t R/L)) = %.6f A (%.6f)",
           is * (1.0 - exp(-1e-5 / tau)), o.i_end[0]);
-    hg_drive_step(&m, &d, v, 1e-3, &o);
+    hg_drive_step(m.drive, 6, v, d.current_a, d.zd_mps, d.vloop_int_m, d.amp_enabled, 1e-3, 0, &o);
     /* the exponential part's integral, then 8 A held */
     mean_ref = (is * t_reach - is * tau * (1.0 - exp(-t_reach / tau)) + p.i_max_a * (1e-3 - t_reach)) / 1e-3;
     CHECK(o.i_end[0] == p.i_max_a && fabs(o.i_mean[0] - mean_ref) < 1e-9,

@@ -37,9 +37,10 @@ static double intact_difference(double dt)
     memcpy(q, d.z_m, sizeof d.z_m);
     memcpy(q + 6, d.pose, sizeof d.pose);
     for (s = 0; s < n; s++) {
-        hg_drive_step(&m, &d, volts, dt, &drv);   /* the same drive currents as hg_step's */
+        hg_drive_step(m.drive, 6, volts, d.current_a, d.zd_mps, d.vloop_int_m, d.amp_enabled, dt, 0,
+                      &drv);                        /* the same drive currents as hg_step's */
         for (k = 0; k < 6; k++)
-            drive_n[k] = drv.i_mean[k] * m.force_per_amp_n;
+            drive_n[k] = drv.i_mean[k] * m.drive[k].force_per_amp_n;
         hg_carriage_forces(&m, q, qd, drive_n, fz);
         ctx.broken_bars = 0u;
         if (hg_integrate(&m, m.integrator, &hg_broken_dae, &ctx, q, qd, drive_n, fz, dt,

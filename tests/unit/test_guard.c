@@ -217,6 +217,7 @@ static void test_open_loop_strike(const double volts[6], const char *what)
         /* hg_step refused it; integrate with the limits opened to see where it would be */
         m.p.geo.cone_carriage_rad = m.p.geo.cone_head_rad = 3.1;
         m.p.geo.d_bar_m = 0;
+        hg_guard_prepare(&m.p.geo, &m.guard);   /* the model's guard constants follow its geometry */
         if (rc == out.fault_code && hg_step(&m, &d, v, 1e-3) == 0)
             spec_limits(g, d.z_m, d.pose, &cj, &hj, &cl);
         else
@@ -267,6 +268,88 @@ static void test_rotation_path(int open)
           open ? "mm" : "deg", cross_ref / DEG);
 }
 
+/* The clearance memo's bound (hg_guard_memo): on random reachable states
+ * near a reference state whose memo was written (moved 0.1 mm to 5 cm,
+ * 0.006 to 3 deg; head turned up to 140 deg with the joint ranges open,
+ * and from up to 12 deg before the turn where two bars touch to 10 deg
+ * beyond), and with random broken bars, the check with the
+ * memo gives the code and report (bit for bit) of the check without; and
+ * every pair the bound (recomputed here from the memo's points) clears is
+ * at least d_bar apart by the second method. */
+static void test_clearance_memo(void)
+{
+    hg_params p;
+    hg_guard_geo gg;
+    long states = 0, same = 0, cleared = 0, wrong = 0, touching = 0, rewritten = 0;
+    int n;
+    hg_params_default(&p);
+    p.geo.cone_carriage_rad = p.geo.cone_head_rad = 3.1;   /* let the bars reach each other */
+    hg_guard_prepare(&p.geo, &gg);
+    for (n = 0; n < 20000; n++) {
+        static const double size[4] = {1e-4, 1e-3, 1e-2, 5e-2};
+        double c0[6], c[6], z0[6], z[6], sc0[6], sc[6], B[6][3], A[6][3], moved[6];
+        hg_guard_memo memo, m2;
+        hg_guard_report rf, rm;
+        unsigned broken = n % 5 == 0 ? (unsigned)(n / 5) % 64u : 0u;
+        int k, j, pr, rc_full, rc_memo;
+        double s = size[n % 4];
+        c0[0] = hg_test_uniform(-0.15, 0.15);
+        c0[1] = hg_test_uniform(-0.15, 0.15);
+        c0[2] = hg_test_uniform(-0.3, 0.2);
+        c0[3] = hg_test_uniform(-25, 25) * DEG;
+        c0[4] = hg_test_uniform(-25, 25) * DEG;
+        c0[5] = hg_test_uniform(-140, 140) * DEG;
+        for (k = 0; k < 6; k++)
+            c[k] = c0[k] + hg_test_uniform(-s, s);
+        if (n % 3 == 0) {                  /* across the limit: bars 0 and 2 touch at C = 132.2 deg */
+            for (k = 0; k < 6; k++)
+                c0[k] = k == 2 ? -0.05 : 0.0;
+            c0[5] = hg_test_uniform(120, 132.2) * DEG;
+            for (k = 0; k < 6; k++)
+                c[k] = c0[k] + hg_test_uniform(-1e-3, 1e-3);
+            c[5] = c0[5] + hg_test_uniform(0, 10) * DEG;
+        }
+        if (hg_inverse_kinematics(&p.geo, c0, z0) || hg_inverse_kinematics(&p.geo, c, z))
+            continue;
+        memo.valid = 0;
+        memo.refreshed = 0;
+        hg_head_trig(c0, sc0);
+        if (hg_guard_check_sc(&gg, z0, c0, sc0, broken, &memo, 0) != 0 || !memo.valid)
+            continue;                      /* the reference must pass to be written */
+        states++;
+        m2 = memo;
+        hg_head_trig(c, sc);
+        rc_full = hg_guard_check(&p.geo, z, c, broken, &rf);
+        rc_memo = hg_guard_check_sc(&gg, z, c, sc, broken, &m2, &rm);
+        same += rc_full == rc_memo && rf.kind == rm.kind && rf.bar == rm.bar && rf.other == rm.other &&
+                memcmp(&rf.value, &rm.value, sizeof rf.value) == 0 && memcmp(&rf.limit, &rm.limit, sizeof rf.limit) == 0;
+        touching += rc_full == HG_ERR_BAR_CLEARANCE;
+        rewritten += m2.refreshed > memo.refreshed;
+        for (k = 0; k < 6; k++) {
+            double mb = 0, ma = 0;
+            spec_joints(&p.geo, z, c, k, B[k], A[k]);
+            for (j = 0; j < 3; j++) {
+                mb += (B[k][j] - memo.B[k][j]) * (B[k][j] - memo.B[k][j]);
+                ma += (A[k][j] - memo.A[k][j]) * (A[k][j] - memo.A[k][j]);
+            }
+            moved[k] = sqrt(fmax(mb, ma));
+        }
+        for (j = 0, pr = 0; j < 6; j++)
+            for (k = j + 1; k < 6; k++, pr++)
+                if (!((broken >> j) & 1u) && !((broken >> k) & 1u) &&
+                    memo.dist[pr] - moved[j] - moved[k] >= p.geo.d_bar_m + HG_GUARD_SLACK_M) {
+                    cleared++;
+                    wrong += segment_distance_ref(B[j], A[j], B[k], A[k]) < p.geo.d_bar_m;
+                }
+    }
+    CHECK(states > 10000 && same == states && cleared > 100000 && wrong == 0 && touching > 1000 &&
+              rewritten > 1000 && rewritten < states,
+          "clearance memo: %ld random states near a reference, the check with the memo as without "
+          "(code and report) in %ld, %ld with bars touching; %ld pairs cleared by the bound, %ld of them "
+          "closer than d_bar by the second method; memo rewritten after %ld", states, same, touching,
+          cleared, wrong, rewritten);
+}
+
 int main(void)
 {
     static const double issue16[6] = {1.5, -2, 0.7, 2.5, -1.2, 0.3};
@@ -275,6 +358,7 @@ int main(void)
     test_home_and_defaults();
     test_rotation_path(0);
     test_rotation_path(1);
+    test_clearance_memo();
     test_open_loop_strike(issue16, "1.5,-2,0.7,2.5,-1.2,0.3 V");
     test_open_loop_strike(twist, "+-2 V alternating (the head turns)");
     return hg_test_exit();
