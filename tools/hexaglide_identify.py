@@ -549,7 +549,7 @@ class Settings:
     margin_s = 0.3            # trimmed at both ends of every usable stretch (filter transients)
     timing = "auto"           # start / mid: where the volts of a period act (auto: the record's integrator; mid)
     second_cutoff = 1.5       # a second fit at this x cutoff: the difference is the cutoff's cost, in the sigmas
-    stribeck_band = 4.0       # rows slower than this many v_stribeck leave the least squares (shape < 1.2e-7)
+    stribeck_band = 2.5       # rows slower than this many v_stribeck leave the least squares (stick-slip there)
     stick_s = 0.008           # breakaway: a carriage whose count has not changed for this long is stuck
     event_s = 0.06            # ... and is simulated from there for at most this long
     event_check_s = (0.04, 0.1)  # ... and, as a check of the model, this long: the differences join the sigma
@@ -721,8 +721,9 @@ def autocorr_time(r, maxlag=200):
     return tau
 
 
-def estimate(eqs, base, pi0):
-    """Fit the base parameters to the stacked equations of eqs."""
+def estimate(eqs, base, pi0, breakaway_n=None):
+    """Fit the base parameters to the stacked equations of eqs, the breakaway
+    heights held at breakaway_n (six, N; default the prior's)."""
     from scipy.linalg import qr
     nb = len(base.base)
     A = np.concatenate([e["Y"][:, :, base.base].reshape(-1, nb) for e in eqs])
@@ -731,9 +732,12 @@ def estimate(eqs, base, pi0):
     car = np.concatenate([np.tile(np.arange(6), len(e["F"])) for e in eqs])
     seg = np.concatenate([np.full(e["F"].size, i) for i, e in enumerate(eqs)])
     A, F, car, seg = A[U], F[U], car[U], seg[U]
-    # rows slow enough for the Stribeck part are not here (slow_speed): what is
-    # left of its columns is rounding; breakaway() estimates it from stick-slip
-    A[:, breakaway_columns(base)] = 0.0
+    # the rows are fast enough (slow_speed) that the Stribeck part is small;
+    # its height comes from stick-slip (breakaway()): held here
+    bc = breakaway_columns(base)
+    fb = np.array([pi0[fric_col("f_breakaway", k)] for k in range(6)]) if breakaway_n is None else breakaway_n
+    F = F - A[:, bc] @ fb
+    A[:, bc] = 0.0
     est = Estimate()
     est.rows = len(F)
     norm = np.linalg.norm(A, axis=0)
@@ -1100,8 +1104,9 @@ def breakaway(est, base, runs, reg, params, s, pi0):
             continue
         fc = theta[base.base.index(fric_col("f_coulomb", k))]
         top = 3 * max(fc, 10.0) + 2 * prior_fb
-        for _ in range(4):                  # coarse: the whole plausible range (f_static up to 3 f_coulomb and more)
-            g = np.linspace(0.0, top, 25)
+        low = -0.5 * max(fc, 0.0)           # f_static below f_coulomb: the curve extends there, and an
+        for _ in range(4):                  # estimate near 0 keeps its spread; coarse: the whole plausible range
+            g = np.linspace(low, top, 27)
             L = sd.losses(k, theta, params, g, forces)[s.event_s]
             if np.argmin(L.sum(1)) < len(g) - 2:
                 break
@@ -1109,7 +1114,7 @@ def breakaway(est, base, runs, reg, params, s, pi0):
         half = 2 * (g[1] - g[0])
         for _ in range(2):                  # finer twice, to a grid that resolves the bootstrap's spread
             v = _vertex(g, L.sum(1))
-            g = np.linspace(max(0.0, v - half), v + half, 21)
+            g = np.linspace(max(low, v - half), v + half, 21)
             Ls = sd.losses(k, theta, params, g, forces)
             L = Ls[s.event_s]
             sd_boot = np.std(_boot_vertices(g, L, blocks, s.boot, rng))
@@ -1122,20 +1127,29 @@ def breakaway(est, base, runs, reg, params, s, pi0):
         # the other estimates' uncertainty: the same fit with drawn parameters, near the vertex
         step = g[1] - g[0]
         g3 = fb + step * np.arange(-4, 5)
-        g3 = g3[g3 >= 0]
+        g3 = g3[g3 >= low]
         vd = [_vertex(g3, sd.losses(k, t, params, g3, f)[s.event_s].sum(1)) for t, f in draws]
         sd_par = float(np.std(vd)) if len(vd) > 1 else 0.0
         n = sum(e[2] for e in evs)
         row.update(value=fb, sd_boot=sd_boot, sd_par=sd_par, d_check=d_check,
+                   sigma=np.sqrt(sd_boot ** 2 + sd_par ** 2 + d_check ** 2),
                    rms_counts=np.sqrt(L2.sum(1).min() / max(1, n)) * sd.per[0]["scale"][k])
-        est.ident[bi] = True
-        est.theta_ls[bi] = fb
-        est.cov[bi, :] = est.cov[:, bi] = np.where(est.ident, 0.0, np.nan)   # its covariance with the rest: not kept
-        est.cov[bi, bi] = sd_boot ** 2 + sd_par ** 2 + d_check ** 2
-        est.sigma[bi] = np.sqrt(est.cov[bi, bi])
-        if hasattr(est, "sigma_stat"):
-            est.sigma_stat[bi] = est.sigma[bi]
     est.breakaway = info
+
+
+def put_breakaway(est, base):
+    """The breakaway estimates (est.breakaway) into est's values, identified set and covariance."""
+    for k, bi in enumerate(breakaway_columns(base)):
+        row = est.breakaway[k]
+        if "value" not in row:
+            continue
+        est.ident[bi] = True
+        est.theta_ls[bi] = row["value"]
+        est.cov[bi, :] = est.cov[:, bi] = np.where(est.ident, 0.0, np.nan)   # its covariance with the rest: not kept
+        est.cov[bi, bi] = row["sigma"] ** 2
+        est.sigma[bi] = row["sigma"]
+        if hasattr(est, "sigma_stat"):
+            est.sigma_stat[bi] = row["sigma"]
 
 
 # ====================================================================== spec parameters
@@ -1495,17 +1509,23 @@ def main(argv=None):
     base = StructuralBase(reg)
     pi0 = prior_pi(params)
     est = estimate(eqs, base, pi0)
+    # the breakaway from stick-slip, then the least squares again with it held
+    breakaway(est, base, runs, reg, params, s, pi0)
+    bk = est.breakaway
+    fb = np.array([b.get("value", pi0[fric_col("f_breakaway", k)]) for k, b in enumerate(bk)])
+    est = estimate(eqs, base, pi0, fb)
+    est.breakaway = bk
     # what the cutoff costs: the same fit with a faster filter; the difference joins the sigmas
     s2 = Settings()
     s2.source, s2.cutoff_hz, s2.timing = s.source, s.cutoff_hz * s.second_cutoff, s.timing
     if s2.cutoff_hz * 2 * runs[0].dt < 0.5:
-        est2 = estimate([equations(r, reg, params, s2) for r in runs], base, pi0)
+        est2 = estimate([equations(r, reg, params, s2) for r in runs], base, pi0, fb)
         both = est.ident & est2.ident
         est.cutoff_diff = np.where(both, np.abs(est.theta_ls - est2.theta_ls), 0.0)
         est.sigma_stat = est.sigma.copy()
         est.sigma = np.sqrt(est.sigma ** 2 + est.cutoff_diff ** 2)
         est.cutoff2 = s2.cutoff_hz
-    breakaway(est, base, runs, reg, params, s, pi0)
+    put_breakaway(est, base)
     make_consistent(est, base, pi0)
     sys.stdout.write(report(est, base, runs, s, params, pi0))
     vtext, vdata = "", None
