@@ -549,7 +549,7 @@ class Settings:
     margin_s = 0.3            # trimmed at both ends of every usable stretch (filter transients)
     timing = "auto"           # start / mid: where the volts of a period act (auto: the record's integrator; mid)
     second_cutoff = 1.5       # a second fit at this x cutoff: the difference is the cutoff's cost, in the sigmas
-    stribeck_band = 2.5       # rows slower than this many v_stribeck leave the least squares (stick-slip there)
+    stribeck_band = 2.5       # below this many v_stribeck a carriage may stick and slip
     stick_s = 0.008           # breakaway: a carriage whose count has not changed for this long is stuck
     event_s = 0.06            # ... and is simulated from there for at most this long
     event_check_s = (0.04, 0.1)  # ... and, as a check of the model, this long: the differences join the sigma
@@ -610,11 +610,29 @@ def _clamped(run, params):
 
 
 def slow_speed(params, s):
-    """Below this carriage speed (m/s) a row leaves the least squares: the
-    Stribeck part of the friction and stick lie there (identified from
-    stick-slip events instead, breakaway())."""
+    """The Stribeck band (m/s): below it a carriage may stick and slip
+    (breakaway() takes its events from there)."""
     vs = param_or(params, "v_stribeck")
     return max(s.slow_mps, s.stribeck_band * vs) if vs else s.slow_mps
+
+
+def _stuck_readings(run, p, n_equal=3):
+    """(len(p), 6): carriage k's count after period p and the n_equal - 1 before it equal (about stuck)."""
+    c = run.counts
+    out = np.ones((len(p), 6), bool)
+    for l in range(1, n_equal):
+        out &= c[p] == c[np.maximum(p - l, 0)]
+    return out
+
+
+def _stretches_with(mask, seed):
+    """mask restricted to its contiguous runs (per column) that contain a seed."""
+    out = np.zeros_like(mask)
+    for k in range(mask.shape[1]):
+        lab = np.cumsum(np.r_[mask[0, k], mask[1:, k] & ~mask[:-1, k]]) * mask[:, k]
+        hit = np.unique(lab[seed[:, k] & mask[:, k]])
+        out[:, k] = np.isin(lab, hit[hit > 0])
+    return out
 
 
 def equations(run, reg, params, s):
@@ -636,7 +654,7 @@ def equations(run, reg, params, s):
     start_timing = _start_timing(run, s)
     clamped = _clamped(run, params)
     Fr = fpv * dac_output(run.volts)
-    Ys, Fs, Us, Ts = [], [], [], []
+    Ys, Fs, Us, Bs, Ts = [], [], [], [], []
     for i0, i1 in _pieces(run, s):
         if source == "state":
             n = np.arange(i0, i1)                       # states n, forces of period n + 1
@@ -659,19 +677,28 @@ def equations(run, reg, params, s):
         Y, _ = reg.joints(z, v, acc)
         Yf = filtfilt(b, a, Y, axis=0)
         Ff = filtfilt(b, a, F_at, axis=0)
-        slow = np.abs(v) < slow_speed(params, s)
-        bad = clamped[n] | clamped[n + 1] | slow
+        # rows of the fit (use): faster than the Stribeck band, where the friction
+        # is the columns' to the last bit. Below it a carriage may stick and slip,
+        # which the filtered speed cannot follow: a Stribeck column of the
+        # filtered speed is not the friction the machine made (breakaway() fits
+        # that). Rows of the first pass (use_band), which also estimates the
+        # breakaway height, only for the others' sake: all but reversals and the
+        # passes through the band in which the counts show the carriage stuck
+        vs = param_or(params, "v_stribeck")
+        band = np.abs(v) < slow_speed(params, s)
+        rev = np.abs(v) < (min(s.slow_mps, 0.25 * vs) if vs else s.slow_mps)
         wide = int(round(s.slow_window / (s.cutoff_hz * dt)))
-        bad = np.stack([_dilate(bad[:, k], wide) for k in range(6)], 1)
         keep = np.arange(edge, len(n) - edge, dec)
+        for out, slow in ((Us, band), (Bs, rev | _stretches_with(band, _stuck_readings(run, n + 1)))):
+            bad = clamped[n] | clamped[n + 1] | slow
+            out.append(~np.stack([_dilate(bad[:, k], wide) for k in range(6)], 1)[keep])
         Ys.append(Yf[keep])
         Fs.append(Ff[keep])
-        Us.append(~bad[keep])
         Ts.append(n[keep] * dt)
     if not Ys:
         return None
     return dict(Y=np.concatenate(Ys), F=np.concatenate(Fs), use=np.concatenate(Us),
-                t=np.concatenate(Ts), source=source, dec=dec,
+                use_band=np.concatenate(Bs), t=np.concatenate(Ts), source=source, dec=dec,
                 timing="start (improved Euler)" if start_timing else "mid-period")
 
 
@@ -722,22 +749,22 @@ def autocorr_time(r, maxlag=200):
 
 
 def estimate(eqs, base, pi0, breakaway_n=None):
-    """Fit the base parameters to the stacked equations of eqs, the breakaway
-    heights held at breakaway_n (six, N; default the prior's)."""
+    """Fit the base parameters to the stacked equations of eqs: the rows
+    faster than the Stribeck band, the breakaway heights held at
+    breakaway_n (six, N); without it, the first pass (use_band: the rows
+    in the band that slide, the heights free)."""
     from scipy.linalg import qr
     nb = len(base.base)
     A = np.concatenate([e["Y"][:, :, base.base].reshape(-1, nb) for e in eqs])
     F = np.concatenate([e["F"].reshape(-1) for e in eqs])
-    U = np.concatenate([e["use"].reshape(-1) for e in eqs])
+    U = np.concatenate([e["use" if breakaway_n is not None else "use_band"].reshape(-1) for e in eqs])
     car = np.concatenate([np.tile(np.arange(6), len(e["F"])) for e in eqs])
     seg = np.concatenate([np.full(e["F"].size, i) for i, e in enumerate(eqs)])
     A, F, car, seg = A[U], F[U], car[U], seg[U]
-    # the rows are fast enough (slow_speed) that the Stribeck part is small;
-    # its height comes from stick-slip (breakaway()): held here
-    bc = breakaway_columns(base)
-    fb = np.array([pi0[fric_col("f_breakaway", k)] for k in range(6)]) if breakaway_n is None else breakaway_n
-    F = F - A[:, bc] @ fb
-    A[:, bc] = 0.0
+    if breakaway_n is not None:          # its height from stick-slip (breakaway()): held
+        bc = breakaway_columns(base)
+        F = F - A[:, bc] @ breakaway_n
+        A[:, bc] = 0.0
     est = Estimate()
     est.rows = len(F)
     norm = np.linalg.norm(A, axis=0)
@@ -1493,9 +1520,11 @@ def main(argv=None):
             e = equations(r, reg, params, s)
             n = 0 if e is None else int(e["use"].sum() * e["dec"] / 6)
             if n < MIN_SAMPLES:
-                raise BadInput("%s: line %d: %d usable servo periods (amplifiers on, no fault, moving, inside "
-                               "the filter's margins); identify needs at least %d (%.0f s)"
-                               % (r.path, r.last_line, n, MIN_SAMPLES, MIN_SAMPLES * r.dt))
+                raise BadInput("%s: line %d: %d usable servo periods (amplifiers on, no fault, faster than %.3g "
+                               "mm/s: %g v_stribeck, below which a carriage may stick and slip; inside the "
+                               "filter's margins); identify needs at least %d (%.0f s): a faster program "
+                               "(hexaglide excite)" % (r.path, r.last_line, n, 1e3 * slow_speed(params, s),
+                                                       s.stribeck_band, MIN_SAMPLES, MIN_SAMPLES * r.dt))
             eqs.append(e)
     except (BadInput, ValueError) as ex:
         log(ex)
