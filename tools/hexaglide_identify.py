@@ -1106,6 +1106,12 @@ def breakaway(est, base, runs, reg, params, s, pi0):
     """f_breakaway[k] from stick-slip (the section's comment), into est:
     value, sigma (block bootstrap over the slow stretches, plus the spread
     over draws of the least squares' parameters from their covariance)."""
+    # the force on a carriage needs every other estimate: with some not
+    # identified (in combinations only) it is not known at the events' states
+    others = [i for i in range(len(base.base)) if i not in breakaway_columns(base)]
+    if not est.ident[others].all():
+        est.breakaway = [{"why": "the other estimates are not all identified"} for _ in range(6)]
+        return
     rng = np.random.default_rng(1)
     sd = SlowData(runs, reg, params, s, base)
     theta = np.where(est.ident, est.theta_ls, 0.0)      # what predicts the forces (left-out: in the others)
@@ -1128,6 +1134,7 @@ def breakaway(est, base, runs, reg, params, s, pi0):
         row = {"events": len(evs), "blocks": nblk, "periods": sum(e[2] for e in evs)}
         info.append(row)
         if nblk < MIN_BLOCKS:
+            row["why"] = "%d slow stretches with a stick (at least %d)" % (nblk, MIN_BLOCKS)
             continue
         fc = theta[base.base.index(fric_col("f_coulomb", k))]
         top = 3 * max(fc, 10.0) + 2 * prior_fb
@@ -1260,6 +1267,21 @@ def report(est, base, runs, s, params, pi0):
         out.append("%s = %.6g ± %.2g %s" % (names[i], est.theta[i], est.sigma[i], unit_of(j)))
     out.append("# residual RMS per carriage: %s N; correlation time of the residuals %.1f samples "
                "(sigmas include it)" % (" ".join("%.3g" % x for x in est.sigma_carriage), est.tau))
+    bk = est.breakaway or []
+    done = [b for b in bk if "value" in b]
+    if done:
+        out.append("# f_breakaway[k] from stick-slip below %.3g mm/s (%g v_stribeck; the rows above: the rest): "
+                   "%s events in %s slow stretches per carriage, each carriage moved from where its count "
+                   "shows it stuck as the machine moves it, fitted to its counts (RMS %s counts); sigma: "
+                   "block bootstrap over the stretches, the other estimates' uncertainty, and what events of "
+                   "%s s instead of %g s change"
+                   % (1e3 * slow_speed(params, s), s.stribeck_band, "/".join("%d" % b["events"] for b in bk),
+                      "/".join("%d" % b["blocks"] for b in bk), "/".join("%.2g" % b.get("rms_counts", np.nan)
+                                                                          for b in bk),
+                      " and ".join("%g" % h for h in s.event_check_s), s.event_s))
+    for k, b in enumerate(bk):
+        if "why" in b:
+            out.append("# f_breakaway[%d] not estimated: %s" % (k, b["why"]))
     if hasattr(est, "cutoff2"):
         i = est.ident
         ratio = est.cutoff_diff[i] / est.sigma_stat[i]
