@@ -550,7 +550,7 @@ class Settings:
     timing = "auto"           # start / mid: where the volts of a period act (auto: the record's integrator; mid)
     second_cutoff = 1.5       # a second fit at this x cutoff: the difference is the cutoff's cost, in the sigmas
     stribeck_band = 2.5       # below this many v_stribeck a carriage may stick and slip
-    stick_s = 0.008           # breakaway: a carriage whose count has not changed for this long is stuck
+    stick_s = 0.015           # breakaway: a carriage whose count has not changed for this long is stuck
     event_s = 0.06            # ... and is simulated from there for at most this long
     event_check_s = (0.04, 0.1)  # ... and, as a check of the model, this long: the differences join the sigma
     huber_counts = 5.0        # ... its position error (counts) weighs quadratically up to this, linearly beyond
@@ -836,24 +836,27 @@ def make_consistent(est, base, pi0):
     est.theta = est.map @ est.pi
 
 
+PRIOR_WEIGHT = 1e-6           # the prior decides only what the data leave free: its weight against theirs
+
+
 def consistent_pi(base, est, pi0, info):
-    """argmin (M pi - theta)_id' info (M pi - theta)_id + |(pi - pi0) / scale|^2 (M: est.map)
-    subject to feasibility(pi) >= 0: the unconstrained minimum when it is
-    feasible, else scipy's SLSQP from the prior. Returns (pi, names of the
-    constraints that bind)."""
+    """argmin (M pi - theta)_id' info (M pi - theta)_id + w |(pi - pi0) / scale|^2 (M: est.map,
+    w = PRIOR_WEIGHT) subject to feasibility(pi) >= 0: the unconstrained
+    minimum when it is feasible (as w -> 0: the pi nearest the prior that
+    gives the estimates exactly), else scipy's SLSQP from the prior.
+    Returns (pi, names of the constraints that bind)."""
     from scipy.optimize import minimize
     Ti = est.map[est.ident]
     ti = est.theta_ls[est.ident]
     scale = np.array([max(abs(pi0[j]), PRIOR_SCALE.get(COLUMNS[j][1], 1.0)) for j in range(NCOL)])
     # parameters that appear only in combinations (m_end) stay at their prior
     scale[base.dep] *= 1e-6
-    D = np.diag(1.0 / scale ** 2)
+    D = np.diag(PRIOR_WEIGHT / scale ** 2)
     live = np.ones(NCOL, bool)
     live[base.zero] = False
     H = Ti.T @ info @ Ti + D
-    g = Ti.T @ info @ ti + D @ pi0
-    x = pi0.copy()
-    x[live] = np.linalg.solve(H[np.ix_(live, live)], g[live] - H[np.ix_(live, ~live)] @ pi0[~live])
+    S = scale ** 2 * live                           # the prior's inverse weights, 0 off the regressor
+    x = pi0 + S * (Ti.T @ np.linalg.solve((Ti * S) @ Ti.T, ti - Ti @ pi0))
     if (feasibility(x) >= 0).all():
         return x, []
 
@@ -1346,6 +1349,21 @@ def predict_ferror(cmd, gains, params, settles):
     return np.median(np.array(peaks), 0), series
 
 
+def rest_before(cmd, start, lead=None):
+    """Where the closed-loop prediction of a recording begins: the simulated
+    loop starts settled at rest, so at the start of the commands' last rest
+    before `start` (static friction holds a carriage wherever its last move
+    left it: starting it at rest where the machine was moving makes another
+    first breakaway), else `lead` (tune.LEAD_IN) periods before it."""
+    import hexaglide_tune as tune
+    lead = tune.LEAD_IN if lead is None else lead
+    moving = (np.diff(cmd[:start + 1], axis=0) != 0).any(1)
+    r = start
+    while r > 0 and not moving[r - 1]:
+        r -= 1
+    return r if start - r >= 20 else max(0, start - lead)
+
+
 def validate(vrun, a, reg, params, s, est, pi0, base):
     """Open loop: the drive forces of vrun predicted by the identified and the prior
     model. Closed loop: the peak following error of vrun's commands through hg_loop
@@ -1378,7 +1396,7 @@ def validate(vrun, a, reg, params, s, est, pi0, base):
     elif vrun.cmd_mm is not None:
         cmd, fe = vrun.cmd_mm, vrun.ferror_mm
         if vrun.running is not None and vrun.running.any():
-            i0 = max(0, int(np.argmax(vrun.running)) - tune.LEAD_IN)
+            i0 = rest_before(cmd, int(np.argmax(vrun.running)))
             i1 = len(vrun.running) - int(np.argmax(vrun.running[::-1]))
             cmd = cmd[i0:i1]
             fe = fe[i0:i1] if fe is not None else None
