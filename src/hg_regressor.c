@@ -272,7 +272,8 @@ int hg_regressor_slide(const hg_params *p, int integrator, double dt, long nev, 
             e = g + k;
             zc[k] = e < nev ? z0[e] : 0.0;
             vc[k] = e < nev ? v0[e] : 0.0;
-            fe[k] = 0.0;
+            /* a moving start: the machine's stages hold the last step's friction, its sliding force */
+            fe[k] = vc[k] == 0.0 ? 0.0 : (vc[k] > 0.0 ? -1.0 : 1.0) * hg_friction_sliding(p, fabs(vc[k]));
             if (vc[k] == 0.0)
                 stuck |= 1u << k;
             if (e < nev && first[e + 1] - first[e] > len)

@@ -103,7 +103,8 @@ const char *hg_regressor_column(int j, const char **unit, int *carriage);
  * machine takes, their motion given), m[i] its inertia (kg). Stepped as
  * hg_integrate steps a carriage: the scheme's stages (integrator, the
  * hg_integrator numbers) on the smooth forces with the last step's
- * friction held, then hg_friction_solve with p's c_visc, f_coulomb,
+ * friction held (a moving start: its sliding friction), then
+ * hg_friction_solve with p's c_visc, f_coulomb,
  * f_static, v_stribeck, a stuck carriage held where it stopped. z[i],
  * v[i]: the state after step i. 0, HG_ERR_BAD_PARAM (an unknown
  * integrator, a run of negative length, a mass not positive) or

@@ -1352,16 +1352,20 @@ def predict_ferror(cmd, gains, params, settles):
 def rest_before(cmd, start, lead=None):
     """Where the closed-loop prediction of a recording begins: the simulated
     loop starts settled at rest, so at the start of the commands' last rest
+    (50 periods or more) that ends at most `lead` (tune.LEAD_IN) periods
     before `start` (static friction holds a carriage wherever its last move
     left it: starting it at rest where the machine was moving makes another
-    first breakaway), else `lead` (tune.LEAD_IN) periods before it."""
+    first breakaway), else `lead` periods before `start`."""
     import hexaglide_tune as tune
     lead = tune.LEAD_IN if lead is None else lead
-    moving = (np.diff(cmd[:start + 1], axis=0) != 0).any(1)
-    r = start
+    moving = np.r_[(np.diff(cmd[:start + 1], axis=0) != 0).any(1), True]
+    end = start
+    while end > max(0, start - lead) and moving[end - 1]:
+        end -= 1                                   # back to the last period at rest
+    r = end
     while r > 0 and not moving[r - 1]:
         r -= 1
-    return r if start - r >= 20 else max(0, start - lead)
+    return r if end - r >= 50 else max(0, start - lead)
 
 
 def validate(vrun, a, reg, params, s, est, pi0, base):
