@@ -940,9 +940,10 @@ def stick_events(run, s, params, r):
     not changed for s.stick_s (stuck: v = 0, the height mid-count), or at
     which its filtered speed falls below slow_speed (entering the slow band
     from fast sliding, its filtered state), to the next such moment, at most
-    the longest of s.event_s and s.event_check_s, or where it leaves the slow band. Returns per carriage a list
-    of (run, first period, periods, z0, v0, block: the slow stretch it is
-    in), and the motion dict (per period: heights, speeds, accelerations)."""
+    the longest of s.event_s and s.event_check_s, or where it leaves the
+    band. Returns per carriage a list of (run, first period, periods, z0,
+    v0, block: the slow stretch it is in), and the motion dict (per period:
+    heights, speeds, accelerations)."""
     dt = run.dt
     nper = len(run.volts)
     mot = {key: np.full((nper, 6), np.nan) for key in ("z", "v", "a", "zend")}
@@ -992,7 +993,6 @@ class SlowData:
 
     def __init__(self, runs, reg, params, s, base):
         self.runs, self.s, self.base = runs, s, base
-        nb = len(base.base)
         fr = {fric_col(n, k) for n in ("c_visc", "f_coulomb", "f_breakaway") for k in range(6)}
         self.hcols = [i for i, j in enumerate(base.base) if j not in fr]     # gravity, offset, velocity terms
         self.mcols = [i for i, j in enumerate(base.base) if j < NIN]         # inertial
@@ -1022,7 +1022,6 @@ class SlowData:
             self.per.append(d)
             for k in range(6):
                 self.events[k] += evs[k]
-        assert nb > 0
 
     def forces(self, theta):
         """Per run: u (steps, 6), the force on each carriage from everything
@@ -1131,8 +1130,7 @@ def breakaway(est, base, runs, reg, params, s, pi0):
     info = []
     for k, bi in enumerate(breakaway_columns(base)):
         evs = sd.events[k]
-        blocks = np.array([(e[0], e[5]) for e in evs]).reshape(-1, 2)
-        blocks = blocks[:, 0] * 1000003 + blocks[:, 1] if len(evs) else np.zeros(0)
+        blocks = np.array([(e[0] << 32) + e[5] for e in evs], dtype=np.int64)     # (run, stretch)
         nblk = len(set(blocks.tolist()))
         row = {"events": len(evs), "blocks": nblk, "periods": sum(e[2] for e in evs)}
         info.append(row)
@@ -1160,7 +1158,6 @@ def breakaway(est, base, runs, reg, params, s, pi0):
         # the model's check: events simulated shorter and longer give the same breakaway
         # when the model is the machine's; what they differ by joins the sigma
         d_check = max(abs(_vertex(g, Ls[h].sum(1)) - fb) for h in s.event_check_s)
-        L2 = L
         # the other estimates' uncertainty: the same fit with drawn parameters, near the vertex
         step = g[1] - g[0]
         g3 = fb + step * np.arange(-4, 5)
@@ -1170,7 +1167,7 @@ def breakaway(est, base, runs, reg, params, s, pi0):
         n = sum(e[2] for e in evs)
         row.update(value=fb, sd_boot=sd_boot, sd_par=sd_par, d_check=d_check,
                    sigma=np.sqrt(sd_boot ** 2 + sd_par ** 2 + d_check ** 2),
-                   rms_counts=np.sqrt(L2.sum(1).min() / max(1, n)) * sd.per[0]["scale"][k])
+                   rms_counts=np.sqrt(L.sum(1).min() / max(1, n)) * sd.per[0]["scale"][k])
     est.breakaway = info
 
 
