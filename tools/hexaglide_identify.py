@@ -1318,8 +1318,7 @@ def touched_spec(base, est):
 # ====================================================================== validation
 def params_of_spec(spec, params):
     """hg.Params: the known set with the identified spec values (carriage means)."""
-    p = hg.Params()
-    C.memmove(p.buf, params.buf, C.sizeof(p.buf))
+    p = params_copy(params)
     for name, vals in spec.items():
         try:
             p[name] = float(np.mean(vals))
