@@ -7,6 +7,7 @@
 #include "hg_linalg.h"
 #include "hg_errors.h"
 #include "hg_friction.h"
+#include "hg_integrate.h"
 
 unsigned long hg_regressor_sizeof(void)
 {
@@ -215,6 +216,110 @@ int hg_regressor_pose_n(const hg_regressor *r, long n, const double *pose, const
             if (failed_at)
                 *failed_at = i;
             return rc;
+        }
+    }
+    return 0;
+}
+
+/* Smooth part of one step of carriages ch (mask) of a slide batch: the
+ * scheme's stages on a = (u - c v + e) / m (e the friction held), as
+ * hg_integrate: end speeds v1 and heights z1 before friction. */
+static void slide_smooth(int integrator, double c, double dt, const double u[6], const double m[6],
+                         const double e[6], const double z0[6], const double v0[6], double z1[6],
+                         double v1[6])
+{
+    const double *cs, *bs;
+    int ns = hg_scheme_tableau((hg_integrator)integrator, &cs, &bs), k, s;
+    for (k = 0; k < 6; k++) {
+        double a = (u[k] - c * v0[k] + e[k]) / m[k], vs = v0[k], sq = 0.0, sv = 0.0;
+        if (ns == 0) {                 /* improved Euler */
+            z1[k] = z0[k] + v0[k] * dt + 0.5 * a * dt * dt;
+            v1[k] = v0[k] + a * dt;
+            continue;
+        }
+        for (s = 0; s < ns; s++) {
+            if (s > 0) {
+                vs = v0[k] + cs[s] * dt * a;
+                a = (u[k] - c * vs + e[k]) / m[k];
+            }
+            sq += bs[s] * vs;
+            sv += bs[s] * a;
+        }
+        z1[k] = z0[k] + dt * sq;
+        v1[k] = v0[k] + dt * sv;
+    }
+}
+
+int hg_regressor_slide(const hg_params *p, int integrator, double dt, long nev, const long *first,
+                       const double *z0, const double *v0, const double *u, const double *m,
+                       double *z, double *v)
+{
+    hg_friction_channel fc[6];
+    long g, e, i;
+    if (integrator < 0 || integrator >= HG_INTEGRATOR_COUNT || !(dt > 0.0))
+        return HG_ERR_BAD_PARAM;
+    for (i = 0; i < 6; i++)            /* every carriage alike */
+        hg_friction_channel_of(p, &fc[i]);
+    for (e = 0; e < nev; e++)
+        if (first[e + 1] < first[e])
+            return HG_ERR_BAD_PARAM;
+    for (i = 0; i < first[nev]; i++)
+        if (!(m[i] > 0.0))
+            return HG_ERR_BAD_PARAM;
+    for (g = 0; g < nev; g += 6) {   /* six runs at a time, one per channel: W is diagonal */
+        double zc[6], vc[6], fe[6], uu[6], mm[6], z1[6], v1[6], W[36], vf[6];
+        unsigned stuck = 0;
+        long len = 0, t;
+        int k;
+        for (k = 0; k < 6; k++) {
+            e = g + k;
+            zc[k] = e < nev ? z0[e] : 0.0;
+            vc[k] = e < nev ? v0[e] : 0.0;
+            /* a moving start: the machine's stages hold the last step's friction, its sliding force */
+            fe[k] = vc[k] == 0.0 ? 0.0 : (vc[k] > 0.0 ? -1.0 : 1.0) * hg_friction_curve(&fc[k], fabs(vc[k]));
+            if (vc[k] == 0.0)
+                stuck |= 1u << k;
+            if (e < nev && first[e + 1] - first[e] > len)
+                len = first[e + 1] - first[e];
+        }
+        for (t = 0; t < len; t++) {
+            hg_friction_out fo;
+            unsigned live = 0;
+            int rc;
+            for (k = 0; k < 6; k++) {  /* a channel past its run idles at rest */
+                e = g + k;
+                live |= (e < nev && t < first[e + 1] - first[e]) ? 1u << k : 0u;
+                uu[k] = (live >> k) & 1u ? u[first[e] + t] : 0.0;
+                mm[k] = (live >> k) & 1u ? m[first[e] + t] : 1.0;
+                if (!((live >> k) & 1u))
+                    zc[k] = vc[k] = fe[k] = 0.0, stuck |= 1u << k;
+            }
+            slide_smooth(integrator, p->c_visc_ns_per_m, dt, uu, mm, fe, zc, vc, z1, v1);
+            memset(W, 0, sizeof W);
+            for (k = 0; k < 6; k++) {
+                W[7 * k] = 1.0 / mm[k];
+                vf[k] = v1[k] - fe[k] * dt / mm[k];   /* without the friction the stages held */
+            }
+            rc = hg_friction_solve(fc, 6, W, vf, vc, stuck, dt, &fo);
+            if (rc)
+                return rc;
+            for (k = 0; k < 6; k++) {
+                double dv = (fo.impulse[k] - fe[k] * dt) / mm[k];
+                v1[k] += dv;
+                z1[k] += 0.5 * dt * dv;
+                if ((fo.stuck >> k) & 1u) {  /* held where it stopped, as hg_integrate's friction() */
+                    z1[k] = zc[k] + ((stuck >> k) & 1u ? 0.0 : 0.5 * vc[k] * fo.stop[k] * dt);
+                    v1[k] = 0.0;
+                }
+                fe[k] = fo.impulse[k] / dt;
+                zc[k] = z1[k];
+                vc[k] = v1[k];
+                if ((live >> k) & 1u) {
+                    z[first[g + k] + t] = z1[k];
+                    v[first[g + k] + t] = v1[k];
+                }
+            }
+            stuck = fo.stuck;
         }
     }
     return 0;

@@ -93,6 +93,26 @@ int hg_regressor_pose_n(const hg_regressor *r, long n, const double *pose, const
  * "f_offset", "c_visc", "f_coulomb", "f_breakaway". */
 const char *hg_regressor_column(int j, const char **unit, int *carriage);
 
+/* One carriage alone, as the machine moves it, for identifying its
+ * friction where the regressor's columns cannot (stick, breakaway,
+ * stick-slip: docs/identification.md): runs of steps of dt, run e covering
+ * steps first[e] .. first[e + 1] - 1 (first[0] = 0, first[nev] the steps
+ * in all) from the state (z0[e], v0[e]) (v0 = 0: stuck). Per step i: u[i]
+ * the force on the carriage from everything but its own inertia, viscous
+ * and sliding/static friction (N: the drive minus what the rest of the
+ * machine takes, their motion given), m[i] its inertia (kg). Stepped as
+ * hg_integrate steps a carriage: the scheme's stages (integrator, the
+ * hg_integrator numbers) on the smooth forces with the last step's
+ * friction held (a moving start: its sliding friction), then
+ * hg_friction_solve with p's c_visc, f_coulomb,
+ * f_static, v_stribeck, a stuck carriage held where it stopped. z[i],
+ * v[i]: the state after step i. 0, HG_ERR_BAD_PARAM (an unknown
+ * integrator, a run of negative length, a mass not positive) or
+ * hg_friction_solve's code. */
+int hg_regressor_slide(const hg_params *p, int integrator, double dt, long nev, const long *first,
+                       const double *z0, const double *v0, const double *u, const double *m,
+                       double *z, double *v);
+
 /* sizeof(hg_regressor), for bindings (tools/hexaglide_identify.py). */
 unsigned long hg_regressor_sizeof(void);
 

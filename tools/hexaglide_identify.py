@@ -507,6 +507,10 @@ def read_sampler(path, ini):
     # the encoder row n was read before V_n: the position after V_n is row n + 1
     run.volts = V[:-1]
     run.pos = P[1:]
+    # the encoder's quantum: counts / INPUT_SCALE (positions in mm are the counts' too)
+    run.count_scale = np.array([(joints[j] if j < len(joints) else {}).get("INPUT_SCALE", 1000.0) * 1e3
+                                for j in range(6)])
+    run.counts = np.rint(run.pos * run.count_scale)
     run.ok = np.ones(len(run.volts), bool)
     if all(c is not None for c in cmd):
         run.cmd_mm = a[:, cmd]
@@ -545,6 +549,13 @@ class Settings:
     margin_s = 0.3            # trimmed at both ends of every usable stretch (filter transients)
     timing = "auto"           # start / mid: where the volts of a period act (auto: the record's integrator; mid)
     second_cutoff = 1.5       # a second fit at this x cutoff: the difference is the cutoff's cost, in the sigmas
+    stribeck_band = 2.5       # below this many v_stribeck a carriage may stick and slip
+    stick_s = 0.015           # breakaway: a carriage whose count has not changed for this long is stuck
+    event_s = 0.06            # ... and is simulated from there for at most this long
+    event_check_s = (0.04, 0.1)  # ... and, as a check of the model, this long: the differences join the sigma
+    huber_counts = 5.0        # ... its position error (counts) weighs quadratically up to this, linearly beyond
+    boot = 200                # ... block bootstrap replicates over slow stretches
+    draws = 16                # ... draws of the other estimates (their uncertainty in the breakaway's)
 
 
 def _butter(s, dt, hz=None):
@@ -559,6 +570,69 @@ def _dilate(mask, n):
         return mask
     k = np.ones(2 * n + 1)
     return np.convolve(mask.astype(float), k, mode="same") > 0
+
+
+def _pieces(run, s):
+    """Contiguous usable stretches (i0, i1) of a run, long enough for the filters."""
+    dt = run.dt
+    dec = max(1, int(1.0 / (4 * s.cutoff_hz * dt)))
+    edge = int(round(s.margin_s / dt))
+    idx = np.flatnonzero(run.ok)
+    pieces = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1) if len(idx) else []
+    return [(seg[0], seg[-1]) for seg in pieces if len(seg) >= 2 * edge + 10 * dec + 3]
+
+
+def _counts_motion(run, s, i0, i1):
+    """The carriages' motion from the counts of stretch i0..i1, on the
+    half-period grid: period p = n + 1 (n = i0 + 1 .. i1 - 2) moves a
+    carriage from the position of row n to that of row n + 1; its mean speed
+    v is the difference of the two, its acceleration the difference of the
+    neighbouring speeds (the average of periods n, n + 1 twice and n + 2).
+    Returns n, the heights at the period's start and middle, v, acceleration."""
+    from scipy.signal import filtfilt
+    dt = run.dt
+    bd, ad = _butter(s, dt, min(s.cutoff_hz * s.diff_ratio, 0.4 / dt))
+    n = np.arange(i0 + 1, i1 - 1)
+    zf = filtfilt(bd, ad, run.counts[i0:i1 + 1] / run.count_scale, axis=0)
+    vh = np.diff(zf, axis=0) / dt               # vh[m]: mean speed of period i0 + m + 1
+    j = n - i0
+    return n, zf[j], 0.5 * (zf[j] + zf[j + 1]), vh[j], (vh[j + 1] - vh[j - 1]) / (2 * dt)
+
+
+def _start_timing(run, s):
+    """True when a period's volts act from its start (improved Euler), else around its middle."""
+    return run.integrator == 0 if s.timing == "auto" else s.timing == "start"
+
+
+def _clamped(run, params):
+    """Periods whose drive current is (nearly) at the amplifier's limit: force unknown."""
+    return np.abs(params["ka"] * dac_output(run.volts)) >= 0.98 * params["i_max"]
+
+
+def slow_speed(params, s):
+    """The Stribeck band (m/s): below it a carriage may stick and slip
+    (breakaway() takes its events from there)."""
+    vs = param_or(params, "v_stribeck")
+    return max(s.slow_mps, s.stribeck_band * vs) if vs else s.slow_mps
+
+
+def _stuck_readings(run, p, n_equal=3):
+    """(len(p), 6): carriage k's count after period p and the n_equal - 1 before it equal (about stuck)."""
+    c = run.counts
+    out = np.ones((len(p), 6), bool)
+    for l in range(1, n_equal):
+        out &= c[p] == c[np.maximum(p - l, 0)]
+    return out
+
+
+def _stretches_with(mask, seed):
+    """mask restricted to its contiguous runs (per column) that contain a seed."""
+    out = np.zeros_like(mask)
+    for k in range(mask.shape[1]):
+        lab = np.cumsum(np.r_[mask[0, k], mask[1:, k] & ~mask[:-1, k]]) * mask[:, k]
+        hit = np.unique(lab[seed[:, k] & mask[:, k]])
+        out[:, k] = np.isin(lab, hit[hit > 0])
+    return out
 
 
 def equations(run, reg, params, s):
@@ -577,20 +651,11 @@ def equations(run, reg, params, s):
     edge = int(round(s.margin_s / dt))
     # improved Euler: V_n+1 accelerates uniformly from state n (friction at n);
     # a continuous machine, Heun, RK4: V_n+1 acts around the middle of the period
-    start_timing = run.integrator == 0 if s.timing == "auto" else s.timing == "start"
-    ok = run.ok.copy()
-    imax, ka = params["i_max"], params["ka"]
-    V = dac_output(run.volts)
-    clamped = np.abs(ka * V) >= 0.98 * imax
-    # contiguous usable stretches
-    idx = np.flatnonzero(ok)
-    pieces = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1) if len(idx) else []
-    Ys, Fs, Us, Ts = [], [], [], []
-    for seg in pieces:
-        if len(seg) < 2 * edge + 10 * dec + 3:
-            continue
-        i0, i1 = seg[0], seg[-1]
-        Fr = fpv * V
+    start_timing = _start_timing(run, s)
+    clamped = _clamped(run, params)
+    Fr = fpv * dac_output(run.volts)
+    Ys, Fs, Us, Bs, Ts = [], [], [], [], []
+    for i0, i1 in _pieces(run, s):
         if source == "state":
             n = np.arange(i0, i1)                       # states n, forces of period n + 1
             F_at = Fr[n + 1] if start_timing else 0.5 * (Fr[n] + Fr[n + 1])
@@ -601,41 +666,39 @@ def equations(run, reg, params, s):
             else:
                 acc = np.gradient(run.vel[i0:i1 + 1], dt, axis=0)[:-1]
         else:
-            # on the half-period grid: period n + 1 moves the carriage from the
-            # position of row n to that of row n + 1; its mean speed is the
-            # difference of the two, its acceleration the difference of the
-            # neighbouring speeds: the average of periods n, n + 1 (twice) and
-            # n + 2, so the forces are averaged with the same weights
-            n = np.arange(i0 + 1, i1 - 1)
-            zq = run.counts[i0:i1 + 1] / run.count_scale if run.kind == "record" else run.pos[i0:i1 + 1]
-            zf = filtfilt(bd, ad, zq, axis=0)
-            vh = np.diff(zf, axis=0) / dt               # vh[m]: mean speed of period i0 + m + 1
-            j = n - i0
-            acc = (vh[j + 1] - vh[j - 1]) / (2 * dt)
+            # the forces averaged with the acceleration's weights (_counts_motion)
+            n, z0, zm, v, acc = _counts_motion(run, s, i0, i1)
             F_at = filtfilt(bd, ad, 0.25 * (Fr[n] + 2 * Fr[n + 1] + Fr[n + 2]), axis=0)
             if start_timing:
                 # improved Euler: uniform acceleration from state n, friction at state n
-                z, v = zf[j], vh[j] - 0.5 * dt * acc
+                z, v = z0, v - 0.5 * dt * acc
             else:
-                z, v = 0.5 * (zf[j] + zf[j + 1]), vh[j]
+                z = zm
         Y, _ = reg.joints(z, v, acc)
         Yf = filtfilt(b, a, Y, axis=0)
         Ff = filtfilt(b, a, F_at, axis=0)
-        # with a breakaway column (Stribeck speed known) its speed range stays in
+        # rows of the fit (use): faster than the Stribeck band, where the friction
+        # is the columns' to the last bit. Below it a carriage may stick and slip,
+        # which the filtered speed cannot follow: a Stribeck column of the
+        # filtered speed is not the friction the machine made (breakaway() fits
+        # that). Rows of the first pass (use_band), which also estimates the
+        # breakaway height, only for the others' sake: all but reversals and the
+        # passes through the band in which the counts show the carriage stuck
         vs = param_or(params, "v_stribeck")
-        slow = np.abs(v) < (min(s.slow_mps, 0.25 * vs) if vs else s.slow_mps)
-        bad = clamped[n] | clamped[n + 1] | slow
+        band = np.abs(v) < slow_speed(params, s)
+        rev = np.abs(v) < (min(s.slow_mps, 0.25 * vs) if vs else s.slow_mps)
         wide = int(round(s.slow_window / (s.cutoff_hz * dt)))
-        bad = np.stack([_dilate(bad[:, k], wide) for k in range(6)], 1)
         keep = np.arange(edge, len(n) - edge, dec)
+        for out, slow in ((Us, band), (Bs, rev | _stretches_with(band, _stuck_readings(run, n + 1)))):
+            bad = clamped[n] | clamped[n + 1] | slow
+            out.append(~np.stack([_dilate(bad[:, k], wide) for k in range(6)], 1)[keep])
         Ys.append(Yf[keep])
         Fs.append(Ff[keep])
-        Us.append(~bad[keep])
         Ts.append(n[keep] * dt)
     if not Ys:
         return None
     return dict(Y=np.concatenate(Ys), F=np.concatenate(Fs), use=np.concatenate(Us),
-                t=np.concatenate(Ts), source=source, dec=dec,
+                use_band=np.concatenate(Bs), t=np.concatenate(Ts), source=source, dec=dec,
                 timing="start (improved Euler)" if start_timing else "mid-period")
 
 
@@ -685,16 +748,23 @@ def autocorr_time(r, maxlag=200):
     return tau
 
 
-def estimate(eqs, base, pi0):
-    """Fit the base parameters to the stacked equations of eqs."""
+def estimate(eqs, base, pi0, breakaway_n=None):
+    """Fit the base parameters to the stacked equations of eqs: the rows
+    faster than the Stribeck band, the breakaway heights held at
+    breakaway_n (six, N); without it, the first pass (use_band: the rows
+    in the band that slide, the heights free)."""
     from scipy.linalg import qr
     nb = len(base.base)
     A = np.concatenate([e["Y"][:, :, base.base].reshape(-1, nb) for e in eqs])
     F = np.concatenate([e["F"].reshape(-1) for e in eqs])
-    U = np.concatenate([e["use"].reshape(-1) for e in eqs])
+    U = np.concatenate([e["use" if breakaway_n is not None else "use_band"].reshape(-1) for e in eqs])
     car = np.concatenate([np.tile(np.arange(6), len(e["F"])) for e in eqs])
     seg = np.concatenate([np.full(e["F"].size, i) for i, e in enumerate(eqs)])
     A, F, car, seg = A[U], F[U], car[U], seg[U]
+    if breakaway_n is not None:          # its height from stick-slip (breakaway()): held
+        bc = breakaway_columns(base)
+        F = F - A[:, bc] @ breakaway_n
+        A[:, bc] = 0.0
     est = Estimate()
     est.rows = len(F)
     norm = np.linalg.norm(A, axis=0)
@@ -754,31 +824,39 @@ def estimate(eqs, base, pi0):
     sv = np.linalg.svd(Aw / n, compute_uv=False)
     est.cond = sv[0] / sv[-1]
     est.residual = res
-    # physically consistent pi: the fit's information on the identified
-    # directions, the prior (weakly) on the rest
-    est.pi, est.active = consistent_pi(base, est, pi0, np.linalg.inv(cov))
-    est.theta = est.map @ est.pi
+    est.breakaway = None
     return est
 
 
+def make_consistent(est, base, pi0):
+    """est.pi (physically consistent: the fit's information on the identified
+    directions, the prior weakly on the rest), est.active, est.theta."""
+    i = est.ident
+    est.pi, est.active = consistent_pi(base, est, pi0, np.linalg.inv(est.cov[np.ix_(i, i)]))
+    est.theta = est.map @ est.pi
+
+
+PRIOR_WEIGHT = 1e-6           # the prior decides only what the data leave free: its weight against theirs
+
+
 def consistent_pi(base, est, pi0, info):
-    """argmin (M pi - theta)_id' info (M pi - theta)_id + |(pi - pi0) / scale|^2 (M: est.map)
-    subject to feasibility(pi) >= 0: the unconstrained minimum when it is
-    feasible, else scipy's SLSQP from the prior. Returns (pi, names of the
-    constraints that bind)."""
+    """argmin (M pi - theta)_id' info (M pi - theta)_id + w |(pi - pi0) / scale|^2 (M: est.map,
+    w = PRIOR_WEIGHT) subject to feasibility(pi) >= 0: the unconstrained
+    minimum when it is feasible (as w -> 0: the pi nearest the prior that
+    gives the estimates exactly), else scipy's SLSQP from the prior.
+    Returns (pi, names of the constraints that bind)."""
     from scipy.optimize import minimize
     Ti = est.map[est.ident]
     ti = est.theta_ls[est.ident]
     scale = np.array([max(abs(pi0[j]), PRIOR_SCALE.get(COLUMNS[j][1], 1.0)) for j in range(NCOL)])
     # parameters that appear only in combinations (m_end) stay at their prior
     scale[base.dep] *= 1e-6
-    D = np.diag(1.0 / scale ** 2)
+    D = np.diag(PRIOR_WEIGHT / scale ** 2)
     live = np.ones(NCOL, bool)
     live[base.zero] = False
     H = Ti.T @ info @ Ti + D
-    g = Ti.T @ info @ ti + D @ pi0
-    x = pi0.copy()
-    x[live] = np.linalg.solve(H[np.ix_(live, live)], g[live] - H[np.ix_(live, ~live)] @ pi0[~live])
+    S = scale ** 2 * live                           # the prior's inverse weights, 0 off the regressor
+    x = pi0 + S * (Ti.T @ np.linalg.solve((Ti * S) @ Ti.T, ti - Ti @ pi0))
     if (feasibility(x) >= 0).all():
         return x, []
 
@@ -812,6 +890,300 @@ def _put(base_vec, live, y):
     z = base_vec.copy()
     z[live] = y
     return z
+
+
+# ====================================================================== breakaway
+# The Stribeck part of the friction lives below a few v_stribeck, where a
+# carriage of a machine whose f_static is well above f_coulomb sticks and
+# slips at tens of Hz (its friction falls faster with speed than viscous
+# friction rises: negative damping). The filtered counts cannot follow
+# that: a regressor column exp(-(v/v_s)^2) of the low-passed speed is not
+# the Stribeck force the machine produced (the old bias, docs/identification.md).
+# So the least squares leave those rows out, and f_breakaway[k] is fitted
+# where the machine shows it: from every moment carriage k is certainly
+# stuck, it is moved alone as the machine moves it (hg_regressor_slide:
+# its stages, its friction solve), under the recorded drive force minus
+# what the rest of the machine takes (the least squares' parameters, the
+# others' filtered motion), and its simulated heights are compared with
+# its counts.
+_lp = np.ctypeslib.ndpointer(dtype=np.int64, flags="C_CONTIGUOUS")
+_slide = hg._sig("hg_regressor_slide", C.c_int, C.c_void_p, C.c_int, C.c_double, C.c_long, _lp,
+                 _dp, _dp, _dp, _dp, _dp, _dp)
+
+
+def slide(params, integrator, dt, first, z0, v0, u, m):
+    """hg_regressor_slide: heights and speeds (m, m/s) after each step of runs
+    of one carriage alone, as the machine moves it (src/hg_regressor.h)."""
+    first = np.ascontiguousarray(first, dtype=np.int64)
+    z, v = np.zeros(int(first[-1])), np.zeros(int(first[-1]))
+    rc = _slide(params.buf, int(integrator), dt, len(first) - 1, first,
+                *(np.ascontiguousarray(x, dtype=np.float64) for x in (z0, v0, u, m)), z, v)
+    if rc:
+        raise hg.HexaglideError("slide", rc)
+    return z, v
+
+
+def breakaway_columns(base):
+    """Indices into base.base of f_breakaway[0..5]."""
+    return [base.base.index(fric_col("f_breakaway", k)) for k in range(6)]
+
+
+def params_copy(params):
+    """A copy of an hg.Params."""
+    p = hg.Params()
+    C.memmove(p.buf, params.buf, C.sizeof(p.buf))
+    return p
+
+
+def stick_events(run, s, params, r):
+    """Carriage k's events in run r: from a period after which its count has
+    not changed for s.stick_s (stuck: v = 0, the height mid-count), or at
+    which its filtered speed falls below slow_speed (entering the slow band
+    from fast sliding, its filtered state), to the next such moment, at most
+    the longest of s.event_s and s.event_check_s, or where it leaves the
+    band. Returns per carriage a list of (run, first period, periods, z0,
+    v0, block: the slow stretch it is in), and the motion dict (per period:
+    heights, speeds, accelerations)."""
+    dt = run.dt
+    nper = len(run.volts)
+    mot = {key: np.full((nper, 6), np.nan) for key in ("z", "v", "a", "zend")}
+    clamped = _clamped(run, params).any(1)
+    L = max(2, int(round(s.stick_s / dt)))
+    H = max(5, int(round(max((s.event_s,) + tuple(s.event_check_s)) / dt)))
+    edge = int(round(s.margin_s / dt))
+    vslow = slow_speed(params, s)
+    evs = [[] for _ in range(6)]
+    block = 0
+    for i0, i1 in _pieces(run, s):
+        n, z0, zm, v, acc = _counts_motion(run, s, i0, i1)
+        p = n + 1
+        mot["z"][p], mot["v"][p], mot["a"][p] = zm, v, acc
+        mot["zend"][p] = np.vstack([z0[1:], z0[-1:]])    # filtered height at the end of period p
+        lo, hi = p[0] + edge, p[-1] - edge
+        for k in range(6):
+            c = run.counts[:, k]
+            slow = np.abs(v[:, k]) < vslow
+            stuck = slow.copy()
+            for l in range(1, L):
+                stuck &= c[p] == c[p - l]
+            starts = [(j, 0.0) if stuck[j] else (j, v[j, k] + 0.5 * dt * acc[j, k]) for j in range(1, len(p))
+                      if (stuck[j] and not stuck[j - 1]) or (slow[j] and not slow[j - 1])]
+            fast = np.flatnonzero(~slow)
+            for e, (j, v0) in enumerate(starts):
+                if slow[j] and not slow[j - 1]:
+                    block += 1
+                if not lo <= p[j] <= hi:
+                    continue
+                end = min(starts[e + 1][0] if e + 1 < len(starts) else len(p), j + 1 + H)
+                after = fast[fast > j]
+                if len(after):
+                    end = min(end, after[0])
+                end = min(end, int(np.searchsorted(p, hi)))
+                if end - j < 5 or clamped[p[j]:p[end - 1] + 1].any():
+                    continue
+                z0e = (c[p[j]] + 0.5) / run.count_scale[k] if v0 == 0.0 else mot["zend"][p[j], k]
+                evs[k].append((r, p[j], end - j - 1, z0e, v0, block))
+    return evs, mot
+
+
+class SlowData:
+    """What the stick-slip fit needs of the periods inside events: per run,
+    the drive force, the known-force columns at zero acceleration and the
+    mass matrix columns (base parameters), the filtered accelerations."""
+
+    def __init__(self, runs, reg, params, s, base):
+        self.runs, self.s, self.base = runs, s, base
+        fr = {fric_col(n, k) for n in ("c_visc", "f_coulomb", "f_breakaway") for k in range(6)}
+        self.hcols = [i for i, j in enumerate(base.base) if j not in fr]     # gravity, offset, velocity terms
+        self.mcols = [i for i, j in enumerate(base.base) if j < NIN]         # inertial
+        self.events = [[] for _ in range(6)]
+        self.per = []
+        for r, run in enumerate(runs):
+            evs, mot = stick_events(run, s, params, r)
+            steps = sorted({q for k in range(6) for _, p0, L, _, _, _ in evs[k] for q in range(p0 + 1, p0 + 1 + L)})
+            steps = np.array(steps, dtype=int)
+            d = {"steps": steps, "index": {q: i for i, q in enumerate(steps)}}
+            if len(steps):
+                z, v, a = mot["z"][steps], mot["v"][steps], mot["a"][steps]
+                Y0, _ = reg.joints(z, v, np.zeros_like(a))
+                Y0 = Y0[:, :, base.base]
+                D = np.zeros((len(steps), 6, 6, len(self.mcols)))
+                for j in range(6):
+                    e = np.zeros_like(a)
+                    e[:, j] = 1.0
+                    Yj, _ = reg.joints(z, v, e)
+                    D[:, :, j, :] = (Yj[:, :, base.base] - Y0)[:, :, self.mcols]
+                d.update(Y0=Y0[:, :, self.hcols], D=D, a=a,
+                         F=force_per_volt(params) * dac_output(run.volts)[steps])
+            d["integrator"] = 0 if _start_timing(run, s) else (run.integrator or hg.DEFAULT_INTEGRATOR)
+            d["dt"] = run.dt
+            d["counts"] = run.counts
+            d["scale"] = run.count_scale
+            self.per.append(d)
+            for k in range(6):
+                self.events[k] += evs[k]
+
+    def forces(self, theta):
+        """Per run: u (steps, 6), the force on each carriage from everything
+        but its own inertia and friction, with the others' filtered motion
+        given and their fast response to it free (so the inertia is 1/W_kk),
+        and m = 1/W_kk (steps, 6), for base parameters theta."""
+        out = []
+        for d in self.per:
+            if not len(d["steps"]):
+                out.append((None, None))
+                continue
+            h = d["Y0"] @ theta[self.hcols]
+            M = d["D"] @ theta[self.mcols]
+            Wkk = np.diagonal(np.linalg.inv(M), axis1=1, axis2=2)
+            a = d["a"]
+            u = d["F"] - h - np.einsum("nkj,nj->nk", M, a) + a / Wkk
+            out.append((u, 1.0 / Wkk))
+        return out
+
+    def losses(self, k, theta, params, grid, forces=None):
+        """Robust squared height error (m^2) of each of carriage k's events
+        (columns) for each f_breakaway in grid (rows), sliding friction and
+        viscous friction theta's: {horizon (s): errors summed over the
+        event's first horizon seconds} for s.event_s and s.event_check_s."""
+        s = self.s
+        forces = forces or self.forces(theta)
+        pk = params_copy(params)
+        fc = theta[self.base.base.index(fric_col("f_coulomb", k))]
+        pk["c_visc"] = max(0.0, theta[self.base.base.index(fric_col("c_visc", k))])
+        pk["f_coulomb"] = max(0.0, fc)
+        evs = self.events[k]
+        hs = (s.event_s,) + tuple(s.event_check_s)
+        L = {h: np.zeros((len(grid), len(evs))) for h in hs}
+        for r, d in enumerate(self.per):
+            sel = [i for i, e in enumerate(evs) if e[0] == r]
+            if not sel:
+                continue
+            u, m = forces[r]
+            rows = [np.array([d["index"][q] for q in range(e[1] + 1, e[1] + 1 + e[2])]) for e in (evs[i] for i in sel)]
+            first = np.r_[0, np.cumsum([len(x) for x in rows])]
+            idx = np.concatenate(rows)
+            meas = np.concatenate([(d["counts"][evs[i][1] + 1:evs[i][1] + 1 + evs[i][2], k] + 0.5) / d["scale"][k]
+                                   for i in sel])
+            within = np.concatenate([np.arange(len(x)) for x in rows]) * d["dt"]   # time into its event
+            z0 = [evs[i][3] for i in sel]
+            v0 = [evs[i][4] for i in sel]
+            delta = s.huber_counts / d["scale"][k]
+            for g, fb in enumerate(grid):
+                pk["f_static"] = pk["f_coulomb"] + fb
+                zs, _ = slide(pk, d["integrator"], d["dt"], first, z0, v0, u[idx, k], m[idx, k])
+                e = np.abs(zs - meas)
+                e = np.where(e < delta, e * e, 2 * delta * e - delta * delta)
+                for h in hs:
+                    L[h][g, sel] = np.add.reduceat(np.where(within < h - 0.5 * d["dt"], e, 0.0), first[:-1])
+        return L
+
+
+def _vertex(grid, total, w=2):
+    """The minimum of a loss on a grid: the vertex of a parabola through the
+    2w + 1 points around the smallest, inside them."""
+    i = int(np.argmin(total))
+    lo, hi = max(0, i - w), min(len(grid), i + w + 1)
+    if hi - lo < 3:
+        return float(grid[i])
+    c = np.polyfit(grid[lo:hi], total[lo:hi], 2)
+    if not c[0] > 0:
+        return float(grid[i])
+    return float(np.clip(-c[1] / (2 * c[0]), grid[lo], grid[hi - 1]))
+
+
+def _boot_vertices(grid, L, blocks, n, rng):
+    """Vertices of n block-bootstrap replicates of the summed losses L (grid x events)."""
+    ub, inv = np.unique(blocks, return_inverse=True)
+    LB = np.zeros((len(grid), len(ub)))
+    np.add.at(LB.T, inv, L.T)
+    w = rng.multinomial(len(ub), np.full(len(ub), 1.0 / len(ub)), size=n)
+    return np.array([_vertex(grid, LB @ wi) for wi in w])
+
+
+MIN_BLOCKS = 5                # slow stretches with events a breakaway estimate needs
+
+
+def breakaway(est, base, runs, reg, params, s, pi0):
+    """f_breakaway[k] from stick-slip (the section's comment), into est:
+    value, sigma (block bootstrap over the slow stretches, plus the spread
+    over draws of the least squares' parameters from their covariance)."""
+    # the force on a carriage needs every other estimate: with some not
+    # identified (in combinations only) it is not known at the events' states
+    others = [i for i in range(len(base.base)) if i not in breakaway_columns(base)]
+    if not est.ident[others].all():
+        est.breakaway = [{"why": "the other estimates are not all identified"} for _ in range(6)]
+        return
+    rng = np.random.default_rng(1)
+    sd = SlowData(runs, reg, params, s, base)
+    theta = np.where(est.ident, est.theta_ls, 0.0)      # what predicts the forces (left-out: in the others)
+    idx = np.flatnonzero(est.ident)
+    cov = est.cov[np.ix_(idx, idx)] + np.diag(getattr(est, "cutoff_diff", np.zeros(len(est.ident)))[idx] ** 2)
+    chol = np.linalg.cholesky(cov + 1e-300 * np.eye(len(idx)))
+    draws = []
+    for _ in range(s.draws):
+        t = theta.copy()
+        t[idx] += chol @ rng.standard_normal(len(idx))
+        draws.append((t, sd.forces(t)))
+    forces = sd.forces(theta)
+    prior_fb = max(pi0[fric_col("f_breakaway", 0)], 0.0)
+    info = []
+    for k, bi in enumerate(breakaway_columns(base)):
+        evs = sd.events[k]
+        blocks = np.array([(e[0] << 32) + e[5] for e in evs], dtype=np.int64)     # (run, stretch)
+        nblk = len(set(blocks.tolist()))
+        row = {"events": len(evs), "blocks": nblk, "periods": sum(e[2] for e in evs)}
+        info.append(row)
+        if nblk < MIN_BLOCKS:
+            row["why"] = "%d slow stretches with a stick (at least %d)" % (nblk, MIN_BLOCKS)
+            continue
+        fc = theta[base.base.index(fric_col("f_coulomb", k))]
+        top = 3 * max(fc, 10.0) + 2 * prior_fb
+        low = -0.5 * max(fc, 0.0)           # f_static below f_coulomb: the curve extends there, and an
+        for _ in range(4):                  # estimate near 0 keeps its spread; coarse: the whole plausible range
+            g = np.linspace(low, top, 27)
+            L = sd.losses(k, theta, params, g, forces)[s.event_s]
+            if np.argmin(L.sum(1)) < len(g) - 2:
+                break
+            top *= 2
+        half = 2 * (g[1] - g[0])
+        for _ in range(2):                  # finer twice, to a grid that resolves the bootstrap's spread
+            v = _vertex(g, L.sum(1))
+            g = np.linspace(max(low, v - half), v + half, 21)
+            Ls = sd.losses(k, theta, params, g, forces)
+            L = Ls[s.event_s]
+            sd_boot = np.std(_boot_vertices(g, L, blocks, s.boot, rng))
+            half = max(4 * sd_boot, 2 * (g[1] - g[0]))
+        fb = _vertex(g, L.sum(1))
+        # the model's check: events simulated shorter and longer give the same breakaway
+        # when the model is the machine's; what they differ by joins the sigma
+        d_check = max(abs(_vertex(g, Ls[h].sum(1)) - fb) for h in s.event_check_s)
+        # the other estimates' uncertainty: the same fit with drawn parameters, near the vertex
+        step = g[1] - g[0]
+        g3 = fb + step * np.arange(-4, 5)
+        g3 = g3[g3 >= low]
+        vd = [_vertex(g3, sd.losses(k, t, params, g3, f)[s.event_s].sum(1)) for t, f in draws]
+        sd_par = float(np.std(vd)) if len(vd) > 1 else 0.0
+        n = sum(e[2] for e in evs)
+        row.update(value=fb, sd_boot=sd_boot, sd_par=sd_par, d_check=d_check,
+                   sigma=np.sqrt(sd_boot ** 2 + sd_par ** 2 + d_check ** 2),
+                   rms_counts=np.sqrt(L.sum(1).min() / max(1, n)) * sd.per[0]["scale"][k])
+    est.breakaway = info
+
+
+def put_breakaway(est, base):
+    """The breakaway estimates (est.breakaway) into est's values, identified set and covariance."""
+    for k, bi in enumerate(breakaway_columns(base)):
+        row = est.breakaway[k]
+        if "value" not in row:
+            continue
+        est.ident[bi] = True
+        est.theta_ls[bi] = row["value"]
+        est.cov[bi, :] = est.cov[:, bi] = np.where(est.ident, 0.0, np.nan)   # its covariance with the rest: not kept
+        est.cov[bi, bi] = row["sigma"] ** 2
+        est.sigma[bi] = row["sigma"]
+        if hasattr(est, "sigma_stat"):
+            est.sigma_stat[bi] = row["sigma"]
 
 
 # ====================================================================== spec parameters
@@ -895,6 +1267,21 @@ def report(est, base, runs, s, params, pi0):
         out.append("%s = %.6g ± %.2g %s" % (names[i], est.theta[i], est.sigma[i], unit_of(j)))
     out.append("# residual RMS per carriage: %s N; correlation time of the residuals %.1f samples "
                "(sigmas include it)" % (" ".join("%.3g" % x for x in est.sigma_carriage), est.tau))
+    bk = est.breakaway or []
+    done = [b for b in bk if "value" in b]
+    if done:
+        out.append("# f_breakaway[k] from stick-slip below %.3g mm/s (%g v_stribeck; the rows above: the rest): "
+                   "%s events in %s slow stretches per carriage, each carriage moved from where its count "
+                   "shows it stuck as the machine moves it, fitted to its counts (RMS %s counts); sigma: "
+                   "block bootstrap over the stretches, the other estimates' uncertainty, and what events of "
+                   "%s s instead of %g s change"
+                   % (1e3 * slow_speed(params, s), s.stribeck_band, "/".join("%d" % b["events"] for b in bk),
+                      "/".join("%d" % b["blocks"] for b in bk), "/".join("%.2g" % b.get("rms_counts", np.nan)
+                                                                          for b in bk),
+                      " and ".join("%g" % h for h in s.event_check_s), s.event_s))
+    for k, b in enumerate(bk):
+        if "why" in b:
+            out.append("# f_breakaway[%d] not estimated: %s" % (k, b["why"]))
     if hasattr(est, "cutoff2"):
         i = est.ident
         ratio = est.cutoff_diff[i] / est.sigma_stat[i]
@@ -931,8 +1318,7 @@ def touched_spec(base, est):
 # ====================================================================== validation
 def params_of_spec(spec, params):
     """hg.Params: the known set with the identified spec values (carriage means)."""
-    p = hg.Params()
-    C.memmove(p.buf, params.buf, C.sizeof(p.buf))
+    p = params_copy(params)
     for name, vals in spec.items():
         try:
             p[name] = float(np.mean(vals))
@@ -957,6 +1343,25 @@ def predict_ferror(cmd, gains, params, settles):
             series = r.ferror_mm[s0:]
         peaks.append(r.peak_ferror_mm)
     return np.median(np.array(peaks), 0), series
+
+
+def rest_before(cmd, start, lead=None):
+    """Where the closed-loop prediction of a recording begins: the simulated
+    loop starts settled at rest, so at the start of the commands' last rest
+    (50 periods or more) that ends at most `lead` (tune.LEAD_IN) periods
+    before `start` (static friction holds a carriage wherever its last move
+    left it: starting it at rest where the machine was moving makes another
+    first breakaway), else `lead` periods before `start`."""
+    import hexaglide_tune as tune
+    lead = tune.LEAD_IN if lead is None else lead
+    moving = np.r_[(np.diff(cmd[:start + 1], axis=0) != 0).any(1), True]
+    end = start
+    while end > max(0, start - lead) and moving[end - 1]:
+        end -= 1                                   # back to the last period at rest
+    r = end
+    while r > 0 and not moving[r - 1]:
+        r -= 1
+    return r if end - r >= 50 else max(0, start - lead)
 
 
 def validate(vrun, a, reg, params, s, est, pi0, base):
@@ -991,7 +1396,7 @@ def validate(vrun, a, reg, params, s, est, pi0, base):
     elif vrun.cmd_mm is not None:
         cmd, fe = vrun.cmd_mm, vrun.ferror_mm
         if vrun.running is not None and vrun.running.any():
-            i0 = max(0, int(np.argmax(vrun.running)) - tune.LEAD_IN)
+            i0 = rest_before(cmd, int(np.argmax(vrun.running)))
             i1 = len(vrun.running) - int(np.argmax(vrun.running[::-1]))
             cmd = cmd[i0:i1]
             fe = fe[i0:i1] if fe is not None else None
@@ -1155,9 +1560,11 @@ def main(argv=None):
             e = equations(r, reg, params, s)
             n = 0 if e is None else int(e["use"].sum() * e["dec"] / 6)
             if n < MIN_SAMPLES:
-                raise BadInput("%s: line %d: %d usable servo periods (amplifiers on, no fault, moving, inside "
-                               "the filter's margins); identify needs at least %d (%.0f s)"
-                               % (r.path, r.last_line, n, MIN_SAMPLES, MIN_SAMPLES * r.dt))
+                raise BadInput("%s: line %d: %d usable servo periods (amplifiers on, no fault, faster than %.3g "
+                               "mm/s: %g v_stribeck, below which a carriage may stick and slip; inside the "
+                               "filter's margins); identify needs at least %d (%.0f s): a faster program "
+                               "(hexaglide excite)" % (r.path, r.last_line, n, 1e3 * slow_speed(params, s),
+                                                       s.stribeck_band, MIN_SAMPLES, MIN_SAMPLES * r.dt))
             eqs.append(e)
     except (BadInput, ValueError) as ex:
         log(ex)
@@ -1171,16 +1578,24 @@ def main(argv=None):
     base = StructuralBase(reg)
     pi0 = prior_pi(params)
     est = estimate(eqs, base, pi0)
+    # the breakaway from stick-slip, then the least squares again with it held
+    breakaway(est, base, runs, reg, params, s, pi0)
+    bk = est.breakaway
+    fb = np.array([b.get("value", pi0[fric_col("f_breakaway", k)]) for k, b in enumerate(bk)])
+    est = estimate(eqs, base, pi0, fb)
+    est.breakaway = bk
     # what the cutoff costs: the same fit with a faster filter; the difference joins the sigmas
     s2 = Settings()
     s2.source, s2.cutoff_hz, s2.timing = s.source, s.cutoff_hz * s.second_cutoff, s.timing
     if s2.cutoff_hz * 2 * runs[0].dt < 0.5:
-        est2 = estimate([equations(r, reg, params, s2) for r in runs], base, pi0)
+        est2 = estimate([equations(r, reg, params, s2) for r in runs], base, pi0, fb)
         both = est.ident & est2.ident
         est.cutoff_diff = np.where(both, np.abs(est.theta_ls - est2.theta_ls), 0.0)
         est.sigma_stat = est.sigma.copy()
         est.sigma = np.sqrt(est.sigma ** 2 + est.cutoff_diff ** 2)
         est.cutoff2 = s2.cutoff_hz
+    put_breakaway(est, base)
+    make_consistent(est, base, pi0)
     sys.stdout.write(report(est, base, runs, s, params, pi0))
     vtext, vdata = "", None
     if vrun is not None:

@@ -64,6 +64,96 @@ static void random_params(hg_params *p)
     p->v_bus_v = 1000.0;              /* no back-EMF limit at these speeds: the current is ka V */
 }
 
+/* hg_regressor_slide, one carriage alone, against closed forms: stick holds
+ * exactly up to f_static and breaks away in the first step beyond it;
+ * Coulomb friction alone stops a carriage where m v0^2 / (2 f_c) says
+ * and holds it there; viscous and Coulomb under a constant force approach
+ * (u - f_c)/c as v_inf + (v0 - v_inf) exp(-c t / m) (each scheme to its
+ * order); runs batched as one call are the runs alone; bad input refused. */
+static void slide_checks(void)
+{
+    enum { N = 400 };
+    static double u[N], m[N], z[N], v[N], zz[N], vv[N];
+    const double dt = 0.001, mass = 56.0, fs = 100.0, fc = 40.0;
+    hg_params p;
+    long first[8] = {0, N};
+    double z0 = 0.01, v0 = 0.0, worst = 0.0;
+    int i, moved = -1, scheme, e;
+    hg_params_default(&p);
+    p.f_static_n = fs;
+    p.f_coulomb_n = fc;
+    p.c_visc_ns_per_m = 0.0;
+    for (i = 0; i < N; i++) {            /* a force ramp through f_static */
+        u[i] = -2.0 * fs * (i + 0.5) / N;
+        m[i] = mass;
+    }
+    CHECK(hg_regressor_slide(&p, HG_INTEGRATOR_HEUN, dt, 1, first, &z0, &v0, u, m, z, v) == 0, "slide runs");
+    for (i = 0; i < N && moved < 0; i++)
+        if (z[i] != z0 || v[i] != 0.0)
+            moved = i;
+    CHECK(moved >= 0 && -u[moved] > fs && (moved == 0 || -u[moved - 1] <= fs) && v[moved] < 0,
+          "stuck exactly while |u| <= f_static, away downwards in the first step beyond it (step %d, u %.2f N)",
+          moved, moved >= 0 ? u[moved] : 0.0);
+    /* Coulomb alone (the Stribeck curve flat): a carriage at 5 mm/s stops after m v0^2 / (2 f_c) and stays */
+    p.f_static_n = fc;
+    for (i = 0; i < N; i++)
+        u[i] = 0.0;
+    v0 = 0.005;
+    hg_regressor_slide(&p, HG_INTEGRATOR_HEUN, dt, 1, first, &z0, &v0, u, m, z, v);
+    CHECK(fabs(z[N - 1] - z0 - mass * v0 * v0 / (2 * fc)) < 1e-15 && v[N - 1] == 0.0 &&
+          z[N - 1] == z[N / 2],
+          "Coulomb friction stops it at m v0^2/(2 f_c) = %.4f um and holds it (%.1e m off)",
+          1e6 * mass * v0 * v0 / (2 * fc), fabs(z[N - 1] - z0 - mass * v0 * v0 / (2 * fc)));
+    /* viscous and Coulomb under a constant force, on the flat of the Stribeck curve */
+    p.c_visc_ns_per_m = 6000.0;
+    for (i = 0; i < N; i++)
+        u[i] = 400.0;
+    v0 = 0.02;
+    for (scheme = HG_INTEGRATOR_IMPROVED_EULER; scheme <= HG_INTEGRATOR_RK4; scheme++) {
+        const double tol[3] = {2e-2, 2e-3, 2e-6}, vinf = (400.0 - fc) / 6000.0;
+        worst = 0.0;
+        hg_regressor_slide(&p, scheme, dt, 1, first, &z0, &v0, u, m, v, z);   /* v: heights, z: speeds */
+        for (i = 0; i < N; i++)
+            worst = fmax(worst, fabs(z[i] - (vinf + (v0 - vinf) * exp(-6000.0 * (i + 1) * dt / mass))));
+        CHECK(worst < tol[scheme] * vinf, "scheme %d: the speed approaches (u - f_c)/c as the closed form "
+              "(%.1e of it)", scheme, worst / vinf);
+    }
+    /* seven runs of different lengths in one call = each alone, to the friction solve's
+     * tolerance (its fixed point over the Stribeck curve sees the whole batch) */
+    {
+        double zs[7], vs[7], vmax = 0.0;
+        first[0] = 0;
+        for (e = 0; e < 7; e++) {
+            first[e + 1] = first[e] + 20 + 7 * e;
+            zs[e] = 0.001 * e;
+            vs[e] = e % 2 ? 0.0 : 0.003 * (e - 3);
+        }
+        for (i = 0; i < first[7]; i++)
+            u[i] = 150.0 * sin(0.05 * i);
+        p.f_static_n = fs;
+        hg_regressor_slide(&p, HG_INTEGRATOR_HEUN, dt, 7, first, zs, vs, u, m, z, v);
+        worst = 0.0;
+        for (e = 0; e < 7; e++) {
+            long one[2] = {0, first[e + 1] - first[e]};
+            hg_regressor_slide(&p, HG_INTEGRATOR_HEUN, dt, 1, one, zs + e, vs + e, u + first[e], m + first[e],
+                               zz, vv);
+            for (i = 0; i < one[1]; i++) {
+                worst = fmax(worst, fabs(vv[i] - v[first[e] + i]));
+                vmax = fmax(vmax, fabs(vv[i]));
+            }
+        }
+        CHECK(worst < 3e-3 * vmax, "seven runs in one call are each run alone (speeds within %.1e of the "
+              "largest)", worst / vmax);
+    }
+    first[0] = 0;
+    first[1] = N;
+    CHECK(hg_regressor_slide(&p, 7, dt, 1, first, &z0, &v0, u, m, z, v) == HG_ERR_BAD_PARAM,
+          "an unknown integrator is refused");
+    m[3] = 0.0;
+    CHECK(hg_regressor_slide(&p, HG_INTEGRATOR_HEUN, dt, 1, first, &z0, &v0, u, m, z, v) == HG_ERR_BAD_PARAM,
+          "a mass that is not positive is refused");
+}
+
 /* One random state through one step of `kind`: max |Y pi - F| / max |F|. */
 static double one_case(hg_model_kind kind, double *fscale)
 {
@@ -213,6 +303,7 @@ int main(void)
         }
         CHECK(e < 1e-15, "friction columns: 1, z', sign(z'), exp(-(z'/2 mm/s)^2) sign(z') (%.1e)", e);
     }
+    slide_checks();
     CHECK(hg_regressor_joints(&r, (double[6]){5, 5, 5, 5, 5, 5}, (double[6]){0}, (double[6]){0},
                               (double[6]){0}, (double[6 * HG_REG_NCOL]){0}) != 0,
           "joints out of reach are refused (%s)", "forward kinematics fails");
