@@ -5,6 +5,8 @@
 #include "fmu_vars.h"
 #include "hg_units.h"
 
+static unsigned long long fnv(unsigned long long h, const void *data, size_t n);
+
 /* One group of variables. */
 typedef struct {
     const char *name;                 /* base name: name_k per joint, name + suffix for the head */
@@ -180,6 +182,11 @@ int fmu_vars_start(double *v)
         v[fmu_var_vr(FMU_G_PARAM, k)] = p.start;
     }
     return 0;
+}
+
+unsigned long long fmu_hash(const void *data, size_t n)
+{
+    return fnv(14695981039346656037ull, data, n);
 }
 
 /* FNV-1a over n bytes, continuing h. */

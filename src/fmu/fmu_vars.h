@@ -63,6 +63,9 @@ int fmu_vars_start(double *v);
 #define FMU_TOKEN_LEN 48
 int fmu_vars_token(char token[FMU_TOKEN_LEN]);
 
+/* FNV-1a hash of n bytes (the serialized FMU state's checksum). */
+unsigned long long fmu_hash(const void *data, size_t n);
+
 /* Names of the enumeration types' items, for the description. */
 int fmu_enum_count(const char *declared_type);
 const char *fmu_enum_item(const char *declared_type, int i);

@@ -3,6 +3,12 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunlinsol/sunlinsol_dense.h>
 
+// hexaglide: Debian 12 has SUNDIALS 6, whose SUNContext_Create takes a void* communicator
+#include <sundials/sundials_config.h>
+#if SUNDIALS_VERSION_MAJOR < 7
+#define SUN_COMM_NULL NULL
+#endif
+
 #include "FMICVode.h"
 
 

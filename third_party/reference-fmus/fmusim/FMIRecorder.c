@@ -222,7 +222,7 @@ static void print_value(FILE* file, FMIVariableType type, FMIMajorVersion fmiMaj
         fprintf(file, "%.7g", *((fmi3Float32*)value));
         break;
     case FMIFloat64Type:
-        fprintf(file, "%.16g", *((fmi3Float64*)value));
+        fprintf(file, "%.17g", *((fmi3Float64*)value)); // hexaglide: was %.16g; 17 digits keep every double
         break;
     case FMIInt8Type:
         fprintf(file, "%" PRId8, *((fmi3Int8*)value));
