@@ -24,7 +24,7 @@ FMU_CORE  := $(patsubst src/%.c,$(FMU_DIR)/obj/%.o,$(CORE_SRCS))
 .PHONY: fmu fmu-deps
 
 fmu: fmu-deps $(BUILD)/hexaglide.fmu $(FMU_DIR)/fmusim $(FMU_DIR)/BouncingBall.fmu $(FMU_DIR)/Feedthrough.fmu \
-     $(FMU_DIR)/tests/fmu_api $(FMU_DIR)/tests/fmu_fuzz $(FMU_DIR)/tests/fmu_pid $(FMU_DIR)/tests-asan/fmu_fuzz \
+     $(FMU_DIR)/tests/fmu_api $(FMU_DIR)/tests/fmu_fuzz $(FMU_DIR)/tests-asan/fmu_fuzz \
      $(FMU_DIR)/tests-asan/fmu_api
 
 fmu-deps:
@@ -100,8 +100,12 @@ $(FMU_DIR)/tests/%: tests/fmu/%.c tests/fmu/fmu_test.h $(FMU_OBJS) $(FMU_CORE)
 	@mkdir -p $(dir $@)
 	$(CC) $(FMU_CFLAGS) -Itests/fmu -o $@ $< $(FMU_OBJS) $(FMU_CORE) $(LDLIBS_HOST)
 
-# ... and under ASan + UBSan (sources compiled again, into tests-asan)
+# ... and under ASan + UBSan (the FMU's and the core's sources compiled again, into asan-obj)
 FMU_ASAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-$(FMU_DIR)/tests-asan/%: tests/fmu/%.c tests/fmu/fmu_test.h $(FMU_GLUE) $(CORE_SRCS) $(FMU_HDRS)
+FMU_ASAN_OBJS := $(patsubst src/%.c,$(FMU_DIR)/asan-obj/%.o,$(FMU_GLUE) $(CORE_SRCS))
+$(FMU_DIR)/asan-obj/%.o: src/%.c $(wildcard src/*.h src/generated/*.h) $(FMU_HDRS)
 	@mkdir -p $(dir $@)
-	$(CC) $(FMU_CFLAGS) $(FMU_ASAN) -Itests/fmu -o $@ $< $(FMU_GLUE) $(CORE_SRCS) $(LDLIBS_HOST) $(FMU_ASAN)
+	$(CC) $(FMU_CFLAGS) $(FMU_ASAN) -c -o $@ $<
+$(FMU_DIR)/tests-asan/%: tests/fmu/%.c tests/fmu/fmu_test.h $(FMU_ASAN_OBJS)
+	@mkdir -p $(dir $@)
+	$(CC) $(FMU_CFLAGS) $(FMU_ASAN) -Itests/fmu -o $@ $< $(FMU_ASAN_OBJS) $(LDLIBS_HOST) $(FMU_ASAN)

@@ -283,16 +283,17 @@ static int report(const plant *p, const hg_board_outputs *out, fmu_say_fn *say, 
     }
     if ((out->events & HG_EV_FAULT_LATCHED) && out->fault_cause == HG_FAULT_STIFF) {
         hg_board_describe_stiffness(&p->b, out, p->period_ns, 0, why);
-        sayf(say, env, FMU_SAY_WARNING, "fault at t = %.6f s: %s: %s even with %u substeps; give a softer value, "
-             "another integrator or a shorter period", out->sim_time_s, why, hg_strerror(out->fault_code),
-             HG_SUBSTEPS_MAX);
+        sayf(say, env, FMU_SAY_WARNING, "the period from t = %.6f s to %.6f s (board time) failed: %s: %s even with "
+             "%u substeps; give a softer value, another integrator or a shorter period", out->sim_time_s,
+             out->sim_time_s + (double)p->period_ns * 1e-9, why, hg_strerror(out->fault_code), HG_SUBSTEPS_MAX);
         level = FMU_SAY_WARNING;
     } else if (out->events & HG_EV_FAULT_LATCHED) {
         char what[HG_GUARD_TEXT_LEN];
         hg_guard_describe(&out->fault_guard, 0, what);
-        sayf(say, env, FMU_SAY_WARNING, "fault at t = %.6f s: %s (code %d)%s%s; the board holds it (state frozen, "
-             "drives off) until a rising edge of reset", out->sim_time_s, hg_strerror(out->fault_code),
-             out->fault_code, what[0] ? ": " : "", what);
+        sayf(say, env, FMU_SAY_WARNING, "the period from t = %.6f s to %.6f s (board time) failed: %s (code %d)%s%s; "
+             "the board latches the fault (state frozen, drives off) until a rising edge of reset", out->sim_time_s,
+             out->sim_time_s + (double)p->period_ns * 1e-9, hg_strerror(out->fault_code), out->fault_code,
+             what[0] ? ": " : "", what);
         level = FMU_SAY_WARNING;
     }
     for (k = 0; k < FMU_JOINTS; k++)

@@ -108,11 +108,13 @@ unsigned fmu_var_vr(fmu_group g, int k)
 int fmu_var_get(unsigned vr, fmu_var *v)
 {
     const group_info *gi;
-    int g, k = (int)vr;
-    for (g = 0; g < FMU_G_N && k >= group_count((fmu_group)g); g++)
-        k -= group_count((fmu_group)g);
+    unsigned rest = vr;
+    int g, k;
+    for (g = 0; g < FMU_G_N && rest >= (unsigned)group_count((fmu_group)g); g++)
+        rest -= (unsigned)group_count((fmu_group)g);
     if (g == FMU_G_N)
         return -1;
+    k = (int)rest;
     gi = &groups[g];
     memset(v, 0, sizeof *v);
     v->group = (fmu_group)g;

@@ -15,8 +15,8 @@
 static int test_failures;
 
 /* One TAP line; counts a failure. */
-static void check(int cond, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void check(int cond, const char *fmt, ...)
+static inline void check(int cond, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static inline void check(int cond, const char *fmt, ...)
 {
     va_list ap;
     printf(cond ? "ok - " : "not ok - ");
@@ -47,7 +47,7 @@ static void log_cb(fmi3InstanceEnvironment env, fmi3Status status, fmi3String ca
 }
 
 /* A co-simulation instance with this build's token (0 on failure). */
-static fmi3Instance instantiate(const char *name, logbook *book)
+static inline fmi3Instance instantiate(const char *name, logbook *book)
 {
     char token[FMU_TOKEN_LEN];
     if (fmu_vars_token(token))
@@ -57,7 +57,7 @@ static fmi3Instance instantiate(const char *name, logbook *book)
 }
 
 /* Value reference of the variable called name (exits when there is none: a test bug). */
-static fmi3ValueReference vr_of(const char *name)
+static inline fmi3ValueReference vr_of(const char *name)
 {
     unsigned vr, n = fmu_var_count();
     for (vr = 0; vr < n; vr++) {
@@ -71,14 +71,14 @@ static fmi3ValueReference vr_of(const char *name)
 }
 
 /* Set one Float64 by name. */
-static fmi3Status set_f64(fmi3Instance s, const char *name, double x)
+static inline fmi3Status set_f64(fmi3Instance s, const char *name, double x)
 {
     fmi3ValueReference vr = vr_of(name);
     return fmi3SetFloat64(s, &vr, 1, &x, 1);
 }
 
 /* Get one Float64 by name (NaN when refused). */
-static double get_f64(fmi3Instance s, const char *name)
+static inline double get_f64(fmi3Instance s, const char *name)
 {
     fmi3ValueReference vr = vr_of(name);
     double x;
