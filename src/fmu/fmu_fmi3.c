@@ -32,7 +32,7 @@ enum { MODE_INSTANTIATED = 1, MODE_INIT = 2, MODE_STEP = 4, MODE_TERMINATED = 8 
 #define STATE_MAGIC 0x484758464d555354ull      /* "HGXFMUST" */
 #define SERIAL_MAGIC "HGXFMU01"                /* first 8 bytes of a serialized state */
 #define STEP_TOLERANCE 1e-6                    /* of a period: what a step may miss n periods by */
-#define MAX_PERIODS_PER_STEP 100000000.0       /* longest communication step, in periods */
+#define MAX_PERIODS_PER_STEP 1000000.0         /* longest communication step, in periods */
 
 /* The instance's status: the part of the FMU state besides values and plant. */
 typedef struct {

@@ -632,7 +632,7 @@ FMIStatus FMIRestoreFMUStateFromFile(FMIInstance* S, const char* filename) {
      case FMIMajorVersion3:
          CALL(FMI3DeserializeFMUState(S, serializedFMUState, serializedFMUStateSize, &FMUState));
          CALL(FMI3SetFMUState(S, FMUState));
-         CALL(FMI3FreeFMUState(S, FMUState));
+         CALL(FMI3FreeFMUState(S, &FMUState)); // hexaglide: was FMUState (fmi3FreeFMUState takes fmi3FMUState*)
          break;
      default:
          // TODO: log message
@@ -702,7 +702,7 @@ FMIStatus FMISaveFMUStateToFile(FMIInstance* S, const char* filename) {
     if (S->fmiMajorVersion == FMIMajorVersion2) {
         CALL(FMI2FreeFMUstate(S, FMUState));
     } else {
-        CALL(FMI3FreeFMUState(S, FMUState));
+        CALL(FMI3FreeFMUState(S, &FMUState)); // hexaglide: was FMUState (fmi3FreeFMUState takes fmi3FMUState*)
     }
 
 TERMINATE:
