@@ -56,7 +56,7 @@ $(FMU_TREE)/sources/buildDescription.xml: $(FMU_SRC_FILES) src/fmu/fmu.mk
 	cp third_party/fmi-standard/LICENSE.txt $(FMU_TREE)/sources/LICENSE-fmi-standard.txt
 	{ echo '<?xml version="1.0" encoding="UTF-8"?>'; \
 	  echo '<fmiBuildDescription fmiVersion="3.0">'; \
-	  echo '  <!-- compile with -ffp-contract=off -fno-builtin-sin -fno-builtin-cos -fno-builtin-sincos to round as build/hexaglide does -->'; \
+	  echo '  <!-- compile with $(RT_SAME_FLAGS) to round as build/hexaglide does -->'; \
 	  echo '  <BuildConfiguration modelIdentifier="hexaglide" description="the virtual Hexaglide, C99, libm">'; \
 	  echo '    <SourceFileSet language="C99">'; \
 	  for f in $(notdir $(CORE_SRCS) $(FMU_GLUE)); do echo "      <SourceFile name=\"$$f\"/>"; done; \

@@ -242,7 +242,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
         why = "out of memory";
     else if (!instanceName)
         why = "instanceName is NULL; give the instance a name";
-    else if (!instantiationToken || strcmp(instantiationToken, tmp.token))
+    else if (!instantiationToken || strcmp(instantiationToken, tmp.token) != 0)
         why = "the instantiation token is not this binary's: the modelDescription.xml belongs to another build "
               "of the FMU; rebuild build/hexaglide.fmu (make fmu) and use its modelDescription.xml";
     else if (eventModeUsed)
@@ -275,7 +275,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
         free(s);
         return 0;
     }
-    strcpy(s->name, instanceName);
+    memcpy(s->name, instanceName, strlen(instanceName) + 1);
     s->magic = INSTANCE_MAGIC;
     return s;
 }
@@ -334,8 +334,8 @@ fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, siz
         return fmi3Error;
     }
     for (i = 0; i < nCategories; i++)
-        if (!categories[i] || (strcmp(categories[i], known[0]) && strcmp(categories[i], known[1]) &&
-                               strcmp(categories[i], known[2]))) {
+        if (!categories[i] || (strcmp(categories[i], known[0]) != 0 && strcmp(categories[i], known[1]) != 0 &&
+                               strcmp(categories[i], known[2]) != 0)) {
             say(s, FMU_SAY_ERROR, "%s: fmi3SetDebugLogging: unknown category '%s' (logStatusError, "
                 "logStatusWarning, logEvents)", s->name, categories[i] ? categories[i] : "(NULL)");
             return fmi3Error;
@@ -406,6 +406,7 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     fmu_plant_inputs in;
     fmu_plant_outputs o;
     double period, n, t, *v;
+    long left;
     int k, level = FMU_SAY_INFO, index[FMU_JOINTS] = {0};
     (void)noSetFMUStatePriorToCurrentPoint;
     if (!s || !allowed(s, "fmi3DoStep", MODE_STEP, "in Step Mode, after fmi3ExitInitializationMode"))
@@ -435,7 +436,7 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     in.estop = v[fmu_var_vr(FMU_G_ESTOP, 0)] != 0;
     in.reset = v[fmu_var_vr(FMU_G_RESET, 0)] != 0;
     in.amp_enable = v[fmu_var_vr(FMU_G_AMP_ENABLE, 0)] != 0;
-    for (; n > 0; n--) {
+    for (left = (long)n; left > 0; left--) {
         int l = fmu_plant_step(plant(s), &in, &o, plant_say, s);
         level = l > level ? l : level;
         st(s)->periods += 1;
@@ -721,9 +722,9 @@ fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte seriali
         why = "too short to be a state of this FMU";
     if (!why) {
         memcpy(&h, serializedState, sizeof h);
-        if (memcmp(h.magic, SERIAL_MAGIC, sizeof h.magic))
+        if (memcmp(h.magic, SERIAL_MAGIC, sizeof h.magic) != 0)
             why = "not a serialized state of this FMU (no header)";
-        else if (memcmp(h.token, s->token, sizeof h.token))
+        else if (memcmp(h.token, s->token, sizeof h.token) != 0)
             why = "written by another build of the FMU (another instantiation token): restore it with the FMU "
                   "that saved it";
         else if (h.size != s->blob_size || size != sizeof h + s->blob_size)

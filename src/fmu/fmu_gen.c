@@ -66,7 +66,7 @@ static int parse_unit(const char *text, unit_info *u)
                 *caret = 0;
                 power = atoi(caret + 1);
             }
-            for (j = 0; j < sizeof symbols / sizeof symbols[0] && strcmp(symbols[j].symbol, tok); j++)
+            for (j = 0; j < sizeof symbols / sizeof symbols[0] && strcmp(symbols[j].symbol, tok) != 0; j++)
                 ;
             if (*tok && j == sizeof symbols / sizeof symbols[0]) {
                 fprintf(stderr, "fmu-gen: unit '%s': unknown symbol '%s'; add it to the symbols of "

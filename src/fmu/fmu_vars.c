@@ -110,13 +110,13 @@ int fmu_var_get(unsigned vr, fmu_var *v)
     const group_info *gi;
     unsigned rest = vr;
     int g, k;
+    memset(v, 0, sizeof *v);
     for (g = 0; g < FMU_G_N && rest >= (unsigned)group_count((fmu_group)g); g++)
         rest -= (unsigned)group_count((fmu_group)g);
     if (g == FMU_G_N)
         return -1;
     k = (int)rest;
     gi = &groups[g];
-    memset(v, 0, sizeof *v);
     v->group = (fmu_group)g;
     v->k = k;
     v->type = gi->type;
@@ -130,8 +130,8 @@ int fmu_var_get(unsigned vr, fmu_var *v)
         fmu_plant_param(k, &p);
         snprintf(v->name, sizeof v->name, "%s", p.name);
         snprintf(v->description, sizeof v->description, "%s", p.description);
-        v->unit = strcmp(p.unit, "1") ? p.unit : 0;
-        v->display_unit = v->unit && strcmp(p.display_unit, p.unit) ? p.display_unit : 0;
+        v->unit = strcmp(p.unit, "1") != 0 ? p.unit : 0;
+        v->display_unit = v->unit && strcmp(p.display_unit, p.unit) != 0 ? p.display_unit : 0;
         v->display_factor = p.display_factor;
         return 0;
     }
@@ -213,17 +213,18 @@ int fmu_vars_token(char token[FMU_TOKEN_LEN])
 {
     unsigned n = fmu_var_count(), vr;
     unsigned long long h = 14695981039346656037ull;
-    double *start = malloc(n * sizeof *start);
+    double *start = calloc(n, sizeof *start);
     if (!start || fmu_vars_start(start)) {
         free(start);
         return -1;
     }
     for (vr = 0; vr < n; vr++) {
         fmu_var v;
-        int t[2];
-        fmu_var_get(vr, &v);
-        t[0] = (int)v.type;
-        t[1] = (int)v.causality;
+        unsigned char t[2];
+        if (fmu_var_get(vr, &v))
+            break;
+        t[0] = (unsigned char)v.type;
+        t[1] = (unsigned char)v.causality;
         h = fnv_str(h, v.name);
         h = fnv(h, t, sizeof t);
         h = fnv_str(h, v.variability);
