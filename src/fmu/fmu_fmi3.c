@@ -89,10 +89,12 @@ static status_t *st(instance_t *s)
 {
     return (status_t *)(void *)s->blob;
 }
+/* The instance's values, by value reference. */
 static double *vals(instance_t *s)
 {
     return (double *)(void *)(s->blob + s->off_values);
 }
+/* The instance's plant (fmu_plant.h). */
 static void *plant(instance_t *s)
 {
     return s->blob + s->off_plant;
@@ -213,11 +215,13 @@ static int restart(instance_t *s)
 
 /* ---- creation and destruction ---- */
 
+/* The FMI version of the headers ("3.0"). */
 const char *fmi3GetVersion(void)
 {
     return fmi3Version;
 }
 
+/* A new instance at the start values, Instantiated; 0 after a message when refused. */
 fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String instantiationToken,
                                          fmi3String resourcePath, fmi3Boolean visible, fmi3Boolean loggingOn,
                                          fmi3Boolean eventModeUsed, fmi3Boolean earlyReturnAllowed,
@@ -280,6 +284,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     return s;
 }
 
+/* Refused: co-simulation only. */
 fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String instantiationToken,
                                           fmi3String resourcePath, fmi3Boolean visible, fmi3Boolean loggingOn,
                                           fmi3InstanceEnvironment instanceEnvironment,
@@ -292,6 +297,7 @@ fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String in
     return 0;
 }
 
+/* Refused: co-simulation only. */
 fmi3Instance fmi3InstantiateScheduledExecution(fmi3String instanceName, fmi3String instantiationToken,
                                                fmi3String resourcePath, fmi3Boolean visible, fmi3Boolean loggingOn,
                                                fmi3InstanceEnvironment instanceEnvironment,
@@ -309,6 +315,7 @@ fmi3Instance fmi3InstantiateScheduledExecution(fmi3String instanceName, fmi3Stri
     return 0;
 }
 
+/* Free the instance (and nothing else: saved states are the caller's). */
 void fmi3FreeInstance(fmi3Instance instance)
 {
     instance_t *s = inst_of(instance);
@@ -320,6 +327,7 @@ void fmi3FreeInstance(fmi3Instance instance)
     free(s);
 }
 
+/* loggingOn also sends the logEvents messages; the categories must be known. */
 fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, size_t nCategories,
                                const fmi3String categories[])
 {
@@ -346,6 +354,7 @@ fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, siz
 
 /* ---- the state machine ---- */
 
+/* Instantiated -> Initialization Mode at startTime. */
 fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean toleranceDefined, fmi3Float64 tolerance,
                                        fmi3Float64 startTime, fmi3Boolean stopTimeDefined, fmi3Float64 stopTime)
 {
@@ -365,6 +374,7 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
     return fmi3OK;
 }
 
+/* Build the machine of the parameters: Step Mode, or fmi3Error with the rules (stays). */
 fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
 {
     instance_t *s = inst_of(instance);
@@ -376,6 +386,7 @@ fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
     return fmi3OK;
 }
 
+/* Step Mode -> Terminated. */
 fmi3Status fmi3Terminate(fmi3Instance instance)
 {
     instance_t *s = inst_of(instance);
@@ -385,6 +396,7 @@ fmi3Status fmi3Terminate(fmi3Instance instance)
     return fmi3OK;
 }
 
+/* Back to Instantiated with the start values. */
 fmi3Status fmi3Reset(fmi3Instance instance)
 {
     instance_t *s = inst_of(instance);
@@ -397,6 +409,7 @@ fmi3Status fmi3Reset(fmi3Instance instance)
     return fmi3OK;
 }
 
+/* Run the whole servo periods of the step with the inputs held. */
 fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoint,
                       fmi3Float64 communicationStepSize, fmi3Boolean noSetFMUStatePriorToCurrentPoint,
                       fmi3Boolean *eventHandlingNeeded, fmi3Boolean *terminateSimulation, fmi3Boolean *earlyReturn,
@@ -568,6 +581,7 @@ GET_SET(Int16, fmi3Int16, -1)
 GET_SET(UInt16, fmi3UInt16, -1)
 GET_SET(UInt64, fmi3UInt64, -1)
 
+/* No String variables: only empty lists pass. */
 fmi3Status fmi3GetString(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, fmi3String values[],
                          size_t nValues)
 {
@@ -575,6 +589,7 @@ fmi3Status fmi3GetString(fmi3Instance instance, const fmi3ValueReference vr[], s
     return s && check_access(s, "fmi3GetString", vr, nvr, values, nValues, -1, 0) ? fmi3OK : fmi3Error;
 }
 
+/* No String variables: only empty lists pass. */
 fmi3Status fmi3SetString(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, const fmi3String values[],
                          size_t nValues)
 {
@@ -582,6 +597,7 @@ fmi3Status fmi3SetString(fmi3Instance instance, const fmi3ValueReference vr[], s
     return s && check_access(s, "fmi3SetString", vr, nvr, values, nValues, -1, 1) ? fmi3OK : fmi3Error;
 }
 
+/* No Binary variables: only empty lists pass. */
 fmi3Status fmi3GetBinary(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, size_t valueSizes[],
                          fmi3Binary values[], size_t nValues)
 {
@@ -590,6 +606,7 @@ fmi3Status fmi3GetBinary(fmi3Instance instance, const fmi3ValueReference vr[], s
     return s && check_access(s, "fmi3GetBinary", vr, nvr, values, nValues, -1, 0) ? fmi3OK : fmi3Error;
 }
 
+/* No Binary variables: only empty lists pass. */
 fmi3Status fmi3SetBinary(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, const size_t valueSizes[],
                          const fmi3Binary values[], size_t nValues)
 {
@@ -624,6 +641,7 @@ static saved_t *saved_new(instance_t *s, const char *fn)
     return p;
 }
 
+/* Copy the instance's block into a new or the given state. */
 fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
 {
     instance_t *s = inst_of(instance);
@@ -642,6 +660,7 @@ fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
     return fmi3OK;
 }
 
+/* Copy a state of this FMU back into the instance. */
 fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState FMUState)
 {
     instance_t *s = inst_of(instance);
@@ -652,6 +671,7 @@ fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState FMUState)
     return fmi3OK;
 }
 
+/* Free a state and clear the handle. */
 fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
 {
     instance_t *s = inst_of(instance);
@@ -669,6 +689,7 @@ fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
     return fmi3OK;
 }
 
+/* Header + block. */
 fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState FMUState, size_t *size)
 {
     instance_t *s = inst_of(instance);
@@ -682,6 +703,7 @@ fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState FMUSta
     return fmi3OK;
 }
 
+/* Header (magic, token, size, checksum) + block. */
 fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState FMUState, fmi3Byte serializedState[],
                                  size_t size)
 {
@@ -706,6 +728,7 @@ fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState FMUState, f
     return fmi3OK;
 }
 
+/* A state from serialized bytes of this build, checked. */
 fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte serializedState[], size_t size,
                                    fmi3FMUState *FMUState)
 {
@@ -756,44 +779,52 @@ static fmi3Status unsupported(fmi3Instance instance, const char *fn)
     return fmi3Error;
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3EnterEventMode(fmi3Instance instance)
 {
     return unsupported(instance, "fmi3EnterEventMode");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3EnterStepMode(fmi3Instance instance)
 {
     return unsupported(instance, "fmi3EnterStepMode");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3EnterConfigurationMode(fmi3Instance instance)
 {
     return unsupported(instance, "fmi3EnterConfigurationMode");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3ExitConfigurationMode(fmi3Instance instance)
 {
     return unsupported(instance, "fmi3ExitConfigurationMode");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetClock(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, fmi3Clock values[])
 {
     (void)vr, (void)nvr, (void)values;
     return unsupported(instance, "fmi3GetClock");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3SetClock(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, const fmi3Clock values[])
 {
     (void)vr, (void)nvr, (void)values;
     return unsupported(instance, "fmi3SetClock");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance instance, fmi3ValueReference vr, size_t *n)
 {
     (void)vr, (void)n;
     return unsupported(instance, "fmi3GetNumberOfVariableDependencies");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetVariableDependencies(fmi3Instance instance, fmi3ValueReference dependent,
                                        size_t elementIndicesOfDependent[], fmi3ValueReference independents[],
                                        size_t elementIndicesOfIndependents[], fmi3DependencyKind dependencyKinds[],
@@ -804,6 +835,7 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance instance, fmi3ValueReference
     return unsupported(instance, "fmi3GetVariableDependencies");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[], size_t nUnknowns,
                                         const fmi3ValueReference knowns[], size_t nKnowns, const fmi3Float64 seed[],
                                         size_t nSeed, fmi3Float64 sensitivity[], size_t nSensitivity)
@@ -813,6 +845,7 @@ fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueRe
     return unsupported(instance, "fmi3GetDirectionalDerivative");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetAdjointDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[], size_t nUnknowns,
                                     const fmi3ValueReference knowns[], size_t nKnowns, const fmi3Float64 seed[],
                                     size_t nSeed, fmi3Float64 sensitivity[], size_t nSensitivity)
@@ -822,6 +855,7 @@ fmi3Status fmi3GetAdjointDerivative(fmi3Instance instance, const fmi3ValueRefere
     return unsupported(instance, "fmi3GetAdjointDerivative");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetIntervalDecimal(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                   fmi3Float64 intervals[], fmi3IntervalQualifier qualifiers[])
 {
@@ -829,6 +863,7 @@ fmi3Status fmi3GetIntervalDecimal(fmi3Instance instance, const fmi3ValueReferenc
     return unsupported(instance, "fmi3GetIntervalDecimal");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetIntervalFraction(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                    fmi3UInt64 counters[], fmi3UInt64 resolutions[], fmi3IntervalQualifier qualifiers[])
 {
@@ -836,12 +871,14 @@ fmi3Status fmi3GetIntervalFraction(fmi3Instance instance, const fmi3ValueReferen
     return unsupported(instance, "fmi3GetIntervalFraction");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetShiftDecimal(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, fmi3Float64 shifts[])
 {
     (void)vr, (void)nvr, (void)shifts;
     return unsupported(instance, "fmi3GetShiftDecimal");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetShiftFraction(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                 fmi3UInt64 counters[], fmi3UInt64 resolutions[])
 {
@@ -849,6 +886,7 @@ fmi3Status fmi3GetShiftFraction(fmi3Instance instance, const fmi3ValueReference 
     return unsupported(instance, "fmi3GetShiftFraction");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3SetIntervalDecimal(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                   const fmi3Float64 intervals[])
 {
@@ -856,6 +894,7 @@ fmi3Status fmi3SetIntervalDecimal(fmi3Instance instance, const fmi3ValueReferenc
     return unsupported(instance, "fmi3SetIntervalDecimal");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3SetIntervalFraction(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                    const fmi3UInt64 counters[], const fmi3UInt64 resolutions[])
 {
@@ -863,6 +902,7 @@ fmi3Status fmi3SetIntervalFraction(fmi3Instance instance, const fmi3ValueReferen
     return unsupported(instance, "fmi3SetIntervalFraction");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3SetShiftDecimal(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                const fmi3Float64 shifts[])
 {
@@ -870,6 +910,7 @@ fmi3Status fmi3SetShiftDecimal(fmi3Instance instance, const fmi3ValueReference v
     return unsupported(instance, "fmi3SetShiftDecimal");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3SetShiftFraction(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                 const fmi3UInt64 counters[], const fmi3UInt64 resolutions[])
 {
@@ -877,11 +918,13 @@ fmi3Status fmi3SetShiftFraction(fmi3Instance instance, const fmi3ValueReference 
     return unsupported(instance, "fmi3SetShiftFraction");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance instance)
 {
     return unsupported(instance, "fmi3EvaluateDiscreteStates");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discreteStatesNeedUpdate,
                                     fmi3Boolean *terminateSimulation, fmi3Boolean *nominalsOfContinuousStatesChanged,
                                     fmi3Boolean *valuesOfContinuousStatesChanged, fmi3Boolean *nextEventTimeDefined,
@@ -892,11 +935,13 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discrete
     return unsupported(instance, "fmi3UpdateDiscreteStates");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance instance)
 {
     return unsupported(instance, "fmi3EnterContinuousTimeMode");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3CompletedIntegratorStep(fmi3Instance instance, fmi3Boolean noSetFMUStatePriorToCurrentPoint,
                                        fmi3Boolean *enterEventMode, fmi3Boolean *terminateSimulation)
 {
@@ -904,12 +949,14 @@ fmi3Status fmi3CompletedIntegratorStep(fmi3Instance instance, fmi3Boolean noSetF
     return unsupported(instance, "fmi3CompletedIntegratorStep");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3SetTime(fmi3Instance instance, fmi3Float64 time)
 {
     (void)time;
     return unsupported(instance, "fmi3SetTime");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3SetContinuousStates(fmi3Instance instance, const fmi3Float64 continuousStates[],
                                    size_t nContinuousStates)
 {
@@ -917,6 +964,7 @@ fmi3Status fmi3SetContinuousStates(fmi3Instance instance, const fmi3Float64 cont
     return unsupported(instance, "fmi3SetContinuousStates");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance instance, fmi3Float64 derivatives[],
                                              size_t nContinuousStates)
 {
@@ -924,18 +972,21 @@ fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance instance, fmi3Float64 
     return unsupported(instance, "fmi3GetContinuousStateDerivatives");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetEventIndicators(fmi3Instance instance, fmi3Float64 eventIndicators[], size_t nEventIndicators)
 {
     (void)eventIndicators, (void)nEventIndicators;
     return unsupported(instance, "fmi3GetEventIndicators");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetContinuousStates(fmi3Instance instance, fmi3Float64 continuousStates[], size_t nContinuousStates)
 {
     (void)continuousStates, (void)nContinuousStates;
     return unsupported(instance, "fmi3GetContinuousStates");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance instance, fmi3Float64 nominals[],
                                              size_t nContinuousStates)
 {
@@ -943,18 +994,21 @@ fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance instance, fmi3Float64 
     return unsupported(instance, "fmi3GetNominalsOfContinuousStates");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance instance, size_t *nEventIndicators)
 {
     (void)nEventIndicators;
     return unsupported(instance, "fmi3GetNumberOfEventIndicators");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance instance, size_t *nContinuousStates)
 {
     (void)nContinuousStates;
     return unsupported(instance, "fmi3GetNumberOfContinuousStates");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                     const fmi3Int32 orders[], fmi3Float64 values[], size_t nValues)
 {
@@ -962,6 +1016,7 @@ fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance, const fmi3ValueRefere
     return unsupported(instance, "fmi3GetOutputDerivatives");
 }
 
+/* Not supported here: fmi3Error with the reason. */
 fmi3Status fmi3ActivateModelPartition(fmi3Instance instance, fmi3ValueReference clockReference,
                                       fmi3Float64 activationTime)
 {

@@ -5,6 +5,8 @@
 #include "fmu_vars.h"
 #include "hg_units.h"
 
+#define FNV_BASIS 14695981039346656037ull    /* FNV-1a 64-bit offset basis */
+
 static unsigned long long fnv(unsigned long long h, const void *data, size_t n);
 
 /* One group of variables. */
@@ -188,7 +190,7 @@ int fmu_vars_start(double *v)
 
 unsigned long long fmu_hash(const void *data, size_t n)
 {
-    return fnv(14695981039346656037ull, data, n);
+    return fnv(FNV_BASIS, data, n);
 }
 
 /* FNV-1a over n bytes, continuing h. */
@@ -212,7 +214,7 @@ static unsigned long long fnv_str(unsigned long long h, const char *s)
 int fmu_vars_token(char token[FMU_TOKEN_LEN])
 {
     unsigned n = fmu_var_count(), vr;
-    unsigned long long h = 14695981039346656037ull;
+    unsigned long long h = FNV_BASIS;
     double *start = calloc(n, sizeof *start);
     if (!start || fmu_vars_start(start)) {
         free(start);
