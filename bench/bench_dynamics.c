@@ -74,7 +74,7 @@ static int bench_board(hg_model_kind kind, double *ns, double *median, double *p
     static hg_board b;
     static hg_board_inputs in;
     static hg_board_outputs out;
-    int s, rc = hg_board_init(&b, kind, 0);
+    int s, rc = hg_board_init(&b, 0, kind, 0);
     if (rc)
         return rc;
     hg_board_inputs_default(&b, &in);
@@ -105,17 +105,17 @@ static int bench_board_change(hg_model_kind kind, double *ns, double *median, do
     static hg_board b;
     static hg_board_inputs in;
     static hg_board_outputs out;
-    int s, rc = hg_board_init(&b, kind, 0);
+    int s, rc = hg_board_init(&b, 0, kind, 0);
     double l0;
     if (rc)
         return rc;
     hg_board_inputs_default(&b, &in);
     in.dac_written = 1;
-    l0 = in.params.model.geo.l_m;
+    l0 = in.params.plant.v[0];                  /* l: the Hexaglide's first parameter */
     hg_board_step(&b, &in, &out, 1000000L);     /* the running period is known */
     for (s = 0; s < BENCH_CHANGES; s++) {
         double t0, t1;
-        in.params.model.geo.l_m = l0 + (s % 2 == 0 ? 1e-3 : 0.0);
+        in.params.plant.v[0] = l0 + (s % 2 == 0 ? 1e-3 : 0.0);
         t0 = bench_now_us();
         hg_board_step(&b, &in, &out, 1000000L);
         t1 = bench_now_us();

@@ -1,52 +1,71 @@
-/* hg_board.c - one servo period of the virtual MOTENC-100 board with the
- * Hexaglide behind it (contracts in hg_board.h). */
+/* hg_board.c - one servo period of the virtual MOTENC-100 board with a
+ * plant behind it (contracts in hg_board.h; the plant interface in
+ * hg_plant.h). */
 #include "hg_math.h"
 #include "hg_string.h"
 #include "hg_board.h"
 #include "hg_errors.h"
-#include "hg_stability.h"
+#include "hg_scheme.h"
 #include "hg_text.h"
 
 /* Finite x, or 0 (nothing non-finite reaches an output). */
 static double finite_or_zero(double x) { return isfinite(x) ? x : 0.0; }
 
-/* The spec's parameter block: defaults, 1 substep, Heun. */
-static void params_default(hg_board_params *p)
+const hg_plant *hg_board_plant(const hg_board *b)
 {
-    memset(p, 0, sizeof *p);
-    hg_params_default(&p->model);
-    p->substeps = 1;
-    p->integrator = HG_INTEGRATOR_DEFAULT;
+    return hg_plant_at(b->plant);
 }
 
-int hg_board_params_check(const hg_board_params *p, unsigned long long *mask,
+/* Entries of plant p's parameter table. */
+static int nparams(const hg_plant *p)
+{
+    int n;
+    p->table(&n);
+    return n;
+}
+
+int hg_board_params_default(int plant, hg_board_params *p)
+{
+    const hg_plant *pl = hg_plant_at(plant);
+    memset(p, 0, sizeof *p);
+    if (!pl)
+        return HG_ERR_BAD_PARAM;
+    pl->defaults(&p->plant);
+    p->substeps = 1;
+    p->integrator = HG_INTEGRATOR_DEFAULT;
+    return HG_OK;
+}
+
+int hg_board_params_check(const hg_board *b, const hg_board_params *p, hg_bitset *bad,
                           const char *why[HG_BOARD_WHY_LEN])
 {
-    unsigned long long bad = 0;
+    const hg_plant *pl = hg_board_plant(b);
+    hg_bitset s;
     int i;
     if (why)
         for (i = 0; i < HG_BOARD_WHY_LEN; i++)
             why[i] = 0;
-    hg_params_check_all(&p->model, &bad, why);
+    hg_bitset_clear(&s);
+    pl->check(&p->plant, &s, why);
     if (!(p->substeps >= 1 && p->substeps <= HG_SUBSTEPS_MAX)) {
-        bad |= 1ull << HG_BOARD_BIT_SUBSTEPS;
+        hg_bitset_set(&s, HG_BOARD_BIT_SUBSTEPS);
         if (why)
             why[HG_BOARD_BIT_SUBSTEPS] = "must be an integer in 1..64 (integration steps per servo period)";
     }
     if (!(p->integrator < (unsigned)HG_INTEGRATOR_COUNT)) {
-        bad |= 1ull << HG_BOARD_BIT_INTEGRATOR;
+        hg_bitset_set(&s, HG_BOARD_BIT_INTEGRATOR);
         if (why)
             why[HG_BOARD_BIT_INTEGRATOR] = "must be 0 (improved-euler), 1 (heun) or 2 (rk4)";
     }
-    if (mask)
-        *mask = bad;
-    return bad ? HG_ERR_BAD_PARAM : HG_OK;
+    if (bad)
+        *bad = s;
+    return hg_bitset_empty(&s) ? HG_OK : HG_ERR_BAD_PARAM;
 }
 
-const char *hg_board_param_hal_name(int bit)
+const char *hg_board_param_hal_name(const hg_board *b, int bit)
 {
     int n;
-    const hg_param_info *t = hg_params_table(&n);
+    const hg_param_info *t = hg_board_plant(b)->table(&n);
     if (bit == HG_BOARD_BIT_SUBSTEPS)
         return "substeps";
     if (bit == HG_BOARD_BIT_INTEGRATOR)
@@ -54,10 +73,10 @@ const char *hg_board_param_hal_name(int bit)
     return bit >= 0 && bit < n ? t[bit].hal_name : 0;
 }
 
-/* Latch the fault with code rc (first cause wins; event once). */
+/* Latch the fault with code rc (first cause wins; event once, into out if given). */
 static void latch_fault(hg_board *b, hg_board_outputs *out, int rc, int cause)
 {
-    if (!b->fault) {
+    if (!b->fault && out) {
         out->events |= HG_EV_FAULT_LATCHED;
         out->fault_cause = cause;
     }
@@ -68,46 +87,53 @@ static void latch_fault(hg_board *b, hg_board_outputs *out, int rc, int cause)
 /* Machine at HOME at rest, counters at 0 and disarmed, fault cleared. */
 static void reinit_at_home(hg_board *b, hg_board_outputs *out)
 {
-    int k, rc = hg_data_reset(&b->m, &b->d);
+    const hg_plant *pl = hg_board_plant(b);
+    int k, rc = pl->reset(&b->m, &b->d);
     b->fault = 0;
     b->fault_code = 0;
-    memset(&b->fault_guard, 0, sizeof b->fault_guard);
+    memset(&b->fault_report, 0, sizeof b->fault_report);
     if (rc)
         latch_fault(b, out, rc, HG_FAULT_HOME);
+    pl->sense(&b->m, &b->d, &b->sense);
     for (k = 0; k < HG_BOARD_ENCODERS; k++) {
-        double z = k < HG_BOARD_JOINTS ? b->d.z_m[k] : 0.0;
-        hg_encoder_init(&b->enc[k], z, b->m.p.lead_m, b->m.p.counts_per_rev);
+        int used = k < b->sense.channels;
+        hg_encoder_init(&b->enc[k], used ? b->sense.turns[k] : 0.0, used ? b->sense.counts_per_rev[k] : 0.0);
     }
-    for (k = 0; k < HG_BOARD_JOINTS; k++)
-        b->switches[k] = hg_switches(&b->m.p, b->d.z_m[k]);
+    for (k = 0; k < HG_CHANNELS_MAX; k++)
+        b->switches[k] = k < b->sense.channels ? b->sense.switches[k] : 0u;
 }
 
-int hg_board_init(hg_board *b, hg_model_kind kind, const hg_board_params *p)
+int hg_board_init(hg_board *b, int plant, int variant, const hg_board_params *p)
 {
-    hg_board_params def;
-    hg_board_outputs scratch;
+    const hg_plant *pl = hg_plant_at(plant);
     const char *field, *why;
     int k, rc;
     memset(b, 0, sizeof *b);
-    if (!p) {
-        params_default(&def);
-        p = &def;
-    }
-    if (hg_board_params_check(p, 0, 0))
+    if (!pl || variant < 0 || variant >= pl->nvariants)
         return HG_ERR_BAD_PARAM;
-    rc = hg_model_init(&b->m, &p->model, kind, &field, &why);
-    if (rc == 0)
-        rc = hg_model_set_integrator(&b->m, (int)p->integrator);
+    b->plant = plant;
+    b->variant = variant;
+    if (!p) {                         /* the defaults, built where the block in force lives */
+        hg_board_params_default(plant, &b->last_in);
+        p = &b->last_in;
+    }
+    if (hg_board_params_check(b, p, 0, 0))
+        return HG_ERR_BAD_PARAM;
+    rc = pl->build(&b->m, &p->plant, variant, (int)p->integrator, &field, &why);
     if (rc)
         return rc;
+    pl->params_of(&b->m, &b->in_force.plant);
+    b->in_force.substeps = p->substeps;
+    b->in_force.integrator = p->integrator;
+    b->integrator = (int)p->integrator;
     b->substeps = b->substeps_run = p->substeps;
     b->stiff_param = -1;
-    b->last_in = *p;
+    if (p != &b->last_in)
+        b->last_in = *p;
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         b->enc_scale[k] = b->enc_scale_in[k] = 1.0;
     hg_watchdog_init(&b->wd);
-    memset(&scratch, 0, sizeof scratch);
-    reinit_at_home(b, &scratch);
+    reinit_at_home(b, 0);
     return b->fault ? b->fault_code : HG_OK;
 }
 
@@ -121,34 +147,14 @@ void hg_board_inputs_default(const hg_board *b, hg_board_inputs *in)
         in->enc_scale[k] = 1.0;
     for (k = 0; k < HG_BOARD_ADCS; k++)
         in->adc_gain[k] = 1.0;
-    in->params.model = b->m.p;
-    in->params.substeps = b->substeps;
-    in->params.integrator = (unsigned)b->m.integrator;
+    in->params = b->in_force;
 }
 
-/* 1 when the parameter blocks differ bitwise (a NaN equals itself). */
-static int params_differ(const hg_board_params *a, const hg_board_params *c)
+/* 1 when the parameter blocks of plant p differ bitwise (a NaN equals itself). */
+static int params_differ(const hg_plant *p, const hg_board_params *a, const hg_board_params *c)
 {
-    return memcmp(&a->model, &c->model, sizeof a->model) != 0 || // NOLINT(bugprone-suspicious-memory-comparison): all doubles, bitwise on purpose
+    return memcmp(a->plant.v, c->plant.v, (unsigned long)nparams(p) * sizeof(double)) != 0 || // NOLINT(bugprone-suspicious-memory-comparison): all doubles, bitwise on purpose
            a->substeps != c->substeps || a->integrator != c->integrator;
-}
-
-/* 1 when the machine's shape (l, lb, e, lp: where HOME is) differs; the
- * joints' ranges and the bar diameter are limits, not shape. */
-static int shape_differs(const hg_geometry *a, const hg_geometry *c)
-{
-    return a->l_m != c->l_m || a->lb_m != c->lb_m || a->e_m != c->e_m || a->lp_m != c->lp_m;
-}
-
-/* Table index of the parameter with spec name `name`, or -1. */
-static int param_index(const char *name)
-{
-    int i, n;
-    const hg_param_info *t = hg_params_table(&n);
-    for (i = 0; name && i < n; i++)
-        if (strcmp(t[i].name, name) == 0)
-            return i;
-    return -1;
 }
 
 /* The substeps the period needs with the parameters in force (once per
@@ -156,77 +162,83 @@ static int param_index(const char *name)
  * a latched fault when not even HG_SUBSTEPS_MAX integrate it. */
 static void find_substeps(hg_board *b, long period_ns, hg_board_outputs *out)
 {
-    hg_stability st;
-    unsigned before = b->substeps_run;
+    unsigned before = b->substeps_run, need;
     int rc;
     if (b->stab_period_ns == period_ns)
         return;
-    rc = hg_stability_check(&b->m.p, b->m.integrator, (double)period_ns * 1e-9, b->substeps,
-                            HG_SUBSTEPS_MAX, &st);
+    rc = hg_board_plant(b)->stability(&b->in_force.plant, b->integrator, (double)period_ns * 1e-9,
+                                      b->substeps, HG_SUBSTEPS_MAX, &need, &b->stiff_param,
+                                      &b->stiff_dt_max_s);
     b->stab_period_ns = period_ns;
-    b->stiff_param = param_index(st.param);
-    b->stiff_dt_max_s = st.dt_max_s;
-    b->substeps_run = rc ? b->substeps : st.substeps;
+    b->substeps_run = rc ? b->substeps : need;
     if (rc)
         latch_fault(b, out, HG_ERR_STIFF, HG_FAULT_STIFF);
     else if (b->substeps_run > b->substeps && b->substeps_run != before)
         out->events |= HG_EV_SUBSTEPS_AUTO;
 }
 
+/* Refuse a parameter block with code rc (the set in force stays). */
+static void refuse(hg_board *b, hg_board_outputs *out, int rc)
+{
+    out->events |= HG_EV_PARAM_REFUSED;
+    out->param_rc = rc;
+    b->param_error = 1;
+}
+
 /* Try the input parameter block: apply it, or refuse it naming every
  * invalid field (the set in force stays). A new shape restarts at HOME; a
- * new lead or counts-per-rev rescales the counters without a jump. */
+ * change of the encoders' scale rescales the counters without a jump. */
 static void apply_params(hg_board *b, const hg_board_params *want, hg_board_outputs *out)
 {
+    const hg_plant *pl = hg_board_plant(b);
     const char *field, *why;
-    double old_lead = b->m.p.lead_m, old_cpr = b->m.p.counts_per_rev;
-    int k, rc, geometry_changed;
-    if (hg_board_params_check(want, &out->refused_mask, 0)) {
-        out->events |= HG_EV_PARAM_REFUSED;
-        out->param_rc = HG_ERR_BAD_PARAM;
-        b->param_error = 1;
+    unsigned change;
+    int k, rc;
+    if (hg_board_params_check(b, want, &out->refused, 0)) {
+        refuse(b, out, HG_ERR_BAD_PARAM);
         return;
     }
-    if (memcmp(&want->model, &b->m.p, sizeof want->model) == 0 && // NOLINT(bugprone-suspicious-memory-comparison): bitwise
-        want->substeps == b->substeps && want->integrator == (unsigned)b->m.integrator)
+    if (!params_differ(pl, want, &b->in_force))
         return;                       /* back to the block in force: nothing to do */
-    rc = hg_model_init(&b->m_new, &want->model, b->m.kind, &field, &why);
-    if (rc == 0)
-        rc = hg_model_set_integrator(&b->m_new, (int)want->integrator);
+    rc = pl->build(&b->m_new, &want->plant, b->variant, (int)want->integrator, &field, &why);
     if (rc) {                         /* passed the checks, could not be built */
-        out->events |= HG_EV_PARAM_REFUSED;
-        out->refused_mask = 0;
-        out->param_rc = rc;
-        b->param_error = 1;
+        hg_bitset_clear(&out->refused);
+        refuse(b, out, rc);
         return;
     }
     if (b->stab_period_ns > 0) {      /* can the scheme integrate it at the running period? */
-        hg_stability st;
-        if (hg_stability_check(&b->m_new.p, b->m_new.integrator, (double)b->stab_period_ns * 1e-9,
-                               want->substeps, HG_SUBSTEPS_MAX, &st)) {
-            out->events |= HG_EV_PARAM_REFUSED;
-            int pi = param_index(st.param);
-            out->refused_mask = pi >= 0 ? 1ull << pi : 0;
-            out->param_rc = HG_ERR_STIFF;
-            out->stiff_param = pi;
-            out->stiff_dt_max_s = st.dt_max_s;
-            b->param_error = 1;
+        unsigned need;
+        int param;
+        double dt_max;
+        if (pl->stability(&want->plant, (int)want->integrator, (double)b->stab_period_ns * 1e-9,
+                          want->substeps, HG_SUBSTEPS_MAX, &need, &param, &dt_max)) {
+            hg_bitset_clear(&out->refused);
+            hg_bitset_set(&out->refused, param);
+            refuse(b, out, HG_ERR_STIFF);
+            out->stiff_param = param;
+            out->stiff_dt_max_s = dt_max;
             return;
         }
     }
-    geometry_changed = shape_differs(&b->m_new.p.geo, &b->m.p.geo);
+    change = pl->change(&b->in_force.plant, &want->plant);
     b->m = b->m_new;
+    pl->params_of(&b->m, &b->in_force.plant);
+    b->in_force.substeps = want->substeps;
+    b->in_force.integrator = want->integrator;
+    b->integrator = (int)want->integrator;
     b->stab_period_ns = 0;            /* substeps_run found again at the next period */
     b->substeps = want->substeps;
     b->param_error = 0;
     out->events |= HG_EV_PARAM_APPLIED;
-    if (geometry_changed) {
+    if (change & HG_PLANT_CHANGE_RESTART) {
         out->events |= HG_EV_GEOMETRY_RESTART;
         reinit_at_home(b, out);
-    } else if (old_lead != b->m.p.lead_m || old_cpr != b->m.p.counts_per_rev) {
-        for (k = 0; k < HG_BOARD_JOINTS; k++)
-            hg_encoder_rescale(&b->enc[k], b->d.z_m[k], b->m.p.lead_m, b->m.p.counts_per_rev);
+        return;
     }
+    pl->sense(&b->m, &b->d, &b->sense);
+    if (change & HG_PLANT_CHANGE_RESCALE)
+        for (k = 0; k < b->sense.channels && k < HG_BOARD_ENCODERS; k++)
+            hg_encoder_rescale(&b->enc[k], b->sense.turns[k], b->sense.counts_per_rev[k]);
 }
 
 /* 1 when the E-STOP loop is open: button pressed, or the loop output's
@@ -240,51 +252,40 @@ static int estop_open(const hg_board_inputs *in)
     return o >= 0 && o < HG_BOARD_OUTPUTS && !((cmd >> o) & 1u);
 }
 
-/* 1 if every state number that reaches an output is finite. */
-static int state_finite(const hg_data *d)
+/* `substeps_run` plant steps of dt/substeps_run, all or nothing: 0 or the
+ * failing code with the state restored to the period's start. */
+static int integrate(hg_board *b, const double volts[HG_CHANNELS_MAX], unsigned enabled, double dt)
 {
-    int k, ok = isfinite(d->t_s) && isfinite(d->residual_m);
-    for (k = 0; k < 6; k++)
-        ok = ok && isfinite(d->z_m[k]) && isfinite(d->zd_mps[k]) && isfinite(d->pose[k]) &&
-             isfinite(d->posed[k]) && isfinite(d->current_a[k]) && isfinite(d->force_n[k]);
-    return ok;
-}
-
-/* `substeps` steps of dt/substeps, all or nothing: 0 or the failing code
- * with the state restored to the period's start. */
-static int integrate(hg_board *b, const double volts[6], double dt)
-{
+    const hg_plant *pl = hg_board_plant(b);
     unsigned i, n = b->substeps_run;
     double h = dt / (double)n;
+    hg_plant_report r;
     int rc = 0;
-    memcpy(&b->d_saved, &b->d, HG_DATA_STATE_BYTES); /* the state, not the step's scratch */
-    for (i = 0; i < n && rc == 0; i++) {
-        rc = hg_step(&b->m, &b->d, volts, h);
-        if (rc == 0 && !state_finite(&b->d))
-            rc = HG_ERR_STATE_NONFINITE;
-    }
+    memset(&r, 0, sizeof r);
+    memcpy(b->d_saved.store, b->d.store, pl->state_bytes); /* the state, not the step's scratch */
+    for (i = 0; i < n && rc == 0; i++)
+        rc = pl->step(&b->m, &b->d, volts, enabled, h, &r);
     if (rc) {
-        b->fault_guard = b->d.guard;  /* what was struck, kept through the rollback */
-        memcpy(&b->d, &b->d_saved, HG_DATA_STATE_BYTES);
+        b->fault_report = r;          /* what was struck, kept through the rollback */
+        memcpy(b->d.store, b->d_saved.store, pl->state_bytes);
     }
     return rc;
 }
 
-/* Break the bars whose inputs are set (a broken bar stays broken until a reset). */
-static void break_bars(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
+/* The plant's fault injections whose inputs are set (what they do is the plant's). */
+static void inject(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
 {
-    int k;
-    for (k = 0; k < HG_BOARD_JOINTS; k++) {
-        unsigned bit = 1u << k;
-        if (!in->bar_broken[k] || (b->d.broken_bars & bit))
-            continue;
-        b->d.broken_bars |= bit;
-        out->bars_newly_broken |= bit;
-        out->events |= HG_EV_BAR_BROKEN;
-    }
+    const hg_plant *pl = hg_board_plant(b);
+    int i;
+    if (pl->ninjections == 0)
+        return;
+    pl->inject(&b->m, &b->d, in->inject, out->injected);
+    for (i = 0; i < pl->ninjections && i < HG_PLANT_INJECT_MAX; i++)
+        if (out->injected[i])
+            out->events |= HG_EV_INJECTED;
 }
 
-/* Encoders: index-enable arms the latch, the carriage moves the counter,
+/* Encoders: index-enable arms the latch, the motor moves the counter,
  * a glitch adds counts, reset zeroes it; scale checked. */
 static void encoders(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
 {
@@ -295,9 +296,8 @@ static void encoders(hg_board *b, const hg_board_inputs *in, hg_board_outputs *o
         if (e->latch_hit)             /* the driver was told (index_latched) last step */
             hg_encoder_arm(e, 0);
         hg_encoder_arm(e, in->index_enable[ch]);
-        if (ch < HG_BOARD_JOINTS) {
-            hg_encoder_update(e, b->d.z_m[ch], b->m.p.lead_m, b->m.p.counts_per_rev,
-                              in->index_lost[ch]);
+        if (ch < b->sense.channels) {
+            hg_encoder_update(e, b->sense.turns[ch], b->sense.counts_per_rev[ch], in->index_lost[ch]);
             if (in->enc_glitch[ch])
                 hg_encoder_glitch(e, in->enc_glitch[ch]);
         } else {
@@ -335,7 +335,7 @@ static void adc(hg_board *b, const hg_board_inputs *in)
         for (i = done; i < done + 4; i++)
             b->adc_value[i] = hg_adc_value(b->adc_sample_v[i], in->adc_gain[i], in->adc_offset[i]);
     for (i = next; i < next + 4; i++) {
-        double amps = i < HG_BOARD_JOINTS && !b->fault ? b->d.current_a[i] : 0.0;
+        double amps = i < b->sense.channels && !b->fault ? b->sense.current_a[i] : 0.0;
         b->adc_sample_v[i] = hg_adc_sample(amps * in->adc_volts_per_amp);
     }
     b->adc_state = b->adc_state == 1 ? 2 : 1;
@@ -343,21 +343,25 @@ static void adc(hg_board *b, const hg_board_inputs *in)
 
 /* Everything the outputs show that is not an event: state, sensors, latches. */
 static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outputs *out,
-                    const double volts[6])
+                    const double volts[HG_CHANNELS_MAX])
 {
+    const hg_plant_sense *s = &b->sense;
     int k, i, open = in ? estop_open(in) : 0; /* before any step: pins as hal_motenc powers up */
-    for (k = 0; k < HG_BOARD_JOINTS; k++) {
-        out->z_m[k] = finite_or_zero(b->d.z_m[k]);
-        out->zd_mps[k] = finite_or_zero(b->d.zd_mps[k]);
+    out->channels = s->channels;
+    out->rotary = s->rotary;
+    for (k = 0; k < s->channels; k++) {
+        out->pos[k] = s->pos[k];
+        out->vel[k] = s->vel[k];
+        out->motor_pos[k] = s->motor_pos[k];
         out->volts[k] = finite_or_zero(volts[k]);
-        out->current_a[k] = b->fault ? 0.0 : finite_or_zero(b->d.current_a[k]);
-        out->force_n[k] = finite_or_zero(b->d.force_n[k]);
+        out->current_a[k] = b->fault ? 0.0 : s->current_a[k];
+        out->force[k] = s->force[k];
     }
-    for (k = 0; k < 6; k++)
-        out->pose[k] = finite_or_zero(b->d.pose[k]);
+    for (k = 0; k < HG_PLANT_EXTRA_MAX; k++)
+        out->extra[k] = finite_or_zero(s->extra[k]);
     for (i = 0; i < HG_BOARD_INPUTS; i++) {
-        int j = i / HG_INPUTS_PER_JOINT, bit = i % HG_INPUTS_PER_JOINT, v = 0;
-        if (j < HG_BOARD_JOINTS)
+        int j = i / HG_INPUTS_PER_CHANNEL, bit = i % HG_INPUTS_PER_CHANNEL, v = 0;
+        if (j < s->channels)
             v = bit == HG_IN_AMP_FAULT ? (in && in->amp_fail[j] != 0) : (int)((b->switches[j] >> bit) & 1u);
         out->in[i] = (unsigned char)v;
     }
@@ -366,31 +370,30 @@ static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outpu
     /* E-STOP and an expired watchdog switch the outputs off in hardware */
     out->dout_word = (!in || open || b->wd.expired) ? 0u : (in->dout_values ^ in->dout_inverts);
     out->estop_in = open;
-    out->sim_time_s = finite_or_zero(b->d.t_s);
-    out->residual_m = finite_or_zero(b->d.residual_m);
+    out->sim_time_s = s->sim_time_s;
     out->steps = b->steps;
-    out->bars_broken = b->d.broken_bars;
     out->fault = b->fault;
     out->fault_code = b->fault_code;
-    out->fault_guard = b->fault_guard;
+    out->fault_report = b->fault_report;
     out->watchdog_expired = b->wd.expired;
     out->param_error = b->param_error;
     out->dac_nan = b->dac_nan != 0;
-    out->params.model = b->m.p;
-    out->params.substeps = b->substeps;
+    memcpy(out->params.plant.v, b->in_force.plant.v, (unsigned long)nparams(hg_board_plant(b)) * sizeof(double));
+    out->params.substeps = b->in_force.substeps;    /* (the entries past the plant's stay 0) */
+    out->params.integrator = b->in_force.integrator;
     out->substeps_run = b->substeps_run;
     if (out->stiff_param < 0 || !(out->events & HG_EV_PARAM_REFUSED)) {
         out->stiff_param = b->substeps_run > b->substeps || b->fault_code == HG_ERR_STIFF ? b->stiff_param : -1;
         out->stiff_dt_max_s = out->stiff_param >= 0 ? b->stiff_dt_max_s : 0.0;
     }
-    out->params.integrator = (unsigned)b->m.integrator;
 }
 
 void hg_board_peek(const hg_board *b, hg_board_outputs *out)
 {
-    static const double zero[6] = {0, 0, 0, 0, 0, 0};
+    static const double zero[HG_CHANNELS_MAX] = {0, 0, 0, 0, 0, 0, 0, 0};
     int ch;
     memset(out, 0, sizeof *out);
+    out->stiff_param = -1;
     publish(b, 0, out, zero);
     for (ch = 0; ch < HG_BOARD_ENCODERS; ch++) {
         out->count[ch] = hg_encoder_count(&b->enc[ch]);
@@ -399,13 +402,18 @@ void hg_board_peek(const hg_board *b, hg_board_outputs *out)
     }
 }
 
-/* First joint whose bar-broken input is set, or -1. */
-static int bar_input_set(const hg_board_inputs *in)
+/* First channel whose reset-blocking injection input is set (its injection
+ * in *which), or -1. */
+static int reset_blocked(const hg_board *b, const hg_board_inputs *in, int *which)
 {
-    int k;
-    for (k = 0; k < HG_BOARD_JOINTS; k++)
-        if (in->bar_broken[k])
-            return k;
+    const hg_plant *pl = hg_board_plant(b);
+    int k, i;
+    for (k = 0; k < b->sense.channels; k++)
+        for (i = 0; i < pl->ninjections; i++)
+            if (pl->injections[i].blocks_reset && ((in->inject[k] >> i) & 1u)) {
+                *which = i;
+                return k;
+            }
     return -1;
 }
 
@@ -429,20 +437,23 @@ static void addf_order(hg_board *b, const hg_board_inputs *in, hg_board_outputs 
 
 void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out, long period_ns)
 {
-    double volts[6] = {0, 0, 0, 0, 0, 0}, dac_out_v[HG_BOARD_DACS];
+    const hg_plant *pl = hg_board_plant(b);
+    double volts[HG_CHANNELS_MAX] = {0, 0, 0, 0, 0, 0, 0, 0}, dac_out_v[HG_BOARD_DACS];
     double dt = (double)period_ns * 1e-9;
-    unsigned nan_now = 0;
+    unsigned nan_now = 0, enabled = 0;
     int k, amps_on, expired;
 
     memset(out, 0, sizeof *out);
-    out->reset_refused_joint = -1;
+    out->reset_refused_channel = -1;
+    out->reset_refused_injection = -1;
     out->stiff_param = -1;
-    /* reset edge: HOME at rest, unless a bar-broken input still holds */
+    /* reset edge: HOME at rest, unless an injection that cannot be undone still holds */
     if (in->reset && !b->prev_reset) {
-        int j = bar_input_set(in);
+        int which = -1, j = reset_blocked(b, in, &which);
         if (j >= 0) {
             out->events |= HG_EV_RESET_REFUSED;
-            out->reset_refused_joint = j;
+            out->reset_refused_channel = j;
+            out->reset_refused_injection = which;
         } else {
             b->param_error = 0;       /* the input block is tried again */
             apply_params(b, &in->params, out);
@@ -450,7 +461,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
             b->order_bad_run = b->order_reported = 0;
             out->events |= HG_EV_RESET_DONE;
         }
-    } else if (params_differ(&in->params, &b->last_in)) {
+    } else if (params_differ(pl, &in->params, &b->last_in)) {
         apply_params(b, &in->params, out);
     }
     b->prev_reset = in->reset != 0;
@@ -482,33 +493,32 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     addf_order(b, in, out);
     expired = hg_watchdog_advance(&b->wd, dt);
     amps_on = !estop_open(in) && !expired && !b->fault;
-    b->d.amp_enabled = 0;
-    for (k = 0; k < HG_BOARD_JOINTS; k++) {
+    for (k = 0; k < b->sense.channels; k++) {
         int on = amps_on && !in->amp_fail[k];
         volts[k] = on ? dac_out_v[k] : 0.0;
-        b->d.amp_enabled |= on ? 1u << k : 0u;   /* a disabled amplifier passes no current */
+        enabled |= on ? 1u << k : 0u;  /* a disabled amplifier passes no current */
     }
 
     if (!b->fault && dt > 0.0)
         find_substeps(b, period_ns, out);
     if (!b->fault) {
         int rc;
-        break_bars(b, in, out);
-        rc = integrate(b, volts, dt);
+        inject(b, in, out);
+        rc = integrate(b, volts, enabled, dt);
         if (rc)
             latch_fault(b, out, rc, HG_FAULT_STEP);
         else
             b->steps++;
     }
     if (b->fault)
-        for (k = 0; k < HG_BOARD_JOINTS; k++)
+        for (k = 0; k < HG_CHANNELS_MAX; k++)
             volts[k] = 0.0;
     out->amps_on = amps_on && !b->fault;
 
+    pl->sense(&b->m, &b->d, &b->sense);
     encoders(b, in, out);
-    for (k = 0; k < HG_BOARD_JOINTS; k++)
-        b->switches[k] = hg_switches_stuck(hg_switches(&b->m.p, b->d.z_m[k]), b->switches[k],
-                                           in->stuck[k]) | in->tripped[k];
+    for (k = 0; k < b->sense.channels; k++)
+        b->switches[k] = hg_switches_stuck(b->sense.switches[k], b->switches[k], in->stuck[k]) | in->tripped[k];
     adc(b, in);
     publish(b, in, out, volts);
 }
@@ -518,18 +528,18 @@ void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out,
 {
     const unsigned long n = HG_BOARD_TEXT_LEN;
     int np;
-    const hg_param_info *t = hg_params_table(&np);
+    const hg_param_info *t = hg_board_plant(b)->table(&np);
     const hg_param_info *e = out->stiff_param >= 0 && out->stiff_param < np ? &t[out->stiff_param] : 0;
     buf[0] = '\0';
     if (!e)
         return;
     hg_text_add(buf, n, hal ? e->hal_name : e->name);
     hg_text_add(buf, n, " = ");
-    hg_text_add_value(buf, n, hg_params_get(&b->m.p, out->stiff_param) * (hal ? e->hal_scale : 1.0));
+    hg_text_add_value(buf, n, b->in_force.plant.v[out->stiff_param] * (hal ? e->hal_scale : 1.0));
     hg_text_add(buf, n, " ");
     hg_text_add(buf, n, hal ? e->hal_unit : e->unit);
     hg_text_add(buf, n, ": ");
-    hg_text_add(buf, n, hg_integrator_name(b->m.integrator));
+    hg_text_add(buf, n, hg_integrator_name((hg_integrator)b->integrator));
     if (out->stiff_dt_max_s > 0.0) {
         hg_text_add(buf, n, " is stable with it in steps of at most ");
         if (out->stiff_dt_max_s >= 1e-3) {   /* ms to the ns, else us to the ps */

@@ -1,47 +1,51 @@
-/* hg_board.h - the virtual MOTENC-100 board with the Hexaglide behind it:
- * one servo period of everything motenc_hexaglide_dyns_virtual does
- * (parameter apply/refuse, reset edge, E-STOP loop, watchdog, amplifier
- * enables, the dynamics with substeps, fault latch with rollback, broken
- * bars, encoders with index latch, switches with stuck/tripped injection,
- * ADCs, digital I/O), as a pure function of the board's state and one
- * input record. The HAL glue copies pins into hg_board_inputs, calls
+/* hg_board.h - the virtual MOTENC-100 board with a machine (a plant,
+ * hg_plant.h) behind it: one servo period of everything
+ * motenc_hexaglide_dyns_virtual does (parameter apply/refuse, reset edge,
+ * E-STOP loop, watchdog, amplifier enables, the plant's dynamics with
+ * substeps, fault latch with rollback, the plant's fault injections,
+ * encoders with index latch, switches with stuck/tripped injection, ADCs,
+ * digital I/O), as a pure function of the board's state and one input
+ * record. The HAL glue copies pins into hg_board_inputs, calls
  * hg_board_step once per period (from motenc.<board>.dynamics) and copies
  * hg_board_outputs back to pins; `hexaglide sim`/`soak`, the unit tests,
- * the fuzzers and `hexaglide replay` drive the same function.
+ * the fuzzers, the FMU and `hexaglide replay` drive the same function.
  *
- * Units: SI and radians inside (z in m from HOME, pose m/rad, volts, A, N);
- * the glue converts to mm/degrees for HAL. Deterministic: the same initial
- * board and the same input sequence give bit-identical outputs.
+ * The board knows no plant's facts: channels, parameters, positions,
+ * switches and faults come through hg_plant. Units: SI and radians inside
+ * (a channel's load position in m or rad); the glue converts to mm and
+ * degrees for HAL. Deterministic: the same initial board and the same
+ * input sequence give bit-identical outputs.
  *
  * Pure C (hg_math.h, hg_string.h): no LinuxCNC include, no malloc, no stdio,
- * bounded loops; hg_board has no pointers, so it can live in hal_malloc'd
- * memory; no output is ever NaN or inf. Not thread-safe per board. */
+ * bounded loops; hg_board has no pointers (its plant is an index into the
+ * registry), so it can live in hal_malloc'd memory; no output is ever NaN
+ * or inf. Not thread-safe per board. */
 #ifndef HG_BOARD_H
 #define HG_BOARD_H
 
-#include "hg_params.h"
-#include "hg_dynamics.h"
+#include "hg_plant.h"
 #include "hg_sensors.h"
 
 #define HG_SUBSTEPS_MAX 64u           /* substeps param: 1..HG_SUBSTEPS_MAX */
-#define HG_PERIOD_MAX_NS 10000000L    /* HG_DT_MAX_S in ns: longest period integrated */
+#define HG_PERIOD_MAX_NS 10000000L    /* the longest period integrated (10 ms) */
 
-/* Bits of the refused-field mask (hg_board_outputs.refused_mask): bit i is
- * entry i of hg_params_table (i < HG_PARAMS_MAX), plus these two. */
-#define HG_BOARD_BIT_SUBSTEPS 62
-#define HG_BOARD_BIT_INTEGRATOR 63
+/* Bits of the refused-field set (hg_board_outputs.refused): bit i is entry
+ * i of the plant's parameter table (i < HG_PLANT_PARAMS_MAX), plus these two. */
+#define HG_BOARD_BIT_SUBSTEPS HG_PLANT_PARAMS_MAX
+#define HG_BOARD_BIT_INTEGRATOR (HG_PLANT_PARAMS_MAX + 1)
+#define HG_BOARD_WHY_LEN (HG_PLANT_PARAMS_MAX + 2)
 
-/* The parameter block: the model parameters and the integration settings.
- * HAL: motenc-hexaglide.<board>.<spec name, _ -> -> (lengths in mm there,
- * converted with hg_params_table's hal_scale), .substeps, .integrator. */
+/* The parameter block: the plant's parameters and the integration settings.
+ * HAL: motenc-hexaglide.<board>.<HAL name of the plant's table> (mm and
+ * degrees there, converted with the table's hal_scale), .substeps, .integrator. */
 typedef struct {
-    hg_params model;                  /* SI units */
+    hg_plant_params plant;            /* SI units, entry i of the plant's table at plant.v[i] */
     unsigned substeps;                /* integration steps per servo period, 1..HG_SUBSTEPS_MAX */
     unsigned integrator;              /* hg_integrator, 0..HG_INTEGRATOR_COUNT-1 */
 } hg_board_params;
 
 /* One servo period's inputs. Which HAL pin or parameter feeds each field
- * (board B; CC two-digit channel; N joint 0..5) - what a recorder captures: */
+ * (board B; CC two-digit channel; N channel 0..7) - what a recorder captures: */
 typedef struct {
     /* dac-write: (motenc.B.dac-CC-value - dac-CC-offset) * dac-CC-gain,
      * exactly as hal_motenc computes it, before any clamp (NaN, inf allowed) */
@@ -65,14 +69,15 @@ typedef struct {
     double adc_gain[HG_BOARD_ADCS];   /* motenc.B.adc-CC-gain */
     double adc_offset[HG_BOARD_ADCS]; /* motenc.B.adc-CC-offset */
     double adc_volts_per_amp;         /* motenc-hexaglide.B.adc-volts-per-amp */
-    /* fault injection, per joint: motenc-hexaglide.B.joint-N.<name> */
-    int amp_fail[HG_BOARD_JOINTS];    /* amp-fail */
-    unsigned stuck[HG_BOARD_JOINTS];  /* HG_SW_* bits: stuck-min, stuck-max, stuck-home */
-    unsigned tripped[HG_BOARD_JOINTS]; /* HG_SW_* bits: tripped-min, tripped-max, tripped-home */
-    int index_lost[HG_BOARD_JOINTS];  /* index-lost */
-    int enc_glitch[HG_BOARD_JOINTS];  /* enc-glitch: counts added in every step it is non-zero
+    /* fault injection, per channel: motenc-hexaglide.B.joint-N.<name> */
+    int amp_fail[HG_CHANNELS_MAX];    /* amp-fail */
+    unsigned stuck[HG_CHANNELS_MAX];  /* HG_SW_* bits: stuck-min, stuck-max, stuck-home */
+    unsigned tripped[HG_CHANNELS_MAX]; /* HG_SW_* bits: tripped-min, tripped-max, tripped-home */
+    int index_lost[HG_CHANNELS_MAX];  /* index-lost */
+    int enc_glitch[HG_CHANNELS_MAX];  /* enc-glitch: counts added in every step it is non-zero
                                          (the glue clears the pin after the step: added once) */
-    int bar_broken[HG_BOARD_JOINTS];  /* bar-broken */
+    unsigned inject[HG_CHANNELS_MAX]; /* bit i: the plant's fault injection i (its table's HAL
+                                         name, e.g. the Hexaglide's bar-broken) */
     /* the parameter block as HAL shows it (converted to SI: HAL value /
      * hg_param_info.hal_scale), .substeps, .integrator; a change is tried
      * when it differs (bitwise) from the block of the previous step, so a
@@ -83,13 +88,14 @@ typedef struct {
 /* Event bits (hg_board_outputs.events): what happened in this step, for
  * the glue's RTAPI messages. Each names its data fields. */
 enum {
-    HG_EV_PARAM_REFUSED = 1u << 0,    /* refused_mask (every invalid field), param_rc; previous set kept */
+    HG_EV_PARAM_REFUSED = 1u << 0,    /* refused (every invalid field), param_rc; previous set kept */
     HG_EV_PARAM_APPLIED = 1u << 1,    /* a changed parameter block is in force */
-    HG_EV_GEOMETRY_RESTART = 1u << 2, /* with PARAM_APPLIED: new geometry, machine restarted at HOME */
+    HG_EV_GEOMETRY_RESTART = 1u << 2, /* with PARAM_APPLIED: the machine's shape changed, restarted at HOME */
     HG_EV_RESET_DONE = 1u << 3,       /* reset edge: HOME at rest, counters 0, fault cleared */
-    HG_EV_RESET_REFUSED = 1u << 4,    /* reset edge refused: reset_refused_joint's bar-broken is set */
+    HG_EV_RESET_REFUSED = 1u << 4,    /* reset edge refused: reset_refused_channel's injection
+                                         reset_refused_injection (one that blocks resets) is set */
     HG_EV_FAULT_LATCHED = 1u << 5,    /* fault latched now: fault_code, fault_cause */
-    HG_EV_BAR_BROKEN = 1u << 6,       /* bars_newly_broken: bit k = bar k broke in this step */
+    HG_EV_INJECTED = 1u << 6,         /* injected[i]: bit ch = the plant's injection i acted on channel ch */
     HG_EV_PERIOD_BAD = 1u << 7,       /* period_ns outside (0, HG_PERIOD_MAX_NS]: not integrated */
     HG_EV_DAC_NAN = 1u << 8,          /* dac_nan_new: bit ch = channel ch became NaN (outputs 0 V) */
     HG_EV_ENC_SCALE_BAD = 1u << 9,    /* enc_scale_bad: bit ch = scale was 0/NaN, set to 1.0 */
@@ -127,20 +133,20 @@ typedef struct {
     /* adc-read: motenc.B.adc-CC-value */
     double adc[HG_BOARD_ADCS];
     /* motenc-hexaglide.B.*: the machine (SI; the glue shows mm, mm/s, deg) */
-    double pose[6];                   /* head-x..head-c: X Y Z (m) A B C (rad) */
-    double z_m[HG_BOARD_JOINTS];      /* joint-N.pos */
-    double zd_mps[HG_BOARD_JOINTS];   /* joint-N.vel */
-    double volts[HG_BOARD_JOINTS];    /* joint-N.volts: what the amplifier got (0 when off) */
-    double current_a[HG_BOARD_JOINTS]; /* joint-N.current (0 while faulted) */
-    double force_n[HG_BOARD_JOINTS];  /* joint-N.force */
+    int channels;                     /* channels the plant uses */
+    unsigned rotary;                  /* bit ch: channel ch is rotary (rad) */
+    double pos[HG_CHANNELS_MAX];      /* joint-N.pos: the load (carriage, axis) */
+    double vel[HG_CHANNELS_MAX];      /* joint-N.vel */
+    double motor_pos[HG_CHANNELS_MAX]; /* joint-N.motor-pos: the encoder's side, as a load position */
+    double volts[HG_CHANNELS_MAX];    /* joint-N.volts: what the amplifier got (0 when off) */
+    double current_a[HG_CHANNELS_MAX]; /* joint-N.current (0 while faulted) */
+    double force[HG_CHANNELS_MAX];    /* joint-N.force (N or N m) */
+    double extra[HG_PLANT_EXTRA_MAX]; /* the plant's own outputs (SI; its output table) */
     double sim_time_s;                /* sim-time */
-    double residual_m;                /* residual */
     unsigned steps;                   /* steps: servo periods integrated since load/reset */
-    unsigned bars_broken;             /* bars-broken */
     int fault;                        /* fault */
     int fault_code;                   /* fault-code (hg_errors.h), 0 if none */
-    hg_guard_report fault_guard;      /* with fault code JOINT_RANGE, BAR_CLEARANCE or
-                                         OUT_OF_VOLUME: the limit crossed (kind 0 otherwise) */
+    hg_plant_report fault_report;     /* what the failed step struck (kind 0 otherwise) */
     int amps_on;                      /* amps-on */
     int watchdog_expired;             /* watchdog-expired */
     int param_error;                  /* param-error: the last change was refused (or an enc scale) */
@@ -148,12 +154,13 @@ typedef struct {
     hg_board_params params;           /* the block in force (the glue shows it on the HAL params) */
     /* events of this step and their data */
     unsigned events;                  /* HG_EV_* bits */
-    unsigned long long refused_mask;  /* PARAM_REFUSED: every invalid field (bits as above) */
+    hg_bitset refused;                /* PARAM_REFUSED: every invalid field (bits as above) */
     int param_rc;                     /* PARAM_REFUSED: HG_ERR_BAD_PARAM, or the code of a set that
                                          passed the checks but could not be built */
-    int reset_refused_joint;          /* RESET_REFUSED: first joint whose bar-broken input is set */
+    int reset_refused_channel;        /* RESET_REFUSED: first channel whose blocking injection is set */
+    int reset_refused_injection;      /* ... and which injection */
     int fault_cause;                  /* FAULT_LATCHED: hg_fault_cause */
-    unsigned bars_newly_broken;       /* BAR_BROKEN */
+    unsigned injected[HG_PLANT_INJECT_MAX]; /* INJECTED */
     unsigned dac_nan_new;             /* DAC_NAN */
     unsigned enc_scale_bad;           /* ENC_SCALE_BAD */
     unsigned substeps_run;            /* substeps-run: integration steps of the last period, >= substeps */
@@ -162,12 +169,17 @@ typedef struct {
     double stiff_dt_max_s;            /* ... and the longest step it allows with the scheme */
 } hg_board_outputs;
 
-/* The board: model, state, sensors and latches (no pointers). */
+/* The board: plant, model, state, sensors and latches (no pointers). */
 typedef struct {
-    hg_model m;                       /* the model in force (m.integrator: integrator in force) */
-    hg_model m_new;                   /* scratch: a candidate model being built */
-    hg_data d;                        /* the machine's state */
-    hg_data d_saved;                  /* state at the start of the period (rollback) */
+    int plant;                        /* index of the plant in the registry (hg_plants.h) */
+    int variant;                      /* the plant's model variant (hexaglide: the parametrization) */
+    int integrator;                   /* in force */
+    hg_board_params in_force;         /* the parameter block in force */
+    hg_plant_model m;                 /* the model in force */
+    hg_plant_model m_new;             /* scratch: a candidate model being built */
+    hg_plant_data d;                  /* the machine's state */
+    hg_plant_data d_saved;            /* state at the start of the period (rollback) */
+    hg_plant_sense sense;             /* what the plant showed after the last step */
     unsigned substeps;                /* in force (asked for) */
     unsigned substeps_run;            /* run: at least substeps, as the period and parameters need */
     long stab_period_ns;              /* the period substeps_run was found for (0: find it again) */
@@ -178,25 +190,33 @@ typedef struct {
     double enc_scale[HG_BOARD_ENCODERS]; /* in force */
     double enc_scale_in[HG_BOARD_ENCODERS]; /* input of the previous step (change detection) */
     hg_watchdog wd;
-    unsigned switches[HG_BOARD_JOINTS]; /* HG_SW_* as the inputs read them */
+    unsigned switches[HG_CHANNELS_MAX]; /* HG_SW_* as the inputs read them */
     double adc_sample_v[HG_BOARD_ADCS]; /* converted, not yet published */
     double adc_value[HG_BOARD_ADCS];  /* published */
     int adc_state;                    /* 0 power-up, 1/2: which group of 4 converts next */
     unsigned dac_nan;                 /* bit ch: channel ch's product is NaN */
     int prev_reset;
     int fault, fault_code;
-    hg_guard_report fault_guard;      /* the limit a failed step crossed */
+    hg_plant_report fault_report;     /* what a failed step struck */
     int param_error;
     unsigned steps;                   /* servo periods integrated since load */
     int order_bad_run;                /* consecutive steps without a fresh dac-write (ADDF_ORDER) */
     int order_reported;               /* ADDF_ORDER already reported since load or reset */
 } hg_board;
 
-/* Power-up: model `kind` with parameter block p (0: spec defaults,
- * 1 substep, Heun), machine at HOME at rest, counters 0,
- * watchdog disabled, no fault. 0, or HG_ERR_BAD_PARAM (p refused; use
- * hg_board_params_check to name the fields) or another negative code. */
-int hg_board_init(hg_board *b, hg_model_kind kind, const hg_board_params *p);
+/* The plant of a board (the registry's entry). */
+const hg_plant *hg_board_plant(const hg_board *b);
+
+/* The spec's parameter block of plant `plant` (registry index): its
+ * defaults, 1 substep, Heun. 0, or HG_ERR_BAD_PARAM for an unknown plant. */
+int hg_board_params_default(int plant, hg_board_params *p);
+
+/* Power-up: plant `plant` (registry index, hg_plants.h) with model
+ * variant `variant` and parameter block p (0: the plant's defaults, 1
+ * substep, Heun), machine at HOME at rest, counters 0, watchdog disabled,
+ * no fault. 0, or HG_ERR_BAD_PARAM (p refused, or an unknown plant or
+ * variant; hg_board_params_check names the fields) or another negative code. */
+int hg_board_init(hg_board *b, int plant, int variant, const hg_board_params *p);
 
 /* Inputs that leave the board idle: DAC 0 V, outputs off (so the E-STOP
  * loop of out-07 is OPEN: set bit 7 of dout_values, or estop_loop_out -1,
@@ -211,18 +231,17 @@ void hg_board_peek(const hg_board *b, hg_board_outputs *out);
 
 /* One servo period of period_ns (the HAL thread's period): see the file
  * comment. Order: reset edge, parameter change, watchdog (control, kick,
- * DAC auto reset, advance), amplifier enables, broken bars, `substeps`
- * hg_steps of period/substeps (all or nothing: a failure restores the state
- * of the period's start and latches the fault), encoders (update, glitch,
- * latch, reset, scale), switches, ADC, digital I/O, E-STOP. Faulted:
- * state frozen, drives off, until a reset edge. */
+ * DAC auto reset, advance), amplifier enables, the plant's injections,
+ * `substeps` plant steps of period/substeps (all or nothing: a failure
+ * restores the state of the period's start and latches the fault),
+ * encoders (update, glitch, latch, reset, scale), switches, ADC, digital
+ * I/O, E-STOP. Faulted: state frozen, drives off, until a reset edge. */
 void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out, long period_ns);
 
-/* Check a parameter block: 0, or HG_ERR_BAD_PARAM with *mask (may be 0)
- * holding every invalid field (bits as refused_mask) and why[i] (may be 0;
- * array of HG_BOARD_WHY_LEN) the reason for bit i (static strings). */
-#define HG_BOARD_WHY_LEN 64
-int hg_board_params_check(const hg_board_params *p, unsigned long long *mask,
+/* Check a parameter block for b's plant: 0, or HG_ERR_BAD_PARAM with
+ * *bad (may be 0) holding every invalid field (bits as refused) and why[i]
+ * (may be 0; HG_BOARD_WHY_LEN entries) the reason for bit i (static strings). */
+int hg_board_params_check(const hg_board *b, const hg_board_params *p, hg_bitset *bad,
                           const char *why[HG_BOARD_WHY_LEN]);
 
 /* What made the board run more substeps than asked, or refuse a
@@ -234,7 +253,7 @@ int hg_board_params_check(const hg_board_params *p, unsigned long long *mask,
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
                                  char buf[HG_BOARD_TEXT_LEN]);
 
-/* HAL name of refused_mask bit i ("c-visc", "substeps", ...), 0 if none. */
-const char *hg_board_param_hal_name(int bit);
+/* HAL name of refused bit i of b's plant ("c-visc", "substeps", ...), 0 if none. */
+const char *hg_board_param_hal_name(const hg_board *b, int bit);
 
 #endif

@@ -23,12 +23,8 @@
 typedef char hg_consts_fit[(HG_GEN_REDUCED_NCONST <= HG_MAX_CONSTS &&
                             HG_GEN_STANDARD_NCONST <= HG_MAX_CONSTS) ? 1 : -1];
 
-static const char *const model_names[HG_MODEL_COUNT] = {
+const char *const hg_model_names[HG_MODEL_COUNT] = {
     "standard", "reduced-joints", "reduced-cartesian", "fused-cartesian",
-};
-
-static const char *const integrator_names[HG_INTEGRATOR_COUNT] = {
-    "improved-euler", "heun", "rk4",
 };
 
 /* names[i] for 0 <= i < n, else 0. */
@@ -49,27 +45,12 @@ static int index_of(const char *const *names, int n, const char *name)
 
 const char *hg_model_name(hg_model_kind kind)
 {
-    return name_of(model_names, HG_MODEL_COUNT, (int)kind);
+    return name_of(hg_model_names, HG_MODEL_COUNT, (int)kind);
 }
 
 int hg_model_from_name(const char *name)
 {
-    return index_of(model_names, HG_MODEL_COUNT, name);
-}
-
-const char *hg_integrator_name(hg_integrator which)
-{
-    return name_of(integrator_names, HG_INTEGRATOR_COUNT, (int)which);
-}
-
-int hg_integrator_default(void)
-{
-    return HG_INTEGRATOR_DEFAULT;
-}
-
-int hg_integrator_from_name(const char *name)
-{
-    return index_of(integrator_names, HG_INTEGRATOR_COUNT, name);
+    return index_of(hg_model_names, HG_MODEL_COUNT, name);
 }
 
 int hg_model_set_integrator(hg_model *m, int which)

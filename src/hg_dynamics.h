@@ -18,21 +18,15 @@
 #include "hg_model.h"
 #include "hg_kinematics.h"
 
+/* The names of the kinds, in hg_model_kind's order (hg_model_name). */
+extern const char *const hg_model_names[HG_MODEL_COUNT];
+
 /* Name used on the command line and in HAL ("standard", "reduced-joints",
  * "reduced-cartesian", "fused-cartesian"); 0 for an invalid kind. */
 const char *hg_model_name(hg_model_kind kind);
 
 /* Kind for a name, or -1 when the name is unknown. */
 int hg_model_from_name(const char *name);
-
-/* Name of a scheme ("improved-euler", "heun", "rk4"); 0 for an invalid one. */
-const char *hg_integrator_name(hg_integrator which);
-
-/* HG_INTEGRATOR_DEFAULT, for bindings that cannot read a macro (Python). */
-int hg_integrator_default(void);
-
-/* Scheme for a name, or -1 when the name is unknown. */
-int hg_integrator_from_name(const char *name);
 
 /* Check p and build the model: 0, or HG_ERR_BAD_PARAM with *bad_field and
  * *why naming the cause (static strings), or another negative code. */

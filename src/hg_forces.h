@@ -9,9 +9,7 @@
 #define HG_FORCES_H
 
 #include "hg_model.h"
-
-/* The drives' (and the MOTENC-100 DAC's) command range: +-10 V. */
-#define HG_DAC_VOLTS_MAX 10.0
+#include "hg_analog.h"            /* HG_DAC_VOLTS_MAX: the drives' +-10 V command range */
 
 /* Net smooth force on each carriage (N, +z up): drive_n (the drive's force
  * over the step) - c_visc z' + the hard stops: k_stop times the

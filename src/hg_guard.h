@@ -18,7 +18,7 @@
 #ifndef HG_GUARD_H
 #define HG_GUARD_H
 
-#include "hg_params.h"
+#include "hg_geometry.h"
 
 /* The region a machine with broken bars may be in: the model has no
  * contacts, and a head swinging further would strike bars and posts that
@@ -59,12 +59,6 @@ void hg_guard_joint_angles(const hg_geometry *g, const double z[6], const double
 /* Closest distance (m) between the segments p1-q1 and p2-q2. */
 double hg_segment_distance(const double p1[3], const double q1[3], const double p2[3],
                            const double q2[3]);
-
-/* What r found as one sentence (mm and degrees, 3 decimals), naming the
- * bar(s) and the limit's parameter: by its HAL name ("cone-head") when
- * hal is 1, by its spec name ("cone_head") when 0. Empty for kind NONE. */
-#define HG_GUARD_TEXT_LEN 200
-void hg_guard_describe(const hg_guard_report *r, int hal, char buf[HG_GUARD_TEXT_LEN]);
 
 /* Smallest distance between two bar axes with the machine at HOME (m). */
 double hg_guard_home_clearance(const hg_geometry *g);

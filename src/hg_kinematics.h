@@ -15,7 +15,7 @@
 #ifndef HG_KINEMATICS_H
 #define HG_KINEMATICS_H
 
-#include "hg_params.h"
+#include "hg_geometry.h"
 #include "hg_guard.h"
 
 #define HG_NBARS 6

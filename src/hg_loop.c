@@ -13,27 +13,30 @@ void hg_loop_config_default(hg_loop_config *c)
         c->output_scale[k] = 1.0;
     }
     c->period_ns = 1000000;
-    c->model_kind = HG_MODEL_REDUCED_CARTESIAN;
+    c->plant = 0;
+    c->variant = hg_plant_at(0)->default_variant;
 }
 
 int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p)
 {
+    const hg_plant *pl = hg_plant_at(c->plant);
     int k, rc;
     if (c->period_ns <= 0 || c->period_ns > HG_PERIOD_MAX_NS)
         return HG_ERR_BAD_DT;
-    if (c->model_kind < 0 || c->model_kind >= HG_MODEL_COUNT)
+    if (!pl || c->variant < 0 || c->variant >= pl->nvariants)
         return HG_ERR_BAD_PARAM;
-    for (k = 0; k < HG_LOOP_JOINTS; k++)
-        if (!isfinite(c->input_scale[k]) || c->input_scale[k] == 0.0)
-            return HG_ERR_BAD_PARAM;
     L->cfg = *c;
-    rc = hg_board_init(&L->board, (hg_model_kind)c->model_kind, p);
+    rc = hg_board_init(&L->board, c->plant, c->variant, p);
     if (rc)
         return rc;
+    L->joints = L->board.sense.channels;
+    for (k = 0; k < L->joints; k++)
+        if (!isfinite(c->input_scale[k]) || c->input_scale[k] == 0.0)
+            return HG_ERR_BAD_PARAM;
     hg_board_inputs_default(&L->board, &L->in);
     L->in.dout_values |= 1u << 7;      /* iocontrol's user-enable-out closes the E-STOP loop (out-07) */
     L->in.dac_written = 1;
-    for (k = 0; k < HG_LOOP_JOINTS; k++)
+    for (k = 0; k < L->joints; k++)
         L->in.enc_scale[k] = c->input_scale[k];
     hg_board_peek(&L->board, &L->out);
     for (k = 0; k < HG_LOOP_JOINTS; k++) {
@@ -50,7 +53,7 @@ int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p)
 static int plant_step(hg_loop *L, const double dac_value[HG_LOOP_JOINTS], long period_ns)
 {
     int k;
-    for (k = 0; k < HG_LOOP_JOINTS; k++)
+    for (k = 0; k < L->joints; k++)
         L->in.dac_v[k] = (dac_value[k] - L->cfg.output_offset[k]) * L->cfg.output_scale[k];
     hg_board_step(&L->board, &L->in, &L->out, period_ns);
     if (!L->out.fault)
@@ -64,15 +67,15 @@ static double plant_position_mm(const hg_loop *L, int k)
     return L->out.position[k];
 }
 
-int hg_loop_step_io(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], const int enable[HG_LOOP_JOINTS],
+int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
                     long period_ns, hg_loop_sample *out)
 {
-    double fb[HG_LOOP_JOINTS], dac[HG_LOOP_JOINTS];
+    double fb[HG_LOOP_JOINTS], dac[HG_LOOP_JOINTS] = {0};
     int k, rc;
-    for (k = 0; k < HG_LOOP_JOINTS; k++)
+    for (k = 0; k < L->joints; k++)
         if (!isfinite(cmd_mm[k]))
             return HG_ERR_NONFINITE_INPUT;
-    for (k = 0; k < HG_LOOP_JOINTS; k++) {
+    for (k = 0; k < L->joints; k++) {
         fb[k] = plant_position_mm(L, k);
         if (out) {
             out->fb_mm[k] = fb[k];
@@ -84,15 +87,15 @@ int hg_loop_step_io(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], const int e
             out->output_v[k] = dac[k];
     }
     rc = plant_step(L, dac, period_ns);
-    for (k = 0; k < HG_LOOP_JOINTS; k++)
+    for (k = 0; k < L->joints; k++)
         L->prev_cmd_mm[k] = cmd_mm[k];
     L->periods++;
     return rc;
 }
 
-int hg_loop_step(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], hg_loop_sample *out)
+int hg_loop_step(hg_loop *L, const double *cmd_mm, hg_loop_sample *out)
 {
-    static const int on[HG_LOOP_JOINTS] = {1, 1, 1, 1, 1, 1};
+    static const int on[HG_LOOP_JOINTS] = {1, 1, 1, 1, 1, 1, 1, 1};
     return hg_loop_step_io(L, cmd_mm, on, L->cfg.period_ns, out);
 }
 
@@ -102,19 +105,19 @@ int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *fer
     hg_loop_sample s;
     double sq[HG_LOOP_JOINTS] = {0};
     long i, counted = 0;
-    int k, rc = 0;
+    int k, rc = 0, J = L->joints;
     *sum = (hg_loop_summary){0};
     sum->tripped_at = -1;
     for (i = 0; i < n; i++) {
-        rc = hg_loop_step(L, cmd_mm + 6 * i, &s);
+        rc = hg_loop_step(L, cmd_mm + J * i, &s);
         if (rc)
             break;
-        for (k = 0; k < HG_LOOP_JOINTS; k++) {
+        for (k = 0; k < J; k++) {
             double fe = fabs(s.ferror_mm[k]), v = fabs(s.output_v[k]);
             if (ferror_mm)
-                ferror_mm[6 * i + k] = s.ferror_mm[k];
+                ferror_mm[J * i + k] = s.ferror_mm[k];
             if (output_v)
-                output_v[6 * i + k] = s.output_v[k];
+                output_v[J * i + k] = s.output_v[k];
             if (i < from)
                 continue;
             if (fe > sum->peak_ferror_mm[k] || !isfinite(fe))
@@ -133,7 +136,7 @@ int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *fer
         }
     }
     sum->periods = i;
-    for (k = 0; k < HG_LOOP_JOINTS; k++)
+    for (k = 0; k < J; k++)
         sum->rms_ferror_mm[k] = counted ? sqrt(sq[k] / counted) : 0.0;
     return rc;
 }
@@ -145,15 +148,11 @@ unsigned long hg_loop_sizeof(int which)
     case 1: return sizeof(hg_loop_config);
     case 2: return sizeof(hg_loop_summary);
     case 3: return sizeof(hg_pid_gains);
-    case 4: return sizeof(hg_model);
-    case 5: return sizeof(hg_data);
-    case 6: return sizeof(hg_params);
     case 7: return sizeof(hg_board_params);
     case 8: return sizeof(hg_board);
     case 9: return sizeof(hg_board_inputs);
     case 10: return sizeof(hg_board_outputs);
     case 11: return sizeof(hg_pid_state);
-    case 12: return HG_DATA_STATE_BYTES;
     default: return 0;
     }
 }

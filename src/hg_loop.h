@@ -1,6 +1,7 @@
-/* hg_loop.h - the Hexaglide's six servo loops offline: joint commands in,
- * following errors and DAC volts out, one servo period per call, in the
- * order of configs/hexaglide.hal's servo thread:
+/* hg_loop.h - a machine's servo loops offline (one per channel of the
+ * board's plant: the Hexaglide's six, a serial machine's axes): joint
+ * commands in, following errors and DAC volts out, one servo period per
+ * call, in the order of configs/hexaglide.hal's servo thread:
  *   encoder-read -> motion (command, f-error) -> pid.0..5 -> dac-write -> dynamics
  * with LinuxCNC's pid (hg_pid) and the virtual board's core (the plant), so
  * that what `hexaglide tune` predicts is what LinuxCNC runs.
@@ -16,9 +17,9 @@
 #include "hg_board.h"
 #include "hg_pid.h"
 
-#define HG_LOOP_JOINTS 6
+#define HG_LOOP_JOINTS HG_CHANNELS_MAX   /* room for every channel a plant can use */
 
-/* What configs/hexaglide.ini sets per joint, plus the servo period. */
+/* What a config's INI sets per joint, plus the servo period and the plant. */
 typedef struct {
     hg_pid_gains pid[HG_LOOP_JOINTS];  /* pid.N pins */
     double input_scale[HG_LOOP_JOINTS];   /* INPUT_SCALE: encoder counts per mm */
@@ -26,7 +27,8 @@ typedef struct {
     double output_offset[HG_LOOP_JOINTS]; /* OUTPUT_OFFSET (V) */
     double ferror_limit_mm;            /* stop a run when |f-error| exceeds it (0: never) */
     long period_ns;                    /* servo period */
-    int model_kind;                    /* hg_model_kind of the board (reduced-cartesian as HAL) */
+    int plant;                         /* the board's plant (registry index, hg_plant.h; 0 the Hexaglide) */
+    int variant;                       /* its model variant (the Hexaglide's: reduced-cartesian as HAL) */
 } hg_loop_config;
 
 /* The closed loop: board (plant) + six PID states + motion's memory. */
@@ -38,6 +40,7 @@ typedef struct {
     hg_pid_state pid[HG_LOOP_JOINTS];
     double prev_cmd_mm[HG_LOOP_JOINTS]; /* motion's command of the previous period */
     long periods;                      /* periods run since hg_loop_init */
+    int joints;                        /* the plant's channels: one loop each */
 } hg_loop;
 
 /* One period's outputs. */
@@ -58,7 +61,8 @@ typedef struct {
 
 /* Config with pid.c's load-time gains (hg_pid_defaults: Pgain 1, the rest 0),
  * configs/hexaglide.ini's scales (1000 counts/mm, DAC gain 1, offset 0), a
- * 1 ms period, the board's default model (reduced-cartesian), no trip limit. */
+ * 1 ms period, the Hexaglide with its default model (reduced-cartesian),
+ * no trip limit. */
 void hg_loop_config_default(hg_loop_config *c);
 
 /* Machine at HOME at rest, counters at 0, amplifiers on (E-STOP loop closed),
@@ -67,10 +71,10 @@ void hg_loop_config_default(hg_loop_config *c);
  * 0, or a negative code (bad parameters or period: HG_ERR_BAD_PARAM / BAD_DT). */
 int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p);
 
-/* One servo period with motion's joint commands cmd_mm; out may be 0.
+/* One servo period with motion's joint commands cmd_mm[L->joints]; out may be 0.
  * 0, or the board's fault code (latched: the board stays faulted),
  * or HG_ERR_NONFINITE_INPUT for a non-finite command (nothing run). */
-int hg_loop_step(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], hg_loop_sample *out);
+int hg_loop_step(hg_loop *L, const double *cmd_mm, hg_loop_sample *out);
 
 /* One servo period as LinuxCNC ran it, for a replay of a recorded run:
  * the board inputs are what the caller put in L->in (a record's, say;
@@ -79,22 +83,21 @@ int hg_loop_step(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], hg_loop_sample
  * (one signal with the encoder's, as in configs/hexaglide.hal), and the
  * period is period_ns for the pids and the board. Otherwise as hg_loop_step,
  * which is this call with every pid enabled and cfg.period_ns. */
-int hg_loop_step_io(hg_loop *L, const double cmd_mm[HG_LOOP_JOINTS], const int enable[HG_LOOP_JOINTS],
+int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
                     long period_ns, hg_loop_sample *out);
 
-/* Run n periods of commands cmd_mm[n][6] (row-major); per-period f-errors and
- * outputs into ferror_mm[n][6] / output_v[n][6] when not 0; summary over the
- * periods from `from` on. Stops early at a trip (see ferror_limit_mm).
- * 0 or the first step's negative code. */
+/* Run n periods of commands cmd_mm[n][J] (row-major, J = L->joints);
+ * per-period f-errors and outputs into ferror_mm[n][J] / output_v[n][J]
+ * when not 0; summary over the periods from `from` on. Stops early at a
+ * trip (see ferror_limit_mm). 0 or the first step's negative code. */
 int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
                 double *output_v, hg_loop_summary *sum);
 
 /* sizeof the structs, for bindings that mirror them (tools/hexaglide.py). */
 unsigned long hg_loop_sizeof(int which);   /* 0 hg_loop, 1 config, 2 summary, 3 pid gains,
-                                             4 hg_model, 5 hg_data, 6 hg_params,
                                              7 hg_board_params, 8 hg_board,
                                              9 hg_board_inputs, 10 hg_board_outputs,
-                                             11 hg_pid_state, 12 HG_DATA_STATE_BYTES
-                                             (hg_data before its scratch); else 0 */
+                                             11 hg_pid_state; else 0 (the Hexaglide's own
+                                             types: hg_hexaglide_sizeof) */
 
 #endif

@@ -13,6 +13,7 @@
 #include <stddef.h>
 #include "hg_params.h"
 #include "hg_guard.h"
+#include "hg_scheme.h"
 
 /* The parametrizations of the paper's section 7, plus the fused one. */
 typedef enum {
@@ -23,17 +24,6 @@ typedef enum {
     HG_MODEL_COUNT = 4
 } hg_model_kind;
 
-/* Time integration scheme of one step (hg_integrate.[ch] holds the schemes). */
-typedef enum {
-    HG_INTEGRATOR_IMPROVED_EULER = 0, /* the paper's: q += qd dt + qdd dt^2/2, qd += qdd dt */
-    HG_INTEGRATOR_HEUN = 1,           /* second order (RK2), then the same stabilization (default) */
-    HG_INTEGRATOR_RK4 = 2,            /* classical fourth order, then the same stabilization */
-    HG_INTEGRATOR_COUNT = 3
-} hg_integrator;
-
-/* The scheme of hg_model_init and of the board at load: Heun, within 1 um
- * of the converged answer at the 1 ms servo period (tests/unit/test_integrate). */
-#define HG_INTEGRATOR_DEFAULT HG_INTEGRATOR_HEUN
 
 #define HG_MAX_CONSTS 256   /* room for hoisted parameter-only subexpressions */
 #define HG_MAX_LUMPED_CONSTS 64 /* room for the lumped-bar model's */

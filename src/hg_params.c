@@ -55,14 +55,7 @@ static const hg_param_info table[] = {
 
 #undef F
 
-/* masks over the table are 64-bit and hg_board uses bits 62, 63 */
 typedef char hg_params_table_fits[(sizeof table / sizeof table[0] <= HG_PARAMS_MAX) ? 1 : -1];
-
-double hg_home_height(const hg_geometry *g)
-{
-    double d = g->lb_m - g->lp_m;
-    return sqrt(g->l_m * g->l_m - d * d);
-}
 
 double hg_hold_current(const hg_params *p)
 {
@@ -72,12 +65,10 @@ double hg_hold_current(const hg_params *p)
 
 const char *hg_params_hal_name(const char *name)
 {
-    int i, n;
+    int n;
     const hg_param_info *t = hg_params_table(&n);
-    for (i = 0; i < n; i++)
-        if (strcmp(t[i].name, name) == 0)
-            return t[i].hal_name;
-    return name;
+    int i = hg_param_find(t, n, name);
+    return i >= 0 ? t[i].hal_name : name;
 }
 
 int hg_param_is_geometry(int i)
@@ -147,12 +138,10 @@ const hg_param_info *hg_params_table(int *count)
 
 double *hg_params_field(hg_params *p, const char *name)
 {
-    int i, n;
+    int n;
     const hg_param_info *t = hg_params_table(&n);
-    for (i = 0; i < n; i++)
-        if (strcmp(t[i].name, name) == 0)
-            return (double *)((char *)p + t[i].offset);
-    return 0;
+    int i = hg_param_find(t, n, name);
+    return i >= 0 ? (double *)((char *)p + t[i].offset) : 0;
 }
 
 double *hg_params_at(hg_params *p, int i)
@@ -177,82 +166,41 @@ int hg_params_set(hg_params *p, const char *name, double value)
     return HG_OK;
 }
 
-/* Collects failed rules: the first (field, reason) and, when mask is given,
- * every failed field's bit and reason (the first reason per field). */
-typedef struct {
-    const char *first_field, *first_why;
-    unsigned long long mask;
-    const char **why;      /* HG_PARAMS_MAX entries, or 0 */
-} check_report;
-
-/* Index of field name in the table, or -1. */
-static int field_index(const char *name)
-{
-    int i, n;
-    const hg_param_info *t = hg_params_table(&n);
-    for (i = 0; i < n; i++)
-        if (strcmp(t[i].name, name) == 0)
-            return i;
-    return -1;
-}
-
-/* Record that field failed for reason. */
-static void refuse(check_report *r, const char *field, const char *reason)
-{
-    int i = field_index(field);
-    if (!r->first_field) {
-        r->first_field = field;
-        r->first_why = reason;
-    }
-    if (i >= 0 && !(r->mask & (1ull << i))) {
-        r->mask |= 1ull << i;
-        if (r->why)
-            r->why[i] = reason;
-    }
-}
-
-/* 1 if field has failed a rule already. */
-static int failed(const check_report *r, const char *field)
-{
-    int i = field_index(field);
-    return i >= 0 && (r->mask & (1ull << i)) != 0;
-}
-
 /* The geometry rules, in order; a rule that depends on a failed field is
  * skipped (it would only repeat the cause). */
-static void geometry_rules(const hg_geometry *g, check_report *r)
+static void geometry_rules(const hg_geometry *g, hg_check *r)
 {
     if (!(isfinite(g->l_m) && g->l_m > 0))
-        refuse(r, "l", "must be a positive finite length");
+        hg_check_refuse(r, "l", "must be a positive finite length");
     if (!(isfinite(g->lb_m) && g->lb_m > 0))
-        refuse(r, "lb", "must be a positive finite length");
-    if (!failed(r, "lb") && !(isfinite(g->e_m) && g->e_m >= 0 && g->e_m < g->lb_m))
-        refuse(r, "e", "must be finite, >= 0 and smaller than lb");
-    if (!failed(r, "lb") && !(isfinite(g->lp_m) && g->lp_m > 0 && g->lp_m < g->lb_m))
-        refuse(r, "lp", "must be positive and smaller than lb");
-    if (!failed(r, "l") && !failed(r, "lb") && !failed(r, "lp") && !(g->l_m > g->lb_m - g->lp_m))
-        refuse(r, "l", "bars too short to reach the head: need l > lb - lp");
+        hg_check_refuse(r, "lb", "must be a positive finite length");
+    if (!hg_check_failed(r, "lb") && !(isfinite(g->e_m) && g->e_m >= 0 && g->e_m < g->lb_m))
+        hg_check_refuse(r, "e", "must be finite, >= 0 and smaller than lb");
+    if (!hg_check_failed(r, "lb") && !(isfinite(g->lp_m) && g->lp_m > 0 && g->lp_m < g->lb_m))
+        hg_check_refuse(r, "lp", "must be positive and smaller than lb");
+    if (!hg_check_failed(r, "l") && !hg_check_failed(r, "lb") && !hg_check_failed(r, "lp") && !(g->l_m > g->lb_m - g->lp_m))
+        hg_check_refuse(r, "l", "bars too short to reach the head: need l > lb - lp");
     if (!(isfinite(g->cone_carriage_rad) && g->cone_carriage_rad > 0 &&
           g->cone_carriage_rad < HG_PI / 2))
-        refuse(r, "cone_carriage", "must lie between 0 and 90 deg");
+        hg_check_refuse(r, "cone_carriage", "must lie between 0 and 90 deg");
     if (!(isfinite(g->cone_head_rad) && g->cone_head_rad > 0 && g->cone_head_rad < HG_PI / 2))
-        refuse(r, "cone_head", "must lie between 0 and 90 deg");
+        hg_check_refuse(r, "cone_head", "must lie between 0 and 90 deg");
     if (!(isfinite(g->d_bar_m) && g->d_bar_m > 0))
-        refuse(r, "d_bar", "must be a positive finite length");
-    if (r->mask || r->first_field)
+        hg_check_refuse(r, "d_bar", "must be a positive finite length");
+    if (hg_check_any(r))
         return;                        /* the rules below need a valid geometry */
     /* a bar dips below the head's joint plane when its angle in the head
      * joint exceeds 90 deg less its tilt at HOME: the range must exclude that */
     if (!(g->cone_head_rad + asin((g->lb_m - g->lp_m) / g->l_m) < HG_PI / 2))
-        refuse(r, "cone_head", "plus the bars' tilt at HOME, asin((lb - lp) / l), must stay below 90 deg "
+        hg_check_refuse(r, "cone_head", "plus the bars' tilt at HOME, asin((lb - lp) / l), must stay below 90 deg "
                                "(a bar would touch the head's joint plane)");
     if (!(g->d_bar_m < hg_guard_home_clearance(g)))
-        refuse(r, "d_bar", "must be below the closest distance between two bar axes at HOME "
+        hg_check_refuse(r, "d_bar", "must be below the closest distance between two bar axes at HOME "
                            "(the machine could not stand at HOME)");
 }
 
 /* Copy the first failure to the caller's outputs; HG_OK or HG_ERR_BAD_PARAM. */
-static int first_failure(const check_report *r, const char **bad_field, const char **why)
+static int first_failure(const hg_check *r, const char **bad_field, const char **why)
 {
     if (!r->first_field)
         return HG_OK;
@@ -263,41 +211,24 @@ static int first_failure(const check_report *r, const char **bad_field, const ch
     return HG_ERR_BAD_PARAM;
 }
 
-unsigned hg_geometry_fingerprint(const hg_geometry *g)
+/* A collector over this table. */
+static void check_start(hg_check *r, const char **why)
 {
-    const double f[7] = {g->l_m, g->lb_m, g->e_m, g->lp_m, g->cone_carriage_rad, g->cone_head_rad,
-                         g->d_bar_m};
-    unsigned h = 2166136261u;
-    int i, k;
-    for (i = 0; i < 7; i++) {
-        unsigned long long bits;
-        memcpy(&bits, &f[i], sizeof bits);
-        for (k = 0; k < 8; k++, bits >>= 8)
-            h = (h ^ (unsigned)(bits & 0xffu)) * 16777619u;
-    }
-    return h ? h : 1u;
-}
-
-int hg_geometry_mismatch(unsigned board_fp, unsigned own_fp, int *calls)
-{
-    if (board_fp == 0 || board_fp == own_fp) {
-        *calls = 0;
-        return 0;
-    }
-    if (*calls <= HG_GEOMETRY_MISMATCH_CALLS)
-        (*calls)++;                   /* stops one past: the report comes once */
-    return *calls == HG_GEOMETRY_MISMATCH_CALLS;
+    int n;
+    const hg_param_info *t = hg_params_table(&n);
+    hg_check_init(r, t, n, why);
 }
 
 int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char **why)
 {
-    check_report r = {0, 0, 0, 0};
+    hg_check r;
+    check_start(&r, 0);
     geometry_rules(g, &r);
     return first_failure(&r, bad_field, why);
 }
 
 /* Every rule of the whole set, in order (geometry first). */
-static void params_rules(const hg_params *p, check_report *r)
+static void params_rules(const hg_params *p, hg_check *r)
 {
     /* fields that must be finite and strictly positive */
     static const char *const positive[] = {
@@ -319,63 +250,61 @@ static void params_rules(const hg_params *p, check_report *r)
     for (i = 0; i < (unsigned)n; i++) {
         double v = *hg_params_field(q, t[i].name);
         if (!(fabs(v) < HG_PARAM_MAX_ABS))
-            refuse(r, t[i].name, "must be finite and below 1e9 in magnitude (SI units)");
+            hg_check_refuse(r, t[i].name, "must be finite and below 1e9 in magnitude (SI units)");
     }
     for (i = 0; i < sizeof positive / sizeof positive[0]; i++) {
         double v = *hg_params_field(q, positive[i]);
         if (!(isfinite(v) && v >= HG_PARAM_MIN_POSITIVE))
-            refuse(r, positive[i], "must be positive (at least 1e-9 in SI units)");
+            hg_check_refuse(r, positive[i], "must be positive (at least 1e-9 in SI units)");
     }
     for (i = 0; i < sizeof nonneg / sizeof nonneg[0]; i++) {
         double v = *hg_params_field(q, nonneg[i]);
         if (!(isfinite(v) && v >= 0))
-            refuse(r, nonneg[i], "must be finite and >= 0");
+            hg_check_refuse(r, nonneg[i], "must be finite and >= 0");
     }
     /* a lumped bar needs m_end > 0 and m_mid >= 0: m_bar l^2 / 4 <= i_bar < m_bar l^2 / 2 */
-    if (!failed(r, "i_bar") && !failed(r, "m_bar") && !failed(r, "l") &&
+    if (!hg_check_failed(r, "i_bar") && !hg_check_failed(r, "m_bar") && !hg_check_failed(r, "l") &&
         !(p->i_bar_kgm2 >= p->m_bar_kg * p->geo.l_m * p->geo.l_m / 4 &&
           p->i_bar_kgm2 < p->m_bar_kg * p->geo.l_m * p->geo.l_m / 2))
-        refuse(r, "i_bar", "must lie in [m_bar l^2/4, m_bar l^2/2) for a bar with its COM at mid-length");
-    if (!failed(r, "limit_min") && !(isfinite(p->stop_min_m) && p->stop_min_m < p->limit_min_m))
-        refuse(r, "stop_min", "must be finite and below limit_min");
+        hg_check_refuse(r, "i_bar", "must lie in [m_bar l^2/4, m_bar l^2/2) for a bar with its COM at mid-length");
+    if (!hg_check_failed(r, "limit_min") && !(isfinite(p->stop_min_m) && p->stop_min_m < p->limit_min_m))
+        hg_check_refuse(r, "stop_min", "must be finite and below limit_min");
     if (!(isfinite(p->limit_min_m) && p->limit_min_m < 0))
-        refuse(r, "limit_min", "must be finite and below HOME (0)");
+        hg_check_refuse(r, "limit_min", "must be finite and below HOME (0)");
     if (!(isfinite(p->limit_max_m) && p->limit_max_m > 0))
-        refuse(r, "limit_max", "must be finite and above HOME (0)");
-    if (!failed(r, "limit_max") && !(isfinite(p->stop_max_m) && p->stop_max_m > p->limit_max_m))
-        refuse(r, "stop_max", "must be finite and above limit_max");
+        hg_check_refuse(r, "limit_max", "must be finite and above HOME (0)");
+    if (!hg_check_failed(r, "limit_max") && !(isfinite(p->stop_max_m) && p->stop_max_m > p->limit_max_m))
+        hg_check_refuse(r, "stop_max", "must be finite and above limit_max");
     if (!(p->amp_mode == 0.0 || p->amp_mode == 1.0))
-        refuse(r, "amp_mode", "must be 0 (torque mode) or 1 (velocity mode)");
-    if (!failed(r, "f_static") && !failed(r, "f_coulomb") && !(p->f_static_n >= p->f_coulomb_n))
-        refuse(r, "f_static", "must be at least f_coulomb (breakaway below the sliding force)");
+        hg_check_refuse(r, "amp_mode", "must be 0 (torque mode) or 1 (velocity mode)");
+    if (!hg_check_failed(r, "f_static") && !hg_check_failed(r, "f_coulomb") && !(p->f_static_n >= p->f_coulomb_n))
+        hg_check_refuse(r, "f_static", "must be at least f_coulomb (breakaway below the sliding force)");
     /* the bus must drive, at standstill, the current that holds the machine at HOME */
-    if (!failed(r, "v_bus") && !failed(r, "r_winding") && !failed(r, "kt") && !failed(r, "lead") &&
-        !failed(r, "g") && !failed(r, "m_head") && !failed(r, "m_bar") && !failed(r, "m_carriage") &&
+    if (!hg_check_failed(r, "v_bus") && !hg_check_failed(r, "r_winding") && !hg_check_failed(r, "kt") && !hg_check_failed(r, "lead") &&
+        !hg_check_failed(r, "g") && !hg_check_failed(r, "m_head") && !hg_check_failed(r, "m_bar") && !hg_check_failed(r, "m_carriage") &&
         !(p->v_bus_v > p->r_winding_ohm * hg_hold_current(p)))
-        refuse(r, "v_bus", "must exceed r_winding times the current that holds the machine at HOME "
+        hg_check_refuse(r, "v_bus", "must exceed r_winding times the current that holds the machine at HOME "
                            "(W / 6 / (kt 2 pi / lead)): the drives could not hold the head");
-    if (!failed(r, "limit_min") && !failed(r, "limit_max") &&
+    if (!hg_check_failed(r, "limit_min") && !hg_check_failed(r, "limit_max") &&
         !(isfinite(p->home_switch_m) && p->home_switch_m > p->limit_min_m &&
           p->home_switch_m < p->limit_max_m))
-        refuse(r, "home_switch", "must lie between the limit switches");
+        hg_check_refuse(r, "home_switch", "must lie between the limit switches");
 }
 
 int hg_params_check(const hg_params *p, const char **bad_field, const char **why)
 {
-    check_report r = {0, 0, 0, 0};
+    hg_check r;
+    check_start(&r, 0);
     params_rules(p, &r);
     return first_failure(&r, bad_field, why);
 }
 
-int hg_params_check_all(const hg_params *p, unsigned long long *mask, const char *why[HG_PARAMS_MAX])
+int hg_params_check_all(const hg_params *p, hg_bitset *bad, const char *why[HG_PARAMS_MAX])
 {
-    check_report r = {0, 0, 0, why};
-    int i;
-    if (why)
-        for (i = 0; i < HG_PARAMS_MAX; i++)
-            why[i] = 0;
+    hg_check r;
+    check_start(&r, why);
     params_rules(p, &r);
-    if (mask)
-        *mask = r.mask;
-    return r.first_field ? HG_ERR_BAD_PARAM : HG_OK;
+    if (bad)
+        *bad = r.bad;
+    return hg_check_any(&r) ? HG_ERR_BAD_PARAM : HG_OK;
 }

@@ -2,24 +2,16 @@
  * friction and strokes, all in SI units (the unit is in each field name).
  * Defaults are the numbers of docs/model.md. Every field can be
  * read and set by its spec name ("l", "m_head", "c_visc", ...), so the CLI
- * (--set name=value) and the HAL driver share one table.
+ * (--set name=value), the HAL driver and the FMU share one table (the
+ * Hexaglide plant's, hg_plant_hexaglide.c). The rules of a valid set live
+ * here too, the geometry's included (they need the guard's clearance at
+ * HOME, hg_guard.h).
  * Pure C, no LinuxCNC dependency, no malloc, no stdio. */
 #ifndef HG_PARAMS_H
 #define HG_PARAMS_H
 
-/* Geometry: everything the kinematics needs, the joints' ranges included.
- * The carriage height above the head joints at HOME is not stored: it
- * follows from l, lb, lp (hg_home_height). */
-typedef struct {
-    double l_m;      /* bar length, joint centre to joint centre */
-    double lb_m;     /* machine axis to a post's guide plane */
-    double e_m;      /* half spacing of a post's two guides (and head joints) */
-    double lp_m;     /* head joint radius along the post direction */
-    double cone_carriage_rad; /* largest angle of a bar in its carriage (spherical) joint,
-                                 measured from the bar's direction at HOME */
-    double cone_head_rad;     /* the same in its head (universal) joint, in head axes */
-    double d_bar_m;  /* bar diameter: two bar axes closer than this means the bars touch */
-} hg_geometry;
+#include "hg_geometry.h"
+#include "hg_param_table.h"
 
 /* The whole machine. */
 typedef struct {
@@ -70,22 +62,7 @@ typedef struct {
 /* ... and any must-be-positive field below this one (1/x would overflow). */
 #define HG_PARAM_MIN_POSITIVE 1e-9
 
-/* One entry of the by-name table. */
-typedef struct {
-    const char *name;      /* spec name, e.g. "m_head" */
-    const char *unit;      /* SI unit, e.g. "kg" */
-    const char *what;      /* one-line description */
-    unsigned long offset;  /* offsetof(hg_params, field) */
-    const char *hal_name;  /* HAL parameter name: the spec name with _ -> -, e.g. "m-head" */
-    const char *hal_unit;  /* unit on HAL: mm for lengths (LinuxCNC machine units), deg for
-                              angles, else the SI unit */
-    double hal_scale;      /* HAL value = SI value * hal_scale (1000 for lengths, 180/pi for
-                              angles, else 1) */
-    const char *ini_key;   /* key of the INI file's [HEXAGLIDE] section (value in the HAL
-                              unit, as hexaglide.hal copies it), or 0: set it by setp */
-} hg_param_info;
-
-/* Upper bound of the table's length (bit masks over the table fit in 64 bits). */
+/* Upper bound of the table's length. */
 #define HG_PARAMS_MAX 48
 
 /* Fill p with the spec's defaults. */
@@ -111,32 +88,16 @@ int hg_params_set(hg_params *p, const char *name, double value);
  * the offending field and *why saying what is wrong (static strings). */
 int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char **why);
 
-/* A fingerprint of the geometry (FNV-1a over its fields' bits, never 0):
- * two components that must simulate one machine (hexaglidekins and the
- * board) compare it to find a mismatch. */
-unsigned hg_geometry_fingerprint(const hg_geometry *g);
-
-/* Calls a fingerprint mismatch must last before it is reported (about
- * 0.1 s of servo periods): a geometry set on both components in one HAL
- * file reaches the board a period after the kinematics. */
-#define HG_GEOMETRY_MISMATCH_CALLS 200
-
-/* One comparison of the board's fingerprint (0: not connected) with our
- * own; *calls counts consecutive mismatches (0 at load). 1 exactly on the
- * HG_GEOMETRY_MISMATCH_CALLS-th of them, the call to report it on (again
- * after the two matched), else 0. */
-int hg_geometry_mismatch(unsigned board_fp, unsigned own_fp, int *calls);
-
 /* Check the whole set (geometry, positive masses, ordered strokes, ...). */
 int hg_params_check(const hg_params *p, const char **bad_field, const char **why);
 
 /* Check the whole set and report EVERY invalid field: 0, or
- * HG_ERR_BAD_PARAM with bit i of *mask (may be 0) set for each invalid
+ * HG_ERR_BAD_PARAM with bit i of *bad (may be 0) set for each invalid
  * table entry i and why[i] (may be 0; HG_PARAMS_MAX entries, 0 for valid
  * ones) its reason. A rule that depends on an invalid field is skipped
  * (e.g. "l > lb - lp" when lb is invalid). The first failure is the one
  * hg_params_check reports. */
-int hg_params_check_all(const hg_params *p, unsigned long long *mask, const char *why[HG_PARAMS_MAX]);
+int hg_params_check_all(const hg_params *p, hg_bitset *bad, const char *why[HG_PARAMS_MAX]);
 
 /* Motor current that holds the machine at HOME: W / 6 / (kt 2 pi / lead)
  * (A), W the weight of head, bars and carriages. */
@@ -148,10 +109,5 @@ const char *hg_params_hal_name(const char *name);
 
 /* 1 if table entry i is a field of hg_geometry (what hexaglidekins takes). */
 int hg_param_is_geometry(int i);
-
-/* Carriage height above the head joints at HOME, the height that puts the
- * head at pose 0 when all carriages are at 0: sqrt(l^2 - (lb - lp)^2)
- * (NaN for a geometry without a HOME, l <= lb - lp). */
-double hg_home_height(const hg_geometry *g);
 
 #endif

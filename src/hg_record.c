@@ -233,10 +233,13 @@ int hg_record_open(hg_record *r, const char *buf, size_t len, hg_record_error *e
     rc = next_line(r, &s, &n, e);
     if (rc < 0)
         return rc;
-    if (n != sizeof HG_RECORD_MAGIC - 1 || memcmp(s, HG_RECORD_MAGIC, n) != 0)
+    /* "# hexaglide-record N", N one of the formats this reader knows */
+    if (n != sizeof HG_RECORD_MAGIC - 1 || memcmp(s, HG_RECORD_MAGIC, n - 1) != 0 || s[n - 1] < '1' ||
+        s[n - 1] > '0' + HG_RECORD_FORMAT_MAX)
         return fail(r, e, HG_REC_ERR_MAGIC, 1, 1, -1,
-                    "line 1 is not '" HG_RECORD_MAGIC "': not a record file (make one with "
-                    "tools/hg_record.py, docs/replay.md)");
+                    "line 1 is not '" HG_RECORD_MAGIC "' (or an earlier format): not a record file, or "
+                    "one of a newer recorder (make one with tools/hg_record.py, docs/replay.md)");
+    r->format = s[n - 1] - '0';
     while (1) {
         rc = next_line(r, &s, &n, e);
         if (rc < 0)

@@ -2,7 +2,9 @@
  * board, one row per servo period (docs/replay.md, tools/hg_record.py).
  *
  * Format (text, lines end in '\n', "\r\n" accepted):
- *   # hexaglide-record 1            magic, line 1
+ *   # hexaglide-record 2            magic, line 1: the format (1, written by
+ *                                   d20d9e5 and before, is read too; the
+ *                                   columns of each: hg_board_rec.h)
  *   # key value                     metadata (model, period-ns, board, ...)
  *   sample,name1,name2,...          header: column names, comma-separated
  *   0,1.5,-3,...                    one row per servo period, sample 0, 1, 2...
@@ -24,7 +26,8 @@
 
 #include <stddef.h>
 
-#define HG_RECORD_MAGIC "# hexaglide-record 1"
+#define HG_RECORD_MAGIC "# hexaglide-record 2"   /* what the recorder writes */
+#define HG_RECORD_FORMAT_MAX 2                     /* the newest format read */
 #define HG_RECORD_MAX_COLS 256        /* columns per row, sample included */
 #define HG_RECORD_NAME_MAX 63         /* characters of a column name */
 #define HG_RECORD_LINE_MAX 65536      /* bytes of one line, newline excluded */
@@ -74,6 +77,7 @@ typedef struct {
 /* The reader: buffer, header and position. */
 typedef struct {
     const char *buf;                  /* the whole file (not owned) */
+    int format;                       /* the magic line's format number (1 or 2) */
     size_t len, pos;                  /* its length, the next byte to read */
     long line;                        /* lines consumed so far */
     long rows;                        /* data rows read so far */

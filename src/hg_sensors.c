@@ -56,35 +56,34 @@ static long long floor_saturated(double x)
     return (long long)floor(x);
 }
 
-long long hg_encoder_raw_counts(double z_m, double lead_m, double counts_per_rev)
+long long hg_encoder_raw_counts(double turns, double counts_per_rev)
 {
-    if (!(lead_m > 0) || !(counts_per_rev > 0) || !isfinite(z_m))
+    if (!(counts_per_rev > 0) || !isfinite(turns))
         return 0;
-    return floor_saturated(z_m / lead_m * counts_per_rev);
+    return floor_saturated(turns * counts_per_rev);
 }
 
-long long hg_encoder_revolution(double z_m, double lead_m)
+long long hg_encoder_revolution(double turns)
 {
-    if (!(lead_m > 0) || !isfinite(z_m))
+    if (!isfinite(turns))
         return 0;
-    return floor_saturated(z_m / lead_m);
+    return floor_saturated(turns);
 }
 
-void hg_encoder_init(hg_encoder *e, double z_m, double lead_m, double counts_per_rev)
+void hg_encoder_init(hg_encoder *e, double turns, double counts_per_rev)
 {
-    e->raw_counts = hg_encoder_raw_counts(z_m, lead_m, counts_per_rev);
-    e->revolution = hg_encoder_revolution(z_m, lead_m);
+    e->raw_counts = hg_encoder_raw_counts(turns, counts_per_rev);
+    e->revolution = hg_encoder_revolution(turns);
     e->offset_counts = 0;
     e->latch_armed = 0;
     e->latch_hit = 0;
     e->index_pulse = 0;
 }
 
-int hg_encoder_update(hg_encoder *e, double z_m, double lead_m, double counts_per_rev,
-                      int index_lost)
+int hg_encoder_update(hg_encoder *e, double turns, double counts_per_rev, int index_lost)
 {
-    long long rev = hg_encoder_revolution(z_m, lead_m);
-    e->raw_counts = hg_encoder_raw_counts(z_m, lead_m, counts_per_rev);
+    long long rev = hg_encoder_revolution(turns);
+    e->raw_counts = hg_encoder_raw_counts(turns, counts_per_rev);
     e->index_pulse = 0;
     if (rev != e->revolution && !index_lost) {
         /* the first index on the way: the top of the old revolution going
@@ -100,12 +99,12 @@ int hg_encoder_update(hg_encoder *e, double z_m, double lead_m, double counts_pe
     return e->index_pulse;
 }
 
-void hg_encoder_rescale(hg_encoder *e, double z_m, double lead_m, double counts_per_rev)
+void hg_encoder_rescale(hg_encoder *e, double turns, double counts_per_rev)
 {
-    long long raw = hg_encoder_raw_counts(z_m, lead_m, counts_per_rev);
+    long long raw = hg_encoder_raw_counts(turns, counts_per_rev);
     e->offset_counts += raw - e->raw_counts;
     e->raw_counts = raw;
-    e->revolution = hg_encoder_revolution(z_m, lead_m);
+    e->revolution = hg_encoder_revolution(turns);
     e->index_pulse = 0;
 }
 
@@ -130,20 +129,6 @@ int hg_encoder_count(const hg_encoder *e)
 {
     unsigned long long c = (unsigned long long)(e->raw_counts - e->offset_counts);
     return (int)(unsigned)(c & 0xffffffffull); /* the 32-bit counter wraps */
-}
-
-unsigned hg_switches(const hg_params *p, double z_m)
-{
-    unsigned s = 0;
-    if (!isfinite(z_m))
-        return HG_SW_MIN | HG_SW_MAX;
-    if (z_m <= p->limit_min_m)
-        s |= HG_SW_MIN;
-    if (z_m >= p->limit_max_m)
-        s |= HG_SW_MAX;
-    if (z_m >= p->home_switch_m)
-        s |= HG_SW_HOME;
-    return s;
 }
 
 unsigned hg_switches_stuck(unsigned fresh, unsigned previous, unsigned stuck_mask)

@@ -3,18 +3,20 @@
  * home switches, the board watchdog. What the HAL driver
  * motenc_hexaglide_dyns_virtual puts behind hal_motenc's pins.
  *
- * Conventions: carriage height z in metres relative to HOME (hg_params.h);
- * the encoder counts the motor angle, floor(z / lead * counts_per_rev), so
- * counts rise when the carriage goes up and read 0 at HOME after power-up;
- * the index pulse comes once per motor revolution, where z passes a
- * multiple of lead (the index edge is between raw counts k*cpr-1 and k*cpr).
+ * Conventions: the encoder counts the motor angle in revolutions since
+ * HOME, turns (the plant's, hg_plant.h: for a screw z / lead), as
+ * floor(turns * counts_per_rev), so counts rise with turns and read 0 at
+ * HOME after power-up; the index pulse comes once per motor revolution,
+ * where turns passes a whole number (the index edge is between raw counts
+ * k*cpr-1 and k*cpr). Switch positions are the plant's; the board only
+ * applies stuck switches.
  *
  * Pure C and libm: no LinuxCNC dependency, no malloc, no stdio, no loops
  * that depend on data. Every function returns finite numbers for any input. */
 #ifndef HG_SENSORS_H
 #define HG_SENSORS_H
 
-#include "hg_params.h"
+#include "hg_analog.h"          /* HG_DAC_VOLTS_MAX: the +-10 V DAC range */
 
 /* The MOTENC-100's channel counts (LinuxCNC src/hal/drivers/motenc.h). */
 #define HG_BOARD_ENCODERS 8
@@ -22,25 +24,20 @@
 #define HG_BOARD_ADCS 8
 #define HG_BOARD_INPUTS 68
 #define HG_BOARD_OUTPUTS 32
-#define HG_BOARD_JOINTS 6            /* DACs, encoders and ADCs 0..5 serve joints 0..5 */
 
 /* DAC: +-10 V, 13 bits; counts = (u32)(volts * -8191/20 + 4096) as hal_motenc. */
-#include "hg_forces.h"          /* HG_DAC_VOLTS_MAX: the +-10 V DAC range */
 #define HG_DAC_COUNT_ZERO 4096.0
 #define HG_DAC_COUNTS_PER_VOLT (8191.0 / 20.0)
 /* ADC: +-5 V, 14 bits, 16384 counts over 10 V. */
 #define HG_ADC_VOLTS_MAX 5.0
 #define HG_ADC_COUNTS_PER_VOLT (16384.0 / 10.0)
 
-/* Digital inputs of joint k: limit-, limit+, home, amplifier fault, at
+/* Digital inputs of channel k: limit-, limit+, home, amplifier fault, at
  * in-(4k+0..3): the layout of LinuxCNC's stock motenc_io.hal, extended
- * from 3 to 6 joints. */
-#define HG_INPUTS_PER_JOINT 4
+ * from 3 to 8 channels. The first three are the plant's switch bits
+ * HG_SW_MIN, HG_SW_MAX, HG_SW_HOME (hg_plant.h) in this order. */
+#define HG_INPUTS_PER_CHANNEL 4
 enum { HG_IN_LIMIT_MIN = 0, HG_IN_LIMIT_MAX = 1, HG_IN_HOME = 2, HG_IN_AMP_FAULT = 3 };
-
-/* Switch bits of one joint, as returned by hg_switches. */
-enum { HG_SW_MIN = 1u << HG_IN_LIMIT_MIN, HG_SW_MAX = 1u << HG_IN_LIMIT_MAX,
-       HG_SW_HOME = 1u << HG_IN_HOME };
 
 /* Watchdog control bits (hal_motenc's watchdog-control parameter). */
 #define HG_WD_CTL_16MS 0x01u
@@ -64,12 +61,12 @@ double hg_adc_sample(double volts);
  * 0 when that is not finite. */
 double hg_adc_value(double volts, double gain, double offset);
 
-/* Raw encoder count floor(z / lead * cpr), saturated to +-2^52 and 0 for
- * non-finite input or a non-positive lead or cpr. */
-long long hg_encoder_raw_counts(double z_m, double lead_m, double counts_per_rev);
+/* Raw encoder count floor(turns * cpr), saturated to +-2^52 and 0 for
+ * non-finite input or a non-positive cpr. */
+long long hg_encoder_raw_counts(double turns, double counts_per_rev);
 
-/* Motor revolution number floor(z / lead) (same saturation rules). */
-long long hg_encoder_revolution(double z_m, double lead_m);
+/* Motor revolution number floor(turns) (same saturation rules). */
+long long hg_encoder_revolution(double turns);
 
 /* One quadrature channel with its index latch: the counter hardware. */
 typedef struct {
@@ -81,18 +78,17 @@ typedef struct {
     int index_pulse;          /* an index pulse passed during the last update */
 } hg_encoder;
 
-/* Power-up at position z: counter reads raw counts of z, latch disarmed. */
-void hg_encoder_init(hg_encoder *e, double z_m, double lead_m, double counts_per_rev);
+/* Power-up at motor position turns: counter reads its raw counts, latch disarmed. */
+void hg_encoder_init(hg_encoder *e, double turns, double counts_per_rev);
 
-/* Follow the carriage to z: detect index pulses between the previous and
+/* Follow the motor to turns: detect index pulses between the previous and
  * this position (unless index_lost), zero the counter at the first one if
  * the latch is armed. Returns 1 if an index pulse was seen, else 0. */
-int hg_encoder_update(hg_encoder *e, double z_m, double lead_m, double counts_per_rev,
-                      int index_lost);
+int hg_encoder_update(hg_encoder *e, double turns, double counts_per_rev, int index_lost);
 
-/* New lead or counts_per_rev at position z: the counter keeps its reading
- * and no index pulse is produced. */
-void hg_encoder_rescale(hg_encoder *e, double z_m, double lead_m, double counts_per_rev);
+/* New turns per unit of travel or counts_per_rev at motor position turns:
+ * the counter keeps its reading and no index pulse is produced. */
+void hg_encoder_rescale(hg_encoder *e, double turns, double counts_per_rev);
 
 /* Arm (1) or disarm (0) the index latch; disarming clears latch_hit. */
 void hg_encoder_arm(hg_encoder *e, int armed);
@@ -105,11 +101,6 @@ void hg_encoder_glitch(hg_encoder *e, long long delta_counts);
 
 /* The counter as hal_motenc's s32 count pin shows it (32-bit wrap). */
 int hg_encoder_count(const hg_encoder *e);
-
-/* Switch bits (HG_SW_*) for carriage height z: limit- for z <= limit_min,
- * limit+ for z >= limit_max, home for z >= home_switch. Non-finite z trips
- * both limits. */
-unsigned hg_switches(const hg_params *p, double z_m);
 
 /* Apply stuck switches: bits in stuck_mask keep their previous value. */
 unsigned hg_switches_stuck(unsigned fresh, unsigned previous, unsigned stuck_mask);

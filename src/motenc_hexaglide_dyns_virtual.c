@@ -1,10 +1,11 @@
 /* motenc_hexaglide_dyns_virtual.c - HAL glue: a virtual Vital Systems
- * MOTENC-100 board with the Hexaglide behind its pins.
+ * MOTENC-100 board with a machine (a plant: the Hexaglide by default,
+ * hg_plant.h) behind its pins.
  *
  * Exports exactly hal_motenc's pins, parameters and functions under
  * motenc.<board>. (LinuxCNC 2.9 src/hal/drivers/hal_motenc.c), plus the
  * function motenc.<board>.dynamics and the inspection / fault-injection
- * pins and model parameters under motenc-hexaglide.<board>.
+ * pins and the plant's parameters under motenc-hexaglide.<board>.
  * (docs/driver.md). The board itself is hg_board.h: this file only copies
  * pins into hg_board_inputs, calls hg_board_step once per period (in
  * dynamics), copies hg_board_outputs back to pins (each hal_motenc function
@@ -24,12 +25,14 @@
 #include "hg_units.h"
 
 MODULE_AUTHOR("Virtual Hexaglide project");
-MODULE_DESCRIPTION("Virtual MOTENC-100 board driving a simulated Hexaglide (drop-in for hal_motenc)");
+MODULE_DESCRIPTION("Virtual MOTENC-100 board driving a simulated machine, the Hexaglide by default (drop-in for hal_motenc)");
 MODULE_LICENSE("GPL");
 
 /* Module parameters (RTAPI needs them at file scope; read only at load). */
-static char *model = "reduced-cartesian";
-RTAPI_MP_STRING(model, "parametrization: standard, reduced-joints, reduced-cartesian, fused-cartesian");
+static char *plant = "hexaglide";
+RTAPI_MP_STRING(plant, "the machine behind the board: hexaglide (default) or serial");
+static char *model = 0;
+RTAPI_MP_STRING(model, "the plant's model: hexaglide standard, reduced-joints, reduced-cartesian (default), fused-cartesian");
 static int board = 0;
 RTAPI_MP_INT(board, "board id 0..3, the <board> in motenc.<board>. names");
 static int record = 0;
@@ -45,10 +48,12 @@ typedef struct {
 } enc_hal;
 typedef struct { hal_float_t *value; hal_float_t offset, gain; } analog_hal;
 typedef struct {
-    hal_float_t *pos, *vel, *volts, *current, *force;
-    hal_bit_t *amp_fail, *stuck[3], *tripped[3], *index_lost, *bar_broken;
+    hal_float_t *pos, *vel, *motor_pos, *volts, *current, *force;
+    hal_bit_t *amp_fail, *stuck[3], *tripped[3], *index_lost, *inject[HG_PLANT_INJECT_MAX];
     hal_s32_t *enc_glitch;
 } joint_hal;
+
+typedef union { hal_float_t *f; hal_u32_t *u; } extra_pin;
 
 typedef union { hal_float_t *f; hal_s32_t *s; hal_u32_t *u; hal_bit_t *b; } rec_pin;
 
@@ -60,16 +65,16 @@ typedef struct {
     hal_bit_t out_invert[HG_BOARD_OUTPUTS];
     hal_bit_t *estop_in, *estop_in_not, *watchdog_reset;
     hal_u32_t watchdog_control;
-    joint_hal joint[HG_BOARD_JOINTS];
-    hal_float_t *head[6], *sim_time, *residual;
-    hal_u32_t *steps, *step_ns, *step_max_ns, *dout_word, *bars_broken, *substeps_run;
-    hal_u32_t *geometry;              /* hg_geometry_fingerprint of the geometry in force */
+    joint_hal joint[HG_CHANNELS_MAX];
+    extra_pin extra[HG_PLANT_EXTRA_MAX]; /* the plant's own outputs (its table: head pose, ...) */
+    hal_float_t *sim_time;
+    hal_u32_t *steps, *step_ns, *step_max_ns, *dout_word, *substeps_run;
     hal_bit_t *fault, *reset, *amps_on, *estop_button, *watchdog_expired, *param_error, *dac_nan;
     hal_s32_t *fault_code;
     hal_s32_t estop_loop_out;
     hal_float_t adc_volts_per_amp;
-    hal_float_t par[HG_PARAMS_MAX];   /* the model parameters in HAL units */
-    double shadow[HG_PARAMS_MAX];     /* what the glue last wrote there */
+    hal_float_t par[HG_PLANT_PARAMS_MAX]; /* the plant's parameters in HAL units */
+    double shadow[HG_PLANT_PARAMS_MAX]; /* what the glue last wrote there */
     hal_u32_t substeps, integrator;
     hal_bit_t record;                 /* XP.<board>.record: write the rec pins (the recorder sets it;
                                          exists with loadrt record=1 only, else stays 0) */
@@ -80,7 +85,10 @@ typedef struct {
     hg_board_rec_field rec[HG_BOARD_REC_MAX]; /* the record pin set (docs/replay.md; nrec 0 without record=1) */
     rec_pin rec_pin[HG_BOARD_REC_MAX]; /* XP.<board>.rec.<name>, type as rec[i].type */
     int nrec;
-    int model;                        /* hg_model_kind loaded */
+    hg_board_rec_stream stream;       /* the parameters' events on the rec pins */
+    int recording;                    /* record was TRUE in the last period */
+    const char *why[HG_BOARD_WHY_LEN]; /* a refusal's reasons (too large for the stack) */
+    int nparams;                      /* entries of the plant's parameter table */
 } board_t;
 
 static int comp_id;
@@ -156,11 +164,11 @@ static void misc_update(void *arg, long period)
 static int read_params(board_t *b)
 {
     int i, n, changed = 0;
-    const hg_param_info *t = hg_params_table(&n);
+    const hg_param_info *t = hg_board_plant(&b->b)->table(&n);
     for (i = 0; i < n; i++) {
         double v = b->par[i];
         if (memcmp(&v, &b->shadow[i], sizeof v) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise, a NaN a user set equals itself
-            *hg_params_at(&b->ins.params.model, i) = v / t[i].hal_scale;
+            b->ins.params.plant.v[i] = v / t[i].hal_scale;
             changed = 1;
         }
     }
@@ -174,10 +182,10 @@ static int read_params(board_t *b)
 static void write_params(board_t *b)
 {
     int i, n;
-    const hg_param_info *t = hg_params_table(&n);
+    const hg_param_info *t = hg_board_plant(&b->b)->table(&n);
     for (i = 0; i < n; i++) {
-        double *want = hg_params_at(&b->ins.params.model, i);
-        double got = hg_params_get(&b->o.params.model, i);
+        double *want = &b->ins.params.plant.v[i];
+        double got = b->o.params.plant.v[i];
         if (memcmp(want, &got, sizeof got) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise
             *want = got;
             b->par[i] = got * t[i].hal_scale;
@@ -186,17 +194,15 @@ static void write_params(board_t *b)
     }
     b->ins.params.substeps = b->substeps = b->o.params.substeps;
     b->ins.params.integrator = b->integrator = b->o.params.integrator;
-    *b->geometry = hg_geometry_fingerprint(&b->o.params.model.geo);
 }
 
 /* Say, once, why the parameter change was refused: every field, its value, the rule. */
 static void report_refusal(board_t *b, long period)
 {
-    const char *why[HG_BOARD_WHY_LEN];
-    unsigned long long mask;
+    hg_bitset bad;
     char v[HG_TEXT_VALUE_LEN];
     int i, n;
-    const hg_param_info *t = hg_params_table(&n);
+    const hg_param_info *t = hg_board_plant(&b->b)->table(&n);
     if (b->o.param_rc != HG_ERR_BAD_PARAM) {
         char what[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&b->b, &b->o, period, 1, what);
@@ -206,20 +212,20 @@ static void report_refusal(board_t *b, long period)
                         HG_SUBSTEPS_MAX);
         return;
     }
-    hg_board_params_check(&b->ins.params, &mask, why);
+    hg_board_params_check(&b->b, &b->ins.params, &bad, b->why);
     rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter change refused, keeping the set in "
                     "force (halcmd show param displays it again); invalid:\n", b->id);
     for (i = 0; i < HG_BOARD_WHY_LEN; i++) {
-        if (!((mask >> i) & 1u))
+        if (!hg_bitset_has(&bad, i))
             continue;
         if (i < n)
-            hg_text_value(v, hg_params_get(&b->ins.params.model, i) * t[i].hal_scale);
+            hg_text_value(v, b->ins.params.plant.v[i] * t[i].hal_scale);
         else
             hg_text_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->ins.params.substeps
                                                                 : b->ins.params.integrator);
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s: %s\n", b->id, b->id,
-                        hg_board_param_hal_name(i), v, i < n ? " " : "", i < n ? t[i].hal_unit : "",
-                        why[i] ? why[i] : "");
+                        hg_board_param_hal_name(&b->b, i), v, i < n ? " " : "", i < n ? t[i].hal_unit : "",
+                        b->why[i] ? b->why[i] : "");
     }
 }
 
@@ -227,23 +233,25 @@ static void report_refusal(board_t *b, long period)
 static void report(board_t *b, long period)
 {
     const hg_board_outputs *o = &b->o;
-    int k, id = b->id;
+    const hg_plant *pl = hg_board_plant(&b->b);
+    int k, i, id = b->id;
     if (o->events & HG_EV_PARAM_REFUSED)
         report_refusal(b, period);
     if (o->events & HG_EV_GEOMETRY_RESTART)
         rtapi_print_msg(RTAPI_MSG_INFO, MODNAME ": board %d: new geometry, machine restarted at HOME\n", id);
     if (o->events & HG_EV_RESET_REFUSED)
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: reset refused: " XP ".%d.joint-%d.bar-broken "
-                        "is TRUE; set it FALSE, then reset again\n", id, id, o->reset_refused_joint);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: reset refused: " XP ".%d.joint-%d.%s "
+                        "is TRUE; set it FALSE, then reset again\n", id, id, o->reset_refused_channel,
+                        pl->injections[o->reset_refused_injection].hal_name);
     if (o->events & HG_EV_PERIOD_BAD)
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: thread period %ld ns outside (0, %ld]: not "
                         "integrating; put motenc.%d.dynamics in a servo thread of about 1 ms\n",
                         id, period, HG_PERIOD_MAX_NS, id);
-    for (k = 0; k < HG_BOARD_JOINTS; k++)
-        if ((o->bars_newly_broken >> k) & 1u)
-            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: bar %d (joint %d) broke (" XP ".%d.joint-%d."
-                            "bar-broken): the head hangs on the other bars; the fault latches when it "
-                            "leaves the volume the model represents\n", id, k, k, id, k);
+    for (i = 0; i < pl->ninjections; i++)
+        for (k = 0; k < HG_CHANNELS_MAX; k++)
+            if ((o->injected[i] >> k) & 1u)
+                rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: joint %d (" XP ".%d.joint-%d.%s) %s\n",
+                                id, k, id, k, pl->injections[i].hal_name, pl->injections[i].what);
     for (k = 0; k < HG_BOARD_DACS; k++)
         if ((o->dac_nan_new >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: dac-%02d: (value - offset) * gain is NaN; "
@@ -272,15 +280,15 @@ static void report(board_t *b, long period)
                         "another integrator, then " XP ".%d.reset\n", id, what, HG_SUBSTEPS_MAX,
                         o->fault_code, id);
     } else if (o->events & HG_EV_FAULT_LATCHED) {
-        char what[HG_GUARD_TEXT_LEN];
-        hg_guard_describe(&o->fault_guard, 1, what);
+        char what[HG_PLANT_TEXT_LEN];
+        pl->describe(&o->fault_report, 1, what);
         /* what struck says more than the code's text, and LinuxCNC's error
          * channel keeps only the first 255 characters: then the code alone */
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s (code %d): %s; drives off, state frozen; "
                         "set " XP ".%d.reset to restart at HOME\n", id,
                         o->fault_cause == HG_FAULT_PERIOD ? "bad thread period"
                         : o->fault_cause == HG_FAULT_HOME ? "reset at HOME failed"
-                        : o->fault_guard.kind ? "the machine struck a mechanical limit" : "dynamics step failed",
+                        : o->fault_report.kind ? "the machine struck a mechanical limit" : "dynamics step failed",
                         o->fault_code, what[0] ? what : hg_strerror(o->fault_code), id);
     }
 }
@@ -289,26 +297,29 @@ static void report(board_t *b, long period)
 static void publish(board_t *b)
 {
     const hg_board_outputs *o = &b->o;
-    double user[6];
+    const hg_plant *pl = hg_board_plant(&b->b);
     int k;
-    for (k = 0; k < HG_BOARD_JOINTS; k++) {
+    for (k = 0; k < pl->channels_max; k++) {
         joint_hal *j = &b->joint[k];
-        *j->pos = o->z_m[k] * HG_MM_PER_M;
-        *j->vel = o->zd_mps[k] * HG_MM_PER_M;
+        double unit = (o->rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M; /* machine units */
+        *j->pos = o->pos[k] * unit;
+        *j->vel = o->vel[k] * unit;
+        *j->motor_pos = o->motor_pos[k] * unit;
         *j->volts = o->volts[k];
         *j->current = o->current_a[k];
-        *j->force = o->force_n[k];
+        *j->force = o->force[k];
     }
-    hg_pose_to_user(o->pose, user);
-    for (k = 0; k < 6; k++)
-        *b->head[k] = user[k];
+    for (k = 0; k < pl->noutputs; k++) {
+        if (pl->outputs[k].is_u32)
+            *b->extra[k].u = (hal_u32_t)o->extra[k];
+        else
+            *b->extra[k].f = o->extra[k] * pl->outputs[k].hal_scale;
+    }
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         b->enc[k].scale = o->enc_scale[k];
     *b->sim_time = o->sim_time_s;
-    *b->residual = o->residual_m;
     *b->steps = o->steps;
     *b->substeps_run = o->substeps_run;
-    *b->bars_broken = o->bars_broken;
     *b->fault = o->fault;
     *b->fault_code = o->fault_code;
     *b->amps_on = o->amps_on;
@@ -320,9 +331,19 @@ static void publish(board_t *b)
 /* The record pins: this step's inputs, period and outputs, exactly. */
 static void write_rec(board_t *b, long period)
 {
+    hg_board_rec_ctx c;
     int i;
+    if (!b->recording)                /* record rose: the parameters' stream starts again */
+        hg_board_rec_stream_start(&b->stream);
+    hg_board_rec_stream_step(&b->stream, &b->ins.params, b->nparams);
+    c.in = &b->ins;
+    c.out = &b->o;
+    c.period_ns = period;
+    c.plant = b->b.plant;
+    c.variant = b->b.variant;
+    c.stream = &b->stream;
     for (i = 0; i < b->nrec; i++) {
-        double v = hg_board_rec_get(b->rec, b->nrec, i, &b->ins, &b->o, period, b->model);
+        double v = hg_board_rec_get(b->rec, b->nrec, i, &c);
         switch (b->rec[i].type) {
         case HG_BRF_F64: *b->rec_pin[i].f = v; break;
         case HG_BRF_S32: *b->rec_pin[i].s = (hal_s32_t)v; break;
@@ -358,23 +379,27 @@ static void dynamics(void *arg, long period)
         in->adc_offset[k] = b->adc[k].offset;
     }
     in->adc_volts_per_amp = b->adc_volts_per_amp;
-    for (k = 0; k < HG_BOARD_JOINTS; k++) {
+    for (k = 0; k < hg_board_plant(&b->b)->channels_max; k++) {
         joint_hal *j = &b->joint[k];
+        int i;
         in->amp_fail[k] = *j->amp_fail;
         in->stuck[k] = SW3(*j->stuck[0], *j->stuck[1], *j->stuck[2]);
         in->tripped[k] = SW3(*j->tripped[0], *j->tripped[1], *j->tripped[2]);
         in->index_lost[k] = *j->index_lost;
         in->enc_glitch[k] = *j->enc_glitch;
-        in->bar_broken[k] = *j->bar_broken;
+        in->inject[k] = 0;
+        for (i = 0; i < hg_board_plant(&b->b)->ninjections; i++)
+            in->inject[k] |= (*j->inject[i] ? 1u : 0u) << i;
     }
     changed = read_params(b);
 
     hg_board_step(&b->b, in, &b->o, period);
     if (b->record)
         write_rec(b, period);
+    b->recording = b->record;
 
     in->dac_written = in->dac_stale = in->adc_read = 0;
-    for (k = 0; k < HG_BOARD_JOINTS; k++)
+    for (k = 0; k < hg_board_plant(&b->b)->channels_max; k++)
         if (in->enc_glitch[k])
             *b->joint[k].enc_glitch = 0;  /* applied once */
     if (b->o.events & HG_EV_WATCHDOG_KICKED)
@@ -462,7 +487,7 @@ static int export_motenc(board_t *b)
 static int export_rec(board_t *b)
 {
     int rc, i;
-    b->nrec = hg_board_rec_fields(b->rec, HG_BOARD_REC_MAX);
+    b->nrec = hg_board_rec_fields(b->rec, HG_BOARD_REC_MAX, b->b.plant, HG_BOARD_REC_FORMAT);
     if (b->nrec < 0)
         return -EINVAL;
     for (i = 0; i < b->nrec; i++) {
@@ -478,17 +503,18 @@ static int export_rec(board_t *b)
     return 0;
 }
 
-/* The extra pins, the parameters (hg_params_table: HAL name and unit) and dynamics. */
+/* The extra pins, the plant's parameters (its table: HAL name and unit) and dynamics. */
 static int export_extra(board_t *b)
 {
-    static const char axis[6] = {'x', 'y', 'z', 'a', 'b', 'c'};
     static const char *const sw[3] = {"min", "max", "home"};
+    const hg_plant *pl = hg_board_plant(&b->b);
     int rc, k, i, n, id = b->id;
-    const hg_param_info *t = hg_params_table(&n);
-    for (k = 0; k < HG_BOARD_JOINTS; k++) {
+    const hg_param_info *t = pl->table(&n);
+    for (k = 0; k < pl->channels_max; k++) {
         joint_hal *j = &b->joint[k];
         PIN(float, HAL_OUT, &j->pos, XP ".%d.joint-%d.pos", id, k);
         PIN(float, HAL_OUT, &j->vel, XP ".%d.joint-%d.vel", id, k);
+        PIN(float, HAL_OUT, &j->motor_pos, XP ".%d.joint-%d.motor-pos", id, k);
         PIN(float, HAL_OUT, &j->volts, XP ".%d.joint-%d.volts", id, k);
         PIN(float, HAL_OUT, &j->current, XP ".%d.joint-%d.current", id, k);
         PIN(float, HAL_OUT, &j->force, XP ".%d.joint-%d.force", id, k);
@@ -499,17 +525,18 @@ static int export_extra(board_t *b)
             PIN(bit, HAL_IN, &j->tripped[i], XP ".%d.joint-%d.tripped-%s", id, k, sw[i]);
         PIN(bit, HAL_IN, &j->index_lost, XP ".%d.joint-%d.index-lost", id, k);
         PIN(s32, HAL_IO, &j->enc_glitch, XP ".%d.joint-%d.enc-glitch", id, k);
-        PIN(bit, HAL_IN, &j->bar_broken, XP ".%d.joint-%d.bar-broken", id, k);
+        for (i = 0; i < pl->ninjections && i < HG_PLANT_INJECT_MAX; i++)
+            PIN(bit, HAL_IN, &j->inject[i], XP ".%d.joint-%d.%s", id, k, pl->injections[i].hal_name);
     }
-    for (k = 0; k < 6; k++)
-        PIN(float, HAL_OUT, &b->head[k], XP ".%d.head-%c", id, axis[k]);
+    for (k = 0; k < pl->noutputs && k < HG_PLANT_EXTRA_MAX; k++) {
+        if (pl->outputs[k].is_u32)
+            PIN(u32, HAL_OUT, &b->extra[k].u, XP ".%d.%s", id, pl->outputs[k].hal_name);
+        else
+            PIN(float, HAL_OUT, &b->extra[k].f, XP ".%d.%s", id, pl->outputs[k].hal_name);
+    }
     PIN(float, HAL_OUT, &b->sim_time, XP ".%d.sim-time", id);
-    PIN(float, HAL_OUT, &b->residual, XP ".%d.residual", id);
     PIN(u32, HAL_OUT, &b->steps, XP ".%d.steps", id);
     PIN(u32, HAL_OUT, &b->substeps_run, XP ".%d.substeps-run", id);
-    PIN(u32, HAL_OUT, &b->bars_broken, XP ".%d.bars-broken", id);
-    PIN(u32, HAL_OUT, &b->geometry, XP ".%d.geometry-fingerprint", id);
-    *b->geometry = hg_geometry_fingerprint(&b->o.params.model.geo);
     PIN(u32, HAL_OUT, &b->step_ns, XP ".%d.step-time-ns", id);
     PIN(u32, HAL_IO, &b->step_max_ns, XP ".%d.step-time-max-ns", id);
     PIN(bit, HAL_OUT, &b->fault, XP ".%d.fault", id);
@@ -527,8 +554,9 @@ static int export_extra(board_t *b)
     b->adc_volts_per_amp = b->ins.adc_volts_per_amp;
     for (k = 0; k < n; k++) {
         PAR(float, &b->par[k], XP ".%d.%s", id, t[k].hal_name);
-        b->par[k] = b->shadow[k] = hg_params_get(&b->o.params.model, k) * t[k].hal_scale;
+        b->par[k] = b->shadow[k] = b->o.params.plant.v[k] * t[k].hal_scale;
     }
+    b->nparams = n;
     PAR(u32, &b->substeps, XP ".%d.substeps", id);
     PAR(u32, &b->integrator, XP ".%d.integrator", id);
     b->substeps = b->o.params.substeps;
@@ -544,11 +572,22 @@ static int export_extra(board_t *b)
 int rtapi_app_main(void)
 {
     board_t *b;
-    int rc, kind = hg_model_from_name(model);
+    int rc, k, pi = hg_plant_find(plant), kind;
+    const hg_plant *pl = hg_plant_at(pi);
 
+    if (!pl) {
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": plant=%s unknown; use", plant);
+        for (k = 0; hg_plant_at(k); k++)
+            rtapi_print_msg(RTAPI_MSG_ERR, "%s %s", k ? "," : "", hg_plant_at(k)->name);
+        rtapi_print_msg(RTAPI_MSG_ERR, "\n");
+        return -EINVAL;
+    }
+    kind = hg_plant_variant(pl, model);
     if (kind < 0) {
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": model=%s unknown; use standard, reduced-joints, "
-                        "reduced-cartesian or fused-cartesian\n", model);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": model=%s unknown for plant=%s; use", model, pl->name);
+        for (k = 0; k < pl->nvariants; k++)
+            rtapi_print_msg(RTAPI_MSG_ERR, "%s %s", k ? "," : "", pl->variants[k]);
+        rtapi_print_msg(RTAPI_MSG_ERR, "\n");
         return -EINVAL;
     }
     if (board < 0 || board > 3) {
@@ -573,8 +612,7 @@ int rtapi_app_main(void)
     }
     memset(b, 0, sizeof *b);
     b->id = board;
-    b->model = kind;
-    rc = hg_board_init(&b->b, (hg_model_kind)kind, 0);
+    rc = hg_board_init(&b->b, pi, kind, 0);
     if (rc) {
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": default model refused: %s\n", hg_strerror(rc));
         hal_exit(comp_id);
@@ -594,7 +632,8 @@ int rtapi_app_main(void)
     encoder_read(b, 0);
     digital_in_read(b, 0);
     misc_update(b, 0);
-    rtapi_print_msg(RTAPI_MSG_INFO, MODNAME ": board %d, model %s, ready\n", board, model);
+    rtapi_print_msg(RTAPI_MSG_INFO, MODNAME ": board %d, plant %s, model %s, ready\n", board, pl->name,
+                    pl->variants[kind]);
     hal_ready(comp_id);
     return 0;
 }

@@ -18,6 +18,8 @@ mkdir -p "$OUT"
 CORE="$(ls src/hg_*.c src/generated/*.c) src/cli/cmd_kins.c src/cli/cmd_sim.c src/cli/cli_parse.c src/cli/cli_board.c src/cli/cli_ini.c src/cli/cli_tree.c"
 INC="-Isrc -Isrc/generated -Isrc/cli -Itests/fuzz"
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=all"
+# a fuzzer that passes the wrong type fuzzes nothing: such warnings are errors here
+SAN="$SAN -Werror=incompatible-pointer-types -Werror=implicit-function-declaration -Werror=int-conversion"
 if [ -n "$ENGINE" ]; then :   # set by the parent run
 elif command -v clang >/dev/null && echo 'int LLVMFuzzerTestOneInput(const char*d,long n){return 0;}' |
         clang -x c -fsanitize=fuzzer - -o "$OUT/probe" 2>/dev/null; then

@@ -68,20 +68,31 @@ class PidGains(C.Structure):
                  "maxoutput")] + [("error_previous_target", C.c_int)]
 
 
+CHANNELS_MAX = 8            # HG_CHANNELS_MAX: the MOTENC-100's channels, the most any plant uses
+_dc = C.c_double * CHANNELS_MAX
+
+
 class LoopConfig(C.Structure):
     """hg_loop_config."""
-    _fields_ = [("pid", PidGains * 6), ("input_scale", _d6), ("output_scale", _d6),
-                ("output_offset", _d6), ("ferror_limit_mm", C.c_double), ("period_ns", C.c_long),
-                ("model_kind", C.c_int)]
+    _fields_ = [("pid", PidGains * CHANNELS_MAX), ("input_scale", _dc), ("output_scale", _dc),
+                ("output_offset", _dc), ("ferror_limit_mm", C.c_double), ("period_ns", C.c_long),
+                ("plant", C.c_int), ("variant", C.c_int)]
 
 
 class LoopSummary(C.Structure):
     """hg_loop_summary."""
-    _fields_ = [("peak_ferror_mm", _d6), ("peak_output_v", _d6), ("rms_ferror_mm", _d6),
+    _fields_ = [("peak_ferror_mm", _dc), ("peak_output_v", _dc), ("rms_ferror_mm", _dc),
                 ("periods", C.c_long), ("tripped_at", C.c_long)]
 
 
-_sizeof = _sig("hg_loop_sizeof", C.c_ulong, C.c_int)
+_board_sizeof = _sig("hg_loop_sizeof", C.c_ulong, C.c_int)
+_hexaglide_sizeof = _sig("hg_hexaglide_sizeof", C.c_ulong, C.c_int)
+
+
+def _sizeof(which):
+    """sizeof of the board's (hg_loop_sizeof) or the Hexaglide's (4, 5, 6, 12) types."""
+    return _hexaglide_sizeof(which) if which in (4, 5, 6, 12) else _board_sizeof(which)
+
 
 class GuardReport(C.Structure):
     """hg_guard_report: the mechanical limit a failed step crossed (src/hg_guard.h)."""
@@ -112,17 +123,24 @@ for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data), (12,
         raise ImportError("%s: layout differs from the library's (%d vs %d bytes): rebuild both"
                           % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
 
-_NP = _sizeof(6) // 8          # doubles in hg_params
 DEFAULT_INTEGRATOR = _sig("hg_integrator_default", C.c_int)()  # the board's scheme at load
+PLANT_PARAMS_MAX = 256      # HG_PLANT_PARAMS_MAX
+PLANT_EXTRA_MAX = 16        # HG_PLANT_EXTRA_MAX
+PLANT_INJECT_MAX = 4        # HG_PLANT_INJECT_MAX
 
 
 class BoardParams(C.Structure):
-    """hg_board_params: model parameters (SI, as hg_params), substeps, integrator."""
-    _fields_ = [("model", C.c_double * _NP), ("substeps", C.c_uint), ("integrator", C.c_uint)]
+    """hg_board_params: the plant's parameters (SI, entry i of its table at plant[i]), substeps, integrator."""
+    _fields_ = [("plant", C.c_double * PLANT_PARAMS_MAX), ("substeps", C.c_uint), ("integrator", C.c_uint)]
 
 
-_e8i, _e8d = C.c_int * 8, C.c_double * 8
-_j6i, _j6u = C.c_int * 6, C.c_uint * 6
+class PlantReport(C.Structure):
+    """hg_plant_report: what a failed step struck (the plant describes it)."""
+    _fields_ = [("kind", C.c_int), ("channel", C.c_int), ("other", C.c_int), ("value", C.c_double),
+                ("limit", C.c_double)]
+
+
+_e8i, _e8d, _e8u = C.c_int * 8, C.c_double * 8, C.c_uint * 8
 
 
 class BoardInputs(C.Structure):
@@ -132,23 +150,30 @@ class BoardInputs(C.Structure):
                 ("reset", C.c_int), ("watchdog_control", C.c_uint), ("watchdog_reset", C.c_int),
                 ("index_enable", _e8i), ("enc_reset", _e8i), ("enc_scale", _e8d), ("adc_read", C.c_int),
                 ("adc_gain", _e8d), ("adc_offset", _e8d), ("adc_volts_per_amp", C.c_double),
-                ("amp_fail", _j6i), ("stuck", _j6u), ("tripped", _j6u), ("index_lost", _j6i),
-                ("enc_glitch", _j6i), ("bar_broken", _j6i), ("params", BoardParams)]
+                ("amp_fail", _e8i), ("stuck", _e8u), ("tripped", _e8u), ("index_lost", _e8i),
+                ("enc_glitch", _e8i), ("inject", _e8u), ("params", BoardParams)]
 
 
 class BoardOutputs(C.Structure):
     """hg_board_outputs: one servo period's outputs (src/hg_board.h)."""
     _fields_ = [("count", _e8i), ("position", _e8d), ("index", _e8i), ("index_latched", _e8i),
                 ("enc_scale", _e8d), ("in_", C.c_ubyte * 68), ("dout_word", C.c_uint), ("estop_in", C.c_int),
-                ("adc", _e8d), ("pose", _d6), ("z_m", _d6), ("zd_mps", _d6), ("volts", _d6),
-                ("current_a", _d6), ("force_n", _d6), ("sim_time_s", C.c_double), ("residual_m", C.c_double),
-                ("steps", C.c_uint), ("bars_broken", C.c_uint), ("fault", C.c_int), ("fault_code", C.c_int),
-                ("fault_guard", GuardReport), ("amps_on", C.c_int), ("watchdog_expired", C.c_int), ("param_error", C.c_int),
-                ("dac_nan", C.c_int), ("params", BoardParams), ("events", C.c_uint),
-                ("refused_mask", C.c_ulonglong), ("param_rc", C.c_int), ("reset_refused_joint", C.c_int),
-                ("fault_cause", C.c_int), ("bars_newly_broken", C.c_uint), ("dac_nan_new", C.c_uint),
+                ("adc", _e8d), ("channels", C.c_int), ("rotary", C.c_uint), ("pos", _e8d), ("vel", _e8d),
+                ("motor_pos", _e8d), ("volts", _e8d), ("current_a", _e8d), ("force", _e8d),
+                ("extra", C.c_double * PLANT_EXTRA_MAX), ("sim_time_s", C.c_double),
+                ("steps", C.c_uint), ("fault", C.c_int), ("fault_code", C.c_int),
+                ("fault_report", PlantReport), ("amps_on", C.c_int), ("watchdog_expired", C.c_int),
+                ("param_error", C.c_int), ("dac_nan", C.c_int), ("params", BoardParams), ("events", C.c_uint),
+                ("refused", C.c_ulonglong * 5), ("param_rc", C.c_int), ("reset_refused_channel", C.c_int),
+                ("reset_refused_injection", C.c_int), ("fault_cause", C.c_int),
+                ("injected", C.c_uint * PLANT_INJECT_MAX), ("dac_nan_new", C.c_uint),
                 ("enc_scale_bad", C.c_uint), ("substeps_run", C.c_uint), ("stiff_param", C.c_int),
                 ("stiff_dt_max_s", C.c_double)]
+
+    @property
+    def pose(self):
+        """The Hexaglide's head pose (SI: m, rad): its first six plant outputs."""
+        return self.extra[:6]
 
 
 for _i, _s in ((7, BoardParams), (9, BoardInputs), (10, BoardOutputs)):
@@ -156,7 +181,9 @@ for _i, _s in ((7, BoardParams), (9, BoardInputs), (10, BoardOutputs)):
         raise ImportError("%s: layout differs from the library's (%d vs %d bytes): rebuild both"
                           % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
 
-_board_init = _sig("hg_board_init", C.c_int, _P, C.c_int, _P)
+_board_init = _sig("hg_board_init", C.c_int, _P, C.c_int, C.c_int, _P)
+_plant_find = _sig("hg_plant_find", C.c_int, C.c_char_p)
+_plant_variant_named = _sig("hg_plant_variant_named", C.c_int, C.c_int, C.c_char_p)
 _board_inputs_default = _sig("hg_board_inputs_default", None, _P, C.POINTER(BoardInputs))
 _board_peek = _sig("hg_board_peek", None, _P, C.POINTER(BoardOutputs))
 _board_step = _sig("hg_board_step", None, _P, C.POINTER(BoardInputs), C.POINTER(BoardOutputs), C.c_long)
@@ -174,8 +201,7 @@ _guard_check = _sig("hg_guard_check", C.c_int, _P, _d6, _d6, C.c_uint, C.POINTER
 _guard_describe = _sig("hg_guard_describe", None, C.POINTER(GuardReport), C.c_int, C.c_char_p)
 _loop_default = _sig("hg_loop_config_default", None, C.POINTER(LoopConfig))
 _loop_init = _sig("hg_loop_init", C.c_int, _P, C.POINTER(LoopConfig), _P)
-_params_copy_sz = _sizeof(6)
-_loop_step = _sig("hg_loop_step", C.c_int, _P, _d6, _P)
+_loop_step = _sig("hg_loop_step", C.c_int, _P, _dc, _P)
 _dp = np.ctypeslib.ndpointer(dtype=np.float64, flags="C_CONTIGUOUS")
 _loop_run = _sig("hg_loop_run", C.c_int, _P, _dp, C.c_long, C.c_long, _P, _P, C.POINTER(LoopSummary))
 
@@ -217,12 +243,12 @@ class Params:
             raise KeyError("unknown parameter or bad value: %s=%r" % (name, value))
 
     def board_params(self, substeps=1, integrator=DEFAULT_INTEGRATOR):
-        """hg_board_params: these model parameters + the board's substeps and integrator."""
-        buf = C.create_string_buffer(_sizeof(7))
-        C.memmove(buf, self.buf, _params_copy_sz)
-        extra = (C.c_uint * 2)(substeps, integrator)
-        C.memmove(C.byref(buf, _params_copy_sz), extra, C.sizeof(extra))
-        return buf
+        """hg_board_params: these model parameters (by table entry) + the board's substeps and integrator."""
+        bp = BoardParams()
+        for i, info in enumerate(params_table()):
+            bp.plant[i] = self[info.name.decode()]
+        bp.substeps, bp.integrator = substeps, integrator
+        return bp
 
 
 def _geometry(params):
@@ -311,17 +337,18 @@ class Board:
 
         b = Board()                      # power-up: HOME at rest, E-STOP loop closed here
         out = b.step([0.3] * 6)          # DAC volts of joints 0..5 for one 1 ms period
-        out.z_m[:], out.position[:6], out.count[:6], out.amps_on
+        out.pos[:6], out.position[:6], out.count[:6], out.amps_on
     b.inputs is the full hg_board_inputs record (fault injection, index-enable, ...)."""
 
     def __init__(self, kind="reduced-cartesian", params=None, substeps=1, integrator=DEFAULT_INTEGRATOR, period_ns=1000000,
                  estop_closed=True):
-        k = _model_from_name(kind.encode())
+        k = _plant_variant_named(0, kind.encode())
         if k < 0:
             raise ValueError("unknown model %r; one of %s" % (kind, MODELS))
         self.params = params or Params()
         self.buf = C.create_string_buffer(_sizeof(8))
-        rc = _board_init(self.buf, k, self.params.board_params(substeps, integrator))
+        self.board_params = self.params.board_params(substeps, integrator)
+        rc = _board_init(self.buf, 0, k, C.byref(self.board_params))
         if rc:
             raise HexaglideError("board init", rc)
         self.inputs = BoardInputs()
@@ -453,7 +480,8 @@ class Loop:
         _loop_default(C.byref(self.cfg))
         self.cfg.ferror_limit_mm = ferror_limit_mm
         self.cfg.period_ns = period_ns
-        self.cfg.model_kind = MODELS.index(model)
+        self.cfg.plant = 0
+        self.cfg.variant = MODELS.index(model)
         if gains is None:
             gains = read_ini()[0]
         for j, g in enumerate(gains):
@@ -473,7 +501,7 @@ class Loop:
 
     def reset(self):
         """Machine at HOME at rest, PIDs reset."""
-        rc = _loop_init(self.buf, C.byref(self.cfg), self.board_params)
+        rc = _loop_init(self.buf, C.byref(self.cfg), C.byref(self.board_params))
         if rc:
             raise HexaglideError("loop init", rc)
 

@@ -40,13 +40,13 @@ import hal
 
 PER_FIFO = 21          # HAL_STREAM_MAX_PINS of LinuxCNC 2.9's hal.h (hal_lib's stream limit)
 MAX_FIFOS = 8          # sampler's MAX_SAMPLERS
-JOINTS = 6
+JOINTS_MAX = 8         # the board's channels: joints 0..7 at most
 # pid.c's setting pins (LinuxCNC 2.9): what src/hg_pid.h's hg_pid_gains holds
 PID_SETTINGS = ["Pgain", "Igain", "Dgain", "bias", "FF0", "FF1", "FF2", "FF3", "deadband",
                 "maxerror", "maxerrorI", "maxerrorD", "maxcmdD", "maxcmdDD", "maxcmdDDD",
                 "maxoutput", "error-previous-target"]
 POLL_S = 0.2           # how often the settings are read
-MAGIC = "# hexaglide-record 1"
+MAGIC = "# hexaglide-record %d"   # the format of the board's rec pins (src/hg_board_rec.h)
 TYPE_CHAR = {hal.HAL_FLOAT: "f", hal.HAL_BIT: "b", hal.HAL_S32: "s", hal.HAL_U32: "u"}
 
 
@@ -73,10 +73,11 @@ def pin_signals():
     return sig
 
 
-def loop_wiring(sig, board):
+def loop_wiring(sig, board, joints):
     """'' if joint N, pid.N and the board's channel N are wired as
-    configs/hexaglide.hal wires them, else what differs."""
-    for j in range(JOINTS):
+    configs/hexaglide.hal (and LinuxCNC's stock motenc_motion.hal) wire
+    them, for joints 0..joints-1, else what differs."""
+    for j in range(joints):
         groups = [("joint.%d.motor-pos-cmd" % j, "pid.%d.command" % j),
                   ("motenc.%d.enc-%02d-position" % (board, j), "pid.%d.feedback" % j),
                   ("pid.%d.output" % j, "motenc.%d.dac-%02d-value" % (board, j)),
@@ -91,10 +92,10 @@ def loop_wiring(sig, board):
     return ""
 
 
-def settings_names(board):
+def settings_names(board, joints):
     """The settings the closed loop needs, in footer order."""
-    names = ["pid.%d.%s" % (j, k) for j in range(JOINTS) for k in PID_SETTINGS]
-    for j in range(JOINTS):
+    names = ["pid.%d.%s" % (j, k) for j in range(joints) for k in PID_SETTINGS]
+    for j in range(joints):
         names += ["motenc.%d.dac-%02d-gain" % (board, j), "motenc.%d.dac-%02d-offset" % (board, j)]
     return names
 
@@ -152,9 +153,13 @@ def main():
             "motenc_hexaglide_dyns_virtual record=1', before this recorder" % prefix)
         return 1
     byname = {p["NAME"]: p for p in allpins}
+    joints = 0                        # motion's joints: one command column each
+    while joints < JOINTS_MAX and "joint.%d.motor-pos-cmd" % joints in byname:
+        joints += 1
+    fmt = 2 if prefix + "in.params-fp" in byname else 1
     sig = pin_signals()
-    wiring = loop_wiring(sig, a.board)
-    loop = ["joint.%d.motor-pos-cmd" % j for j in range(JOINTS)]
+    wiring = loop_wiring(sig, a.board, joints) if joints else "no joint.0.motor-pos-cmd"
+    loop = ["joint.%d.motor-pos-cmd" % j for j in range(joints)]
     unknown = [n for n in a.extra if n not in byname]
     if unknown:
         log("no such pin to record (--extra):", " ".join(unknown))
@@ -186,7 +191,7 @@ def main():
     stop = []
     signal.signal(signal.SIGTERM, lambda s, f: stop.append(s))
     signal.signal(signal.SIGINT, lambda s, f: stop.append(s))
-    out.write(MAGIC + "\n")
+    out.write(MAGIC % fmt + "\n")
     out.write("# source %s, LinuxCNC HAL sampler FIFOs read with hal.stream\n" % os.path.basename(__file__))
     out.write("# board %d\n" % a.board)
     out.write("# prefix %s\n" % prefix)
@@ -198,7 +203,7 @@ def main():
     n = 0
     pending = [None] * len(streams)   # a row is written once every FIFO gave its part
     idle_since = None
-    names = settings_names(a.board)
+    names = settings_names(a.board, joints)
     settings = read_settings(names)   # as the HAL files left them, before the threads start
     changed_at = 0                    # rows written when a change was last seen
     polled = time.time()

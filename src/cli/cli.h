@@ -86,28 +86,43 @@ int cli_parse_double(const char *text, const char *what, double *out);
 int cli_parse_list(const char *cmd, const char *opt, const char *text, const char *const names[], int n,
                    double *out);
 
-/* Apply "name=value" (spec name, SI unit) to p; 0, or -1 with a message
- * "hexaglide CMD: --set: ..." naming the problem. */
-int cli_parse_set(const char *cmd, const char *text, hg_params *p);
+/* Apply "name=value" (spec name of plant's table, SI unit) to v: the
+ * table entry set, or -1 with a message "hexaglide CMD: --set: ..."
+ * naming the problem. */
+int cli_parse_set(const char *cmd, const char *text, int plant, hg_plant_params *v);
 
 /* ---- the machine (cli_board.c) ---- */
 
-/* The model parameters: the spec's defaults, then [HEXAGLIDE] of the INI
- * file ini (0: none), then each of the nset "name=value" in sets (HOME is
- * at pose 0 for any geometry: h follows l, lb, lp). Not checked (the
- * board or cli_params_check do). 0, or 2 after a message. */
-int cli_params_build(const char *cmd, const char *ini, char *const *sets, int nset, hg_params *p);
+/* The plant called name (0: the Hexaglide): its registry index, or -1
+ * after a message naming the plants there are. */
+int cli_plant(const char *cmd, const char *name);
 
-/* The board's parameter block as HAL loads it (spec defaults, substeps,
- * integrator); 0, or -1 (out of memory). */
-int cli_board_defaults(hg_board_params *bp);
+/* The model variant called name of plant (0: its default): the variant,
+ * or -1 after a message naming the variants there are. */
+int cli_variant(const char *cmd, int plant, const char *name);
 
-/* 0 if p is a valid machine, else 1 after one message per invalid field. */
-int cli_params_check(const char *cmd, const hg_params *p);
+/* The model parameters of plant: the spec's defaults, then the plant's
+ * section of the INI file ini (0: none; [HEXAGLIDE] for the Hexaglide),
+ * then each of the nset "name=value" in sets (HOME is at pose 0 for any
+ * Hexaglide geometry: h follows l, lb, lp). Not checked (the board or
+ * cli_params_check do). 0, or 2 after a message. */
+int cli_params_build(const char *cmd, int plant, const char *ini, char *const *sets, int nset,
+                     hg_plant_params *v);
 
-/* A board (malloc'd; free() it) with model kind and block p, or 0 after a
- * message on stderr naming every invalid field (spec names, SI units). */
-hg_board *cli_board_new(const char *cmd, int kind, const hg_board_params *p);
+/* The same for the Hexaglide as its own parameter set (ik, fk), checked:
+ * 0, or 2 after one message per invalid field. */
+int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, int nset, hg_params *p);
+
+/* The board's parameter block of plant as HAL loads it (spec defaults, substeps, integrator). */
+void cli_board_defaults(int plant, hg_board_params *bp);
+
+/* 0 if v is a valid machine of plant, else 1 after one message per invalid field. */
+int cli_params_check(const char *cmd, int plant, const hg_plant_params *v);
+
+/* A board (malloc'd; free() it) of plant with model variant and block p (0: the plant's defaults),
+ * or 0 after a message on stderr naming every invalid field (spec names,
+ * SI units). */
+hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_params *p);
 
 /* --dt seconds -> the board's period in whole ns; 0, or -1 with a message. */
 int cli_parse_period(const char *cmd, double dt, long *period_ns);
@@ -145,17 +160,15 @@ int cli_ini_get(const char *cmd, const cli_ini *ini, const char *section, const 
 /* The entry's value as a finite number; 0, or -1 naming key, file, line. */
 int cli_ini_number(const char *cmd, const cli_ini *ini, const cli_ini_entry *e, double *v);
 
-/* [HEXAGLIDE] onto p (keys in their HAL unit, mm for lengths); every
- * unknown key, repeated key and non-number is named. 0 or -1. */
-int cli_ini_apply_hexaglide(const char *cmd, const cli_ini *ini, hg_params *p);
+/* The plant's section ([HEXAGLIDE] for the Hexaglide) onto v (keys in
+ * their HAL unit, mm for lengths); every unknown key, repeated key and
+ * non-number is named. 0 or -1. */
+int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, hg_plant_params *v);
 
-/* The [HEXAGLIDE] key of model parameter param (spec name), or 0. */
-const char *cli_ini_key_of(const char *param);
-
-/* [JOINT_0]..[JOINT_5] gains and scales onto c, as configs/hexaglide.hal
- * wires them (absent keys keep c's values); each section must exist.
- * 0, or -1 after naming every problem. */
-int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, hg_loop_config *c);
+/* [JOINT_0]..[JOINT_{joints-1}] gains and scales onto c, as
+ * configs/hexaglide.hal wires them (absent keys keep c's values); each
+ * section must exist. 0, or -1 after naming every problem. */
+int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, int joints, hg_loop_config *c);
 
 /* [JOINT_joint]key as a number (required); 0 or -1 with a message. */
 int cli_ini_joint_number(const char *cmd, const cli_ini *ini, int joint, const char *key, double *v);

@@ -5,8 +5,9 @@
  * number). What LinuxCNC would resolve silently is refused here, naming the
  * file and line: a key given twice (LinuxCNC takes the first), an
  * #INCLUDE (the linuxcnc script expands those into FILE.expanded).
- * Host only (malloc, stdio). Two consumers: [HEXAGLIDE] -> model
- * parameters (ik, fk, sim, soak) and [JOINT_N] -> the servo loops (soak). */
+ * Host only (malloc, stdio). Two consumers: a plant's section ([HEXAGLIDE])
+ * -> model parameters (ik, fk, sim, soak) and [JOINT_N] -> the servo loops
+ * (soak, replay). */
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,17 +16,17 @@
 
 #define INI_MAX_BYTES (16L << 20)   /* refuse INI files above 16 MiB */
 
-/* [HEXAGLIDE] keys that are no model parameter (the parameters' keys are
- * hg_params_table's ini_key, their values in the HAL unit). */
+/* Keys of a plant's section that are no model parameter (the parameters'
+ * keys are the plant table's ini_key, their values in the HAL unit). */
 static const char *const other_keys[] = {
     "RECORD",   /* tools/hg_record.tcl's record file (docs/replay.md) */
 };
 
 /* Keys of earlier versions, with what to do instead. */
 static const struct {
-    const char *key, *instead;
+    const char *section, *key, *instead;
 } gone_keys[] = {
-    {"H", "the carriage height at HOME follows from L, LB and LP now: remove the key"},
+    {"HEXAGLIDE", "H", "the carriage height at HOME follows from L, LB and LP now: remove the key"},
 };
 
 /* [JOINT_N] key -> servo-loop setting, as configs/hexaglide.hal wires it
@@ -243,22 +244,21 @@ int cli_ini_number(const char *cmd, const cli_ini *ini, const cli_ini_entry *e, 
     return 0;
 }
 
-/* Spec name of the parameter whose [HEXAGLIDE] key is key, or 0. */
-static const char *param_of_key(const char *key)
+/* Index of the parameter of table t[0..n) whose key is key, or -1. */
+static int param_of_key(const hg_param_info *t, int n, const char *key)
 {
-    int i, n;
-    const hg_param_info *t = hg_params_table(&n);
+    int i;
     for (i = 0; i < n; i++)
         if (t[i].ini_key && strcmp(t[i].ini_key, key) == 0)
-            return t[i].name;
-    return 0;
+            return i;
+    return -1;
 }
 
-/* 1 if key is a [HEXAGLIDE] key: a parameter's ini_key or another key. */
-static int known_key(const char *key)
+/* 1 if key belongs to the section: a parameter's ini_key or another key. */
+static int known_key(const hg_param_info *t, int n, const char *key)
 {
     size_t k;
-    if (param_of_key(key))
+    if (param_of_key(t, n, key) >= 0)
         return 1;
     for (k = 0; k < N_OF(other_keys); k++)
         if (strcmp(other_keys[k], key) == 0)
@@ -266,12 +266,11 @@ static int known_key(const char *key)
     return 0;
 }
 
-/* The known [HEXAGLIDE] keys as "L LB ..." into buf. */
-static void hexaglide_key_list(char *buf, size_t len)
+/* The known keys of table t as "L LB ..." into buf. */
+static void key_list(const hg_param_info *t, int n, char *buf, size_t len)
 {
-    int i, n;
+    int i;
     size_t k, used = 0;
-    const hg_param_info *t = hg_params_table(&n);
     buf[0] = '\0';
     for (i = 0; i < n && used < len; i++)
         if (t[i].ini_key)
@@ -280,67 +279,57 @@ static void hexaglide_key_list(char *buf, size_t len)
         used += (size_t)snprintf(buf + used, len - used, " %s", other_keys[k]);
 }
 
-const char *cli_ini_key_of(const char *param)
+int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, hg_plant_params *v)
 {
-    int i, n;
-    const hg_param_info *t = hg_params_table(&n);
-    for (i = 0; i < n; i++)
-        if (strcmp(t[i].name, param) == 0)
-            return t[i].ini_key;
-    return 0;
-}
-
-
-int cli_ini_apply_hexaglide(const char *cmd, const cli_ini *ini, hg_params *p)
-{
+    const hg_plant *pl = hg_plant_at(plant);
+    const char *sec = pl->ini_section;
     int i, n, bad = 0;
-    const hg_param_info *t = hg_params_table(&n);
-    char keys[256];
+    const hg_param_info *t = pl->table(&n);
+    char keys[2048];
     size_t k;
-    hexaglide_key_list(keys, sizeof keys);
+    key_list(t, n, keys, sizeof keys);
     for (i = 0; i < ini->n; i++) {     /* every key of the section is one of ours */
         const cli_ini_entry *e = &ini->e[i];
-        if (!e->key || strcmp(e->section, "HEXAGLIDE") != 0)
+        if (!e->key || strcmp(e->section, sec) != 0)
             continue;
         for (k = 0; k < N_OF(gone_keys); k++)
-            if (strcmp(gone_keys[k].key, e->key) == 0)
+            if (strcmp(gone_keys[k].section, sec) == 0 && strcmp(gone_keys[k].key, e->key) == 0)
                 break;
         if (k < N_OF(gone_keys)) {
-            fprintf(stderr, "hexaglide %s: %s line %d: [HEXAGLIDE]%s: %s\n", cmd, ini->path, e->line,
+            fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s: %s\n", cmd, ini->path, e->line, sec,
                     e->key, gone_keys[k].instead);
             bad = 1;
-        } else if (!known_key(e->key)) {
-            fprintf(stderr, "hexaglide %s: %s line %d: [HEXAGLIDE]%s is not a key of this section; it takes %s\n",
-                    cmd, ini->path, e->line, e->key, keys);
+        } else if (!known_key(t, n, e->key)) {
+            fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s is not a key of this section; it takes %s\n",
+                    cmd, ini->path, e->line, sec, e->key, keys);
             bad = 1;
         }
     }
     for (k = 0; k < N_OF(other_keys); k++) {   /* keys that are no parameter: given once */
         const cli_ini_entry *e;
-        bad |= cli_ini_get(cmd, ini, "HEXAGLIDE", other_keys[k], &e) < 0;
+        bad |= cli_ini_get(cmd, ini, sec, other_keys[k], &e) < 0;
     }
     for (i = 0; i < n; i++) {          /* the parameters that have a key, in their HAL unit */
-        const char *key = cli_ini_key_of(t[i].name);
         const cli_ini_entry *e;
-        double v;
-        int rc = key ? cli_ini_get(cmd, ini, "HEXAGLIDE", key, &e) : 1;
+        double x;
+        int rc = t[i].ini_key ? cli_ini_get(cmd, ini, sec, t[i].ini_key, &e) : 1;
         bad |= rc < 0;
         if (rc)
             continue;                  /* absent, or named as repeated */
-        if (cli_ini_number(cmd, ini, e, &v)) {
+        if (cli_ini_number(cmd, ini, e, &x)) {
             bad = 1;
             continue;
         }
-        *hg_params_at(p, i) = v / t[i].hal_scale;
+        v->v[i] = x / t[i].hal_scale;
     }
     return bad ? -1 : 0;
 }
 
-int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, hg_loop_config *c)
+int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, int joints, hg_loop_config *c)
 {
     int j, bad = 0;
     size_t k;
-    for (j = 0; j < HG_LOOP_JOINTS; j++) {
+    for (j = 0; j < joints && j < HG_LOOP_JOINTS; j++) {
         char sec[16];
         snprintf(sec, sizeof sec, "JOINT_%d", j);
         if (!cli_ini_has_section(ini, sec)) {

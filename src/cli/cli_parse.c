@@ -130,27 +130,27 @@ int cli_parse_list(const char *cmd, const char *opt, const char *text, const cha
     return 0;
 }
 
-int cli_parse_set(const char *cmd, const char *text, hg_params *p)
+int cli_parse_set(const char *cmd, const char *text, int plant, hg_plant_params *p)
 {
     char name[64];
     const char *eq = strchr(text, '=');
     double v;
+    int n, i;
+    const hg_param_info *t = hg_plant_params_table(plant, &n);
     if (!eq || eq == text || (size_t)(eq - text) >= sizeof name) {
         fprintf(stderr, "hexaglide %s: --set: expected name=value, got '%s'\n", cmd, text);
         return -1;
     }
     memcpy(name, text, (size_t)(eq - text));
     name[eq - text] = '\0';
-    if (!hg_params_field(p, name)) {
-        fprintf(stderr, "hexaglide %s: --set: unknown parameter '%s' (hexaglide sim --list-params "
-                "lists them)\n", cmd, name);
+    i = hg_param_find(t, n, name);
+    if (i < 0) {
+        fprintf(stderr, "hexaglide %s: --set: unknown parameter '%s' of the %s (hexaglide sim --list-params "
+                "lists them)\n", cmd, name, hg_plant_name_at(plant));
         return -1;
     }
     if (cli_parse_double(eq + 1, name, &v))
         return -1;
-    if (hg_params_set(p, name, v)) {
-        fprintf(stderr, "hexaglide %s: --set: cannot set '%s' to '%s'\n", cmd, name, eq + 1);
-        return -1;
-    }
-    return 0;
+    p->v[i] = v;
+    return i;
 }

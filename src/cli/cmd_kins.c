@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "hg_errors.h"
 #include "hg_kinematics.h"
+#include "hg_guard_text.h"
 #include "hg_units.h"
 
 static const char *const pose_names[6] = {"X", "Y", "Z", "A", "B", "C"};
@@ -96,9 +97,7 @@ static int kins_parse(const char *cmd, const char *usage, const cli_opt *opts, c
         fprintf(stderr, "hexaglide %s: need 6 numbers %s, got %d\n", cmd, what, c->npos);
         return 2;
     }
-    if (cli_params_build(cmd, c->ini, c->sets, c->nset, &c->p))
-        return 2;
-    return cli_params_check(cmd, &c->p) ? 2 : 0;
+    return cli_hexaglide_params(cmd, c->ini, c->sets, c->nset, &c->p) ? 2 : 0;
 }
 
 int cmd_ik(int argc, char **argv)

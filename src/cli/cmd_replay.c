@@ -23,6 +23,7 @@
 #include "hg_loop.h"
 #include "hg_record.h"
 #include "hg_units.h"
+#include "hg_scheme.h"
 
 #define REPLAY_MAX_SETS 64
 #define REPLAY_MAX_SPREAD 16          /* --spread: closed loops side by side */
@@ -32,7 +33,7 @@
 #define REPLAY_MAX_BYTES (4LL << 30)  /* refuse record files above 4 GiB */
 
 typedef struct {
-    const char *file, *csv, *plot, *model;
+    const char *file, *csv, *plot, *model, *plant;
     const char *set[REPLAY_MAX_SETS];
     int nset;
     long substeps;                    /* -1: as recorded */
@@ -40,13 +41,14 @@ typedef struct {
     int open_loop;                    /* --open-loop: recorded DAC volts, no pid */
     long from;                        /* --from: first sample of the f-error statistics, -1 auto */
     long spread;                      /* --spread: closed loops with the program started later */
+    int format;                       /* --list-columns --format: the record format listed */
 } replay_opts;
 
 /* What a closed loop consumes in one period, kept for the delayed --spread loops. */
 typedef struct {
     hg_board_inputs in;               /* the what-if board's inputs */
-    double cmd[6];                    /* joint commands (mm) */
-    int enable[6];                    /* pid.N.enable */
+    double cmd[HG_CHANNELS_MAX];      /* joint commands (mm) */
+    int enable[HG_CHANNELS_MAX];      /* pid.N.enable */
     unsigned ie_rec, prev_ie_rec, prev_latched_rec; /* index-enable edges as recorded */
     unsigned win;                     /* bit k: joint k counts in the f-error window */
     int reset;                        /* the window starts again here (a latch) */
@@ -90,8 +92,10 @@ static const struct {
 const char cli_usage_replay[] =
     "usage: hexaglide replay FILE [--csv OUT] [--plot PNG] [--set name=value]...\n"
     "                        [--model NAME] [--substeps N] [--integrator NAME]\n"
-    "                        [--open-loop] [--from SAMPLE] [--spread K]\n"
-    "       hexaglide replay --list-columns   (the record pin set)\n"
+    "                        [--open-loop] [--from SAMPLE] [--spread K] [--plant NAME]\n"
+    "       hexaglide replay --list-columns [--plant NAME] [--format 1|2]   (the record pin set)\n"
+    "--plant: the machine the record must be of (the record names its own, in.plant);\n"
+    "a record of another plant is refused.\n"
     "FILE: a record of tools/hg_record.py (docs/replay.md). Without --set, --model,\n"
     "--substeps, --integrator: replays and compares, exit 0 only if bit-exact.\n"
     "With them (what-if): the changed board under LinuxCNC's pid loops with the\n"
@@ -105,12 +109,13 @@ const char cli_usage_replay[] =
     "--plot runs tools/plot_replay.py under the first python3 that imports numpy and\n"
     "matplotlib ($HEXAGLIDE_PYTHON, else $PATH).\n";
 
-/* The record pin set: one line per column, name, HAL type, direction. */
-static void list_columns(void)
+/* The record pin set of plant in format (2: what the glue records): one
+ * line per column, name, HAL type, direction. */
+static void list_columns(int plant, int format)
 {
     static hg_board_rec_field f[HG_BOARD_REC_MAX];
     static const char *const type[] = {"float", "s32", "u32", "bit", "u32"};
-    int i, n = hg_board_rec_fields(f, HG_BOARD_REC_MAX);
+    int i, n = hg_board_rec_fields(f, HG_BOARD_REC_MAX, plant, format);
     for (i = 0; i < n; i++)
         printf("%-28s %-5s %s%s\n", f[i].name, type[f[i].type],
                f[i].side == HG_BRS_OUT ? "output, compared" : "input of hg_board_step",
@@ -120,10 +125,10 @@ static void list_columns(void)
 }
 
 enum { OPT_CSV, OPT_PLOT, OPT_SET, OPT_MODEL, OPT_SUBSTEPS, OPT_INTEGRATOR, OPT_FROM, OPT_SPREAD,
-       OPT_OPEN, OPT_LIST };
+       OPT_OPEN, OPT_LIST, OPT_PLANT, OPT_FORMAT };
 static const cli_opt replay_options[] = {
     {"--csv", 1}, {"--plot", 1}, {"--set", 1}, {"--model", 1}, {"--substeps", 1}, {"--integrator", 1},
-    {"--from", 1}, {"--spread", 1}, {"--open-loop", 0}, {"--list-columns", 0}, {0, 0},
+    {"--from", 1}, {"--spread", 1}, {"--open-loop", 0}, {"--list-columns", 0}, {"--plant", 1}, {"--format", 1}, {0, 0},
 };
 
 /* An integer option in lo..hi; 0, or 2 after a message saying what to give. */
@@ -144,12 +149,13 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
 {
     cli_args a;
     const char *v;
-    int opt;
+    int opt, list = 0;
     memset(o, 0, sizeof *o);
     o->substeps = -1;
     o->integrator = -1;
     o->from = -1;
     o->spread = 1;
+    o->format = HG_BOARD_REC_FORMAT;
     cli_args_init(&a, "replay", cli_usage_replay, replay_options, argc, argv);
     while ((opt = cli_next(&a, &v)) != CLI_DONE) {
         switch (opt) {
@@ -178,13 +184,18 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
             o->set[o->nset++] = v;
             break;
         case OPT_MODEL:
-            if (hg_model_from_name(v) < 0) {
-                fprintf(stderr, "hexaglide replay: --model %s unknown; use standard, reduced-joints, "
-                        "reduced-cartesian or fused-cartesian\n", v);
-                return 2;
-            }
-            o->model = v;
+            o->model = v;             /* checked against the record's plant */
             break;
+        case OPT_PLANT:
+            o->plant = v;
+            break;
+        case OPT_FORMAT: {
+            long n;
+            if (int_opt("--format", v, 1, HG_BOARD_REC_FORMAT, "1 (d20d9e5 and before) or 2", &n))
+                return 2;
+            o->format = (int)n;
+            break;
+        }
         case OPT_SUBSTEPS: {
             long n;
             if (int_opt("--substeps", v, 1, (long)HG_SUBSTEPS_MAX, "an integer 1..64", &n))
@@ -214,9 +225,19 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
             o->open_loop = 1;
             break;
         default:                       /* OPT_LIST */
-            list_columns();
-            return -1;
+            list = 1;
         }
+    }
+    if (list) {
+        int p = cli_plant("replay", o->plant);
+        if (p < 0)
+            return 2;
+        if (o->format == 1 && p != 0) {
+            fprintf(stderr, "hexaglide replay: --format 1 was the Hexaglide's only\n");
+            return 2;
+        }
+        list_columns(p, o->format);
+        return -1;
     }
     if (!o->file) {
         fprintf(stderr, "hexaglide replay: give a record FILE ('hexaglide replay --help' for the usage)\n");
@@ -225,33 +246,25 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
     return 0;
 }
 
-/* The --set options as (offset in hg_params, value) pairs; 0 or 2 with a message. */
-static int parse_sets(const replay_opts *o, unsigned long *off, double *val)
+/* The --set options as (table entry of plant, value) pairs; 0 or 2 with a message. */
+static int parse_sets(const replay_opts *o, int plant, int *idx, double *val)
 {
     int i;
     for (i = 0; i < o->nset; i++) {
-        hg_params p;
-        int k, np;
-        const hg_param_info *t = hg_params_table(&np);
-        const char *eq = strchr(o->set[i], '=');
-        size_t n = eq ? (size_t)(eq - o->set[i]) : 0;
-        hg_params_default(&p);
-        if (cli_parse_set("replay", o->set[i], &p))
+        hg_plant_params p;
+        idx[i] = cli_parse_set("replay", o->set[i], plant, &p);
+        if (idx[i] < 0)
             return 2;
-        for (k = 0; k < np; k++)      /* cli_parse_set found the name in this table */
-            if (strlen(t[k].name) == n && strncmp(t[k].name, o->set[i], n) == 0) {
-                off[i] = t[k].offset;
-                memcpy(&val[i], (const char *)&p + t[k].offset, sizeof val[i]);
-            }
+        val[i] = p.v[idx[i]];
     }
     return 0;
 }
 
-/* 1 when the six joint commands are equal (an idle period). */
-static int same_commands(const double a[6], const double b[6])
+/* 1 when the nj joint commands are equal (an idle period). */
+static int same_commands(const double *a, const double *b, int nj)
 {
     int k;
-    for (k = 0; k < 6; k++)
+    for (k = 0; k < nj; k++)
         if (a[k] != b[k])
             return 0;
     return 1;
@@ -266,55 +279,77 @@ static int bits_differ(double a, double b)
     return x != y;
 }
 
-/* One CSV row: sample, time, recorded and replayed joints (mm), counts, pose
- * (mm, deg), fault codes; with joint commands: f-errors (mm) and drive volts. */
-static void csv_row(FILE *f, long n, const double *row, const int *col_z, const int *col_count,
-                    const int *col_pose, const hg_board_outputs *o, const double (*fe)[6],
-                    const double (*volts)[6])
+/* Where a replay finds the record's columns and what it writes per joint. */
+typedef struct {
+    int nj;                           /* joints: the plant's channels */
+    int z[HG_CHANNELS_MAX], count[HG_CHANNELS_MAX], cmd[HG_CHANNELS_MAX];
+    int extra[HG_PLANT_EXTRA_MAX];    /* out.<rec_name> of the plant's float outputs, -1 if none */
+    int fault_code;
+    const hg_plant *plant;
+} replay_cols;
+
+/* 1 if the plant's output i is a recorded float (the CSV shows it). */
+static int csv_extra(const hg_plant *p, int i)
 {
+    return p->outputs[i].rec_name && !p->outputs[i].is_u32;
+}
+
+/* One CSV row: sample, time, recorded and replayed joints (mm), counts, the
+ * plant's own outputs (its HAL units), fault codes; with joint commands:
+ * f-errors (mm) and drive volts. */
+static void csv_row(FILE *f, long n, const double *row, const replay_cols *c, const hg_board_outputs *o,
+                    const double (*fe)[HG_CHANNELS_MAX], const double (*volts)[HG_CHANNELS_MAX])
+{
+    const hg_plant *p = c->plant;
     int k, w;
     fprintf(f, "%ld,%.17g", n, o->sim_time_s);
-    for (k = 0; k < 6; k++)
-        fprintf(f, ",%.17g", row[col_z[k]] * HG_MM_PER_M);
-    for (k = 0; k < 6; k++)
-        fprintf(f, ",%.17g", o->z_m[k] * HG_MM_PER_M);
-    for (k = 0; k < 6; k++)
-        fprintf(f, ",%.0f", row[col_count[k]]);
-    for (k = 0; k < 6; k++)
+    for (k = 0; k < c->nj; k++)
+        fprintf(f, ",%.17g", row[c->z[k]] * HG_MM_PER_M);
+    for (k = 0; k < c->nj; k++)
+        fprintf(f, ",%.17g", o->pos[k] * HG_MM_PER_M);
+    for (k = 0; k < c->nj; k++)
+        fprintf(f, ",%.0f", row[c->count[k]]);
+    for (k = 0; k < c->nj; k++)
         fprintf(f, ",%d", o->count[k]);
-    for (k = 0; k < 6; k++)
-        fprintf(f, ",%.17g", row[col_pose[k]] * (k < 3 ? HG_MM_PER_M : HG_DEG_PER_RAD));
-    for (k = 0; k < 6; k++)
-        fprintf(f, ",%.17g", o->pose[k] * (k < 3 ? HG_MM_PER_M : HG_DEG_PER_RAD));
-    fprintf(f, ",%d,%d", (int)row[col_count[6]], o->fault_code);
+    for (k = 0; k < p->noutputs; k++)
+        if (csv_extra(p, k) && c->extra[k] >= 0)
+            fprintf(f, ",%.17g", row[c->extra[k]] * p->outputs[k].hal_scale);
+    for (k = 0; k < p->noutputs; k++)
+        if (csv_extra(p, k) && c->extra[k] >= 0)
+            fprintf(f, ",%.17g", o->extra[k] * p->outputs[k].hal_scale);
+    fprintf(f, ",%d,%d", (int)row[c->fault_code], o->fault_code);
     if (fe)
         for (w = 0; w < 2; w++)
-            for (k = 0; k < 6; k++)
+            for (k = 0; k < c->nj; k++)
                 fprintf(f, ",%.17g,%.17g", fe[w][k], volts[w][k]);
     fputc('\n', f);
 }
 
-static void csv_header(FILE *f, int with_loop)
+/* The CSV header (the plant's outputs by their short names: x, a, ...). */
+static void csv_header(FILE *f, const replay_cols *c, int with_loop)
 {
-    int k;
+    const hg_plant *p = c->plant;
+    int k, w;
     fprintf(f, "sample,t_s");
-    for (k = 0; k < 6; k++)
+    for (k = 0; k < c->nj; k++)
         fprintf(f, ",z%d_rec_mm", k);
-    for (k = 0; k < 6; k++)
+    for (k = 0; k < c->nj; k++)
         fprintf(f, ",z%d_mm", k);
-    for (k = 0; k < 6; k++)
+    for (k = 0; k < c->nj; k++)
         fprintf(f, ",count%d_rec", k);
-    for (k = 0; k < 6; k++)
+    for (k = 0; k < c->nj; k++)
         fprintf(f, ",count%d", k);
-    for (k = 0; k < 6; k++)
-        fprintf(f, ",%c_rec", "xyzabc"[k]);
-    for (k = 0; k < 6; k++)
-        fprintf(f, ",%c", "xyzabc"[k]);
+    for (w = 0; w < 2; w++)
+        for (k = 0; k < p->noutputs; k++)
+            if (csv_extra(p, k) && c->extra[k] >= 0) {
+                const char *r = p->outputs[k].rec_name, *dash = strchr(r, '-');
+                fprintf(f, ",%s%s", dash ? dash + 1 : r, w ? "" : "_rec");
+            }
     fprintf(f, ",fault_code_rec,fault_code");
     if (with_loop) {
-        for (k = 0; k < 6; k++)
+        for (k = 0; k < c->nj; k++)
             fprintf(f, ",ferror%d_rec_mm,volts%d_rec", k, k);
-        for (k = 0; k < 6; k++)
+        for (k = 0; k < c->nj; k++)
             fprintf(f, ",ferror%d_mm,volts%d", k, k);
     }
     fputc('\n', f);
@@ -358,12 +393,12 @@ static int run_plot(const char *csv, const char *png, long from, long to)
 /* The closed loop's config from the record: the pid settings and DAC
  * scales of its footer, the wiring its header vouches for. 0, or 1 with
  * a message saying what is missing and what to do. */
-static int loop_config(const hg_record *r, const char *file, const int *col_cmd, hg_loop_config *c)
+static int loop_config(const hg_record *r, const char *file, const int *col_cmd, int nj, hg_loop_config *c)
 {
     char key[96], val[96], *end;
     int k, i;
     hg_loop_config_default(c);
-    for (k = 0; k < 6; k++)
+    for (k = 0; k < nj; k++)
         if (col_cmd[k] < 0) {
             fprintf(stderr, "hexaglide replay: %s has no column joint.%d.motor-pos-cmd (recorded by an older "
                     "tools/hg_record.py?): the closed-loop what-if runs the pid loops on motion's joint "
@@ -377,7 +412,7 @@ static int loop_config(const hg_record *r, const char *file, const int *col_cmd,
                 hg_record_meta_get(r, "closed-loop", val, sizeof val) ? val : "missing");
         return 1;
     }
-    for (k = 0; k < 6; k++)
+    for (k = 0; k < nj; k++)
         for (i = 0; i < PID_SETTINGS + 2; i++) {
             double v;
             if (i < PID_SETTINGS)
@@ -414,8 +449,7 @@ static int loop_config(const hg_record *r, const char *file, const int *col_cmd,
 /* Compare the outputs of one step with the recorded row into *st; print
  * the differing fields of the first mismatch when print_first. 1 if any differs. */
 static int compare_row(const hg_board_rec_field *fld, int nf, const int *col, const double *row,
-                       const hg_board_inputs *in, const hg_board_outputs *out, long period, int kind,
-                       long n, long line, int print_first, replay_stats *st)
+                       const hg_board_rec_ctx *ctx, long n, long line, int print_first, replay_stats *st)
 {
     int i, mismatch = 0;
     for (i = 0; i < nf; i++) {
@@ -423,7 +457,7 @@ static int compare_row(const hg_board_rec_field *fld, int nf, const int *col, co
         if (fld[i].side != HG_BRS_OUT)
             continue;
         rec = row[col[i]];
-        rep = hg_board_rec_get(fld, nf, i, in, out, period, kind);
+        rep = hg_board_rec_get(fld, nf, i, ctx);
         if (!bits_differ(rec, rep))
             continue;
         d = fabs(rep - rec);
@@ -431,7 +465,9 @@ static int compare_row(const hg_board_rec_field *fld, int nf, const int *col, co
             st->max_count_diff = (long long)d;
         if (strncmp(fld[i].name, "out.z-", 6) == 0 && d * HG_MM_PER_M > st->max_pos_diff_mm)
             st->max_pos_diff_mm = d * HG_MM_PER_M;
-        if (strncmp(fld[i].name, "out.pose-", 9) == 0 && d > st->max_pose_diff)
+        if (fld[i].offset >= offsetof(hg_board_outputs, extra) &&
+            fld[i].offset < offsetof(hg_board_outputs, extra) + sizeof ctx->out->extra &&
+            fld[i].type == HG_BRF_F64 && d > st->max_pose_diff)   /* the plant's own outputs (the head pose) */
             st->max_pose_diff = d;
         if (st->first_mismatch < 0 && print_first) {
             if (!mismatch)
@@ -462,12 +498,12 @@ static void joint_add(joint_stats *j, int w, long n, double fe, double v)
 }
 
 /* The per-joint lines: recorded (and predicted) peak and RMS f-error, peak volts. */
-static void joint_report(const joint_stats *js, int whatif, long from, long to, int auto_from)
+static void joint_report(const joint_stats *js, int nj, int whatif, long from, long to, int auto_from)
 {
     int k;
     printf("f-error window: samples %ld..%ld (%s), each joint while its amplifier is enabled\n", from, to,
            auto_from ? "from the 2nd period after the last index latch: homing done" : "--from");
-    for (k = 0; k < 6; k++) {
+    for (k = 0; k < nj; k++) {
         const joint_stats *j = &js[k];
         double rms0 = j->n ? sqrt(j->sq[0] / (double)j->n) : 0.0, rms1 = j->n ? sqrt(j->sq[1] / (double)j->n) : 0.0;
         if (!whatif) {
@@ -488,13 +524,13 @@ static void joint_report(const joint_stats *js, int whatif, long from, long to, 
  * clears it after this board's latch, motion's recorded rising edge sets it,
  * a recorded fall that was not the recorded board's latch cancels it), then
  * the servo thread on the recorded commands. */
-static void closed_step(hg_loop *L, int ie[6], const hg_board_inputs *in_w, unsigned ie_rec,
+static void closed_step(hg_loop *L, int *ie, const hg_board_inputs *in_w, unsigned ie_rec,
                         unsigned prev_ie_rec, unsigned prev_latched_rec, const double *cmd,
                         const int *enable, long period, hg_loop_sample *smp)
 {
     int k;
     L->in = *in_w;
-    for (k = 0; k < 6; k++) {
+    for (k = 0; k < L->joints; k++) {
         if (L->out.index_latched[k])
             ie[k] = 0;
         if ((ie_rec >> k & 1u) && !(prev_ie_rec >> k & 1u))
@@ -523,8 +559,8 @@ static double median(double *v, int n)
  * the idle after homing (period hold_at - 1 again) that long, it runs the
  * same periods as loop 0; then the recorded periods that late. Its peak
  * |f-error| per joint over the window into pk. */
-static void spread_step(hg_loop *L, int ie[6], long *lag, int l, long n, long hold_at,
-                        const period_in *ring, double pk[6])
+static void spread_step(hg_loop *L, int *ie, long *lag, int l, long n, long hold_at,
+                        const period_in *ring, double *pk)
 {
     const period_in *p;
     hg_loop_sample smp;
@@ -533,13 +569,72 @@ static void spread_step(hg_loop *L, int ie[6], long *lag, int l, long n, long ho
     if (hold)
         (*lag)++;
     if (p->reset && !hold)
-        for (k = 0; k < 6; k++)
+        for (k = 0; k < L->joints; k++)
             pk[k] = 0.0;
     closed_step(L, ie, &p->in, p->ie_rec, hold ? p->ie_rec : p->prev_ie_rec, hold ? 0u : p->prev_latched_rec,
                 p->cmd, p->enable, p->period, &smp);
-    for (k = 0; k < 6; k++)
+    for (k = 0; k < L->joints; k++)
         if ((p->win >> k & 1u) && fabs(smp.ferror_mm[k]) > pk[k])
             pk[k] = fabs(smp.ferror_mm[k]);
+}
+
+/* The record's plant (in.plant of its first row; format 1: the Hexaglide)
+ * and, for format 2, its parameter events in the order they took effect
+ * (*ev malloc'd; free() it): one pass over the rows before the replay.
+ * 0, or 1 after a message. Rows it cannot read are left to the replay's
+ * own pass, which names them. */
+static int prescan(const char *file, const char *buf, size_t len, int *plant, hg_board_rec_event **ev,
+                   long *nev)
+{
+    static hg_record r;
+    static double row[HG_RECORD_MAX_COLS];
+    hg_record_error e;
+    int cp, cs[HG_BOARD_REC_SLOTS][3], s, k;
+    long cap = 0;
+    *plant = 0;
+    *ev = 0;
+    *nev = 0;
+    if (hg_record_open(&r, buf, len, &e) || r.format == 1)
+        return 0;
+    if ((cp = hg_record_need(&r, "in.plant", &e)) < 0) {
+        fprintf(stderr, "hexaglide replay: %s: %s\n", file, e.msg);
+        return 1;
+    }
+    for (s = 0; s < HG_BOARD_REC_SLOTS; s++)
+        for (k = 0; k < 3; k++) {
+            static const char *const part[3] = {"entry", "value", "age"};
+            char name[32];
+            snprintf(name, sizeof name, "in.pev-%d-%s", s, part[k]);
+            if ((cs[s][k] = hg_record_need(&r, name, &e)) < 0) {
+                fprintf(stderr, "hexaglide replay: %s: %s\n", file, e.msg);
+                return 1;
+            }
+        }
+    while (hg_record_next(&r, row, &e) == 1) {
+        unsigned long n = (unsigned long)row[0];
+        if (n == 0)
+            *plant = row[cp] >= 0 && row[cp] < 1000 ? (int)row[cp] : -1;
+        for (s = 0; s < HG_BOARD_REC_SLOTS; s++) {
+            hg_board_rec_event x;
+            if (!hg_board_rec_event_of(row[cs[s][0]], row[cs[s][1]], row[cs[s][2]], n, &x))
+                continue;
+            if (*nev == cap) {
+                hg_board_rec_event *m = realloc(*ev, (size_t)(cap = cap ? 2 * cap : 1024) * sizeof *m);
+                if (!m) {
+                    fprintf(stderr, "hexaglide replay: out of memory\n");
+                    return 1;
+                }
+                *ev = m;
+            }
+            (*ev)[(*nev)++] = x;
+        }
+    }
+    if (!hg_plant_at(*plant)) {
+        fprintf(stderr, "hexaglide replay: %s: in.plant %d is not a plant this program knows (a newer "
+                "recorder?); use that version's hexaglide\n", file, *plant);
+        return 1;
+    }
+    return 0;
 }
 
 int cmd_replay(int argc, char **argv)
@@ -550,34 +645,40 @@ int cmd_replay(int argc, char **argv)
     static hg_record r;
     static hg_board bx, b;            /* the recorded run replayed; the open-loop what-if */
     static hg_loop L;                 /* the closed-loop what-if */
-    int ie[6] = {0};                  /* its index-enable signals */
+    int ie[HG_CHANNELS_MAX] = {0};    /* its index-enable signals */
     static hg_loop Ls[REPLAY_MAX_SPREAD]; /* --spread loops 1..K-1 (0 is L) */
-    static int ies[REPLAY_MAX_SPREAD][6];
+    static int ies[REPLAY_MAX_SPREAD][HG_CHANNELS_MAX];
     static long lag[REPLAY_MAX_SPREAD];
-    static double spk[REPLAY_MAX_SPREAD][6];
+    static double spk[REPLAY_MAX_SPREAD][HG_CHANNELS_MAX];
     static period_in ring[RING];
     long hold_at = -1, last_latch = -1, still = 0;
     static hg_board_rec_field fld[HG_BOARD_REC_MAX];
     static double row[HG_RECORD_MAX_COLS];
-    int col[HG_BOARD_REC_MAX], col_z[6], col_count[7], col_pose[6], col_cmd[6], col_period = 0, col_model = 0;
+    static const char *why[HG_BOARD_WHY_LEN];
+    int col[HG_BOARD_REC_MAX], col_period = 0, col_model = 0, col_fp = -1;
     int col_latched = -1, has_cmd = 1;
+    replay_cols cols;
     hg_record_error e;
     hg_board_inputs in, in_w;
     hg_board_outputs out_w, out_x;
+    hg_board_rec_ctx ctx;
+    hg_board_rec_event *ev = 0;
+    long nev = 0, next_ev = 0;
     hg_loop_config lc;
-    unsigned long set_off[REPLAY_MAX_SETS];
+    int set_idx[REPLAY_MAX_SETS];
     double set_val[REPLAY_MAX_SETS];
     replay_stats st = {0, 0, 0.0, 0.0, -1, 0}, stx = {0, 0, 0.0, 0.0, -1, 0};
-    joint_stats js[6];
-    double prev_cmd[6] = {0}, fe[2][6], volts[2][6];
-    int nf, i, k, rc, whatif, closed, kind = -1, status = 0;
-    unsigned prev_ie_rec = 0, prev_latched_rec = 0;
+    joint_stats js[HG_CHANNELS_MAX];
+    double prev_cmd[HG_CHANNELS_MAX] = {0}, fe[2][HG_CHANNELS_MAX], volts[2][HG_CHANNELS_MAX];
+    int nf, np, i, k, rc, whatif, closed, kind = -1, status = 0, plant, variant_w = -1, nj;
+    unsigned prev_ie_rec = 0, prev_latched_rec = 0, jmask;
     long period = 0, win_from = 0;
     long settings_from = 0, first_enabled = -1, last_enabled = -1;
     FILE *csv = 0;
     char csv_auto[4096], png_auto[4000];
     cli_out csv_out;
     const char *csv_path;
+    const hg_plant *pl;
 
     rc = parse_opts(argc, argv, &o);
     if (rc)
@@ -594,17 +695,45 @@ int cmd_replay(int argc, char **argv)
                 "--substeps or --integrator, without --open-loop\n");
         return 2;
     }
-    if (parse_sets(&o, set_off, set_val)) /* checked before reading the file */
+    if (o.plant && cli_plant("replay", o.plant) < 0)
         return 2;
     if (cli_read_file("replay", o.file, "a record file (tools/hg_record.py); split larger recordings", REPLAY_MAX_BYTES, &buf, &len))
         return 1;
-    nf = hg_board_rec_fields(fld, HG_BOARD_REC_MAX);
-    if (nf < 0) {
-        fprintf(stderr, "hexaglide replay: internal: record table too long\n");
+    rc = hg_record_open(&r, buf, len, &e);
+    if (rc) {
+        fprintf(stderr, "hexaglide replay: %s: %s\n", o.file, e.msg);
         free(buf);
         return 1;
     }
-    rc = hg_record_open(&r, buf, len, &e);
+    if (prescan(o.file, buf, len, &plant, &ev, &nev)) {
+        free(buf);
+        free(ev);
+        return 1;
+    }
+    pl = hg_plant_at(plant);
+    pl->table(&np);
+    if (o.plant && hg_plant_find(o.plant) != plant) {
+        fprintf(stderr, "hexaglide replay: %s is a record of the %s (in.plant %d), not of the %s: a replay "
+                "runs the machine that was recorded; drop --plant or give the right record\n", o.file,
+                pl->name, plant, o.plant);
+        status = 2;
+    }
+    if (!status && o.model && (variant_w = cli_variant("replay", plant, o.model)) < 0)
+        status = 2;
+    if (!status && parse_sets(&o, plant, set_idx, set_val))
+        status = 2;
+    if (status) {
+        free(buf);
+        free(ev);
+        return status;
+    }
+    nf = hg_board_rec_fields(fld, HG_BOARD_REC_MAX, plant, r.format);
+    if (nf < 0) {
+        fprintf(stderr, "hexaglide replay: internal: record table too long\n");
+        free(buf);
+        free(ev);
+        return 1;
+    }
     for (i = 0; rc == 0 && i < nf; i++) {
         col[i] = hg_record_need(&r, fld[i].name, &e);
         if (col[i] < 0)
@@ -617,24 +746,39 @@ int cmd_replay(int argc, char **argv)
     if (rc) {
         fprintf(stderr, "hexaglide replay: %s: %s\n", o.file, e.msg);
         free(buf);
+        free(ev);
         return 1;
     }
-    for (k = 0; k < 6; k++) {
+    memset(&cols, 0, sizeof cols);
+    memset(&out_x, 0, sizeof out_x);   /* (the rows start at sample 0, which builds the boards) */
+    memset(&in, 0, sizeof in);
+    cols.plant = pl;
+    for (k = 0; k < pl->channels_max; k++) {
         snprintf(text, sizeof text, "out.z-%d", k);
-        col_z[k] = hg_record_column(&r, text);
+        cols.z[k] = hg_record_column(&r, text);
         snprintf(text, sizeof text, "out.count-%02d", k);
-        col_count[k] = hg_record_column(&r, text);
-        snprintf(text, sizeof text, "out.pose-%c", "xyzabc"[k]);
-        col_pose[k] = hg_record_column(&r, text);
+        cols.count[k] = hg_record_column(&r, text);
         snprintf(text, sizeof text, "joint.%d.motor-pos-cmd", k);
-        col_cmd[k] = hg_record_column(&r, text);
-        if (col_cmd[k] < 0)
-            has_cmd = 0;
+        cols.cmd[k] = hg_record_column(&r, text);
     }
-    col_count[6] = hg_record_column(&r, "out.fault-code");
+    for (nj = 0; nj < pl->channels_max && cols.cmd[nj] >= 0; nj++)
+        ;                              /* the joints whose commands were recorded */
+    has_cmd = nj > 0;
+    if (!has_cmd)
+        nj = pl->channels_max;
+    cols.nj = nj;
+    jmask = (1u << nj) - 1u;
+    for (k = 0; k < pl->noutputs && k < HG_PLANT_EXTRA_MAX; k++) {
+        cols.extra[k] = -1;
+        if (csv_extra(pl, k)) {
+            snprintf(text, sizeof text, "out.%s", pl->outputs[k].rec_name);
+            cols.extra[k] = hg_record_column(&r, text);
+        }
+    }
+    cols.fault_code = hg_record_column(&r, "out.fault-code");
     col_latched = hg_record_column(&r, "out.index-latched");
     {
-        int used = nf + (has_cmd ? 6 : 0);
+        int used = nf + (has_cmd ? nj : 0);
         if (r.ncols - 1 > used)
             fprintf(stderr, "hexaglide replay: note: %s has %d columns replay does not use (extra pins, or "
                     "recorded by a newer board)\n", o.file, r.ncols - 1 - used);
@@ -644,9 +788,20 @@ int cmd_replay(int argc, char **argv)
             col_period = col[i];
         if (fld[i].side == HG_BRS_MODEL)
             col_model = col[i];
+        if (fld[i].side == HG_BRS_PARAMS_FP)
+            col_fp = col[i];
     }
-    if (closed && loop_config(&r, o.file, col_cmd, &lc)) {
+    if (closed && !has_cmd) {
+        fprintf(stderr, "hexaglide replay: %s has no column joint.0.motor-pos-cmd (recorded by an older "
+                "tools/hg_record.py?): the closed-loop what-if runs the pid loops on motion's joint "
+                "commands; record again, or give --open-loop\n", o.file);
         free(buf);
+        free(ev);
+        return 1;
+    }
+    if (closed && loop_config(&r, o.file, cols.cmd, nj, &lc)) {
+        free(buf);
+        free(ev);
         return 1;
     }
     if (hg_record_meta_get(&r, "settings-from-sample", text, sizeof text))
@@ -666,32 +821,36 @@ int cmd_replay(int argc, char **argv)
     if (csv_path) {                    /* written through a temporary file and a rename */
         if (cli_out_open("replay", csv_path, &csv_out)) {
             free(buf);
+            free(ev);
             return 1;
         }
         csv = csv_out.f;
-        csv_header(csv, has_cmd);
+        csv_header(csv, &cols, has_cmd);
     }
 
     while ((rc = hg_record_next(&r, row, &e)) == 1) {
         long n = (long)row[0];
-        int enable[6];
+        int enable[HG_CHANNELS_MAX];
         unsigned ie_rec, latched_rec;
         if (n == 0) {                  /* power-up, as at loadrt: model and defaults */
             kind = (int)row[col_model];   /* the recorded run is replayed as recorded */
-            if (kind < 0 || kind >= HG_MODEL_COUNT) {
-                fprintf(stderr, "hexaglide replay: %s: line %ld: in.model %d is not a model (0..%d); "
-                        "the record is damaged\n", o.file, r.line, kind, HG_MODEL_COUNT - 1);
+            if (kind < 0 || kind >= pl->nvariants) {
+                fprintf(stderr, "hexaglide replay: %s: line %ld: in.model %d is not a model of the %s (0..%d); "
+                        "the record is damaged\n", o.file, r.line, kind, pl->name, pl->nvariants - 1);
                 status = 1;
                 break;
             }
-            if (o.model)
-                kind = hg_model_from_name(o.model);
-            rc = hg_board_init(&bx, (hg_model_kind)(int)row[col_model], 0);
+            rc = hg_board_init(&bx, plant, kind, 0);
+            if (variant_w >= 0)
+                kind = variant_w;
             if (!rc && whatif && !closed) {
-                rc = hg_board_init(&b, (hg_model_kind)kind, 0);
+                rc = hg_board_init(&b, plant, kind, 0);
                 hg_board_peek(&b, &out_w);
             }
-            lc.model_kind = kind;
+            if (closed) {
+                lc.plant = plant;
+                lc.variant = kind;
+            }
             if (!rc && closed)
                 rc = hg_loop_init(&L, &lc, 0);
             for (i = 1; !rc && closed && i < o.spread; i++)
@@ -706,78 +865,97 @@ int cmd_replay(int argc, char **argv)
         }
         for (i = 0; i < nf; i++)
             hg_board_rec_set(fld, nf, i, &in, row[col[i]]);
+        for (; next_ev < nev && ev[next_ev].at <= (unsigned long)n; next_ev++)  /* format 2's parameters */
+            hg_board_rec_entry_set(&in.params, np, ev[next_ev].entry, ev[next_ev].value);
+        if (col_fp >= 0 && (double)hg_board_rec_fingerprint(&in.params, np) != row[col_fp]) {
+            fprintf(stderr, "hexaglide replay: %s: sample %ld (line %ld): the parameters in force then are not "
+                    "in the record (in.params-fp does not match the events; more than %d changes waited at "
+                    "once, or rows are missing): it replays only up to here\n", o.file, n, r.line,
+                    HG_BOARD_REC_QUEUE);
+            status = 1;
+            break;
+        }
         period = (long)row[col_period];
-        for (k = 0; k < 6; k++) {      /* the recorded run: motion's f-error, pid.N.enable */
+        for (k = 0; k < nj; k++) {     /* the recorded run: motion's f-error, pid.N.enable */
             double fb = out_x.position[k];
             fe[0][k] = prev_cmd[k] - fb;
             enable[k] = (int)((in.dout_values >> (8 + k)) & 1u);
         }
         hg_board_step(&bx, &in, &out_x, period);
-        compare_row(fld, nf, col, row, &in, &out_x, period, (int)row[col_model], n, r.line, !whatif, &stx);
-        for (k = 0; k < 6; k++)
+        ctx.in = &in;
+        ctx.out = &out_x;
+        ctx.period_ns = period;
+        ctx.plant = plant;
+        ctx.variant = (int)row[col_model];
+        ctx.stream = 0;
+        compare_row(fld, nf, col, row, &ctx, n, r.line, !whatif, &stx);
+        for (k = 0; k < nj; k++)
             volts[0][k] = out_x.volts[k];
         if (whatif) {                  /* the recorded block with the user's changes on top */
             in_w = in;
             for (k = 0; k < o.nset; k++)
-                memcpy((char *)&in_w.params.model + set_off[k], &set_val[k], sizeof set_val[k]);
+                in_w.params.plant.v[set_idx[k]] = set_val[k];
             if (o.substeps > 0)
                 in_w.params.substeps = (unsigned)o.substeps;
             if (o.integrator >= 0)
                 in_w.params.integrator = (unsigned)o.integrator;
         }
         ie_rec = 0;
-        for (k = 0; k < 6; k++)
+        for (k = 0; k < nj; k++)
             ie_rec |= (in.index_enable[k] != 0) << k;
         latched_rec = col_latched >= 0 ? (unsigned)row[col_latched] : 0u;
         if (closed) {                  /* LinuxCNC's servo thread on the changed board */
             hg_loop_sample smp;
-            double cmd[6];
-            for (k = 0; k < 6; k++)
-                cmd[k] = row[col_cmd[k]];
+            double cmd[HG_CHANNELS_MAX];
+            for (k = 0; k < nj; k++)
+                cmd[k] = row[cols.cmd[k]];
             closed_step(&L, ie, &in_w, ie_rec, prev_ie_rec, prev_latched_rec, cmd, enable, period, &smp);
             out_w = L.out;
-            for (k = 0; k < 6; k++) {
+            for (k = 0; k < nj; k++) {
                 fe[1][k] = smp.ferror_mm[k];
                 volts[1][k] = out_w.volts[k];
             }
         } else if (whatif) {              /* open loop: the recorded DAC volts */
-            for (k = 0; k < 6; k++)
+            for (k = 0; k < nj; k++)
                 fe[1][k] = prev_cmd[k] - out_w.position[k];
             hg_board_step(&b, &in_w, &out_w, period);
-            for (k = 0; k < 6; k++)
+            for (k = 0; k < nj; k++)
                 volts[1][k] = out_w.volts[k];
         } else {
             out_w = out_x;
-            for (k = 0; k < 6; k++) {
+            for (k = 0; k < nj; k++) {
                 fe[1][k] = fe[0][k];
                 volts[1][k] = volts[0][k];
             }
         }
         if (whatif && (out_w.events & HG_EV_PARAM_REFUSED)) {
-            const char *why[HG_BOARD_WHY_LEN];
-            unsigned long long mask = 0;
+            const hg_board *wb = closed ? &L.board : &b;
+            hg_bitset bad;
             int bit;
-            memset(why, 0, sizeof why);
-            hg_board_params_check(&in_w.params, &mask, why);
+            hg_board_params_check(wb, &in_w.params, &bad, why);
             fprintf(stderr, "hexaglide replay: sample %ld: the board refused the changed parameters:", n);
-            for (bit = 0; bit < 64; bit++)
-                if (mask & (1ull << bit))
-                    fprintf(stderr, " %s (%s)", hg_board_param_hal_name(bit) ? hg_board_param_hal_name(bit) : "?",
+            for (bit = 0; bit < HG_BOARD_WHY_LEN; bit++)
+                if (hg_bitset_has(&bad, bit))
+                    fprintf(stderr, " %s (%s)", hg_board_param_hal_name(wb, bit) ? hg_board_param_hal_name(wb, bit) : "?",
                             why[bit] ? why[bit] : "invalid");
             fprintf(stderr, "; the run goes on with the previous set: change --set\n");
             status = 1;
             break;
         }
-        if (whatif)
-            compare_row(fld, nf, col, row, &in_w, &out_w, period, kind, n, r.line, 0, &st);
+        if (whatif) {
+            ctx.in = &in_w;
+            ctx.out = &out_w;
+            ctx.variant = kind;
+            compare_row(fld, nf, col, row, &ctx, n, r.line, 0, &st);
+        }
         if (has_cmd) {                 /* the f-error statistics */
-            if (o.from < 0 && (prev_latched_rec & 0x3fu)) {
+            if (o.from < 0 && (prev_latched_rec & jmask)) {
                 memset(js, 0, sizeof js); /* a latch (homing): the window starts again */
                 win_from = n + 1;     /* in the period after the latch motion reports 0 */
             }
             if (o.from >= 0)
                 win_from = o.from;
-            for (k = 0; k < 6; k++) {
+            for (k = 0; k < nj; k++) {
                 if (!enable[k] || n < win_from)
                     continue;
                 if (first_enabled < 0)
@@ -787,8 +965,8 @@ int cmd_replay(int argc, char **argv)
                 joint_add(&js[k], 1, n, fe[1][k], volts[1][k]);
                 js[k].n++;
             }
-            for (k = 0; k < 6; k++)
-                prev_cmd[k] = row[col_cmd[k]];
+            for (k = 0; k < nj; k++)
+                prev_cmd[k] = row[cols.cmd[k]];
         }
         if (closed && o.spread > 1) {  /* the delayed loops */
             period_in *p = &ring[n % RING];
@@ -797,18 +975,18 @@ int cmd_replay(int argc, char **argv)
             p->ie_rec = ie_rec;
             p->prev_ie_rec = prev_ie_rec;
             p->prev_latched_rec = prev_latched_rec;
-            p->reset = o.from < 0 && (prev_latched_rec & 0x3fu);
+            p->reset = o.from < 0 && (prev_latched_rec & jmask);
             p->win = 0;
-            for (k = 0; k < 6; k++) {
-                p->cmd[k] = row[col_cmd[k]];
+            for (k = 0; k < nj; k++) {
+                p->cmd[k] = row[cols.cmd[k]];
                 p->enable[k] = enable[k];
                 if (enable[k] && n >= win_from)
                     p->win |= 1u << k;
             }
-            if (prev_latched_rec & 0x3fu) {
+            if (prev_latched_rec & jmask) {
                 last_latch = n;
                 still = 0;
-            } else if (n > 0 && same_commands(p->cmd, ring[(n - 1) % RING].cmd)) {
+            } else if (n > 0 && same_commands(p->cmd, ring[(n - 1) % RING].cmd, nj)) {
                 still++;
             } else {
                 still = 0;
@@ -821,8 +999,8 @@ int cmd_replay(int argc, char **argv)
         prev_ie_rec = ie_rec;
         prev_latched_rec = latched_rec;
         if (csv)
-            csv_row(csv, n, row, col_z, col_count, col_pose, &out_w, has_cmd ? (const double (*)[6])fe : 0,
-                    (const double (*)[6])volts);
+            csv_row(csv, n, row, &cols, &out_w, has_cmd ? (const double (*)[HG_CHANNELS_MAX])fe : 0,
+                    (const double (*)[HG_CHANNELS_MAX])volts);
         stx.samples++;
         st.samples++;
     }
@@ -833,6 +1011,7 @@ int cmd_replay(int argc, char **argv)
     if (csv && cli_out_close("replay", &csv_out, !status))
         status = 1;
     free(buf);
+    free(ev);
     if (status)
         return status;
     if (stx.samples == 0) {
@@ -849,12 +1028,12 @@ int cmd_replay(int argc, char **argv)
                 "(run replay without options for the fields): the recorded f-errors are the replayed ones\n",
                 stx.first_mismatch);
     if (has_cmd && first_enabled >= 0)
-        joint_report(js, whatif, win_from, last_enabled, o.from < 0);
+        joint_report(js, nj, whatif, win_from, last_enabled, o.from < 0);
     if (closed && o.spread > 1 && hold_at < 0)
         fprintf(stderr, "hexaglide replay: note: --spread: no idle after an index latch (homing) in %s: "
                 "the %ld loops ran the same periods\n", o.file, o.spread);
     if (closed && o.spread > 1 && first_enabled >= 0)
-        for (k = 0; k < 6; k++) {
+        for (k = 0; k < nj; k++) {
             double v[REPLAY_MAX_SPREAD], m;
             v[0] = js[k].peak_mm[1];
             for (i = 1; i < o.spread; i++)

@@ -6,76 +6,133 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cli.h"
-#include "hg_dynamics.h"
+#include "hg_board_rec.h"
+#include "hg_scheme.h"
 #include "hg_errors.h"
 #include "hg_units.h"
 
 #define SIM_MAX_STEPS 100000000L   /* refuse runs longer than this many steps */
 
 const char cli_usage_sim[] =
-    "usage: hexaglide sim [--model standard|reduced-joints|reduced-cartesian|fused-cartesian]\n"
+    "usage: hexaglide sim [--plant hexaglide] [--model standard|reduced-joints|reduced-cartesian|fused-cartesian]\n"
     "                     [--time S] [--dt S] [--volts V0,V1,V2,V3,V4,V5]\n"
     "                     [--substeps N] [--integrator improved-euler|heun|rk4]\n"
-    "                     [--ini FILE] [--set name=value]... [--csv FILE] [--list-params]\n"
+    "                     [--ini FILE] [--set name=value]... [--csv FILE] [--record FILE] [--list-params]\n"
     "  the virtual board with constant DAC volts, amplifiers on, one CSV row per servo period:\n"
     "  t_s, z0_mm..z5_mm (joints), zd0_mm_s..zd5_mm_s (joint velocities), x_mm y_mm z_mm,\n"
-    "  a_deg b_deg c_deg (head pose)\n"
-    "defaults: reduced-cartesian, 1 s, dt 0.001 s, 0 V, CSV to stdout; --substeps and --integrator\n"
+    "  a_deg b_deg c_deg (head pose); a rotary channel's columns are in deg, deg_s\n"
+    "defaults: the hexaglide plant, its default model (reduced-cartesian), 1 s, dt 0.001 s, 0 V,\n"
+    "CSV to stdout; --volts takes one value per channel of the plant; --substeps and --integrator\n"
     "as the board loads them (motenc-hexaglide.N.substeps, .integrator).\n"
     "--dt is the board's servo period (whole ns); --volts go through the board's 13-bit DAC;\n"
-    "--list-params prints every parameter: spec name, SI unit, default, HAL name and INI key\n"
+    "--list-params prints every parameter: spec name, SI unit, default, HAL name and INI key;\n"
+    "--record FILE writes the run as a record of the board's rec pins (hexaglide replay FILE)\n"
     CLI_USAGE_MODEL;
 
-static void list_params(void)
+static void list_params(int plant)
 {
+    const hg_plant *pl = hg_plant_at(plant);
+    hg_plant_params v;
     int i, n;
-    const hg_param_info *t = hg_params_table(&n);
-    hg_params p;
-    hg_params_default(&p);
+    const hg_param_info *t = pl->table(&n);
+    pl->defaults(&v);
     for (i = 0; i < n; i++) {
-        const char *key = cli_ini_key_of(t[i].name);
-        printf("%-16s %-8s %-14.9g %s (HAL: %s, %s", t[i].name, t[i].unit, *hg_params_field(&p, t[i].name),
-               t[i].what, t[i].hal_name, t[i].hal_unit);
-        if (key)
-            printf("; INI: [HEXAGLIDE]%s, %s", key, t[i].hal_unit);
+        printf("%-16s %-8s %-14.9g %s (HAL: %s, %s", t[i].name, t[i].unit, v.v[i], t[i].what, t[i].hal_name,
+               t[i].hal_unit);
+        if (t[i].ini_key)
+            printf("; INI: [%s]%s, %s", pl->ini_section, t[i].ini_key, t[i].hal_unit);
         printf(")\n");
     }
 }
 
-static void write_row(FILE *f, double t, const hg_board_outputs *o)
+/* Scale of channel k's position to its CSV unit (mm or deg). */
+static double channel_scale(const hg_board_outputs *o, int k)
+{
+    return (o->rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M;
+}
+
+static void write_row(FILE *f, double t, const hg_plant *pl, const hg_board_outputs *o)
 {
     int k;
     fprintf(f, "%.9g", t);
-    for (k = 0; k < 6; k++)
-        fprintf(f, ",%.9g", o->z_m[k] * HG_MM_PER_M);
-    for (k = 0; k < 6; k++)
-        fprintf(f, ",%.9g", o->zd_mps[k] * HG_MM_PER_M);
-    for (k = 0; k < 3; k++)
-        fprintf(f, ",%.9g", o->pose[k] * HG_MM_PER_M);
-    for (k = 3; k < 6; k++)
-        fprintf(f, ",%.9g", o->pose[k] * HG_DEG_PER_RAD);
+    for (k = 0; k < o->channels; k++)
+        fprintf(f, ",%.9g", o->pos[k] * channel_scale(o, k));
+    for (k = 0; k < o->channels; k++)
+        fprintf(f, ",%.9g", o->vel[k] * channel_scale(o, k));
+    for (k = 0; k < pl->noutputs; k++)
+        if (pl->outputs[k].csv_name)
+            fprintf(f, ",%.9g", o->extra[k] * pl->outputs[k].hal_scale);
     fputc('\n', f);
 }
 
 /* The CSV header: units in every name, none like an option. */
-static void write_header(FILE *f)
+static void write_header(FILE *f, const hg_plant *pl, const hg_board_outputs *o)
 {
     int k;
     fprintf(f, "t_s");
-    for (k = 0; k < 6; k++)
-        fprintf(f, ",z%d_mm", k);
-    for (k = 0; k < 6; k++)
-        fprintf(f, ",zd%d_mm_s", k);
-    fprintf(f, ",x_mm,y_mm,z_mm,a_deg,b_deg,c_deg\n");
+    for (k = 0; k < o->channels; k++)
+        fprintf(f, ",z%d_%s", k, (o->rotary >> k) & 1u ? "deg" : "mm");
+    for (k = 0; k < o->channels; k++)
+        fprintf(f, ",zd%d_%s", k, (o->rotary >> k) & 1u ? "deg_s" : "mm_s");
+    for (k = 0; k < pl->noutputs; k++)
+        if (pl->outputs[k].csv_name)
+            fprintf(f, ",%s", pl->outputs[k].csv_name);
+    fputc('\n', f);
+}
+
+/* A record of the run in the format the HAL glue's rec pins carry (for
+ * `hexaglide replay`): the table, the parameters' event stream, one row per period. */
+typedef struct {
+    cli_out out;
+    hg_board_rec_field f[HG_BOARD_REC_MAX];
+    int n, np;
+    hg_board_rec_stream stream;
+} sim_record;
+
+/* Open path and write the record's header; 0, or -1 after a message. */
+static int record_open(sim_record *r, const char *path, const hg_board *b)
+{
+    int k;
+    r->n = hg_board_rec_fields(r->f, HG_BOARD_REC_MAX, b->plant, HG_BOARD_REC_FORMAT);
+    hg_board_plant(b)->table(&r->np);
+    if (r->n < 0 || cli_out_open("sim", path, &r->out))
+        return -1;
+    hg_board_rec_stream_start(&r->stream);
+    fprintf(r->out.f, "# hexaglide-record %d\n# source hexaglide sim (open loop, constant volts)\n# board 0\n"
+                      "# plant %s\n# closed-loop no: an open-loop run of hexaglide sim\nsample",
+            HG_BOARD_REC_FORMAT, hg_board_plant(b)->name);
+    for (k = 0; k < r->n; k++)
+        fprintf(r->out.f, ",%s", r->f[k].name);
+    fputc('\n', r->out.f);
+    return 0;
+}
+
+/* One row: period s's inputs and outputs, exactly (%.17g). */
+static void record_row(sim_record *r, long s, const hg_board *b, const hg_board_inputs *in,
+                       const hg_board_outputs *out, long period_ns)
+{
+    hg_board_rec_ctx c;
+    int k;
+    hg_board_rec_stream_step(&r->stream, &in->params, r->np);
+    c.in = in;
+    c.out = out;
+    c.period_ns = period_ns;
+    c.plant = b->plant;
+    c.variant = b->variant;
+    c.stream = &r->stream;
+    fprintf(r->out.f, "%ld", s);
+    for (k = 0; k < r->n; k++)
+        fprintf(r->out.f, ",%.17g", hg_board_rec_get(r->f, r->n, k, &c));
+    fputc('\n', r->out.f);
 }
 
 enum { OPT_MODEL, OPT_TIME, OPT_DT, OPT_VOLTS, OPT_SUBSTEPS, OPT_INTEGRATOR, OPT_INI, OPT_SET, OPT_CSV,
-       OPT_LIST };
+       OPT_LIST, OPT_PLANT, OPT_RECORD };
 static const cli_opt sim_opts[] = {
     {"--model", 1}, {"--time", 1}, {"--dt", 1}, {"--volts", 1}, {"--substeps", 1}, {"--integrator", 1},
-    {"--ini", 1}, {"--set", 1}, {"--csv", 1}, {"--list-params", 0}, {0, 0},
+    {"--ini", 1}, {"--set", 1}, {"--csv", 1}, {"--list-params", 0}, {"--plant", 1}, {"--record", 1}, {0, 0},
 };
-static const char *const volt_names[6] = {"V0", "V1", "V2", "V3", "V4", "V5"};
+static const char *const volt_names[HG_CHANNELS_MAX] = {"V0", "V1", "V2", "V3", "V4", "V5", "V6", "V7"};
 
 int cmd_sim(int argc, char **argv)
 {
@@ -85,15 +142,13 @@ int cmd_sim(int argc, char **argv)
     hg_board_outputs out;
     cli_args a;
     cli_out csv;
-    double t_end = 1.0, dt = 0.001, volts[6] = {0, 0, 0, 0, 0, 0}, substeps = 1;
-    const char *csv_path = 0, *ini = 0, *v;
+    double t_end = 1.0, dt = 0.001, volts[HG_CHANNELS_MAX] = {0, 0, 0, 0, 0, 0, 0, 0}, substeps = 1;
+    const char *csv_path = 0, *ini = 0, *v, *model = 0, *volts_text = 0, *integrator = 0, *record = 0;
+    static sim_record rec;
     char *sets[argc > 0 ? argc : 1];
-    int kind = HG_MODEL_REDUCED_CARTESIAN, k, o, nset = 0, rc = 0;
+    int plant = 0, variant, k, o, nset = 0, rc = 0, list = 0, given_substeps = 0;
     long n, s, period_ns;
-    if (cli_board_defaults(&bp)) {
-        fprintf(stderr, "hexaglide sim: out of memory\n");
-        return 1;
-    }
+    const hg_plant *pl;
     cli_args_init(&a, "sim", cli_usage_sim, sim_opts, argc, argv);
     while ((o = cli_next(&a, &v)) != CLI_DONE) {
         switch (o) {
@@ -106,25 +161,22 @@ int cmd_sim(int argc, char **argv)
                     "options)\n", v);
             return 2;
         case OPT_LIST:
-            list_params();
-            return 0;
-        case OPT_MODEL:
-            kind = hg_model_from_name(v);
-            if (kind < 0) {
-                fprintf(stderr, "hexaglide sim: unknown model '%s' (standard, reduced-joints, "
-                                "reduced-cartesian, fused-cartesian)\n", v);
-                return 2;
-            }
+            list = 1;
             break;
-        case OPT_INTEGRATOR: {
-            int which = hg_integrator_from_name(v);
-            if (which < 0) {
+        case OPT_PLANT:
+            if ((plant = cli_plant("sim", v)) < 0)
+                return 2;
+            break;
+        case OPT_MODEL:
+            model = v;
+            break;
+        case OPT_INTEGRATOR:
+            if (hg_integrator_from_name(v) < 0) {
                 fprintf(stderr, "hexaglide sim: unknown integrator '%s' (improved-euler, heun, rk4)\n", v);
                 return 2;
             }
-            bp.integrator = (unsigned)which;
+            integrator = v;
             break;
-        }
         case OPT_SUBSTEPS:
             if (cli_parse_double(v, "--substeps", &substeps))
                 return 2;
@@ -133,7 +185,7 @@ int cmd_sim(int argc, char **argv)
                         HG_SUBSTEPS_MAX, v);
                 return 2;
             }
-            bp.substeps = (unsigned)substeps;
+            given_substeps = 1;
             break;
         case OPT_TIME:
             if (cli_parse_double(v, "--time", &t_end))
@@ -144,8 +196,7 @@ int cmd_sim(int argc, char **argv)
                 return 2;
             break;
         case OPT_VOLTS:
-            if (cli_parse_list("sim", "--volts", v, volt_names, 6, volts))
-                return 2;
+            volts_text = v;
             break;
         case OPT_INI:
             if (ini) {
@@ -157,19 +208,34 @@ int cmd_sim(int argc, char **argv)
         case OPT_SET:
             sets[nset++] = (char *)v;
             break;
+        case OPT_RECORD:
+            record = v;
+            break;
         default:                       /* OPT_CSV */
             csv_path = v;
         }
     }
-    if (cli_params_build("sim", ini, sets, nset, &bp.model))
+    pl = hg_plant_at(plant);
+    if (list) {
+        list_params(plant);
+        return 0;
+    }
+    if ((variant = cli_variant("sim", plant, model)) < 0)
+        return 2;
+    cli_board_defaults(plant, &bp);
+    if (given_substeps)
+        bp.substeps = (unsigned)substeps;
+    if (integrator)
+        bp.integrator = (unsigned)hg_integrator_from_name(integrator);
+    if (cli_params_build("sim", plant, ini, sets, nset, &bp.plant))
         return 2;
     if (!(t_end >= 0.0)) {
         fprintf(stderr, "hexaglide sim: --time must be >= 0 s, got %g\n", t_end);
         return 2;
     }
-    if (!(dt > 0.0 && dt <= HG_DT_MAX_S)) {
+    if (!(dt > 0.0 && dt <= (double)HG_PERIOD_MAX_NS * 1e-9)) {
         fprintf(stderr, "hexaglide sim: --dt must be positive and at most %g s, got %g\n",
-                HG_DT_MAX_S, dt);
+                (double)HG_PERIOD_MAX_NS * 1e-9, dt);
         return 2;
     }
     if (cli_parse_period("sim", dt, &period_ns))
@@ -181,22 +247,40 @@ int cmd_sim(int argc, char **argv)
         return 2;
     }
     n = (long)floor(t_end / dt + 0.5);
-    b = cli_board_new("sim", kind, &bp);
+    b = cli_board_new("sim", plant, variant, &bp);
     if (!b)
         return 2;
+    if (record) {                      /* as at loadrt: the spec's defaults, the block applied by the first period */
+        free(b);
+        b = cli_board_new("sim", plant, variant, 0);
+        if (!b)
+            return 2;
+    }
+    if (volts_text && cli_parse_list("sim", "--volts", volts_text, volt_names, b->sense.channels, volts)) {
+        free(b);
+        return 2;
+    }
     if (cli_out_open("sim", csv_path, &csv)) {
         free(b);
         return 1;
     }
+    if (record && record_open(&rec, record, b)) {
+        cli_out_close("sim", &csv, 0);
+        free(b);
+        return 1;
+    }
     hg_board_inputs_default(b, &in);
+    in.params = bp;                            /* (in force already unless recording) */
     in.dout_values = 1u << in.estop_loop_out;   /* E-STOP loop closed: amplifiers on */
-    for (k = 0; k < 6; k++)
+    for (k = 0; k < b->sense.channels; k++)
         in.dac_v[k] = volts[k];
     hg_board_peek(b, &out);
-    write_header(csv.f);
-    write_row(csv.f, 0.0, &out);
+    write_header(csv.f, pl, &out);
+    write_row(csv.f, 0.0, pl, &out);
     for (s = 0; s < n; s++) {
         hg_board_step(b, &in, &out, period_ns);
+        if (record)
+            record_row(&rec, s, b, &in, &out, period_ns);
         if (out.events & HG_EV_SUBSTEPS_AUTO) {
             char why[HG_BOARD_TEXT_LEN];
             hg_board_describe_stiffness(b, &out, period_ns, 0, why);
@@ -212,8 +296,8 @@ int cmd_sim(int argc, char **argv)
             break;
         }
         if (out.fault) {
-            char what[HG_GUARD_TEXT_LEN];
-            hg_guard_describe(&out.fault_guard, 0, what);
+            char what[HG_PLANT_TEXT_LEN];
+            pl->describe(&out.fault_report, 0, what);
             fprintf(stderr, "hexaglide sim: the step from t = %.6f s to %.6f s failed: %s (code %d)%s%s; "
                             "the CSV stops at t = %.6f s\n",
                     s * dt, (s + 1) * dt, hg_strerror(out.fault_code), out.fault_code, what[0] ? ": " : "",
@@ -221,9 +305,11 @@ int cmd_sim(int argc, char **argv)
             rc = out.fault_code;
             break;
         }
-        write_row(csv.f, (double)(s + 1) * dt, &out);   /* no drift from summing dt */
+        write_row(csv.f, (double)(s + 1) * dt, pl, &out);   /* no drift from summing dt */
     }
     if (cli_out_close("sim", &csv, 1))       /* the rows before a failure are kept */
+        rc = rc ? rc : -1;
+    if (record && cli_out_close("sim", &rec.out, 1))
         rc = rc ? rc : -1;
     free(b);
     return rc ? 1 : 0;

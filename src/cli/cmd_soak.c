@@ -26,6 +26,7 @@
 #include <time.h>
 #include <unistd.h>
 #include "cli.h"
+#include "hg_plant_hexaglide.h"
 #include "hg_dynamics.h"
 #include "hg_errors.h"
 #include "hg_forces.h"
@@ -135,9 +136,9 @@ static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_conf
     if (cli_ini_read("soak", ini_path, &ini))
         return 2;
     hg_loop_config_default(c);
-    c->model_kind = kind;
-    bad |= cli_ini_apply_joints("soak", &ini, c) != 0;
-    for (j = 0; j < HG_LOOP_JOINTS; j++)
+    c->variant = kind;
+    bad |= cli_ini_apply_joints("soak", &ini, 6, c) != 0;
+    for (j = 0; j < 6; j++)
         for (k = 0; k < 3; k++) {
             double *f = k == 0 ? &r[j].ferror : k == 1 ? &r[j].min_ferror : &r[j].max_velocity;
             bad |= cli_ini_joint_number("soak", &ini, j, rule_keys[k], f) != 0;
@@ -159,7 +160,7 @@ static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_conf
             return 2;
         }
     }
-    for (j = 0; j < HG_LOOP_JOINTS; j++)
+    for (j = 0; j < 6; j++)
         if (!(c->input_scale[j] != 0 && r[j].max_velocity > 0 && r[j].ferror >= 0 && r[j].min_ferror >= 0)) {
             fprintf(stderr, "hexaglide soak: %s: [JOINT_%d] needs INPUT_SCALE != 0, MAX_VELOCITY > 0, "
                     "FERROR >= 0 and MIN_FERROR >= 0\n", ini_path, j);
@@ -190,6 +191,8 @@ int cmd_soak(int argc, char **argv)
     int kind = HG_MODEL_REDUCED_CARTESIAN, k, o, nset = 0, rc = 0, faults = 0, trips = 0, ferr_joint = 0;
     int integrator = -1;
     long n, s;
+    const hg_model *hm;
+    const hg_data *hd;
     cli_args_init(&a, "soak", cli_usage_soak, soak_opts, argc, argv);
     while ((o = cli_next(&a, &v)) != CLI_DONE) {
         if (o == CLI_HELP)
@@ -241,8 +244,8 @@ int cmd_soak(int argc, char **argv)
         return 1;
     }
     /* the board's load-time block (substeps, integrator), the model's parameters from the config */
-    if (cli_board_defaults(&bp) || cli_params_build("soak", ini, sets, nset, &bp.model) ||
-        cli_params_check("soak", &bp.model)) {
+    cli_board_defaults(0, &bp);
+    if (cli_params_build("soak", 0, ini, sets, nset, &bp.plant) || cli_params_check("soak", 0, &bp.plant)) {
         free(L);
         return 2;
     }
@@ -255,7 +258,9 @@ int cmd_soak(int argc, char **argv)
         return 2;
     }
     trajectory_init(&tr, (unsigned long long)fabs(seed_d) * 7919 + 1);
-    hg_energy(&L->board.m, &L->board.d, &e0k, &e0p);
+    hm = hg_hexaglide_model(&L->board.m);
+    hd = hg_hexaglide_data(&L->board.d);
+    hg_energy(hm, hd, &e0k, &e0p);
     n = (long)(hours * 3600.0 / dt + 0.5);
     t0 = now_s();
     rc = 0;
@@ -263,17 +268,17 @@ int cmd_soak(int argc, char **argv)
         double t = (s + 1) * dt, pose[6], cmd[6], z0[6], f_passive[6];
         static const double no_drive[6] = {0, 0, 0, 0, 0, 0};
         trajectory_pose(&tr, t, pose);
-        if (hg_inverse_kinematics(&L->board.m.p.geo, pose, cmd)) {
+        if (hg_inverse_kinematics(&hm->p.geo, pose, cmd)) {
             fprintf(stderr, "hexaglide soak: trajectory left the working volume at t = %.3f s\n", t);
             rc = 1;
             break;
         }
         for (k = 0; k < 6; k++) {
             cmd[k] *= HG_MM_PER_M;
-            z0[k] = L->out.z_m[k];
+            z0[k] = L->out.pos[k];
         }
         /* viscous friction and stops alone: the smooth carriage forces without the drives */
-        hg_carriage_forces(&L->board.m, L->board.d.z_m, L->board.d.zd_mps, no_drive, f_passive);
+        hg_carriage_forces(hm, hd->z_m, hd->zd_mps, no_drive, f_passive);
         if (hg_loop_step(L, cmd, &smp)) {
             faults++;
             fprintf(stderr, "hexaglide soak: step failed at t = %.3f s: %s (code %d)\n", t,
@@ -298,12 +303,12 @@ int cmd_soak(int argc, char **argv)
             cmd_prev2[k] = cmd_prev[k];
             cmd_prev[k] = cmd[k];
             /* the step held the force of its start state: its work */
-            work_j += L->out.force_n[k] * (L->out.z_m[k] - z0[k]);
+            work_j += L->out.force[k] * (L->out.pos[k] - z0[k]);
             /* + sliding and static friction, resolved over the step */
-            friction_j += (f_passive[k] + L->board.d.fric_n[k]) * (L->out.z_m[k] - z0[k]);
+            friction_j += (f_passive[k] + hd->fric_n[k]) * (L->out.pos[k] - z0[k]);
         }
         {
-            double e = bar_length_error(&L->board.m.p.geo, L->out.z_m, L->out.pose);
+            double e = bar_length_error(&hm->p.geo, L->out.pos, L->out.extra);   /* extra[0..5]: the head pose */
             if (!(e <= drift))
                 drift = e;
         }
@@ -311,7 +316,7 @@ int cmd_soak(int argc, char **argv)
             break;
     }
     wall = now_s() - t0;
-    hg_energy(&L->board.m, &L->board.d, &ek, &ep);
+    hg_energy(hm, hd, &ek, &ep);
     net = (ek + ep) - (e0k + e0p);
     mismatch = net - work_j;
     printf("soak: %s, config %s, %.2f h simulated (%ld periods of %.3g s) in %.1f s wall (%.0fx real time, "
@@ -320,7 +325,7 @@ int cmd_soak(int argc, char **argv)
     printf("soak: constraint drift (largest | |B-A| - l | of the closed-form bar lengths): %.3e m\n", drift);
     printf("soak: energy balance (%s): net change %.6g J; work of the drives %.6g J, of friction and stops "
            "%.6g J; mismatch %.3e J = %.3e of the net change\n",
-           hg_integrator_name((hg_integrator)L->board.m.integrator), net, work_j - friction_j, friction_j,
+           hg_integrator_name(hm->integrator), net, work_j - friction_j, friction_j,
            mismatch, fabs(mismatch) / (net != 0 ? fabs(net) : 1));
     printf("soak: max following error after the %.1f s ramp-in: %.4f mm = %.2f counts (joint %d, through the "
            "encoder)\n", SOAK_SETTLED_S, ferr_max, ferr_counts, ferr_joint);

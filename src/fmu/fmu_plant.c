@@ -1,5 +1,5 @@
 /* fmu_plant.c - the adapter: the FMU's every use of the board core
- * (hg_board.h, hg_params.h, hg_dynamics.h). It drives hg_board exactly as
+ * (hg_board.h, hg_plant.h: the Hexaglide plant of the board's registry). It drives hg_board exactly as
  * `hexaglide sim` does (src/cli/cmd_sim.c): the board's own load-time
  * inputs (hg_board_inputs_default), the E-STOP loop closed by amp_enable,
  * the DAC volts of the period, one hg_board_step per servo period; and it
@@ -13,18 +13,26 @@
 #include "fmu_plant.h"
 #include "hg_board.h"
 #include "hg_errors.h"
-#include "hg_guard.h"
+#include "hg_scheme.h"
 
 /* The servo period of configs/hexaglide.ini (SERVO_PERIOD) and of `hexaglide sim --dt`. */
 #define PERIOD_DEFAULT_NS 1000000L
-/* The parametrization the HAL component and `hexaglide sim` load by default. */
-#define MODEL_DEFAULT HG_MODEL_REDUCED_CARTESIAN
+
+/* The names of the plant's extra outputs that are the head pose X Y Z A B C. */
+static const char *const pose_names[6] = {"head-x", "head-y", "head-z", "head-a", "head-b", "head-c"};
 
 typedef struct {
     hg_board b;
     hg_board_inputs in;               /* the board's inputs, kept from period to period */
     long period_ns;
+    int pose_extra[6];                /* index of each pose output in the plant's extra outputs, -1 none */
 } plant;
+
+/* The plant of the FMU in the board's registry. */
+static const hg_plant *the_plant(void)
+{
+    return hg_plant_at(hg_plant_find(fmu_plant_name()));
+}
 
 const char *fmu_plant_name(void)
 {
@@ -46,40 +54,42 @@ size_t fmu_plant_size(void)
 int fmu_plant_param_count(void)
 {
     int n;
-    hg_params_table(&n);
+    the_plant()->table(&n);
     return n;
 }
 
 int fmu_plant_param(int i, fmu_param *p)
 {
+    const hg_plant *pl = the_plant();
+    hg_plant_params d;
     int n;
-    const hg_param_info *t = hg_params_table(&n);
-    hg_params d;
+    const hg_param_info *t = pl->table(&n);
     if (i < 0 || i >= n)
         return -1;
-    hg_params_default(&d);
+    pl->defaults(&d);
     p->name = t[i].name;
     p->unit = t[i].unit;
     p->description = t[i].what;
     p->display_unit = t[i].hal_unit;
     p->display_factor = t[i].hal_scale;
-    p->start = hg_params_get(&d, i);
+    p->start = d.v[i];
     return 0;
 }
 
 int fmu_plant_model_count(void)
 {
-    return HG_MODEL_COUNT;
+    return the_plant()->nvariants;
 }
 
 const char *fmu_plant_model_name(int i)
 {
-    return i >= 0 && i < HG_MODEL_COUNT ? hg_model_name((hg_model_kind)i) : 0;
+    const hg_plant *pl = the_plant();
+    return i >= 0 && i < pl->nvariants ? pl->variants[i] : 0;
 }
 
 int fmu_plant_model_default(void)
 {
-    return MODEL_DEFAULT;
+    return the_plant()->default_variant;
 }
 
 int fmu_plant_integrator_count(void)
@@ -95,7 +105,7 @@ const char *fmu_plant_integrator_name(int i)
 int fmu_plant_defaults(long long *substeps, long long *integrator, double *enc_scale)
 {
     plant *p = malloc(sizeof *p);     /* a board is too big for a stack */
-    int rc = p ? hg_board_init(&p->b, MODEL_DEFAULT, 0) : -1;
+    int rc = p ? hg_board_init(&p->b, hg_plant_find(fmu_plant_name()), the_plant()->default_variant, 0) : -1;
     if (rc == 0) {
         hg_board_inputs_default(&p->b, &p->in);   /* the block in force: HAL's load-time values */
         *substeps = p->in.params.substeps;
@@ -142,11 +152,12 @@ static void sayf(fmu_say_fn *say, void *env, int level, const char *fmt, ...)
 /* The parametrizations as "0 (standard), 1 (reduced-joints), ..." for a message. */
 static void model_choices(char *buf, size_t len)
 {
+    const hg_plant *pl = the_plant();
     int i, n = 0;
     buf[0] = 0;
-    for (i = 0; i < HG_MODEL_COUNT && n >= 0 && (size_t)n < len; i++)
-        n += snprintf(buf + n, len - (size_t)n, "%s%d (%s)", i ? (i + 1 < HG_MODEL_COUNT ? ", " : " or ") : "", i,
-                      hg_model_name((hg_model_kind)i));
+    for (i = 0; i < pl->nvariants && n >= 0 && (size_t)n < len; i++)
+        n += snprintf(buf + n, len - (size_t)n, "%s%d (%s)", i ? (i + 1 < pl->nvariants ? ", " : " or ") : "", i,
+                      pl->variants[i]);
 }
 
 /* The period in whole ns (as `hexaglide sim --dt` rounds it), or -1 outside the board's range. */
@@ -162,26 +173,30 @@ static void block_of(const fmu_plant_setup *s, hg_board_params *bp)
     int i, n = fmu_plant_param_count();
     memset(bp, 0, sizeof *bp);
     for (i = 0; i < n; i++)
-        *hg_params_at(&bp->model, i) = s->params[i];
+        bp->plant.v[i] = s->params[i];
     bp->substeps = s->substeps >= 1 && s->substeps <= HG_SUBSTEPS_MAX ? (unsigned)s->substeps : 0u;
     bp->integrator = s->integrator >= 0 && s->integrator < HG_INTEGRATOR_COUNT ? (unsigned)s->integrator
                                                                                  : (unsigned)HG_INTEGRATOR_COUNT;
 }
 
-/* Every field the core's check refuses: name = value unit: the rule. */
-static void report_refused(const fmu_plant_setup *s, const hg_board_params *bp, fmu_say_fn *say, void *env)
+/* Every field the core's check refuses (the board b knows its plant): name = value unit: the rule. */
+static void report_refused(const hg_board *b, const fmu_plant_setup *s, const hg_board_params *bp, fmu_say_fn *say,
+                           void *env)
 {
+    static const char *const none[HG_BOARD_WHY_LEN];
     const char *why[HG_BOARD_WHY_LEN];
-    unsigned long long mask;
+    hg_bitset bad;
     int i, n;
-    const hg_param_info *t = hg_params_table(&n);
-    hg_board_params_check(bp, &mask, why);
+    const hg_param_info *t = hg_board_plant(b)->table(&n);
+    memcpy(why, none, sizeof why);
+    hg_bitset_clear(&bad);
+    hg_board_params_check(b, bp, &bad, why);
     for (i = 0; i < HG_BOARD_WHY_LEN; i++) {
-        if (!((mask >> i) & 1u))
+        if (!hg_bitset_has(&bad, i))
             continue;
         if (i < n)
-            sayf(say, env, FMU_SAY_ERROR, "parameter %s = %.9g %s refused: %s", t[i].name,
-                 hg_params_get(&bp->model, i), t[i].unit, why[i] ? why[i] : "invalid");
+            sayf(say, env, FMU_SAY_ERROR, "parameter %s = %.9g %s refused: %s", t[i].name, bp->plant.v[i],
+                 t[i].unit, why[i] ? why[i] : "invalid");
         else
             sayf(say, env, FMU_SAY_ERROR, "parameter %s = %lld refused: %s",
                  i == HG_BOARD_BIT_SUBSTEPS ? "substeps" : "integrator",
@@ -192,10 +207,11 @@ static void report_refused(const fmu_plant_setup *s, const hg_board_params *bp, 
 int fmu_plant_init(void *plant_bytes, const fmu_plant_setup *s, fmu_say_fn *say, void *env)
 {
     plant *p = plant_bytes;
+    const hg_plant *pl = the_plant();
     hg_board_params bp;
     long ns = period_ns_of(s->period_s);
-    int rc, bad = 0;
-    if (!(s->model >= 0 && s->model < HG_MODEL_COUNT)) {
+    int rc, k, j, bad = 0;
+    if (!(s->model >= 0 && s->model < pl->nvariants)) {
         char choices[160];
         model_choices(choices, sizeof choices);
         sayf(say, env, FMU_SAY_ERROR, "parameter model = %lld refused: must be %s", s->model, choices);
@@ -203,7 +219,7 @@ int fmu_plant_init(void *plant_bytes, const fmu_plant_setup *s, fmu_say_fn *say,
     }
     if (ns < 0) {
         sayf(say, env, FMU_SAY_ERROR, "parameter period = %.9g s refused: must lie in [1e-9, %g] s (the board's "
-             "servo period, whole nanoseconds)", s->period_s, HG_DT_MAX_S);
+             "servo period, whole nanoseconds)", s->period_s, (double)HG_PERIOD_MAX_NS * 1e-9);
         bad = 1;
     }
     /* the board's rule for an encoder scale (hg_board.c, encoders()), refused here instead of replaced by 1.0 */
@@ -213,13 +229,17 @@ int fmu_plant_init(void *plant_bytes, const fmu_plant_setup *s, fmu_say_fn *say,
         bad = 1;
     }
     block_of(s, &bp);
-    if (hg_board_params_check(&bp, 0, 0)) {
-        report_refused(s, &bp, say, env);
+    memset(&p->b, 0, sizeof p->b);
+    p->b.plant = hg_plant_find(fmu_plant_name());   /* the check needs the plant */
+    if (hg_board_params_check(&p->b, &bp, 0, 0)) {
+        report_refused(&p->b, s, &bp, say, env);
         bad = 1;
     }
     if (bad)
         return -1;
-    rc = hg_board_init(&p->b, (hg_model_kind)s->model, &bp);
+    rc = hg_board_init(&p->b, p->b.plant, (int)s->model, &bp);
+    if (rc == 0 && p->b.sense.channels != FMU_JOINTS)
+        rc = HG_ERR_BAD_PARAM;
     if (rc) {
         sayf(say, env, FMU_SAY_ERROR, "cannot build the machine: %s (code %d); change the parameters", hg_strerror(rc),
              rc);
@@ -227,9 +247,13 @@ int fmu_plant_init(void *plant_bytes, const fmu_plant_setup *s, fmu_say_fn *say,
     }
     hg_board_inputs_default(&p->b, &p->in);
     p->in.dac_written = 1;            /* the FMU's inputs are the DAC write of each period */
-    for (rc = 0; rc < HG_BOARD_ENCODERS; rc++)
-        p->in.enc_scale[rc] = s->enc_scale;
+    for (k = 0; k < HG_BOARD_ENCODERS; k++)
+        p->in.enc_scale[k] = s->enc_scale;
     p->period_ns = ns;
+    for (k = 0; k < 6; k++)
+        for (p->pose_extra[k] = -1, j = 0; j < pl->noutputs; j++)
+            if (strcmp(pl->outputs[j].hal_name, pose_names[k]) == 0)
+                p->pose_extra[k] = j;
     return 0;
 }
 
@@ -240,24 +264,24 @@ double fmu_plant_period_s(const void *plant_bytes)
 }
 
 /* The board's outputs as the FMU shows them. */
-static void convert(const hg_board_outputs *b, fmu_plant_outputs *o)
+static void convert(const plant *p, const hg_board_outputs *b, fmu_plant_outputs *o)
 {
     int k;
     for (k = 0; k < FMU_JOINTS; k++) {
-        const unsigned char *in = &b->in[HG_INPUTS_PER_JOINT * k];
+        const unsigned char *in = &b->in[HG_INPUTS_PER_CHANNEL * k];
         o->count[k] = b->count[k];
         o->position[k] = b->position[k];
         o->index[k] = b->index[k] != 0;
         o->limit_min[k] = in[HG_IN_LIMIT_MIN] != 0;
         o->limit_max[k] = in[HG_IN_LIMIT_MAX] != 0;
         o->home[k] = in[HG_IN_HOME] != 0;
-        o->z_m[k] = b->z_m[k];
-        o->zd_mps[k] = b->zd_mps[k];
+        o->z_m[k] = b->pos[k];
+        o->zd_mps[k] = b->vel[k];
         o->current_a[k] = b->current_a[k];
-        o->force_n[k] = b->force_n[k];
+        o->force_n[k] = b->force[k];
     }
     for (k = 0; k < 6; k++)
-        o->pose[k] = b->pose[k];
+        o->pose[k] = p->pose_extra[k] >= 0 ? b->extra[p->pose_extra[k]] : 0.0;
     o->fault = b->fault != 0;
     o->fault_code = b->fault_code;
     o->amps_on = b->amps_on != 0;
@@ -268,7 +292,7 @@ void fmu_plant_peek(const void *plant_bytes, fmu_plant_outputs *o)
     const plant *p = plant_bytes;
     hg_board_outputs out;
     hg_board_peek(&p->b, &out);
-    convert(&out, o);
+    convert(p, &out, o);
 }
 
 /* The board's events of one step as messages; the gravest level. */
@@ -288,8 +312,8 @@ static int report(const plant *p, const hg_board_outputs *out, fmu_say_fn *say, 
              out->sim_time_s + (double)p->period_ns * 1e-9, why, hg_strerror(out->fault_code), HG_SUBSTEPS_MAX);
         level = FMU_SAY_WARNING;
     } else if (out->events & HG_EV_FAULT_LATCHED) {
-        char what[HG_GUARD_TEXT_LEN];
-        hg_guard_describe(&out->fault_guard, 0, what);
+        char what[HG_PLANT_TEXT_LEN];
+        hg_board_plant(&p->b)->describe(&out->fault_report, 0, what);
         sayf(say, env, FMU_SAY_WARNING, "the period from t = %.6f s to %.6f s (board time) failed: %s (code %d)%s%s; "
              "the board latches the fault (state frozen, drives off) until a rising edge of reset", out->sim_time_s,
              out->sim_time_s + (double)p->period_ns * 1e-9, hg_strerror(out->fault_code), out->fault_code,
@@ -318,6 +342,6 @@ int fmu_plant_step(void *plant_bytes, const fmu_plant_inputs *in, fmu_plant_outp
     p->in.reset = in->reset != 0;
     p->in.dout_values = in->amp_enable ? 1u << p->in.estop_loop_out : 0u;   /* as hexaglide sim closes it */
     hg_board_step(&p->b, &p->in, &out, p->period_ns);
-    convert(&out, o);
+    convert(p, &out, o);
     return report(p, &out, say, env);
 }

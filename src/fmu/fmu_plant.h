@@ -1,6 +1,6 @@
 /* fmu_plant.h - the FMU's one door to the board core: the adapter.
  * fmu_plant.c is the only file of src/fmu/ that includes hg_board.h or
- * hg_params.h; the FMI glue (fmu_fmi3.c), the variable table (fmu_vars.c)
+ * hg_plant.h (the board and its plant registry); the FMI glue (fmu_fmi3.c), the variable table (fmu_vars.c)
  * and the modelDescription.xml generator (fmu_gen.c) see the machine only
  * through this header: its parameters (name, SI unit, default,
  * description, display unit), its parametrizations and integrators, one

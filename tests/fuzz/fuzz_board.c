@@ -2,8 +2,9 @@
  * sequences: DAC values (NaN, inf, 1e300), digital outputs and inverts,
  * E-STOP button and loop output, resets, watchdog control and kicks,
  * index-enable, encoder resets and scales, ADC gains, fault injection
- * (amp-fail, stuck/tripped switches, lost index, glitches, broken bars),
- * hostile parameter changes (any field, substeps, integrator) and periods
+ * (amp-fail, stuck/tripped switches, lost index, glitches, the plant's
+ * own: broken bars), hostile parameter changes (any field, substeps,
+ * integrator) and periods, on every plant of the registry
  * (0, negative, huge). Properties: no crash; every output number finite;
  * codes and event data within their documented ranges; the block in force
  * always passes validation; a refusal names at least one field and each
@@ -14,6 +15,7 @@
 #include <stdlib.h>
 #include "fuzz_input.h"
 #include "hg_board.h"
+#include "hg_string.h"
 #include "hg_errors.h"
 
 static void fail(const char *what)
@@ -25,14 +27,16 @@ static void fail(const char *what)
 /* every double of the outputs is finite */
 static int outputs_finite(const hg_board_outputs *o)
 {
-    int k, ok = isfinite(o->sim_time_s) && isfinite(o->residual_m);
+    int k, ok = isfinite(o->sim_time_s);
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         ok = ok && isfinite(o->position[k]) && isfinite(o->enc_scale[k]);
     for (k = 0; k < HG_BOARD_ADCS; k++)
         ok = ok && isfinite(o->adc[k]);
-    for (k = 0; k < 6; k++)
-        ok = ok && isfinite(o->pose[k]) && isfinite(o->z_m[k]) && isfinite(o->zd_mps[k]) &&
-             isfinite(o->volts[k]) && isfinite(o->current_a[k]) && isfinite(o->force_n[k]);
+    for (k = 0; k < HG_PLANT_EXTRA_MAX; k++)
+        ok = ok && isfinite(o->extra[k]);
+    for (k = 0; k < HG_CHANNELS_MAX; k++)
+        ok = ok && isfinite(o->pos[k]) && isfinite(o->vel[k]) && isfinite(o->motor_pos[k]) &&
+             isfinite(o->volts[k]) && isfinite(o->current_a[k]) && isfinite(o->force[k]);
     return ok;
 }
 
@@ -40,7 +44,7 @@ static int outputs_finite(const hg_board_outputs *o)
 static void mutate(fuzz_input *f, hg_board_inputs *in, int n_params)
 {
     uint8_t what = fuzz_byte(f), ch = fuzz_byte(f);
-    int k = ch % 8, j = ch % 6;
+    int k = ch % 8, j = ch % HG_CHANNELS_MAX;
     switch (what % 16) {
     case 0: case 1: case 2:
         in->dac_v[k] = fuzz_double(f, -12.0, 12.0);
@@ -86,11 +90,11 @@ static void mutate(fuzz_input *f, hg_board_inputs *in, int n_params)
         in->enc_glitch[j] = glitch[fuzz_byte(f) % 6];
         break;
     }
-    case 12:
-        in->bar_broken[j] = fuzz_byte(f) < 64;
+    case 12:                     /* the plant's injections (the Hexaglide's bar-broken) */
+        in->inject[j] = fuzz_byte(f) < 64 ? 1u << (fuzz_byte(f) % HG_PLANT_INJECT_MAX) : 0u;
         break;
     case 13: case 14: {          /* a hostile or a slightly changed parameter */
-        double *v = hg_params_at(&in->params.model, ch % n_params);
+        double *v = &in->params.plant.v[ch % n_params];
         *v = (fuzz_byte(f) & 1) ? *v * fuzz_double(f, 0.5, 2.0) : fuzz_double(f, -2.0, 2.0);
         break;
     }
@@ -108,10 +112,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static hg_board b;
     static hg_board_inputs in;
     static hg_board_outputs out, prev;
+    static const char *why[HG_BOARD_WHY_LEN];
     fuzz_input f = {data, size, 0};
-    int n, i, k, steps;
-    hg_params_table(&n);
-    if (hg_board_init(&b, (hg_model_kind)(fuzz_byte(&f) % HG_MODEL_COUNT), 0))
+    int n, i, k, steps, nplants = 0, plant;
+    const hg_plant *pl;
+    while (hg_plant_at(nplants))
+        nplants++;
+    plant = fuzz_byte(&f) % nplants;
+    pl = hg_plant_at(plant);
+    pl->table(&n);
+    if (hg_board_init(&b, plant, fuzz_byte(&f) % pl->nvariants, 0))
         fail("the default board does not build");
     hg_board_inputs_default(&b, &in);
     in.dout_values = 1u << 7;
@@ -135,22 +145,32 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (out.events >= (HG_EV_ADDF_ORDER << 1))
             fail("unknown event bit");
         if (out.fault_cause < HG_FAULT_NONE || out.fault_cause > HG_FAULT_STIFF ||
-            out.reset_refused_joint < -1 || out.reset_refused_joint > 5 || out.bars_broken > HG_BARS_ALL)
+            out.reset_refused_channel < -1 || out.reset_refused_channel >= pl->channels_max ||
+            out.reset_refused_injection < -1 || out.reset_refused_injection >= pl->ninjections ||
+            out.channels < 1 || out.channels > pl->channels_max)
             fail("event data out of range");
-        if (hg_board_params_check(&out.params, 0, 0) != HG_OK)
+        for (k = 0; k < HG_PLANT_INJECT_MAX; k++)
+            if (out.injected[k] >> pl->channels_max || (k >= pl->ninjections && out.injected[k]))
+                fail("an injection acted on no channel of the plant or is no injection of it");
+        if (hg_board_params_check(&b, &out.params, 0, 0) != HG_OK)
             fail("the block in force does not pass validation");
         if (out.events & HG_EV_PARAM_REFUSED) {
-            const char *why[HG_BOARD_WHY_LEN];
-            unsigned long long mask, bad = out.refused_mask >> n;
+            hg_bitset mask;
             if (out.param_rc == HG_ERR_BAD_PARAM) {
-                if (!out.refused_mask || (bad & ~((1ull << (HG_BOARD_BIT_SUBSTEPS - n)) |
-                                                  (1ull << (HG_BOARD_BIT_INTEGRATOR - n)))))
-                    fail("refusal names no field or a bit outside the table");
-                hg_board_params_check(&in.params, &mask, why);
-                if (mask != out.refused_mask)
+                int any = 0;
+                for (k = 0; k < HG_BITSET_BITS; k++)
+                    if (hg_bitset_has(&out.refused, k)) {
+                        any = 1;
+                        if (k >= n && k != HG_BOARD_BIT_SUBSTEPS && k != HG_BOARD_BIT_INTEGRATOR)
+                            fail("refusal names a bit outside the table");
+                    }
+                if (!any)
+                    fail("refusal names no field");
+                hg_board_params_check(&b, &in.params, &mask, why);
+                if (memcmp(&mask, &out.refused, sizeof mask) != 0)
                     fail("explain_refusal disagrees with the refusal");
                 for (k = 0; k < HG_BOARD_WHY_LEN; k++)
-                    if (((mask >> k) & 1u) && (!why[k] || !hg_board_param_hal_name(k)))
+                    if (hg_bitset_has(&mask, k) && (!why[k] || !hg_board_param_hal_name(&b, k)))
                         fail("a refused field without a reason or a HAL name");
             } else if (out.param_rc >= 0 || out.param_rc < HG_ERR_LAST) {
                 fail("refusal code out of range");
@@ -160,14 +180,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (out.in[k] > 1)
                 fail("a digital input is not 0 or 1");
         if (prev.fault && out.fault && !(out.events & (HG_EV_RESET_DONE | HG_EV_GEOMETRY_RESTART))) {
-            if (memcmp(out.z_m, prev.z_m, sizeof out.z_m) != 0 || out.sim_time_s != prev.sim_time_s)
+            if (memcmp(out.pos, prev.pos, sizeof out.pos) != 0 || out.sim_time_s != prev.sim_time_s)
                 fail("a faulted board moved");
-            for (k = 0; k < 6; k++)
+            for (k = 0; k < HG_CHANNELS_MAX; k++)
                 if (out.volts[k] != 0 || out.current_a[k] != 0)
                     fail("a faulted board drives");
         }
-        in.enc_glitch[0] = in.enc_glitch[1] = in.enc_glitch[2] = 0;   /* as the glue: applied once */
-        in.enc_glitch[3] = in.enc_glitch[4] = in.enc_glitch[5] = 0;
+        for (k = 0; k < HG_CHANNELS_MAX; k++)
+            in.enc_glitch[k] = 0;     /* as the glue: applied once */
         prev = out;
     }
     return 0;

@@ -9,6 +9,7 @@
 #include "hg_errors.h"
 #include "hg_guard.h"
 #include "hg_kinematics.h"
+#include "hg_params.h"
 
 static void fail(const char *what)
 {

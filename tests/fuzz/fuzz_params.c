@@ -55,17 +55,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fail("refusal does not name a real field and a reason");
     {
         const char *whys[HG_PARAMS_MAX];
-        unsigned long long mask;
-        int all = hg_params_check_all(&p, &mask, whys), first = -1;
+        hg_bitset mask;
+        int all = hg_params_check_all(&p, &mask, whys), first = -1, beyond = 0;
         for (i = 0; i < n; i++) {
-            if (((mask >> i) & 1u) && !whys[i])
+            if (hg_bitset_has(&mask, i) && !whys[i])
                 fail("check_all flags a field without a reason");
             if (rc == HG_ERR_BAD_PARAM && strcmp(t[i].name, field) == 0)
                 first = i;
         }
-        if (all != rc || (rc == HG_OK) != (mask == 0) || (mask >> n) != 0)
+        for (i = n; i < HG_BITSET_BITS; i++)
+            beyond |= hg_bitset_has(&mask, i);
+        if (all != rc || (rc == HG_OK) != hg_bitset_empty(&mask) || beyond)
             fail("check_all disagrees with check");
-        if (rc == HG_ERR_BAD_PARAM && (first < 0 || !((mask >> first) & 1u)))
+        if (rc == HG_ERR_BAD_PARAM && (first < 0 || !hg_bitset_has(&mask, first)))
             fail("check_all does not flag the field check names");
     }
     rc = hg_model_init(&m, &p, (hg_model_kind)(fuzz_byte(&in) % HG_MODEL_COUNT), &field, &why);

@@ -9,7 +9,10 @@
 #include <math.h>
 #include <stdio.h>
 #include "hg_kinematics.h"
+#include <stdlib.h>
+#include <string.h>
 #include "hg_params.h"
+#include "hg_board.h"
 
 static int hg_test_failures;
 
@@ -94,6 +97,33 @@ static inline void hg_test_bar_angles(const hg_params *p, const double z[6], con
         a[2 * k] = atan2(u[1], -u[2]);
         a[2 * k + 1] = asin(-u[0]);
     }
+}
+
+/* The Hexaglide's parameters as the board's block (entry i of the table
+ * at v[i]), with substeps and integrator. */
+static inline void hg_test_block(hg_board_params *bp, const hg_params *p, unsigned substeps, unsigned integrator)
+{
+    int i, n;
+    memset(bp, 0, sizeof *bp);
+    hg_params_table(&n);
+    for (i = 0; i < n; i++)
+        bp->plant.v[i] = hg_params_get(p, i);
+    bp->substeps = substeps;
+    bp->integrator = integrator;
+}
+
+/* The entry of the Hexaglide's parameter `name` in a board block (aborts
+ * the test run on an unknown name: a test must not write nowhere). */
+static inline double *hg_test_pv(hg_board_params *bp, const char *name)
+{
+    int n;
+    const hg_param_info *t = hg_params_table(&n);
+    int i = hg_param_find(t, n, name);
+    if (i < 0) {
+        printf("not ok - internal: no parameter %s\n", name);
+        exit(1);
+    }
+    return &bp->plant.v[i];
 }
 
 #endif

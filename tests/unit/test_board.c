@@ -10,7 +10,9 @@
 #include <string.h>
 #include "hg_test.h"
 #include "hg_board.h"
+#include "hg_plant_hexaglide.h"
 #include "hg_text.h"
+#include "hg_dynamics.h"
 #include "hg_errors.h"
 
 #define PERIOD 1000000L              /* 1 ms */
@@ -22,7 +24,7 @@ static hg_board_outputs out, out2;
 /* Fresh board (reduced Cartesian, defaults) with the E-STOP loop closed. */
 static void fresh(void)
 {
-    int rc = hg_board_init(&b, HG_MODEL_REDUCED_CARTESIAN, 0);
+    int rc = hg_board_init(&b, 0, HG_MODEL_REDUCED_CARTESIAN, 0);
     if (rc)
         printf("# hg_board_init: %d\n", rc);
     hg_board_inputs_default(&b, &in);
@@ -40,15 +42,30 @@ static unsigned run(int n)
     return ev;
 }
 
-/* Bit of the parameter table entry called name. */
-static unsigned long long bit_of(const char *name)
+/* Bit (table entry) of the Hexaglide's parameter called name, or -1. */
+static int bit_of(const char *name)
 {
-    int i, n;
+    int n;
     const hg_param_info *t = hg_params_table(&n);
-    for (i = 0; i < n; i++)
-        if (strcmp(t[i].name, name) == 0)
-            return 1ull << i;
-    return 0;
+    return hg_param_find(t, n, name);
+}
+
+/* The set of bits a..d (-1: none). */
+static hg_bitset set_of(int a, int b, int c, int d)
+{
+    hg_bitset s;
+    hg_bitset_clear(&s);
+    hg_bitset_set(&s, a);
+    hg_bitset_set(&s, b);
+    hg_bitset_set(&s, c);
+    hg_bitset_set(&s, d);
+    return s;
+}
+
+/* 1 if the sets are equal. */
+static int same_set(const hg_bitset *a, const hg_bitset *b)
+{
+    return memcmp(a, b, sizeof *a) == 0;
 }
 
 static void test_estop_loop(void)
@@ -121,8 +138,8 @@ static void test_watchdog(void)
 static void test_refused_params(void)
 {
     hg_board_params in_force;
-    const char *why[HG_BOARD_WHY_LEN];
-    unsigned long long mask, want;
+    static const char *why[HG_BOARD_WHY_LEN];
+    hg_bitset mask, want;
     unsigned ev;
     int k, same = 1;
     fresh();
@@ -132,60 +149,62 @@ static void test_refused_params(void)
     in2 = in;
     run(10);
     in_force = out.params;
-    in.params.model.c_visc_ns_per_m = -1;
-    in.params.model.m_head_kg = 0;
-    in.params.model.lead_m = 0;
-    in.params.model.geo.l_m = 0.1;
+    *hg_test_pv(&in.params, "c_visc") = -1;
+    *hg_test_pv(&in.params, "m_head") = 0;
+    *hg_test_pv(&in.params, "lead") = 0;
+    *hg_test_pv(&in.params, "l") = 0.1;
     ev = run(1);
-    want = bit_of("c_visc") | bit_of("m_head") | bit_of("lead") | bit_of("l");
-    CHECK((ev & HG_EV_PARAM_REFUSED) && out.refused_mask == want && out.param_rc == HG_ERR_BAD_PARAM,
+    want = set_of(bit_of("c_visc"), bit_of("m_head"), bit_of("lead"), bit_of("l"));
+    CHECK((ev & HG_EV_PARAM_REFUSED) && same_set(&out.refused, &want) && out.param_rc == HG_ERR_BAD_PARAM,
           "c_visc -1, m_head 0, lead 0, l 0.1: refused naming all four (mask %llx, want %llx)",
-          out.refused_mask, want);
+          out.refused.w[0], want.w[0]);
     CHECK(memcmp(&out.params, &in_force, sizeof in_force) == 0 && out.param_error == 1,
           "refused: the set in force is unchanged and shown, param-error set");
-    hg_board_params_check(&in.params, &mask, why);
-    CHECK(mask == want && why[__builtin_ctzll(bit_of("l"))] && why[__builtin_ctzll(bit_of("m_head"))] &&
-          why[__builtin_ctzll(bit_of("lead"))] && why[__builtin_ctzll(bit_of("c_visc"))],
+    hg_board_params_check(&b, &in.params, &mask, why);
+    CHECK(same_set(&mask, &want) && why[bit_of("l")] && why[bit_of("m_head")] && why[bit_of("lead")] &&
+          why[bit_of("c_visc")],
           "hg_board_params_check gives a reason for each (l: %s)", why[0] ? why[0] : "none");
     run(20);
     for (k = 0; k < 31; k++) {                          /* the twin never saw the change */
         hg_board_step(&b2, &in2, &out2, PERIOD);
     }
     for (k = 0; k < 6; k++)
-        same = same && out.z_m[k] == out2.z_m[k];
+        same = same && out.pos[k] == out2.pos[k];
     CHECK(same && out.param_error == 1 && !(out.events & HG_EV_PARAM_REFUSED),
           "refused block held in the inputs: simulated with the old set, bit-identical to a twin; refused once");
     in.params = out.params;                             /* the glue shows the set in force again */
     ev = run(1);
     CHECK(!(ev & (HG_EV_PARAM_REFUSED | HG_EV_PARAM_APPLIED)) && out.param_error == 1,
           "inputs put back to the set in force: nothing applied, param-error stays until a change is accepted");
-    in.params.model.c_visc_ns_per_m = 2 * 5665.6;
+    *hg_test_pv(&in.params, "c_visc") = 2 * 5665.6;
     ev = run(1);
     CHECK((ev & HG_EV_PARAM_APPLIED) && !(ev & HG_EV_GEOMETRY_RESTART) && out.param_error == 0 &&
-          out.params.model.c_visc_ns_per_m == 2 * 5665.6,
+          *hg_test_pv(&out.params, "c_visc") == 2 * 5665.6,
           "a valid change (c_visc doubled) is applied without a restart, param-error cleared");
     in.params.substeps = 0;
     in.params.integrator = 3;
     ev = run(1);
-    CHECK((ev & HG_EV_PARAM_REFUSED) &&
-          out.refused_mask == ((1ull << HG_BOARD_BIT_SUBSTEPS) | (1ull << HG_BOARD_BIT_INTEGRATOR)) &&
+    want = set_of(HG_BOARD_BIT_SUBSTEPS, HG_BOARD_BIT_INTEGRATOR, -1, -1);
+    CHECK((ev & HG_EV_PARAM_REFUSED) && same_set(&out.refused, &want) &&
           out.params.substeps == 1 && out.params.integrator == HG_INTEGRATOR_HEUN,
           "substeps 0 and integrator 3 refused, both named (%s, %s)",
-          hg_board_param_hal_name(HG_BOARD_BIT_SUBSTEPS), hg_board_param_hal_name(HG_BOARD_BIT_INTEGRATOR));
+          hg_board_param_hal_name(&b, HG_BOARD_BIT_SUBSTEPS), hg_board_param_hal_name(&b, HG_BOARD_BIT_INTEGRATOR));
     in.params.substeps = HG_SUBSTEPS_MAX + 1;
     in.params.integrator = 0;
     ev = run(1);
-    CHECK((ev & HG_EV_PARAM_REFUSED) && out.refused_mask == (1ull << HG_BOARD_BIT_SUBSTEPS),
+    want = set_of(HG_BOARD_BIT_SUBSTEPS, -1, -1, -1);
+    CHECK((ev & HG_EV_PARAM_REFUSED) && same_set(&out.refused, &want),
           "substeps %u refused", HG_SUBSTEPS_MAX + 1);
     in.params.substeps = 2;
     in.params.integrator = HG_INTEGRATOR_RK4;
     ev = run(1);
-    CHECK((ev & HG_EV_PARAM_APPLIED) && b.m.integrator == HG_INTEGRATOR_RK4 && b.substeps == 2,
+    CHECK((ev & HG_EV_PARAM_APPLIED) && hg_hexaglide_model(&b.m)->integrator == HG_INTEGRATOR_RK4 &&
+              b.substeps == 2,
           "substeps 2, integrator rk4 applied to the model");
-    in.params.model.geo.l_m = 1.1;
+    *hg_test_pv(&in.params, "l") = 1.1;
     ev = run(1);
-    CHECK((ev & HG_EV_GEOMETRY_RESTART) && fabs(out.pose[0]) + fabs(out.pose[1]) + fabs(out.pose[2]) < 1e-4 &&
-          fabs(out.z_m[0]) < 1e-4,
+    CHECK((ev & HG_EV_GEOMETRY_RESTART) && fabs(out.extra[0]) + fabs(out.extra[1]) + fabs(out.extra[2]) < 1e-4 &&
+          fabs(out.pos[0]) < 1e-4,
           "l 1.1: new geometry, restarted at HOME: one period later head and carriages are within 0.1 mm of "
           "0 (h follows l; a stale h would put the head 109 mm off)");
 }
@@ -204,14 +223,14 @@ static void test_fault_frozen(void)
     CHECK(out.fault && out.fault_code < 0 && (out.events & HG_EV_FAULT_LATCHED) && out.fault_cause == HG_FAULT_STEP,
           "opposed full volts: fault latched after %d periods with code %d (%s)", i, out.fault_code,
           hg_strerror(out.fault_code));
-    CHECK(memcmp(out.z_m, before.z_m, sizeof out.z_m) == 0 && out.sim_time_s == before.sim_time_s,
+    CHECK(memcmp(out.pos, before.pos, sizeof out.pos) == 0 && out.sim_time_s == before.sim_time_s,
           "rollback: the state is the last good one (the failing period left no trace)");
     for (i = 0; i < 50; i++) {
         run(1);
         latched += out.fault;
         events += (out.events & HG_EV_FAULT_LATCHED) != 0;
     }
-    CHECK(latched == 50 && events == 0 && memcmp(out.z_m, before.z_m, sizeof out.z_m) == 0 &&
+    CHECK(latched == 50 && events == 0 && memcmp(out.pos, before.pos, sizeof out.pos) == 0 &&
           out.sim_time_s == before.sim_time_s && out.amps_on == 0 && out.volts[0] == 0 && out.current_a[0] == 0,
           "faulted: state frozen for 50 periods, drives off, latched event once");
     for (i = 0; i < 6; i++)
@@ -229,10 +248,20 @@ static void test_fault_frozen(void)
         before = out;
         run(1);
     }
-    CHECK(out.fault && memcmp(out.z_m, before.z_m, sizeof out.z_m) == 0 && out.sim_time_s == before.sim_time_s &&
+    CHECK(out.fault && memcmp(out.pos, before.pos, sizeof out.pos) == 0 && out.sim_time_s == before.sim_time_s &&
           fabs(fmod(out.sim_time_s * 1e3 + 0.5, 1.0) - 0.5) < 1e-9,
           "8 substeps, failure mid-period: state rolled back to the period's start (t = %.6f s, a whole period)",
           out.sim_time_s);
+}
+
+/* The Hexaglide's bars-broken output (a count among its plant outputs). */
+static unsigned bars_broken(void)
+{
+    int i;
+    for (i = 0; i < hg_plant_hexaglide.noutputs; i++)
+        if (strcmp(hg_plant_hexaglide.outputs[i].hal_name, "bars-broken") == 0)
+            return (unsigned)out.extra[i];
+    return 99;
 }
 
 static void test_reset_bar_broken(void)
@@ -240,9 +269,9 @@ static void test_reset_bar_broken(void)
     int i;
     unsigned ev;
     fresh();
-    in.bar_broken[0] = 1;
+    in.inject[0] = 1;                 /* joint-0.bar-broken: the Hexaglide's injection 0 */
     ev = run(1);
-    CHECK((ev & HG_EV_BAR_BROKEN) && out.bars_newly_broken == 1 && out.bars_broken == 1,
+    CHECK((ev & HG_EV_INJECTED) && out.injected[0] == 1 && bars_broken() == 1,
           "bar-broken 0: bar 0 breaks, event once");
     for (i = 0; i < 5000 && !out.fault; i++)
         run(1);
@@ -250,14 +279,15 @@ static void test_reset_bar_broken(void)
           out.fault_code);
     in.reset = 1;
     ev = run(1);
-    CHECK((ev & HG_EV_RESET_REFUSED) && out.reset_refused_joint == 0 && out.fault && out.bars_broken == 1,
+    CHECK((ev & HG_EV_RESET_REFUSED) && out.reset_refused_channel == 0 && out.reset_refused_injection == 0 &&
+              out.fault && bars_broken() == 1,
           "reset while bar-broken 0 is set: refused, naming joint 0; still faulted, bar still broken");
     in.reset = 0;
-    in.bar_broken[0] = 0;
+    in.inject[0] = 0;
     run(1);
     in.reset = 1;
     ev = run(1);
-    CHECK((ev & HG_EV_RESET_DONE) && !out.fault && out.bars_broken == 0 && fabs(out.z_m[0]) < 1e-3,
+    CHECK((ev & HG_EV_RESET_DONE) && !out.fault && bars_broken() == 0 && fabs(out.pos[0]) < 1e-3,
           "bar-broken cleared, new reset edge: HOME, all bars intact, no fault");
 }
 
@@ -275,7 +305,7 @@ static void test_index_latch(void)
         if (out.index_latched[0])
             fired = i;
     }
-    z = out.z_m[0];
+    z = out.pos[0];
     {
         /* spec: 1000 counts/mm, index every 10 mm: the counter reads the
          * counts above the index mark just passed (floor of z in counts
@@ -326,15 +356,15 @@ static void test_switches(void)
     in.amp_fail[1] = 1;
     run(1);
     CHECK(out.in[16] == 1 && out.in[17] == 0 && out.in[18] == 0 && out.in[7] == 1 && out.in[3] == 0 &&
-          fabs(out.z_m[4]) < 1e-4,
+          fabs(out.pos[4]) < 1e-4,
           "at HOME: tripped-min 4 reads limit- (in-16), home off, amp-fail 1 on in-07 only");
     for (k = 0; k < 6; k++)
         in.dac_v[k] = 3.0;
-    while (out.z_m[4] < 0.010 && out.sim_time_s < 2)
+    while (out.pos[4] < 0.010 && out.sim_time_s < 2)
         run(1);
-    CHECK(out.in[18] == 1 && out.in[22] == 0 && out.z_m[5] > 0.005 && out.in[16] == 1,
+    CHECK(out.in[18] == 1 && out.in[22] == 0 && out.pos[5] > 0.005 && out.in[16] == 1,
           "above +5 mm (z %.2f mm): joint 4's home on (in-18), stuck-home 5 keeps reading off (in-22), tripped stays",
-          out.z_m[5] * 1e3);
+          out.pos[5] * 1e3);
     in.stuck[5] = 0;
     in.tripped[4] = 0;
     run(1);
@@ -364,15 +394,15 @@ static void test_substeps(void)
         in.dac_v[k] = v[k];
     run(250);
     for (k = 0; k < 6; k++)
-        if (fabs(out.z_m[k] - d.z_m[k]) > maxd)
-            maxd = fabs(out.z_m[k] - d.z_m[k]);
+        if (fabs(out.pos[k] - d.z_m[k]) > maxd)
+            maxd = fabs(out.pos[k] - d.z_m[k]);
     fresh();
     for (k = 0; k < 6; k++)
         in.dac_v[k] = v[k];
     run(250);
     for (k = 0; k < 6; k++)
-        if (fabs(out.z_m[k] - d.z_m[k]) > maxd1)
-            maxd1 = fabs(out.z_m[k] - d.z_m[k]);
+        if (fabs(out.pos[k] - d.z_m[k]) > maxd1)
+            maxd1 = fabs(out.pos[k] - d.z_m[k]);
     CHECK(rc == 0 && maxd < 1e-12 && maxd1 > 1e-9,
           "substeps 4 over 1 ms = 4 hg_steps of 0.25 ms for 0.25 s (max diff %.3g m; 1 substep differs by %.3g m)",
           maxd, maxd1);
@@ -426,7 +456,7 @@ static void test_check_all_and_format(void)
 {
     hg_params p;
     const char *field = 0, *why = 0, *whys[HG_PARAMS_MAX];
-    unsigned long long mask;
+    hg_bitset mask;
     char buf[HG_TEXT_VALUE_LEN];
     int i, agree = 1;
     for (i = 0; i < 200; i++) {
@@ -436,10 +466,10 @@ static void test_check_all_and_format(void)
         f = (int)hg_test_uniform(0, n);
         *hg_params_field(&p, t[f].name) = hg_test_uniform(-2, 2);
         if (hg_params_check(&p, &field, &why) == HG_OK) {
-            agree = agree && hg_params_check_all(&p, &mask, whys) == HG_OK && mask == 0;
+            agree = agree && hg_params_check_all(&p, &mask, whys) == HG_OK && hg_bitset_empty(&mask);
         } else {
-            agree = agree && hg_params_check_all(&p, &mask, whys) == HG_ERR_BAD_PARAM && (mask & bit_of(field)) &&
-                    whys[__builtin_ctzll(bit_of(field))] != 0;
+            agree = agree && hg_params_check_all(&p, &mask, whys) == HG_ERR_BAD_PARAM &&
+                    hg_bitset_has(&mask, bit_of(field)) && whys[bit_of(field)] != 0;
         }
     }
     CHECK(agree, "hg_params_check_all agrees with hg_params_check on 200 random single-field changes");

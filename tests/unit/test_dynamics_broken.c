@@ -14,6 +14,7 @@
 #include "hg_forces.h"
 #include "hg_drive.h"
 #include "hg_errors.h"
+#include "hg_guard_text.h"
 
 /* Largest |z| and head-pose difference (m or rad) between the ordinary
  * Reduced Joints step and the KKT step with no bar broken, 0.2 s of

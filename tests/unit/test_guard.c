@@ -8,7 +8,9 @@
 #include <string.h>
 #include "hg_test.h"
 #include "hg_board.h"
+#include "hg_plant_hexaglide.h"
 #include "hg_guard.h"
+#include "hg_dynamics.h"
 #include "hg_kinematics.h"
 #include "hg_errors.h"
 
@@ -181,7 +183,9 @@ static void test_open_loop_strike(const double volts[6], const char *what)
     double cj = 0, hj = 0, cl = 0, prev_t = 0, tilt = 0;
     long s, crossing = -1, fault_at = -1;
     int k;
-    hg_board_init(&b, HG_MODEL_REDUCED_CARTESIAN, 0);
+    const hg_geometry *g;
+    hg_board_init(&b, 0, HG_MODEL_REDUCED_CARTESIAN, 0);
+    g = &hg_hexaglide_model(&b.m)->p.geo;
     hg_board_inputs_default(&b, &in);
     in.dout_values = 1u << 7;
     for (k = 0; k < 6; k++)
@@ -193,38 +197,37 @@ static void test_open_loop_strike(const double volts[6], const char *what)
             break;
         }
         prev_t = out.sim_time_s;
-        tilt = fmax(tilt, acos(cos(out.pose[3]) * cos(out.pose[4])));
-        spec_limits(&b.m.p.geo, out.z_m, out.pose, &cj, &hj, &cl);
-        if (crossing < 0 && (cj > b.m.p.geo.cone_carriage_rad || hj > b.m.p.geo.cone_head_rad ||
-                             cl < b.m.p.geo.d_bar_m))
+        tilt = fmax(tilt, acos(cos(out.extra[3]) * cos(out.extra[4])));
+        spec_limits(g, out.pos, out.extra, &cj, &hj, &cl);   /* extra[0..5]: the head pose */
+        if (crossing < 0 && (cj > g->cone_carriage_rad || hj > g->cone_head_rad || cl < g->d_bar_m))
             crossing = s;
     }
     /* the state frozen at the fault is the last one inside; step it once more
      * with hg_step alone and this file's geometry must find it outside */
     {
-        hg_data d = b.d;
-        hg_model m = b.m;
+        hg_data d = *hg_hexaglide_data(&b.d);
+        hg_model m = *hg_hexaglide_model(&b.m);
         double v[6];
         int rc;
         for (k = 0; k < 6; k++)
             v[k] = out.fault ? hg_dac_output(volts[k]) : 0;
         rc = hg_step(&m, &d, v, 1e-3);
-        memcpy(&d, &b.d, HG_DATA_STATE_BYTES);
+        memcpy(&d, hg_hexaglide_data(&b.d), HG_DATA_STATE_BYTES);
         d.broken_bars = 0;
         /* hg_step refused it; integrate with the limits opened to see where it would be */
         m.p.geo.cone_carriage_rad = m.p.geo.cone_head_rad = 3.1;
         m.p.geo.d_bar_m = 0;
         if (rc == out.fault_code && hg_step(&m, &d, v, 1e-3) == 0)
-            spec_limits(&b.m.p.geo, d.z_m, d.pose, &cj, &hj, &cl);
+            spec_limits(g, d.z_m, d.pose, &cj, &hj, &cl);
         else
             cj = hj = -1;
     }
     {
-        char text[HG_GUARD_TEXT_LEN];
-        hg_guard_describe(&out.fault_guard, 0, text);
+        char text[HG_PLANT_TEXT_LEN];
+        hg_plant_hexaglide.describe(&out.fault_report, 0, text);
         CHECK(fault_at > 0 && crossing < 0 &&
                   (out.fault_code == HG_ERR_JOINT_RANGE || out.fault_code == HG_ERR_BAR_CLEARANCE) &&
-                  (cj > b.m.p.geo.cone_carriage_rad || hj > b.m.p.geo.cone_head_rad || cl < b.m.p.geo.d_bar_m) &&
+                  (cj > g->cone_carriage_rad || hj > g->cone_head_rad || cl < g->d_bar_m) &&
                   out.sim_time_s == prev_t && tilt < 60 * DEG,
               "open loop %s: faults at t = %.3f s (%s: %s); every earlier state inside the limits by the "
               "spec's geometry, the next one outside (carriage %.2f deg, head %.2f deg, clearance %.2f mm); "

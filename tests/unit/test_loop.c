@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include "hg_errors.h"
 #include "hg_loop.h"
+#include "hg_scheme.h"
 #include "hg_params.h"
 #include "hg_test.h"
 
@@ -39,10 +40,11 @@ int main(void)
     }
     /* without sliding and static friction the integrator settles at the
      * voltage that balances W/6; with them anywhere the breakaway allows */
-    bp.model = p;
-    bp.model.f_coulomb_n = bp.model.f_static_n = 0.0;
-    bp.substeps = 1;
-    bp.integrator = HG_INTEGRATOR_HEUN;
+    {
+        hg_params q = p;
+        q.f_coulomb_n = q.f_static_n = 0.0;
+        hg_test_block(&bp, &q, 1, HG_INTEGRATOR_HEUN);
+    }
     rc = hg_loop_init(L, &c, &bp);
     CHECK(rc == 0, "init at HOME: %d", rc);
     for (i = 0; i < 3000 && rc == 0; i++)
@@ -91,8 +93,8 @@ int main(void)
                 vmax = fabs(s.output_v[2]);
         }
         CHECK(vmax == 0.0, "step_io: disabled pid.2 outputs 0 V (max %.3g)", vmax);
-        CHECK(L->out.z_m[2] < L->out.z_m[0] - 1e-4 && fabs(L->out.z_m[0]) < 1e-4,
-              "step_io: joint 2 sinks (%.4f mm), joint 0 holds (%.4f mm)", L->out.z_m[2] * 1e3, L->out.z_m[0] * 1e3);
+        CHECK(L->out.pos[2] < L->out.pos[0] - 1e-4 && fabs(L->out.pos[0]) < 1e-4,
+              "step_io: joint 2 sinks (%.4f mm), joint 0 holds (%.4f mm)", L->out.pos[2] * 1e3, L->out.pos[0] * 1e3);
     }
 
     /* far too much gain: the loop oscillates and trips at the f-error limit */

@@ -113,20 +113,20 @@ static void test_refused_and_board(void)
     hg_board_outputs out;
     hg_stability st;
     int rc, i;
-    hg_params_default(&bp.model);
-    bp.model.c_visc_ns_per_m = bp.model.c_stop_ns_per_m = 0.0;
-    rc = hg_stability_check(&bp.model, HG_INTEGRATOR_HEUN, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
+    hg_params p;
+    hg_params_default(&p);
+    p.c_visc_ns_per_m = p.c_stop_ns_per_m = 0.0;
+    rc = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
     CHECK(rc == HG_ERR_STIFF && st.param && strcmp(st.param, "c_stop") == 0,
           "an undamped hard stop with heun: refused at any step, naming %s", st.param ? st.param : "nothing");
-    rc = hg_stability_check(&bp.model, HG_INTEGRATOR_RK4, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
+    rc = hg_stability_check(&p, HG_INTEGRATOR_RK4, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
     CHECK(rc == 0 && st.substeps == 1, "... rk4 integrates it (|R| < 1 on the imaginary axis up to 2.8)");
     /* the board: k_stop 5e8 needs more substeps with improved Euler at 1 ms */
-    hg_params_default(&bp.model);
-    bp.model.k_stop_n_per_m = 5e8;
-    bp.substeps = 1;
-    bp.integrator = HG_INTEGRATOR_IMPROVED_EULER;
-    rc = hg_stability_check(&bp.model, HG_INTEGRATOR_IMPROVED_EULER, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
-    hg_board_init(&b, HG_MODEL_REDUCED_CARTESIAN, &bp);
+    hg_params_default(&p);
+    p.k_stop_n_per_m = 5e8;
+    hg_test_block(&bp, &p, 1, HG_INTEGRATOR_IMPROVED_EULER);
+    rc = hg_stability_check(&p, HG_INTEGRATOR_IMPROVED_EULER, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
+    hg_board_init(&b, 0, HG_MODEL_REDUCED_CARTESIAN, &bp);
     hg_board_inputs_default(&b, &in);
     in.dout_values = 1u << 7;
     hg_board_step(&b, &in, &out, 1000000L);
@@ -143,14 +143,14 @@ static void test_refused_and_board(void)
     CHECK(out.fault && out.fault_code == HG_ERR_STIFF, "10 ms period with k_stop 5e8: fault %d (%s)", out.fault_code,
           hg_strerror(out.fault_code));
     /* a change the running period cannot integrate is refused, naming it */
-    hg_board_init(&b, HG_MODEL_REDUCED_CARTESIAN, 0);
+    hg_board_init(&b, 0, HG_MODEL_REDUCED_CARTESIAN, 0);
     hg_board_inputs_default(&b, &in);
     hg_board_step(&b, &in, &out, 1000000L);
-    in.params.model.c_visc_ns_per_m = in.params.model.c_stop_ns_per_m = 0.0;
+    *hg_test_pv(&in.params, "c_visc") = *hg_test_pv(&in.params, "c_stop") = 0.0;
     hg_board_step(&b, &in, &out, 1000000L);
     CHECK((out.events & HG_EV_PARAM_REFUSED) && out.param_rc == HG_ERR_STIFF && out.stiff_param >= 0 &&
               strcmp(hg_params_table(0)[out.stiff_param].name, "c_stop") == 0 &&
-              out.params.model.c_stop_ns_per_m > 0.0,
+              *hg_test_pv(&out.params, "c_stop") > 0.0,
           "c_visc = c_stop = 0 at 1 ms with heun: refused (code %d), naming c_stop, the set in force kept", out.param_rc);
 }
 

@@ -1,0 +1,180 @@
+/* hg_plant.h - the one narrow interface between the virtual board and the
+ * machine behind it (the plant): its parameters, its state, one step from
+ * the drive commands, and what its sensors read. The board (hg_board.h:
+ * DACs, encoders with index, switches as digital inputs, ADCs, watchdog,
+ * E-STOP, fault latch, substeps with rollback, record and replay) knows no
+ * plant's facts; every plant (the Hexaglide, hg_plant_hexaglide.c; a
+ * serial-axis machine, hg_plant_serial.c) knows nothing of the board.
+ *
+ * A plant is a table of functions and facts (hg_plant), found by name in
+ * the registry (hg_plants.c). Its parameters are a block of doubles in SI
+ * units, entry i being entry i of its parameter table (hg_param_table.h:
+ * name, unit, HAL name and scale, INI key). Its model (constant after
+ * build) and data (mutable state, then scratch) live in storage the
+ * caller owns (hg_plant_model, hg_plant_data): plain structs, no
+ * pointers, so a board can live in hal_malloc'd memory; each plant checks
+ * at compile time that its types fit.
+ *
+ * Channels: the plant uses DAC/encoder/ADC channels 0..channels-1 and the
+ * digital inputs of those channels (HG_INPUTS_PER_CHANNEL each). Units:
+ * SI inside; a channel is linear (m, N) or rotary (rad, N m).
+ *
+ * Pure C, no LinuxCNC include, no malloc, no stdio. */
+#ifndef HG_PLANT_H
+#define HG_PLANT_H
+
+#include "hg_param_table.h"
+
+#define HG_CHANNELS_MAX 8            /* the MOTENC-100's DAC, encoder and ADC channels */
+#define HG_PLANT_PARAMS_MAX 256      /* entries of a plant's parameter block */
+#define HG_PLANT_EXTRA_MAX 16        /* plant-specific outputs (head pose, ...) */
+#define HG_PLANT_INJECT_MAX 4        /* plant-specific fault injections per channel */
+#define HG_PLANT_MODEL_DOUBLES 512   /* storage of a plant's model (doubles) */
+#define HG_PLANT_DATA_DOUBLES 2048   /* storage of a plant's data: state, then scratch (doubles) */
+#define HG_PLANT_TEXT_LEN 240        /* a plant's sentences (fault descriptions) */
+
+/* Switch bits of one channel (the digital inputs limit-, limit+, home). */
+enum { HG_SW_MIN = 1u << 0, HG_SW_MAX = 1u << 1, HG_SW_HOME = 1u << 2 };
+
+/* A parameter block: entry i of the plant's table at v[i], SI units. */
+typedef struct {
+    double v[HG_PLANT_PARAMS_MAX];
+} hg_plant_params;
+
+/* Storage of a plant's model and data (each plant lays its own types over them). */
+typedef struct {
+    double store[HG_PLANT_MODEL_DOUBLES];
+} hg_plant_model;
+typedef struct {
+    double store[HG_PLANT_DATA_DOUBLES];
+} hg_plant_data;
+
+/* What a failed step struck or crossed (the plant describes it as text). */
+typedef struct {
+    int kind;                        /* plant-specific, 0: nothing */
+    int channel, other;              /* the channel(s) or bar(s) involved, -1 if none */
+    double value, limit;             /* what was found and the limit crossed (SI) */
+} hg_plant_report;
+
+/* What the plant's sensors and state show after a step (all finite). */
+typedef struct {
+    int channels;                    /* channels in use (the rest read 0) */
+    unsigned rotary;                 /* bit ch: channel ch is rotary (rad, N m), else linear (m, N) */
+    double turns[HG_CHANNELS_MAX];   /* encoder side: motor revolutions since HOME (the encoder
+                                        counts turns * counts_per_rev, indexes at whole turns) */
+    double counts_per_rev[HG_CHANNELS_MAX]; /* the motor encoder's counts per revolution */
+    double motor_pos[HG_CHANNELS_MAX]; /* encoder side as a load position (m or rad) */
+    double pos[HG_CHANNELS_MAX];     /* load side: carriage or axis position (m or rad) */
+    double vel[HG_CHANNELS_MAX];     /* its velocity */
+    double current_a[HG_CHANNELS_MAX]; /* winding current */
+    double force[HG_CHANNELS_MAX];   /* net non-inertial force on the load (N or N m) */
+    unsigned switches[HG_CHANNELS_MAX]; /* HG_SW_* the load's position trips */
+    double extra[HG_PLANT_EXTRA_MAX]; /* the plant's own outputs, as its extra table says (SI) */
+    double sim_time_s;
+} hg_plant_sense;
+
+/* One plant-specific output (a HAL pin motenc-hexaglide.<board>.<hal_name>). */
+typedef struct {
+    const char *hal_name;            /* e.g. "head-x" */
+    const char *unit;                /* HAL unit, e.g. "mm" */
+    double hal_scale;                /* HAL value = SI value * hal_scale */
+    int is_u32;                      /* 1: shown as a u32 pin (a count, a fingerprint), else float */
+    const char *rec_name;            /* record column out.<rec_name> (replay compares it), or 0 */
+    const char *csv_name;            /* its column in `hexaglide sim`'s CSV (unit in the name), or 0 */
+    const char *what;                /* one line */
+} hg_plant_output;
+
+/* One plant-specific fault injection per channel (HAL pin
+ * motenc-hexaglide.<board>.joint-N.<hal_name>). */
+typedef struct {
+    const char *hal_name;            /* e.g. "bar-broken" */
+    int blocks_reset;                /* 1: a reset is refused while it is set (it cannot be undone) */
+    const char *what;                /* what it does, for the message when it acts */
+} hg_plant_injection;
+
+/* Classes of a parameter change (hg_plant.change). */
+enum {
+    HG_PLANT_CHANGE_RESTART = 1u << 0, /* the machine's shape changed: restart at HOME */
+    HG_PLANT_CHANGE_RESCALE = 1u << 1  /* the encoders' turns per unit of travel changed */
+};
+
+/* Everything the board needs of a plant. */
+typedef struct {
+    const char *name;                /* "hexaglide" */
+    const char *what;                /* one line */
+    const char *ini_section;         /* the INI section of its parameters ("HEXAGLIDE") */
+    int channels_max;                /* channels it can use (HAL exports joint-0..channels_max-1) */
+    int nvariants;                   /* model variants (parametrizations), at least 1 */
+    const char *const *variants;     /* their names */
+    int default_variant;             /* the one a board loads without being told */
+    const hg_plant_output *outputs;  /* its extra outputs (sense.extra[i]) */
+    int noutputs;
+    const hg_plant_injection *injections; /* its per-channel fault injections (bit i of inject[ch]) */
+    int ninjections;
+    unsigned long model_bytes, data_bytes; /* sizes of its model and data types (<= the storage) */
+    unsigned long state_bytes;       /* the first state_bytes of its data are its whole state */
+    /* its parameter table and length */
+    const hg_param_info *(*table)(int *count);
+    /* the spec's defaults into v */
+    void (*defaults)(hg_plant_params *v);
+    /* check v: 0, or HG_ERR_BAD_PARAM with every invalid entry's bit set in
+     * *bad and, if why is given, why[i] its reason (static strings) */
+    int (*check)(const hg_plant_params *v, hg_bitset *bad, const char *why[HG_PLANT_PARAMS_MAX]);
+    /* channels in use with parameters v (a valid block) */
+    int (*channels)(const hg_plant_params *v);
+    /* build the model: 0, or a code with *field, *why naming the cause */
+    int (*build)(hg_plant_model *m, const hg_plant_params *v, int variant, int integrator,
+                 const char **field, const char **why);
+    /* the scheme of a built model: change it (0 or HG_ERR_BAD_PARAM) */
+    int (*set_integrator)(hg_plant_model *m, int integrator);
+    /* the parameter block of a built model */
+    void (*params_of)(const hg_plant_model *m, hg_plant_params *v);
+    /* HOME at rest: 0 or a code */
+    int (*reset)(const hg_plant_model *m, hg_plant_data *d);
+    /* a change from parameters a to b: HG_PLANT_CHANGE_* bits */
+    unsigned (*change)(const hg_plant_params *a, const hg_plant_params *b);
+    /* how many steps of one period the scheme needs to integrate v stably
+     * (substeps_min..substeps_max): 0 and *substeps, or HG_ERR_STIFF; both
+     * name the limiting table entry (*param, -1 if none) and its longest
+     * stable step *dt_max_s */
+    int (*stability)(const hg_plant_params *v, int integrator, double period_s, unsigned substeps_min,
+                     unsigned substeps_max, unsigned *substeps, int *param, double *dt_max_s);
+    /* apply injections inject[ch] (bits of the injection table) before a
+     * step; returns per injection entry i a mask of the channels it newly
+     * acted on in acted[i] */
+    void (*inject)(const hg_plant_model *m, hg_plant_data *d, const unsigned inject[HG_CHANNELS_MAX],
+                   unsigned acted[HG_PLANT_INJECT_MAX]);
+    /* one step of dt with drive commands volts[ch] (DAC volts; the amplifier
+     * of channel ch is on when bit ch of enabled is set): 0, or a code with
+     * d's state unchanged and *r (may be 0) naming what was struck */
+    int (*step)(const hg_plant_model *m, hg_plant_data *d, const double volts[HG_CHANNELS_MAX],
+                unsigned enabled, double dt_s, hg_plant_report *r);
+    /* what the sensors show */
+    void (*sense)(const hg_plant_model *m, const hg_plant_data *d, hg_plant_sense *s);
+    /* a report as one sentence (names its parameter by HAL name when hal is 1) */
+    void (*describe)(const hg_plant_report *r, int hal, char buf[HG_PLANT_TEXT_LEN]);
+} hg_plant;
+
+/* The registry (hg_plant.c): plant i (0 the Hexaglide, the default), 0
+ * past the last; the index of the plant called name, or -1. Indices are
+ * stable: records name their plant by it. */
+const hg_plant *hg_plant_at(int i);
+int hg_plant_find(const char *name);
+
+/* Variant called name of plant p (its default for a null name), or -1. */
+int hg_plant_variant(const hg_plant *p, const char *name);
+
+/* For bindings that cannot follow the struct (Python): plant i's
+ * parameter table (0 and *count 0 for an unknown plant), its defaults (0,
+ * or -1 for an unknown plant) and its name (0 if unknown). */
+const hg_param_info *hg_plant_params_table(int plant, int *count);
+int hg_plant_params_defaults(int plant, hg_plant_params *v);
+const char *hg_plant_name_at(int plant);
+int hg_plant_variant_named(int plant, const char *name);   /* hg_plant_variant of plant i, -1 if unknown */
+
+/* Switch bits (HG_SW_*) of a load at pos with limit switches at limit_min
+ * (tripped at or below) and limit_max (at or above) and a home switch on
+ * at or above home_at; a non-finite pos trips both limits. */
+unsigned hg_plant_switches(double pos, double limit_min, double limit_max, double home_at);
+
+#endif

@@ -1,0 +1,284 @@
+/* hg_plant_hexaglide.c - the Hexaglide as a plant of the virtual board
+ * (hg_plant.h): its parameter table (hg_params.h), its model and state
+ * (hg_model.h, hg_dynamics.h), its stability check (hg_stability.h), its
+ * mechanical limits (hg_guard.h) and what its sensors read: six channels,
+ * the motor encoders on the ball screws (turns = z / lead), the limit and
+ * home switches on the carriages, the head pose and the bars. */
+#include "hg_math.h"
+#include "hg_string.h"
+#include "hg_plant_hexaglide.h"
+#include "hg_dynamics.h"
+#include "hg_stability.h"
+#include "hg_guard_text.h"
+#include "hg_errors.h"
+#include "hg_units.h"
+
+#define CHANNELS 6
+
+/* The plant's model: the dynamics' and what the sensors derive from the
+ * parameters once per build (not per period). */
+typedef struct {
+    hg_model m;
+    unsigned geometry_fp;            /* hg_geometry_fingerprint of m.p.geo */
+} hexaglide_model;
+
+typedef char hg_hexaglide_fits[(sizeof(hexaglide_model) <= sizeof(hg_plant_model) &&
+                                sizeof(hg_data) <= sizeof(hg_plant_data) &&
+                                HG_PARAMS_MAX <= HG_PLANT_PARAMS_MAX && CHANNELS <= HG_CHANNELS_MAX) ? 1 : -1];
+
+/* sense.extra[] of the Hexaglide, in this order */
+enum { X_HEAD = 0, X_RESIDUAL = 6, X_BARS_BROKEN = 7, X_GEOMETRY = 8, X_COUNT = 9 };
+static const hg_plant_output outputs[X_COUNT] = {
+    {"head-x", "mm", HG_MM_PER_M, 0, "pose-x", "x_mm", "head reference point Op, X"},
+    {"head-y", "mm", HG_MM_PER_M, 0, "pose-y", "y_mm", "head reference point Op, Y"},
+    {"head-z", "mm", HG_MM_PER_M, 0, "pose-z", "z_mm", "head reference point Op, Z"},
+    {"head-a", "deg", HG_DEG_PER_RAD, 0, "pose-a", "a_deg", "head orientation A (Euler 3-2-1, about x)"},
+    {"head-b", "deg", HG_DEG_PER_RAD, 0, "pose-b", "b_deg", "head orientation B (about y)"},
+    {"head-c", "deg", HG_DEG_PER_RAD, 0, "pose-c", "c_deg", "head orientation C (about z)"},
+    {"residual", "m", 1.0, 0, 0, 0, "largest bar-length error after the last stabilization"},
+    {"bars-broken", "", 1.0, 1, "bars-broken", 0, "bit k: bar k is broken (joint-N.bar-broken)"},
+    {"geometry-fingerprint", "", 1.0, 1, 0, 0, "fingerprint of the geometry in force (hexaglidekins.board-geometry)"},
+};
+
+static const hg_plant_injection injections[1] = {
+    {"bar-broken", 1, "broke: the head hangs on the other bars; the fault latches when it leaves the "
+                      "volume the model represents"},
+};
+
+/* The model and data laid over the board's storage. */
+static const hexaglide_model *hmodel_of(const hg_plant_model *m) { return (const hexaglide_model *)m->store; }
+static const hg_model *model_of(const hg_plant_model *m) { return &hmodel_of(m)->m; }
+const hg_model *hg_hexaglide_model(const hg_plant_model *m) { return model_of(m); }
+const hg_data *hg_hexaglide_data(const hg_plant_data *d) { return (const hg_data *)d->store; }
+static hg_data *data_of(hg_plant_data *d) { return (hg_data *)d->store; }
+static const hg_data *cdata_of(const hg_plant_data *d) { return (const hg_data *)d->store; }
+
+/* A block as the typed parameter set, and back. */
+static void params_from(const hg_plant_params *v, hg_params *p)
+{
+    int i, n;
+    memset(p, 0, sizeof *p);
+    hg_params_table(&n);
+    for (i = 0; i < n; i++)
+        *hg_params_at(p, i) = v->v[i];
+}
+
+static void params_to(const hg_params *p, hg_plant_params *v)
+{
+    int i, n;
+    memset(v, 0, sizeof *v);
+    hg_params_table(&n);
+    for (i = 0; i < n; i++)
+        v->v[i] = hg_params_get(p, i);
+}
+
+static void defaults(hg_plant_params *v)
+{
+    hg_params p;
+    hg_params_default(&p);
+    params_to(&p, v);
+}
+
+static int check(const hg_plant_params *v, hg_bitset *bad, const char *why[HG_PLANT_PARAMS_MAX])
+{
+    hg_params p;
+    params_from(v, &p);
+    return hg_params_check_all(&p, bad, why);
+}
+
+static int channels(const hg_plant_params *v)
+{
+    (void)v;
+    return CHANNELS;
+}
+
+static int build(hg_plant_model *m, const hg_plant_params *v, int variant, int integrator,
+                 const char **field, const char **why)
+{
+    hexaglide_model *hm = (hexaglide_model *)m->store;
+    hg_params p;
+    int rc;
+    params_from(v, &p);
+    rc = hg_model_init(&hm->m, &p, (hg_model_kind)variant, field, why);
+    if (rc == 0 && hg_model_set_integrator(&hm->m, integrator)) {
+        *field = "integrator";
+        *why = "must be 0 (improved-euler), 1 (heun) or 2 (rk4)";
+        rc = HG_ERR_BAD_PARAM;
+    }
+    hm->geometry_fp = hg_geometry_fingerprint(&p.geo);
+    return rc;
+}
+
+static int set_integrator(hg_plant_model *m, int integrator)
+{
+    return hg_model_set_integrator(&((hexaglide_model *)m->store)->m, integrator);
+}
+
+static void params_of(const hg_plant_model *m, hg_plant_params *v)
+{
+    params_to(&model_of(m)->p, v);
+}
+
+static int reset(const hg_plant_model *m, hg_plant_data *d)
+{
+    return hg_data_reset(model_of(m), data_of(d));
+}
+
+/* The machine's shape (l, lb, e, lp: where HOME is) restarts it; the
+ * joints' ranges and the bar diameter are limits, not shape. A new lead
+ * or counts-per-rev rescales the encoders. */
+static unsigned change(const hg_plant_params *a, const hg_plant_params *b)
+{
+    hg_params p, q;
+    unsigned c = 0;
+    params_from(a, &p);
+    params_from(b, &q);
+    if (p.geo.l_m != q.geo.l_m || p.geo.lb_m != q.geo.lb_m || p.geo.e_m != q.geo.e_m || p.geo.lp_m != q.geo.lp_m)
+        c |= HG_PLANT_CHANGE_RESTART;
+    if (p.lead_m != q.lead_m || p.counts_per_rev != q.counts_per_rev)
+        c |= HG_PLANT_CHANGE_RESCALE;
+    return c;
+}
+
+static int stability(const hg_plant_params *v, int integrator, double period_s, unsigned substeps_min,
+                     unsigned substeps_max, unsigned *substeps, int *param, double *dt_max_s)
+{
+    hg_stability st;
+    hg_params p;
+    int n, rc;
+    const hg_param_info *t = hg_params_table(&n);
+    params_from(v, &p);
+    rc = hg_stability_check(&p, (hg_integrator)integrator, period_s, substeps_min, substeps_max, &st);
+    *substeps = st.substeps;
+    *param = hg_param_find(t, n, st.param);
+    *dt_max_s = st.dt_max_s;
+    return rc;
+}
+
+static void inject(const hg_plant_model *m, hg_plant_data *d, const unsigned in[HG_CHANNELS_MAX],
+                   unsigned acted[HG_PLANT_INJECT_MAX])
+{
+    hg_data *hd = data_of(d);
+    int k;
+    (void)m;
+    for (k = 0; k < CHANNELS; k++) {   /* a broken bar stays broken until a reset */
+        unsigned bit = 1u << k;
+        if (!(in[k] & 1u) || (hd->broken_bars & bit))
+            continue;
+        hd->broken_bars |= bit;
+        acted[0] |= bit;
+    }
+}
+
+/* 1 if every state number that reaches an output is finite. */
+static int state_finite(const hg_data *d)
+{
+    int k, ok = isfinite(d->t_s) && isfinite(d->residual_m);
+    for (k = 0; k < 6; k++)
+        ok = ok && isfinite(d->z_m[k]) && isfinite(d->zd_mps[k]) && isfinite(d->pose[k]) &&
+             isfinite(d->posed[k]) && isfinite(d->current_a[k]) && isfinite(d->force_n[k]);
+    return ok;
+}
+
+static int step(const hg_plant_model *m, hg_plant_data *d, const double volts[HG_CHANNELS_MAX],
+                unsigned enabled, double dt_s, hg_plant_report *r)
+{
+    hg_data *hd = data_of(d);
+    int rc;
+    hd->amp_enabled = enabled & HG_BARS_ALL;   /* a disabled amplifier passes no current */
+    rc = hg_step(model_of(m), hd, volts, dt_s);
+    if (rc == 0 && !state_finite(hd))
+        rc = HG_ERR_STATE_NONFINITE;
+    if (rc && r) {                    /* what was struck (guard) */
+        r->kind = hd->guard.kind;
+        r->channel = hd->guard.bar;
+        r->other = hd->guard.other;
+        r->value = hd->guard.value;
+        r->limit = hd->guard.limit;
+    }
+    return rc;
+}
+
+/* Finite x, or 0. */
+static double finite_or_zero(double x) { return isfinite(x) ? x : 0.0; }
+
+static void sense(const hg_plant_model *m, const hg_plant_data *d, hg_plant_sense *s)
+{
+    const hg_model *hm = model_of(m);
+    const hg_params *p = &hm->p;
+    const hg_data *hd = cdata_of(d);
+    int k;
+    memset(s, 0, sizeof *s);
+    s->channels = CHANNELS;
+    for (k = 0; k < CHANNELS; k++) {
+        s->turns[k] = hd->z_m[k] / p->lead_m;   /* the motor on the screw: z / lead revolutions */
+        s->counts_per_rev[k] = p->counts_per_rev;
+        s->motor_pos[k] = finite_or_zero(hd->z_m[k]);
+        s->pos[k] = finite_or_zero(hd->z_m[k]);
+        s->vel[k] = finite_or_zero(hd->zd_mps[k]);
+        s->current_a[k] = finite_or_zero(hd->current_a[k]);
+        s->force[k] = finite_or_zero(hd->force_n[k]);
+        s->switches[k] = hg_plant_switches(hd->z_m[k], p->limit_min_m, p->limit_max_m, p->home_switch_m);
+    }
+    for (k = 0; k < 6; k++)
+        s->extra[X_HEAD + k] = finite_or_zero(hd->pose[k]);
+    s->extra[X_RESIDUAL] = finite_or_zero(hd->residual_m);
+    s->extra[X_BARS_BROKEN] = (double)hd->broken_bars;
+    s->extra[X_GEOMETRY] = (double)hmodel_of(m)->geometry_fp;
+    s->sim_time_s = finite_or_zero(hd->t_s);
+}
+
+static void describe(const hg_plant_report *r, int hal, char buf[HG_PLANT_TEXT_LEN])
+{
+    hg_guard_report g;
+    typedef char fits[HG_GUARD_TEXT_LEN <= HG_PLANT_TEXT_LEN ? 1 : -1];
+    g.kind = r->kind;
+    g.bar = r->channel;
+    g.other = r->other;
+    g.value = r->value;
+    g.limit = r->limit;
+    hg_guard_describe(&g, hal, buf);
+    (void)sizeof(fits);
+}
+
+const hg_plant hg_plant_hexaglide = {
+    "hexaglide",
+    "the UPNa Hexaglide: six ball-screw carriages on three posts, six bars, a head",
+    "HEXAGLIDE",
+    CHANNELS,
+    HG_MODEL_COUNT,
+    hg_model_names,
+    HG_MODEL_REDUCED_CARTESIAN,
+    outputs,
+    X_COUNT,
+    injections,
+    1,
+    sizeof(hexaglide_model),
+    sizeof(hg_data),
+    HG_DATA_STATE_BYTES,
+    hg_params_table,
+    defaults,
+    check,
+    channels,
+    build,
+    set_integrator,
+    params_of,
+    reset,
+    change,
+    stability,
+    inject,
+    step,
+    sense,
+    describe,
+};
+
+unsigned long hg_hexaglide_sizeof(int which)
+{
+    switch (which) {
+    case 4: return sizeof(hg_model);
+    case 5: return sizeof(hg_data);
+    case 6: return sizeof(hg_params);
+    case 12: return HG_DATA_STATE_BYTES;
+    default: return 0;
+    }
+}
