@@ -7,6 +7,7 @@
 #   make run      the same machine in AXIS
 #   make bench    speed of kinematics and dynamics; make profile: the step by stage (callgrind)
 #   make check    sanitizers and static analysis; make fuzz; make soak
+#   make fmu      build/hexaglide.fmu (FMI 3.0 co-simulation) and fmusim (docs/fmu.md)
 # Every entry point first installs the Debian packages it needs.
 
 CC      ?= gcc
@@ -38,7 +39,7 @@ BENCH_BINS := $(patsubst bench/%.c,$(BUILD)/bench/%,$(BENCH_SRCS))
 MANDIR  ?= /usr/local/share/man
 MAN9    := $(wildcard docs/man/man9/*.9)
 
-.PHONY: all deps modules host lib install uninstall test check fuzz soak demo run bench profile clean unit-tests
+.PHONY: all deps modules host lib install uninstall test check fuzz soak demo run bench profile clean unit-tests fmu
 
 all: deps host modules
 
@@ -89,6 +90,7 @@ uninstall:
 test:
 	@tools/install-deps.sh test
 	@$(MAKE) -s all
+	@$(MAKE) -s fmu
 	@$(MAKE) -s install
 	@tests/run_all.sh
 
@@ -149,5 +151,8 @@ run: all
 
 clean:
 	rm -rf $(BUILD)
+
+# the FMU, fmusim and their tests (src/fmu/fmu.mk, docs/fmu.md)
+include src/fmu/fmu.mk
 
 -include $(shell find $(BUILD)/host $(BUILD)/tests -name '*.d' 2>/dev/null)

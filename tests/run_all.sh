@@ -8,7 +8,8 @@
 #   tiers: unit (host C), generator (freshness, SymPy), engine (MuJoCo
 #          cross-check), cli, hal (halrun), lcnc (HAL component tests in
 #          LinuxCNC's tests/NAME/ layout, tests/lcnc/runtests),
-#          linuxcnc (full stack), check (sanitizers, static analysis)
+#          linuxcnc (full stack), check (sanitizers, static analysis),
+#          fmu (build/hexaglide.fmu under fmusim and its FMI API; make fmu)
 # TESTS_ONLY=tier[,tier] runs a subset.
 cd "$(dirname "$0")/.." || exit 1
 mkdir -p build/test-logs
@@ -52,7 +53,7 @@ if want unit; then
         else run_one "unit/$(basename "$t")" sh -c "echo 'not ok - $t is not built (make host)'; exit 1"; fi
     done
 fi
-for tier in generator engine cli hal lcnc linuxcnc check; do
+for tier in generator engine cli hal lcnc linuxcnc check fmu; do
     want $tier || continue
     if [ $tier = lcnc ]; then run_one lcnc/runtests tests/lcnc/runtests; continue; fi
     for t in tests/$tier/test_*; do

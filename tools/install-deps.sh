@@ -1,15 +1,19 @@
 #!/bin/sh
 # install-deps.sh - install the Debian 12 packages this project needs, once.
-# Usage: tools/install-deps.sh [build|test|demo|bench|run|tune]
+# Usage: tools/install-deps.sh [build|test|demo|bench|run|tune|fmu]
 # Installs only what is missing; uses sudo when not root.
 set -e
 need="linuxcnc-uspace linuxcnc-uspace-dev build-essential man-db"
+# fmusim (make fmu): libxml2, minizip/zlib, SUNDIALS' CVODE; zip packs the FMU, xxd and
+# python3-lxml turn the FMI schema into fmusim's header
+fmu="libxml2-dev zlib1g-dev libminizip-dev libsundials-dev pkg-config zip xxd python3-lxml"
 case "$1" in
-  test)  need="$need libmujoco-dev python3-sympy python3-numpy python3-matplotlib python3-scipy cppcheck clang clang-tidy libclang-rt-14-dev bc xvfb imagemagick" ;;
+  test)  need="$need $fmu libmujoco-dev python3-sympy python3-numpy python3-matplotlib python3-scipy cppcheck clang clang-tidy libclang-rt-14-dev bc xvfb imagemagick" ;;
   demo)  need="$need python3-matplotlib python3-numpy xvfb" ;;
   bench) need="$need libmujoco-dev valgrind" ;;
   run)   need="$need xvfb" ;;
   tune)  need="$need python3-numpy python3-scipy python3-matplotlib" ;;
+  fmu)   need="$need $fmu python3-numpy python3-matplotlib" ;;
 esac
 missing=""
 for p in $need; do
