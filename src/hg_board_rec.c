@@ -180,17 +180,25 @@ static int finish(builder *t)
     return t->n;
 }
 
+/* Format 1's parameter columns (the Hexaglide's table at d20d9e5), in its order: frozen. */
+static const char *const format1_params[] = {
+    "l", "lb", "e", "lp", "cone_carriage", "cone_head", "d_bar", "tool_d", "g", "m_head", "head_com",
+    "i_head_xx", "i_head_yy", "i_head_zz", "m_bar", "i_bar", "m_carriage", "lead", "j_rotor", "kt",
+    "r_winding", "l_winding", "amp_mode", "ka", "i_max", "v_bus", "v_rated", "kp_vel", "ki_vel", "c_visc",
+    "f_coulomb", "f_static", "v_stribeck", "stop_min", "stop_max", "k_stop", "c_stop", "limit_min",
+    "limit_max", "home_switch", "counts_per_rev",
+};
+
 int hg_board_rec_fields(hg_board_rec_field *f, int max, int plant, int variant, int format)
 {
     const hg_plant *p = hg_plant_at(plant);
     builder t;
-    int k, np, nch;
+    int k, nch;
     t.f = f;
     t.n = 0;
     t.max = max;
     if (!p || !hg_plant_nparams_at(plant, variant) || (format == 1 && plant != 0) || format < 1 || format > 2)
         return -1;
-    np = p->nparams(variant);
     nch = p->channels(variant);
     add(&t, "in.period-ns", "", HG_BRF_S32, HG_BRS_PERIOD, 0);
     if (format == 2)
@@ -201,12 +209,15 @@ int hg_board_rec_fields(hg_board_rec_field *f, int max, int plant, int variant, 
     in1(&t, "in.substeps", HG_BRF_U32, IN_OFF(params.substeps), 0);
     in1(&t, "in.integrator", HG_BRF_U32, IN_OFF(params.integrator), 0);
     outputs(&t, p, nch, format == 2);
-    if (format == 1) {                /* every parameter, every period */
-        for (k = 0; k < np; k++) {
+    if (format == 1) {                /* every parameter of that day, every period */
+        for (k = 0; k < (int)(sizeof format1_params / sizeof format1_params[0]); k++) {
             hg_param_info e0;
             hg_board_rec_field *e;
-            p->param(variant, k, &e0);
-            e = add(&t, "in.param-", e0.hal_name, HG_BRF_F64, HG_BRS_PARAM, (unsigned long)k);
+            int i = hg_plant_param_find(p, variant, format1_params[k]);
+            if (i < 0)
+                return -1;
+            p->param(variant, i, &e0);
+            e = add(&t, "in.param-", e0.hal_name, HG_BRF_F64, HG_BRS_PARAM, (unsigned long)i);
             if (e)
                 e->nonfinite = 1;
         }

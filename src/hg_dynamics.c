@@ -194,12 +194,24 @@ int hg_model_init(hg_model *m, const hg_params *p, hg_model_kind kind,
     for (i = 0; i < 6; i++)
         hg_friction_channel_of(p, &m->fric[i]);
     m->rotor_mass_kg = p->j_rotor_kgm2 * screw * screw;
+    for (i = 0; i < 6; i++) {
+        m->train[i].k_axial = p->k_axial_n_per_m;
+        m->train[i].c_axial = p->c_axial_ns_per_m;
+        m->train[i].backlash = p->backlash_m;
+    }
+    m->flexible = !hg_drivetrain_rigid(&m->train[0]);
+    m->m_min_kg = m->flexible ? p->m_carriage_kg : p->m_carriage_kg + m->rotor_mass_kg;
     hg_guard_prepare(&p->geo, &m->guard);
-    if (kind == HG_MODEL_STANDARD)
-        hg_gen_standard_init(p, m->k);
-    else
-        hg_gen_reduced_init(p, m->k);
-    hg_gen_reduced_init(p, m->k_lumped);
+    {
+        hg_params pm = *p;            /* the machine whose carriages carry the rotors' inertia, or not */
+        if (m->flexible)
+            pm.j_rotor_kgm2 = 0.0;   /* the rotors are bodies of their own, behind the springs */
+        if (kind == HG_MODEL_STANDARD)
+            hg_gen_standard_init(&pm, m->k);
+        else
+            hg_gen_reduced_init(&pm, m->k);
+        hg_gen_reduced_init(&pm, m->k_lumped);
+    }
     if (!hg_all_finite(HG_MAX_CONSTS, m->k) || !hg_all_finite(HG_MAX_LUMPED_CONSTS, m->k_lumped)) {
         if (bad_field)
             *bad_field = "params";
@@ -268,13 +280,24 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
         return HG_ERR_BAD_DT;
     }
     pack(m, d, q0, qd0);
-    hg_drive_step(m->drive, 6, volts, d->current_a, d->zd_mps, d->vloop_int_m, d->amp_enabled, dt_s,
-                  &d->work.drive, &drv);
+    /* the motors turn at the carriages' speed, or at the rotors' behind flexible trains */
+    hg_drive_step(m->drive, 6, volts, d->current_a, m->flexible ? d->zrd_mps : d->zd_mps, d->vloop_int_m,
+                  d->amp_enabled, dt_s, &d->work.drive, &drv);
     for (k = 0; k < 6; k++) {          /* drive, and the friction of the last step, held */
+        double motor = drv.i_mean[k] * m->drive[k].force_per_amp_n;
         d->work.fric_est_n[k] = fric ? d->fric_n[k] : 0.0;
-        drive_n[k] = drv.i_mean[k] * m->drive[k].force_per_amp_n + d->work.fric_est_n[k];
+        if (!m->flexible) {
+            drive_n[k] = motor + d->work.fric_est_n[k];
+            continue;
+        }
+        /* flexible: the motor drives its rotor; the carriage feels the train (hg_integrate's stages) */
+        d->work.motor_n[k] = motor;
+        drive_n[k] = d->work.fric_est_n[k];
     }
     hg_carriage_forces(m, d->z_m, d->zd_mps, drive_n, fz);
+    if (m->flexible)                   /* the trains' force at the step's start */
+        for (k = 0; k < 6; k++)
+            fz[k] += hg_drivetrain_force(&m->train[k], d->zr_m[k] - d->z_m[k], d->zrd_mps[k] - d->zd_mps[k]);
     switch (d->broken_bars & HG_BARS_ALL ? HG_MODEL_COUNT : m->kind) {
     case HG_MODEL_COUNT:               /* a bar broken: any kind */
         rc = step_broken(m, d, drive_n, fz, dt_s, q1, qd1, qdd, &res);
@@ -288,7 +311,7 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
                           qdd, &res);
         break;
     case HG_MODEL_FUSED_CARTESIAN:
-        if (m->integrator == HG_INTEGRATOR_IMPROVED_EULER && !fric) {
+        if (m->integrator == HG_INTEGRATOR_IMPROVED_EULER && !fric && !m->flexible) {
             double sc0[6];
             if (d->trig_valid && d->trig_key_rad[0] == d->pose[3] &&
                 d->trig_key_rad[1] == d->pose[4] && d->trig_key_rad[2] == d->pose[5])
@@ -329,7 +352,13 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
         d->last_error = rc;
         return rc;
     }
-    hg_drive_integral(m->drive, 6, d->amp_enabled, &drv, q0, q1, dt_s, d->vloop_int_m);
+    if (m->flexible) {                 /* the velocity loops see the motors */
+        hg_drive_integral(m->drive, 6, d->amp_enabled, &drv, d->zr_m, d->work.rotor1_m, dt_s, d->vloop_int_m);
+        memcpy(d->zr_m, d->work.rotor1_m, sizeof d->zr_m);
+        memcpy(d->zrd_mps, d->work.rotor1_mps, sizeof d->zrd_mps);
+    } else {
+        hg_drive_integral(m->drive, 6, d->amp_enabled, &drv, q0, q1, dt_s, d->vloop_int_m);
+    }
     unpack(m, q1, qd1, qdd, d);
     d->trig_valid = trig;
     if (trig) {
@@ -348,6 +377,18 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
     return 0;
 }
 
+/* The flexible trains' share: the rotors' kinetic energy and the springs'. */
+static void train_energy(const hg_model *m, const hg_data *d, double *kinetic_j, double *potential_j)
+{
+    int k;
+    if (!m->flexible)
+        return;                        /* rigid: the rotors are in the machine's mass matrix */
+    for (k = 0; k < 6; k++) {
+        *kinetic_j += 0.5 * m->rotor_mass_kg * d->zrd_mps[k] * d->zrd_mps[k];
+        *potential_j += hg_drivetrain_energy(&m->train[k], d->zr_m[k] - d->z_m[k]);
+    }
+}
+
 void hg_energy(const hg_model *m, const hg_data *d, double *kinetic_j, double *potential_j)
 {
     double q[HG_NQ_MAX], qd[HG_NQ_MAX], v;
@@ -355,9 +396,10 @@ void hg_energy(const hg_model *m, const hg_data *d, double *kinetic_j, double *p
         lumped_pack(d, q, qd);
         hg_lumped_energy(m->k_lumped, q, qd, kinetic_j, &v);
         *potential_j = v - m->potential_lumped_home_j;
-        return;
+    } else {
+        pack(m, d, q, qd);
+        hg_model_energy(m, q, qd, kinetic_j, &v);
+        *potential_j = v - m->potential_home_j;
     }
-    pack(m, d, q, qd);
-    hg_model_energy(m, q, qd, kinetic_j, &v);
-    *potential_j = v - m->potential_home_j;
+    train_energy(m, d, kinetic_j, potential_j);
 }

@@ -18,6 +18,8 @@ typedef struct {
     double a[HG_NQ_MAX];                 /* stage accelerations */
     double sq[HG_NQ_MAX], sv[HG_NQ_MAX]; /* weighted sums of the stages' q' and q'' */
     double fz[6];                        /* stage carriage forces */
+    double rs[6], rv[6], ra[6];          /* flexible trains: the rotors' stage state and accelerations */
+    double rsq[6], rsv[6];               /* ... their weighted sums */
 } stage_ws;
 typedef char hg_stage_ws_fits[sizeof(stage_ws) <= sizeof(((hg_work *)0)->stage) ? 1 : -1];
 
@@ -55,12 +57,40 @@ improved_euler(const int n, const double *restrict q0, const double *restrict qd
     }
 }
 
-/* Accelerations at the stage state (qs, vs) of w, drive force held. */
+/* Flexible trains: each rotor's acceleration at its stage state and the
+ * carriages' (z, z') of the stage, the train's force added to the
+ * carriages' forces fz: (motor - train) / m_rotor. */
+static void rotor_accel(const hg_model *m, const hg_data *ctx, const double *z, const double *zd,
+                        stage_ws *w, double fz[6])
+{
+    int k;
+    for (k = 0; k < 6; k++) {
+        double f = hg_drivetrain_force(&m->train[k], w->rs[k] - z[k], w->rv[k] - zd[k]);
+        fz[k] += f;
+        w->ra[k] = (ctx->work.motor_n[k] - f) / m->rotor_mass_kg;
+    }
+}
+
+/* Accelerations at the stage state (qs, vs) of w, drive force held (and
+ * the trains' at the stage's rotor state). */
 static int stage_accel(const hg_model *m, const hg_dae *f, hg_data *ctx, stage_ws *w,
                        const double drive_n[6])
 {
     hg_carriage_forces(m, w->qs, w->vs, drive_n, w->fz);
+    if (m->flexible)
+        rotor_accel(m, ctx, w->qs, w->vs, w, w->fz);
     return f->accel(m, ctx, w->qs, w->vs, w->fz, w->a);
+}
+
+/* The rotors at the step's start (stage 0): their acceleration, with fz0
+ * that already holds the trains' force (hg_step). */
+static void rotor_start(const hg_model *m, const hg_data *ctx, const double *q0, const double *qd0,
+                        stage_ws *w)
+{
+    double unused[6] = {0, 0, 0, 0, 0, 0};
+    memcpy(w->rs, ctx->zr_m, sizeof w->rs);
+    memcpy(w->rv, ctx->zrd_mps, sizeof w->rv);
+    rotor_accel(m, ctx, q0, qd0, w, unused);
 }
 
 void hg_mass_save_reduced(hg_mass_snapshot *s, const double ldl[36], const double inv_d[6],
@@ -224,8 +254,7 @@ static int friction(const hg_model *m, const hg_dae *f, hg_data *ctx, const doub
     int i, k, rc;
     for (k = 0; k < 6; k++)
         est[k] = wk->fric_est_n[k] * dt;  /* the impulses the stages held */
-    if (!hg_friction_all_sliding(m->fric, 6, qd1, qd0, ctx->stuck, est,
-                                 m->p.m_carriage_kg + m->rotor_mass_kg, dt, &fo)) {
+    if (!hg_friction_all_sliding(m->fric, 6, qd1, qd0, ctx->stuck, est, m->m_min_kg, dt, &fo)) {
         rc = friction_general(m, ctx, qd0, qd1, est, dt, &fo);
         if (rc)
             return rc;
@@ -273,6 +302,11 @@ runge_kutta(const int n, int ns, const double *c, const double *b, const hg_mode
                 w->sq[i] = 0.0;
                 w->sv[i] = 0.0;
             }
+            if (m->flexible) {
+                rotor_start(m, ctx, q0, qd0, w);
+                for (i = 0; i < 6; i++)
+                    w->rsq[i] = w->rsv[i] = 0.0;
+            }
         } else {
             const double h = c[s] * dt;
             double vprev;
@@ -281,6 +315,12 @@ runge_kutta(const int n, int ns, const double *c, const double *b, const hg_mode
                 w->qs[i] = q0[i] + h * vprev;
                 w->vs[i] = qd0[i] + h * w->a[i];
             }
+            if (m->flexible)           /* the rotors' stage, the same way */
+                for (i = 0; i < 6; i++) {
+                    vprev = w->rv[i];
+                    w->rs[i] = ctx->zr_m[i] + h * vprev;
+                    w->rv[i] = ctx->zrd_mps[i] + h * w->ra[i];
+                }
             rc = stage_accel(m, f, ctx, w, drive_n);
         }
         if (rc)
@@ -289,12 +329,22 @@ runge_kutta(const int n, int ns, const double *c, const double *b, const hg_mode
             w->sq[i] += b[s] * w->vs[i];
             w->sv[i] += b[s] * w->a[i];
         }
+        if (m->flexible)
+            for (i = 0; i < 6; i++) {
+                w->rsq[i] += b[s] * w->rv[i];
+                w->rsv[i] += b[s] * w->ra[i];
+            }
     }
     for (i = 0; i < n; i++) {
         q1[i] = q0[i] + dt * w->sq[i];
         qd1[i] = qd0[i] + dt * w->sv[i];
         qdd[i] = w->sv[i];
     }
+    if (m->flexible)
+        for (i = 0; i < 6; i++) {
+            ctx->work.rotor1_m[i] = ctx->zr_m[i] + dt * w->rsq[i];
+            ctx->work.rotor1_mps[i] = ctx->zrd_mps[i] + dt * w->rsv[i];
+        }
     return 0;
 }
 
@@ -321,6 +371,10 @@ int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_da
             improved_euler(HG_NQ_REDUCED, q0, qd0, qdd, dt, q1, qd1);
         else
             improved_euler(n, q0, qd0, qdd, dt, q1, qd1);
+        if (m->flexible) {             /* the rotors the same way */
+            rotor_start(m, ctx, q0, qd0, w);
+            improved_euler(6, ctx->zr_m, ctx->zrd_mps, w->ra, dt, ctx->work.rotor1_m, ctx->work.rotor1_mps);
+        }
     } else {
         ns = hg_scheme_tableau(scheme, &c, &b);
         if (ns == 0)

@@ -16,6 +16,7 @@
 #include "hg_scheme.h"
 #include "hg_drive.h"
 #include "hg_friction.h"
+#include "hg_drivetrain.h"
 
 /* The parametrizations of the paper's section 7, plus the fused one. */
 typedef enum {
@@ -39,6 +40,12 @@ typedef struct {
     double force_per_volt_n;     /* ka kt 2 pi / lead (N/V): torque mode, every drive alike */
     hg_friction_channel fric[6]; /* each carriage's sliding and static friction (p's, alike) */
     double rotor_mass_kg;        /* j_rotor (2 pi / lead)^2, inertia without weight */
+    hg_drivetrain_channel train[6]; /* each drive train (p's k_axial, c_axial, backlash, alike) */
+    int flexible;                /* 1: the trains have a spring (k_axial > 0): the rotors are bodies
+                                    of their own (hg_data.zr_m) and k holds the machine without
+                                    their inertia; 0: rigid, the rotors' inertia in the carriages' */
+    double m_min_kg;             /* a lower bound of a carriage's effective mass: m_carriage plus
+                                    the rotor's when rigid, m_carriage alone when flexible */
     double potential_home_j;     /* gravity potential at HOME (energies are relative to it) */
     hg_guard_geo guard;          /* the guard's constants of p.geo (hg_guard_prepare) */
     double k[HG_MAX_CONSTS];     /* generated init: parameter-only subexpressions */
@@ -72,7 +79,7 @@ typedef struct {
  * realtime stack frame exceeds 2560 bytes (kernel/RTAI modules). Each
  * user lays its own struct over these arrays (sizes checked at compile
  * time). */
-#define HG_WORK_STAGE 128
+#define HG_WORK_STAGE 160
 #define HG_WORK_STEP 800    /* the largest user: the Standard step, 778 */
 typedef struct {
     double stage[HG_WORK_STAGE]; /* hg_integrate's stage states and sums */
@@ -84,6 +91,8 @@ typedef struct {
     double fric_est_n[6];        /* friction hg_step expects and holds in the stages (N) */
     double fric_impulse[6];      /* friction impulses of the step (N s), committed by hg_step */
     unsigned fric_stuck;         /* carriages stuck at the step's end */
+    double motor_n[6];           /* flexible trains: the motors' force over the step (held) */
+    double rotor1_m[6], rotor1_mps[6]; /* ... the rotors at the step's end, committed by hg_step */
     /* caches that outlive the call: each holds a self-contained fact (valid
      * in any copy of the hg_data, whatever its state), emptied by hg_data_reset */
     hg_guard_memo guard;         /* the bar-clearance bound's reference state (hg_guard.h) */
@@ -113,6 +122,9 @@ typedef struct {
                                     (JOINT_RANGE, BAR_CLEARANCE, OUT_OF_VOLUME) */
     unsigned broken_bars;        /* fault injection: bit k set = bar k removed (HG_BARS_ALL);
                                     hg_data_reset clears it (all bars intact) */
+    double zr_m[6];              /* flexible trains: each motor's rotor as a carriage height (its
+                                    angle times lead / 2 pi, from HOME): what the encoder reads */
+    double zrd_mps[6];           /* ... its velocity (rigid trains: both unused, the rotor is z) */
     /* internal cache of the Reduced Cartesian steps: sin/cos of the head
      * angles of pose[3..5] (the stabilization's are the next step's) */
     double trig_key_rad[3];      /* the angles trig_sc belongs to */

@@ -55,6 +55,10 @@ typedef struct {
     double home_switch_m;      /* home switch: on for z >= this (see docs/homing) */
     /* sensors */
     double counts_per_rev;     /* encoder counts per motor revolution */
+    /* drive train between the motor (encoder side) and the carriage (hg_drivetrain.h) */
+    double k_axial_n_per_m;    /* axial stiffness of coupling, screw, nut and bearings; 0: rigid */
+    double c_axial_ns_per_m;   /* its damping */
+    double backlash_m;         /* total lost motion (0: a preloaded nut) */
 } hg_params;
 
 /* hg_params_check refuses any field at or above this magnitude (SI). */

@@ -126,6 +126,10 @@ typedef struct {
     int (*param)(int variant, int i, hg_param_info *out);
     /* the spec's defaults into v */
     void (*defaults)(int variant, hg_plant_params *v);
+    /* into v (the defaults): the parameters a record of an earlier format
+     * (hg_board_rec.h) does not carry, as the version that wrote it had
+     * them (the Hexaglide's format 1: a rigid drive train) */
+    void (*legacy)(int format, int variant, hg_plant_params *v);
     /* check v: 0, or HG_ERR_BAD_PARAM with every invalid entry's bit set in
      * *bad and, if why is given, why[i] its reason (static strings) */
     int (*check)(int variant, const hg_plant_params *v, hg_bitset *bad, const char *why[HG_PLANT_PARAMS_MAX]);

@@ -123,6 +123,20 @@ static void defaults(int variant, hg_plant_params *v)
     params_to(&p, v);
 }
 
+/* Format 1 (d20d9e5 and before) knew no drive train: it was rigid. */
+static void legacy(int format, int variant, hg_plant_params *v)
+{
+    hg_params p;
+    (void)variant;
+    params_from(v, &p);
+    if (format == 1) {
+        p.k_axial_n_per_m = 0.0;
+        p.c_axial_ns_per_m = 0.0;
+        p.backlash_m = 0.0;
+    }
+    params_to(&p, v);
+}
+
 static int check(int variant, const hg_plant_params *v, hg_bitset *bad, const char *why[HG_PLANT_PARAMS_MAX])
 {
     hg_params p;
@@ -213,7 +227,8 @@ static int state_finite(const hg_data *d)
     int k, ok = isfinite(d->t_s) && isfinite(d->residual_m);
     for (k = 0; k < 6; k++)
         ok = ok && isfinite(d->z_m[k]) && isfinite(d->zd_mps[k]) && isfinite(d->pose[k]) &&
-             isfinite(d->posed[k]) && isfinite(d->current_a[k]) && isfinite(d->force_n[k]);
+             isfinite(d->posed[k]) && isfinite(d->current_a[k]) && isfinite(d->force_n[k]) &&
+             isfinite(d->zr_m[k]) && isfinite(d->zrd_mps[k]);
     return ok;
 }
 
@@ -248,9 +263,11 @@ static void sense(const hg_plant_model *m, const hg_plant_data *d, hg_plant_sens
     memset(s, 0, sizeof *s);
     s->channels = CHANNELS;
     for (k = 0; k < CHANNELS; k++) {
-        s->turns[k] = hd->z_m[k] / p->lead_m;   /* the motor on the screw: z / lead revolutions */
+        /* the motor on the screw: its height / lead revolutions, the carriage's when rigid */
+        double motor = hm->flexible ? hd->zr_m[k] : hd->z_m[k];
+        s->turns[k] = motor / p->lead_m;
         s->counts_per_rev[k] = p->counts_per_rev;
-        s->motor_pos[k] = finite_or_zero(hd->z_m[k]);
+        s->motor_pos[k] = finite_or_zero(motor);
         s->pos[k] = finite_or_zero(hd->z_m[k]);
         s->vel[k] = finite_or_zero(hd->zd_mps[k]);
         s->current_a[k] = finite_or_zero(hd->current_a[k]);
@@ -297,6 +314,7 @@ const hg_plant hg_plant_hexaglide = {
     nparams,
     param,
     defaults,
+    legacy,
     check,
     build,
     params_of,

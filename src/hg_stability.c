@@ -121,33 +121,55 @@ static int stable(const test_system *s, hg_integrator scheme, double dt)
     }
 }
 
-/* The test systems of p; returns how many. */
-static int test_systems(const hg_params *p, test_system s[6])
+/* The test systems of p; returns how many (at most 8). A rigid train
+ * moves the rotor with its carriage: every system has their two masses.
+ * A flexible one (k_axial > 0) parts them: the carriage alone (with its
+ * bar end, the least inertia any carriage has: the machine's carriage-
+ * space mass matrix is at least (m_carriage + m_end) I) meets the stop and
+ * viscous friction; the rotor alone the drive; and the train's mode of the
+ * two, stiffness k_axial on their reduced mass, bounds every mode of the
+ * machine on its springs. */
+static int test_systems(const hg_params *p, test_system s[8])
 {
-    const double k = 2.0 * HG_PI / p->lead_m, fpa = p->kt_nm_per_a * k;
-    const double m = p->m_carriage_kg + p->j_rotor_kgm2 * k * k;
-    const test_system base = {m, 0.0, p->c_visc_ns_per_m, 0, fpa, fpa / p->r_winding_ohm,
+    const double k = 2.0 * HG_PI / p->lead_m, fpa = p->kt_nm_per_a * k, rotor = p->j_rotor_kgm2 * k * k;
+    const int flexible = p->k_axial_n_per_m > 0.0;
+    const double m_end = 2.0 * p->i_bar_kgm2 / (p->geo.l_m * p->geo.l_m) - 0.5 * p->m_bar_kg;
+    const double carriage = flexible ? p->m_carriage_kg + m_end : p->m_carriage_kg + rotor;
+    const test_system base = {carriage, 0.0, p->c_visc_ns_per_m, 0, fpa, fpa / p->r_winding_ohm,
                               p->l_winding_h / p->r_winding_ohm, p->kp_vel_as_per_m,
                               p->ki_vel_a_per_m, "c_visc"};
-    test_system stop;
+    test_system stop, drive = base;
     int n = 0;
+    if (flexible)                                           /* the drive turns the rotor alone */
+        drive.m = rotor, drive.c = 0.0;
     if (p->c_visc_ns_per_m > 0.0) {                         /* viscous friction alone */
         s[n] = base;
         s[n].param = "c_visc", n++;
     }
-    s[n] = base;                                            /* in a hard stop */
-    s[n].k = p->k_stop_n_per_m, s[n].c += p->c_stop_ns_per_m;
+    s[n] = base;                                            /* in a hard stop (and on its train) */
+    s[n].k = p->k_stop_n_per_m + (flexible ? p->k_axial_n_per_m : 0.0), s[n].c += p->c_stop_ns_per_m;
     s[n].param = s[n].c > 0.0 ? "k_stop" : "c_stop", n++;
-    stop = s[n - 1];
-    s[n] = base;                                            /* back-EMF of a drive at its bus voltage */
+    stop = flexible ? drive : s[n - 1];                     /* a rotor's drive does not meet the stop */
+    s[n] = drive;                                           /* back-EMF of a drive at its bus voltage */
     s[n].drive = 1, s[n].param = "r_winding", n++;
-    s[n] = stop;                                            /* ... in a hard stop */
-    s[n].drive = 1, n++;
-    if (p->amp_mode == 1.0) {
-        s[n] = base;                                        /* the velocity loop */
-        s[n].drive = 2, s[n].param = "kp_vel", n++;
+    if (!flexible) {
         s[n] = stop;                                        /* ... in a hard stop */
-        s[n].drive = 2, n++;
+        s[n].drive = 1, n++;
+    }
+    if (p->amp_mode == 1.0) {
+        s[n] = drive;                                       /* the velocity loop */
+        s[n].drive = 2, s[n].param = "kp_vel", n++;
+        if (!flexible) {
+            s[n] = stop;                                    /* ... in a hard stop */
+            s[n].drive = 2, n++;
+        }
+    }
+    if (flexible) {                                         /* the train's mode, motor against carriage */
+        s[n] = base;
+        s[n].m = 1.0 / (1.0 / rotor + 1.0 / carriage);
+        s[n].k = p->k_axial_n_per_m;
+        s[n].c = p->c_axial_ns_per_m;
+        s[n].param = s[n].c > 0.0 ? "k_axial" : "c_axial", n++;
     }
     return n;
 }
@@ -180,7 +202,7 @@ static double longest_step(const test_system *s, hg_integrator scheme, double hi
 int hg_stability_check(const hg_params *p, hg_integrator scheme, double period_s, unsigned substeps_min,
                        unsigned substeps_max, hg_stability *out)
 {
-    test_system s[6];
+    test_system s[8];
     int n = test_systems(p, s), limiting = -1;
     unsigned k;
     if (substeps_min < 1)

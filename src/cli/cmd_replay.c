@@ -685,6 +685,7 @@ int cmd_replay(int argc, char **argv)
     hg_board_inputs in, in_w;
     hg_board_outputs out_w, out_x;
     hg_board_rec_ctx ctx;
+    hg_board_params bp0;
     hg_board_rec_event *ev = 0;
     long nev = 0, next_ev = 0, line0;
     hg_loop_config lc;
@@ -862,11 +863,15 @@ int cmd_replay(int argc, char **argv)
                 status = 1;
                 break;
             }
-            rc = hg_board_init(&bx, plant, kind, 0);
+            /* power-up as the recording version did: its defaults (an earlier format's plant had fewer) */
+            hg_board_params_default(plant, kind, &bp0);
+            if (r.format < HG_BOARD_REC_FORMAT)
+                pl->legacy(r.format, kind, &bp0.plant);
+            rc = hg_board_init(&bx, plant, kind, &bp0);
             if (variant_w >= 0)
                 kind = variant_w;
             if (!rc && whatif && !closed) {
-                rc = hg_board_init(&b, plant, kind, 0);
+                rc = hg_board_init(&b, plant, kind, &bp0);
                 hg_board_peek(&b, &out_w);
             }
             if (closed) {
@@ -874,9 +879,9 @@ int cmd_replay(int argc, char **argv)
                 lc.variant = kind;
             }
             if (!rc && closed)
-                rc = hg_loop_init(&L, &lc, 0);
+                rc = hg_loop_init(&L, &lc, &bp0);
             for (i = 1; !rc && closed && i < o.spread; i++)
-                rc = hg_loop_init(&Ls[i], &lc, 0);
+                rc = hg_loop_init(&Ls[i], &lc, &bp0);
             if (rc) {
                 fprintf(stderr, "hexaglide replay: the board refused its defaults: %s\n", hg_strerror(rc));
                 status = 1;

@@ -35,6 +35,15 @@ static inline double hg_test_uniform(double lo, double hi)
     hg_test_rng_state = x;
     return lo + (hi - lo) * ((double)((x * 2685821657736338717ull) >> 11) / 9007199254740992.0);
 }
+/* The spec's defaults with the rigid drive train (k_axial = 0: the rotors
+ * move with their carriages), the machine the mechanism's closed forms
+ * describe; the flexible train has tests of its own (test_drivetrain.c). */
+static inline void hg_test_rigid_defaults(hg_params *p)
+{
+    hg_params_default(p);
+    p->k_axial_n_per_m = 0.0;
+}
+
 /* Zero every dissipation of p by name (viscous and Coulomb friction, the
  * hard-stop damper, and breakaway friction where the table has it), the
  * rest unchanged: 0, or -1 when a name that must exist is missing. */

@@ -66,6 +66,18 @@ static void test_coverage(int n, int format)
                 covered[pv + (size_t)k * sizeof(double) + i]++;
     for (i = pv + (size_t)np * sizeof(double); i < pv + sizeof(hg_plant_params); i++)
         covered[i] = 1;               /* entries past the plant's table: no parameter */
+    if (format == 1)                  /* parameters format 1 did not know: the plant's legacy values */
+        for (k = 0; k < np; k++) {
+            hg_param_info e;
+            int j, in1 = 0;
+            e = hg_params_table(0)[k];
+            for (j = 0; j < n; j++)
+                in1 |= f[j].side == HG_BRS_PARAM && f[j].offset == (unsigned long)k;
+            if (!in1 && (strcmp(e.name, "k_axial") == 0 || strcmp(e.name, "c_axial") == 0 ||
+                         strcmp(e.name, "backlash") == 0))
+                for (i = 0; i < sizeof(double); i++)
+                    covered[pv + (size_t)k * sizeof(double) + i] = 1;
+        }
     {                                 /* the channels past the plant's (6): no input of this plant */
         static const size_t chan[] = {offsetof(hg_board_inputs, amp_fail), offsetof(hg_board_inputs, stuck),
                                       offsetof(hg_board_inputs, tripped), offsetof(hg_board_inputs, index_lost),

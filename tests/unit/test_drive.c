@@ -46,7 +46,7 @@ static void test_top_speed(void)
     hg_data d;
     double worst = 0.0, cur;
     int rc, j;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.f_coulomb_n = p.f_static_n = 0.0;
     p.stop_max_m = 0.9;                       /* room to reach it */
     p.limit_max_m = 0.85;
@@ -59,7 +59,7 @@ static void test_top_speed(void)
           "current %.6f A = (V - ke k v)/R = %.6f A, below i_max", d.zd_mps[0] * 1e3, v_top * 1e3,
           d.current_a[0], cur);
     /* with the default friction: the sliding force joins the load */
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.stop_max_m = 0.9;
     p.limit_max_m = 0.85;
     p.v_stribeck_mps = 1e-5;
@@ -74,7 +74,7 @@ static void test_standstill_current(void)
     hg_params p;
     hg_data d;
     int rc;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.f_static_n = 1e4;                        /* held: the current is what the command asks */
     p.f_coulomb_n = 1e4;
     rc = run(&p, 2.5, 0.05, &d);
@@ -93,7 +93,7 @@ static void test_winding(void)
     hg_params p;
     hg_drive_out o;
     double v[6] = {10, 0, 0, 0, 0, 0}, tau, is, t_reach, mean_ref;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     hg_model_init(&m, &p, HG_MODEL_REDUCED_CARTESIAN, 0, 0);
     hg_data_reset(&m, &d);
     tau = p.l_winding_h / p.r_winding_ohm;
@@ -120,7 +120,7 @@ static void test_velocity_mode(void)
     hg_data d;
     double want;
     int rc;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.amp_mode = 1.0;
     rc = run(&p, 2.0, 1.0, &d);
     want = 2.0 / 10.0 * p.v_rated_mps;
@@ -145,31 +145,31 @@ static void refused(const char *what, const char *field, hg_params *p)
 static void test_bad_params(void)
 {
     hg_params p;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.r_winding_ohm = -1;
     refused("a negative winding resistance", "r_winding", &p);
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.l_winding_h = -0.001;
     refused("a negative winding inductance", "l_winding", &p);
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.v_bus_v = 0.9 * p.r_winding_ohm * weight6() / (p.kt_nm_per_a * 2 * PI / p.lead_m);
     refused("a bus voltage below what holds the head (0.9 R I_hold)", "v_bus", &p);
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.v_bus_v = 1.1 * p.r_winding_ohm * weight6() / (p.kt_nm_per_a * 2 * PI / p.lead_m);
     CHECK(hg_params_check(&p, 0, 0) == 0, "... 1.1 R I_hold is accepted");
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.f_static_n = 30.0;                       /* below the 40 N of f_coulomb */
     refused("a breakaway force below the sliding force", "f_static", &p);
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.amp_mode = 2.0;
     refused("amplifier mode 2", "amp_mode", &p);
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.geo.d_bar_m = 0.059;                     /* the bars are 58.3 mm apart at HOME */
     refused("a bar diameter HOME cannot hold", "d_bar", &p);
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.geo.cone_carriage_rad = 0.0;
     refused("a carriage joint without range", "cone_carriage", &p);
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.geo.cone_head_rad = 70.0 * PI / 180.0;   /* with the 24.3 deg tilt at HOME past the head plane */
     refused("a head joint range that lets a bar under the head", "cone_head", &p);
 }

@@ -41,7 +41,7 @@ static void test_sinking(hg_model_kind kind)
     hg_data d;
     double v0[6] = {0, 0, 0, 0, 0, 0}, expect = -spec_weight / (6 * SPEC_C_VISC), worst = 0;
     int rc, k;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     hg_params_set(&p, "f_coulomb", 0.0);   /* W / (6 c_visc) is viscous friction alone */
     hg_params_set(&p, "f_static", 0.0);
     hg_model_init(&m, &p, kind, 0, 0);
@@ -66,7 +66,7 @@ static void test_friction(hg_model_kind kind)
     hg_data d;
     double v0[6] = {0, 0, 0, 0, 0, 0}, fc = 30.0, expect, worst = 0;
     int rc, k;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.f_coulomb_n = fc;
     p.f_static_n = 45.0;                    /* below W/6 = 67.9 N: breaks away */
     p.v_stribeck_mps = 0.0005;              /* the Stribeck part is gone at the sinking speed */
@@ -102,7 +102,7 @@ static void test_holding(hg_model_kind kind)
     int rc, k;
     for (k = 0; k < 6; k++)
         v[k] = hold;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     hg_params_set(&p, "f_coulomb", 0.0);   /* viscous friction only: any imbalance moves it */
     hg_params_set(&p, "f_static", 0.0);
     hg_model_init(&m, &p, kind, 0, 0);
@@ -133,7 +133,7 @@ static void test_free_fall(hg_model_kind kind)
     double mass = SPEC_M_HEAD + 6 * SPEC_M_BAR + 6 * SPEC_M_CARRIAGE + 6 * rotor;
     double a = -spec_weight / mass, t = 0.2, worst = 0;
     int rc, k;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     rc = hg_test_frictionless(&p);
     hg_model_init(&m, &p, kind, 0, 0);
     hg_data_reset(&m, &d);
@@ -155,7 +155,7 @@ static void test_agreement(void)
     hg_data d[HG_MODEL_COUNT];
     int kind, k, ok = 1;
     double worst = 0, worst_pose = 0;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     for (kind = 0; kind < HG_MODEL_COUNT; kind++) {
         hg_model m;
         ok &= hg_model_init(&m, &p, kind, 0, 0) == 0;
@@ -188,7 +188,7 @@ static void test_stop(hg_model_kind kind)
     hg_data d;
     double v[6] = {10, 10, 10, 10, 10, 10}, worst = 0;
     int rc, k, s, finite = 1;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     hg_model_init(&m, &p, kind, 0, 0);
     hg_data_reset(&m, &d);
     rc = 0;
@@ -213,7 +213,7 @@ static void test_failure_leaves_state(hg_model_kind kind)
     hg_data d, before;
     double v[6] = {10, -10, 10, -10, 10, -10};
     int rc = 0, s, finite = 1;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     hg_model_init(&m, &p, kind, 0, 0);
     hg_data_reset(&m, &d);
     for (s = 0; s < 5000 && rc == 0; s++) {
@@ -236,21 +236,21 @@ static void test_refused(void)
     const char *bad = 0, *why = 0;
     double v[6] = {1, 1, 1, 1, 1, 1};
     int rc;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.m_head_kg = 0;
     rc = hg_model_init(&m, &p, HG_MODEL_REDUCED_CARTESIAN, &bad, &why);
     CHECK(rc == HG_ERR_BAD_PARAM && bad && strcmp(bad, "m_head") == 0,
           "m_head = 0 refused naming m_head (%s)", why ? why : "-");
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.m_carriage_kg = -1;
     rc = hg_model_init(&m, &p, HG_MODEL_STANDARD, &bad, &why);
     CHECK(rc == HG_ERR_BAD_PARAM && bad && strcmp(bad, "m_carriage") == 0, "m_carriage < 0 refused");
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.geo.l_m = 0.3;
     rc = hg_model_init(&m, &p, HG_MODEL_REDUCED_JOINTS, &bad, &why);
     CHECK(rc == HG_ERR_BAD_PARAM && bad && strcmp(bad, "l") == 0, "bars too short refused naming l (%s)",
           why ? why : "-");
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     rc = hg_model_init(&m, &p, (hg_model_kind)7, &bad, &why);
     CHECK(rc == HG_ERR_BAD_PARAM, "unknown parametrization refused");
     hg_model_init(&m, &p, HG_MODEL_REDUCED_CARTESIAN, 0, 0);

@@ -575,7 +575,7 @@ static void test_energy(void)
     spec s;
     double zmax_all = 0, stop;
     int kind, sch, st, lev, rc;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     CHECK(hg_test_frictionless(&p) == 0, "c_visc, f_coulomb and c_stop set to 0 by name (and f_static where it exists)");
     spec_of(&p, &s);
     stop = fmin(par(&p, "stop_max"), -par(&p, "stop_min"));
@@ -626,7 +626,7 @@ int main(void)
 {
     hg_params p;
     spec s;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     spec_of(&p, &s);
     test_lagrange(&p, &s);
     test_energy();

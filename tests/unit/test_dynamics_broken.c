@@ -29,7 +29,7 @@ static double intact_difference(double dt)
     hg_drive_out drv;
     long s, n = (long)(0.2 / dt + 0.5);
     int k;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.f_coulomb_n = p.f_static_n = 0.0;   /* two formulations of the same smooth ODE */
     if (hg_model_init(&m, &p, HG_MODEL_REDUCED_JOINTS, 0, 0) || hg_data_reset(&m, &d))
         return INFINITY;
@@ -76,7 +76,7 @@ static void test_bar0(hg_model_kind kind)
     double hold, t0, v0, e0, work = 0, worst_gain = 0, worst_len = 0, zmin = 0, t, v, rot = 0;
     long s;
     int k, rc = 0, finite = 1, frozen = 1;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     hg_model_init(&m, &p, kind, 0, 0);
     hg_data_reset(&m, &d);
     hold = p.g_mps2 * (p.m_head_kg + 6 * p.m_bar_kg + 6 * p.m_carriage_kg) / 6 / m.force_per_volt_n;
@@ -141,7 +141,7 @@ static void test_all_broken(void)
     hg_data d;
     long s;
     int rc = 0;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     hg_model_init(&m, &p, HG_MODEL_REDUCED_CARTESIAN, 0, 0);
     hg_data_reset(&m, &d);
     d.broken_bars = HG_BARS_ALL;

@@ -21,7 +21,7 @@ static double energy_error(hg_model_kind kind, double dt, double *e_kin)
     hg_data d;
     double t, v, e0, worst = 0;
     long s, n_kick = (long)(0.1 / dt + 0.5), n_coast = (long)(0.3 / dt + 0.5);
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     if (hg_test_frictionless(&p) || hg_model_init(&m, &p, kind, 0, 0) || hg_data_reset(&m, &d))
         return INFINITY;
     for (s = 0; s < n_kick; s++)
@@ -59,7 +59,7 @@ static void test_drift(hg_model_kind kind)
     double worst = 0, reported = 0, travel = 0, hold;
     long s, n = 60000;
     int rc = 0, k;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     /* uncoordinated volts tilt the head beyond the real joints' ranges:
      * widen them, this test is about the constraint drift alone */
     p.geo.cone_carriage_rad = 1.5;

@@ -112,7 +112,7 @@ static void test_energies(void)
     hg_model m[2];
     double home_v, worst_t[2] = {0, 0}, worst_v[2] = {0, 0}, tmax = 0, zero[6] = {0, 0, 0, 0, 0, 0};
     int kind, n, i;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     hg_model_init(&m[0], &p, HG_MODEL_STANDARD, 0, 0);
     hg_model_init(&m[1], &p, HG_MODEL_REDUCED_CARTESIAN, 0, 0);
     {
@@ -175,7 +175,7 @@ static void test_standard_kkt(void)
     double mzz[6], Mza[12], Maa[24], Mcc[36], Q[24], Pa[36], Pc[108], gm[18], phi[18], b[42];
     double worst = 0, scale = 0, res, pworst = 0, vworst = 0;
     int i, j, k, r, c, rc;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     hg_model_init(&m, &p, HG_MODEL_STANDARD, 0, 0);
     hg_data_reset(&m, &d);
     for (i = 0; i < 100; i++)

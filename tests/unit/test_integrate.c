@@ -37,7 +37,7 @@ static int run(hg_model_kind kind, int scheme, double dt, double z[12], double p
     hg_params p;
     long s, n = lround(T_END / dt);
     int rc;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     if (smooth) {
         hg_params_set(&p, "f_coulomb", 0.0);
         hg_params_set(&p, "f_static", 0.0);
@@ -100,7 +100,7 @@ static void test_contract(void)
     hg_params p;
     double za[12], zb[12], pa[6], pb[6];
     int s, rc;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     hg_model_init(&m, &p, HG_MODEL_REDUCED_CARTESIAN, 0, 0);
     CHECK(m.integrator == HG_INTEGRATOR_HEUN, "hg_model_init chooses Heun");
     rc = hg_model_set_integrator(&m, HG_INTEGRATOR_COUNT);

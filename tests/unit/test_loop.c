@@ -69,12 +69,19 @@ int main(void)
     hg_loop_step(L, cmd, &s);
     CHECK(fabs(s.ferror_mm[0] - (0.5 - s.fb_mm[0])) < 1e-12, "f-error = previous command - encoder position");
 
-    /* vertical move at HOME: all six joints the same */
+    /* vertical move at HOME: all six joints the same (the rigid train: with
+     * springs, a stick-slip decision at the threshold may fall differently
+     * on one post by rounding, and the runs part) */
     traj = malloc(sizeof(double) * 6 * n);
     for (i = 0; i < n; i++)
         for (k = 0; k < 6; k++)
             traj[6 * i + k] = 20.0 * (1 - cos(3.14159265358979323846 * i / n)) / 2;
-    hg_loop_init(L, &c, 0);
+    {
+        hg_params q = p;
+        q.k_axial_n_per_m = 0.0;
+        hg_test_block(&bp, &q, 1, HG_INTEGRATOR_HEUN);
+        hg_loop_init(L, &c, &bp);
+    }
     rc = hg_loop_run(L, traj, n, 0, 0, 0, &sum);
     CHECK(rc == 0 && sum.periods == n, "20 mm vertical move runs");
     for (k = 1; k < 6; k++)

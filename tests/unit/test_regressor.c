@@ -48,7 +48,7 @@ static void pi_of(const hg_params *p, double pi[HG_REG_NCOL])
 /* A random parameter set around the spec's, friction on. */
 static void random_params(hg_params *p)
 {
-    hg_params_default(p);
+    hg_test_rigid_defaults(p);
     p->m_head_kg *= hg_test_uniform(0.6, 1.6);
     p->head_com_m *= hg_test_uniform(0.3, 2.0);
     p->i_head_xx_kgm2 *= hg_test_uniform(0.5, 2.0);
@@ -79,7 +79,7 @@ static void slide_checks(void)
     long first[8] = {0, N};
     double z0 = 0.01, v0 = 0.0, worst = 0.0;
     int i, moved = -1, scheme, e;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.f_static_n = fs;
     p.f_coulomb_n = fc;
     p.c_visc_ns_per_m = 0.0;
@@ -270,7 +270,7 @@ int main(void)
         double c[6] = {0.03, -0.02, -0.05, 0.1, -0.08, 0.2}, cd[6] = {0.05, 0.02, -0.04, 0.2, 0.1, -0.3};
         double cdd[6] = {0.5, -0.3, 0.2, 1.0, -2.0, 0.5}, z[6], zd[6], zdd[6], Yp[6 * HG_REG_NCOL];
         double Yj[6 * HG_REG_NCOL], pose[6] = {0, 0, 0, 0, 0, 0}, diff = 0, scale = 0;
-        hg_params_default(&p);
+        hg_test_rigid_defaults(&p);
         hg_regressor_init(&r, &p, &bad, &why);
         CHECK(hg_regressor_pose(&r, c, cd, cdd, Yp, z, zd, zdd) == 0 &&
               hg_regressor_joints(&r, z, zd, zdd, pose, Yj) == 0, "both entry points evaluate");
@@ -291,7 +291,7 @@ int main(void)
      * breakaway excess the Stribeck shape exp(-(z'/v_stribeck)^2) sign(z') */
     {
         double zd[6] = {0.01, -0.002, 0.0005, 0.003, -0.05, 1e-4}, cols[6][HG_REG_NFRIC], e = 0;
-        hg_params_default(&p);
+        hg_test_rigid_defaults(&p);
         hg_regressor_init(&r, &p, &bad, &why);
         hg_regressor_friction(&r, zd, cols);
         for (i = 0; i < 6; i++) {

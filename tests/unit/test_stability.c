@@ -18,7 +18,7 @@
 /* The spec's machine with head and bars of almost no mass. */
 static void light(hg_params *p)
 {
-    hg_params_default(p);
+    hg_test_rigid_defaults(p);
     p->m_head_kg = 1e-3;
     p->i_head_xx_kgm2 = p->i_head_yy_kgm2 = p->i_head_zz_kgm2 = 1e-6;
     p->m_bar_kg = 1e-3;
@@ -81,7 +81,7 @@ static void test_bounds(void)
     int s;
     for (s = 0; s < HG_INTEGRATOR_COUNT; s++) {
         hg_stability st;
-        hg_params_default(&p);
+        hg_test_rigid_defaults(&p);
         CHECK(hg_stability_check(&p, (hg_integrator)s, 1e-3, 1, HG_SUBSTEPS_MAX, &st) == 0 && st.substeps == 1,
               "defaults at 1 ms with %s: one step per period (%u)", hg_integrator_name((hg_integrator)s),
               st.substeps);
@@ -114,7 +114,7 @@ static void test_refused_and_board(void)
     hg_stability st;
     int rc, i;
     hg_params p;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.c_visc_ns_per_m = p.c_stop_ns_per_m = 0.0;
     rc = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
     CHECK(rc == HG_ERR_STIFF && st.param && strcmp(st.param, "c_stop") == 0,
@@ -122,7 +122,7 @@ static void test_refused_and_board(void)
     rc = hg_stability_check(&p, HG_INTEGRATOR_RK4, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
     CHECK(rc == 0 && st.substeps == 1, "... rk4 integrates it (|R| < 1 on the imaginary axis up to 2.8)");
     /* the board: k_stop 5e8 needs more substeps with improved Euler at 1 ms */
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     p.k_stop_n_per_m = 5e8;
     hg_test_block(&bp, &p, 1, HG_INTEGRATOR_IMPROVED_EULER);
     rc = hg_stability_check(&p, HG_INTEGRATOR_IMPROVED_EULER, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
@@ -163,7 +163,7 @@ static void test_short_periods_and_naming(void)
     hg_params p;
     hg_stability st;
     int s, i, bad = 0;
-    hg_params_default(&p);
+    hg_test_rigid_defaults(&p);
     for (s = 0; s < HG_INTEGRATOR_COUNT; s++)
         for (i = 0; i < (int)(sizeof periods / sizeof periods[0]); i++)
             if (hg_stability_check(&p, (hg_integrator)s, periods[i], 1, 1, &st) || st.substeps != 1) {
