@@ -105,7 +105,7 @@ _DATA_STATE = [("t_s", C.c_double), ("z_m", _d6), ("zd_mps", _d6), ("zdd_mps2", 
                ("bar_radps", C.c_double * 12), ("current_a", _d6), ("vloop_int_m", _d6),
                ("amp_enabled", C.c_uint), ("stuck", C.c_uint), ("fric_n", _d6), ("force_n", _d6),
                ("residual_m", C.c_double), ("last_error", C.c_int), ("guard", GuardReport),
-               ("broken_bars", C.c_uint),
+               ("broken_bars", C.c_uint), ("zr_m", _d6), ("zrd_mps", _d6),
                ("trig_key_rad", C.c_double * 3), ("trig_sc", _d6), ("trig_valid", C.c_int)]
 
 

@@ -244,6 +244,7 @@ def model_start(cmd, params=None):
     if params is not None:
         C.memmove(mech.buf, params.buf, C.sizeof(mech.buf))
     mech["f_coulomb"] = mech["f_static"] = 0.0
+    mech["k_axial"] = 0.0     # the trains' low-frequency limit: rotor and carriage one body (the rigid mass)
     m = hg.Model("reduced-cartesian", mech)
     fpv = m.params["ka"] * m.params["kt"] * 2 * np.pi / m.params["lead"]
     idx = np.linspace(0, len(cmd) - 1, 12).astype(int)

@@ -281,7 +281,7 @@ int cmd_sim(int argc, char **argv)
         hg_board_step(b, &in, &out, period_ns);
         if (record)
             record_row(&rec, s, b, &in, &out, period_ns);
-        if (out.events & HG_EV_SUBSTEPS_AUTO) {
+        if (out.events & HG_EV_SUBSTEPS_AUTO && given_substeps) {  /* (without --substeps: as the step needs) */
             char why[HG_BOARD_TEXT_LEN];
             hg_board_describe_stiffness(b, &out, period_ns, 0, why);
             fprintf(stderr, "hexaglide sim: %s: running %u substeps per period instead of %u\n", why,

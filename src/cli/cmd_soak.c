@@ -266,7 +266,7 @@ int cmd_soak(int argc, char **argv)
     t0 = now_s();
     rc = 0;
     for (s = 0; s < n; s++) {
-        double t = (s + 1) * dt, pose[6], cmd[6], z0[6], f_passive[6];
+        double t = (s + 1) * dt, pose[6], cmd[6], z0[6], zr0[6], f_passive[6], f_damper[6];
         static const double no_drive[6] = {0, 0, 0, 0, 0, 0};
         trajectory_pose(&tr, t, pose);
         if (hg_inverse_kinematics(&hm->p.geo, pose, cmd)) {
@@ -277,6 +277,12 @@ int cmd_soak(int argc, char **argv)
         for (k = 0; k < 6; k++) {
             cmd[k] *= HG_MM_PER_M;
             z0[k] = L->out.pos[k];
+            zr0[k] = hm->flexible ? hd->zr_m[k] : z0[k];   /* where the drives push: the rotors */
+            /* a flexible train's damper: c dd while the flanks touch (its force less the spring's) */
+            f_damper[k] = hm->flexible ? hg_drivetrain_force(&hm->train[k], hd->zr_m[k] - hd->z_m[k],
+                                                             hd->zrd_mps[k] - hd->zd_mps[k]) -
+                                         hg_drivetrain_force(&hm->train[k], hd->zr_m[k] - hd->z_m[k], 0)
+                                       : 0;
         }
         /* viscous friction and stops alone: the smooth carriage forces without the drives */
         hg_carriage_forces(hm, hd->z_m, hd->zd_mps, no_drive, f_passive);
@@ -303,10 +309,21 @@ int cmd_soak(int argc, char **argv)
             }
             cmd_prev2[k] = cmd_prev[k];
             cmd_prev[k] = cmd[k];
-            /* the step held the force of its start state: its work */
-            work_j += L->out.force[k] * (L->out.pos[k] - z0[k]);
-            /* + sliding and static friction, resolved over the step */
+            /* the step held the force of its start state: its work; behind a flexible train the
+             * motor's on the rotor (the period's one step: substeps_run 1), the carriage's without
+             * the train's (internal but for the damper, below) */
+            if (hm->flexible)
+                work_j += hd->work.motor_n[k] * (hd->zr_m[k] - zr0[k]) +
+                          (f_passive[k] + hd->fric_n[k]) * (L->out.pos[k] - z0[k]);
+            else
+                work_j += L->out.force[k] * (L->out.pos[k] - z0[k]);
+            /* + sliding and static friction, resolved over the step, and the train's damper */
             friction_j += (f_passive[k] + hd->fric_n[k]) * (L->out.pos[k] - z0[k]);
+            if (hm->flexible) {
+                double w = f_damper[k] * ((hd->zr_m[k] - hd->z_m[k]) - (zr0[k] - z0[k]));
+                work_j -= w;
+                friction_j -= w;
+            }
         }
         {
             double e = bar_length_error(&hm->p.geo, L->out.pos, L->out.extra);   /* extra[0..5]: the head pose */
@@ -328,6 +345,10 @@ int cmd_soak(int argc, char **argv)
            "%.6g J; mismatch %.3e J = %.3e of the net change\n",
            hg_integrator_name(hm->integrator), net, work_j - friction_j, friction_j,
            mismatch, fabs(mismatch) / (net != 0 ? fabs(net) : 1));
+    if (hm->flexible && L->out.substeps_run > 1)
+        printf("soak: (the flexible trains ran %u steps a period and the balance holds the forces of a "
+               "period's last: a --dt of one step a period gives the balance its meaning)\n",
+               L->out.substeps_run);
     printf("soak: max following error after the %.1f s ramp-in: %.4f mm = %.2f counts (joint %d, through the "
            "encoder)\n", SOAK_SETTLED_S, ferr_max, ferr_counts, ferr_joint);
     printf("soak: faults: %d, following-error trips: %d\n", faults, trips);
