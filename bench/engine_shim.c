@@ -3,6 +3,7 @@
  * run today's core and an earlier commit's side by side: compiled once
  * against today's src/ and once against the baseline's (bench/baseline.sh,
  * which renames ENGINE(x) to old_engine_x and hides every other symbol).
+ * Both machines have rigid drive trains: the only ones d20d9e5 knew.
  * Host code (malloc). */
 #include <stdlib.h>
 #include "hg_dynamics.h"
@@ -23,6 +24,9 @@ void *ENGINE(new)(int kind, int integrator, int frictionless)
     engine *e = malloc(sizeof *e);
     hg_params p;
     hg_params_default(&p);
+#ifdef HG_DRIVETRAIN_H
+    p.k_axial_n_per_m = 0.0;   /* the rigid trains of the machine before the drive train (d20d9e5's) */
+#endif
     if (frictionless)
         p.f_coulomb_n = p.f_static_n = 0.0;
     if (!e || hg_model_init(&e->m, &p, (hg_model_kind)kind, 0, 0) ||

@@ -82,6 +82,7 @@ double hgmj_force_per_volt(const hg_params *p)
 void hgmj_peer_params(hg_params *p)
 {
     hg_params_default(p);
+    p->k_axial_n_per_m = 0.0;  /* rigid trains: the twin's rotor is its carriage's armature */
     p->f_coulomb_n = 0.0;
     p->f_static_n = 0.0;
     p->amp_mode = 0.0;
@@ -102,7 +103,7 @@ int hgmj_is_peer(const hg_params *p, const hgmj_options *o)
 {
     return p->f_coulomb_n >= 0.0 && p->f_static_n == p->f_coulomb_n && p->amp_mode == 0.0 &&
            p->l_winding_h / p->r_winding_ohm < 1e-6 * o->timestep_s &&
-           p->v_bus_v >= 1000.0 * p->r_winding_ohm * p->i_max_a;
+           p->v_bus_v >= 1000.0 * p->r_winding_ohm * p->i_max_a && p->k_axial_n_per_m == 0.0;
 }
 
 int hgmj_write_mjcf(const hg_params *p, const hgmj_options *o, char *buf, size_t n)

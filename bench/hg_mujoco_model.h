@@ -63,7 +63,7 @@ void hgmj_peer_params(hg_params *p);
 void hgmj_peer_params_friction(hg_params *p);
 
 /* 1 when p is such a parameter set (hgmj_write_mjcf refuses any other):
- * the ideal current source, and f_static = f_coulomb (0 or not). */
+ * the ideal current source, f_static = f_coulomb (0 or not), rigid trains. */
 int hgmj_is_peer(const hg_params *p, const hgmj_options *o);
 
 /* Write the MJCF of the machine p into buf (size n): the text length, or -1
