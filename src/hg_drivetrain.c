@@ -15,8 +15,13 @@ static double engaged(const hg_drivetrain_channel *c, double d)
 
 double hg_drivetrain_force(const hg_drivetrain_channel *c, double d, double dd)
 {
-    double e = engaged(c, d);
-    return e == 0.0 ? 0.0 : c->k_axial * e + c->c_axial * dd;
+    double e = engaged(c, d), f;
+    if (e == 0.0)
+        return 0.0;
+    f = c->k_axial * e + c->c_axial * dd;
+    if (c->backlash > 0.0)             /* flanks in contact push, never pull: the damper stops at 0 */
+        return e > 0.0 ? (f > 0.0 ? f : 0.0) : (f < 0.0 ? f : 0.0);
+    return f;
 }
 
 double hg_drivetrain_energy(const hg_drivetrain_channel *c, double d)

@@ -25,7 +25,9 @@ int hg_drivetrain_rigid(const hg_drivetrain_channel *c);
 /* The force (N) the train puts on the load, toward the motor's side
  * positive, at deflection d = motor - load (m) and its rate dd (m/s):
  * k (d -+ backlash/2) + c dd while the flanks touch (|d| > backlash/2),
- * 0 in the free play. (The motor gets the opposite.) */
+ * 0 in the free play; with backlash the flanks only push (the damper
+ * cannot pull them apart: the force stops at 0). (The motor gets the
+ * opposite.) */
 double hg_drivetrain_force(const hg_drivetrain_channel *c, double d, double dd);
 
 /* The train's potential energy (J) at deflection d: k (|d| - backlash/2)^2 / 2 in contact. */

@@ -8,6 +8,7 @@
 #include "hg_units.h"
 
 #define BISECT_ITER 40        /* the largest stable step, to 1e-12 of the period */
+#define STAB_NEAR 1.05        /* a bound within 5% of the shortest: the simpler system names it */
 
 /* One carriage with one stiff part: m x'' = f - c x' - k x, f the drive's
  * force held over the step from a state variable w. */
@@ -204,23 +205,37 @@ int hg_stability_check(const hg_params *p, hg_integrator scheme, double period_s
 {
     test_system s[8];
     int n = test_systems(p, s), limiting = -1;
-    unsigned k;
+    unsigned k, last = 0;              /* last: the last count still unstable */
     if (substeps_min < 1)
         substeps_min = 1;
     out->substeps = 0;
     out->param = 0;
     out->dt_max_s = 0.0;
     for (k = substeps_min; k <= substeps_max; k++) {
-        int u = first_unstable(s, n, scheme, period_s / k);
-        if (u < 0) {
+        if (first_unstable(s, n, scheme, period_s / k) < 0) {
             out->substeps = k;
             break;
         }
-        limiting = u;                  /* the last one still unstable: it sets the count */
+        last = k;
     }
-    if (limiting >= 0) {
-        out->param = s[limiting].param;
-        out->dt_max_s = longest_step(&s[limiting], scheme, period_s / substeps_min);
+    /* of the systems unstable at that count, the one with the shortest stable step names the
+     * bound; the first listed within 5% of it when there is one (a system listed earlier is a
+     * part of later ones: viscous friction alone comes before the stop that adds to it) */
+    {
+        double h[8];
+        for (k = 0; last && k < (unsigned)n; k++) {
+            h[k] = stable(&s[k], scheme, period_s / last) ? DBL_MAX
+                                                          : longest_step(&s[k], scheme, period_s / substeps_min);
+            if (h[k] < DBL_MAX && (limiting < 0 || h[k] < h[limiting]))
+                limiting = (int)k;
+        }
+        for (k = 0; limiting >= 0 && k < (unsigned)limiting; k++)
+            if (h[k] <= STAB_NEAR * h[limiting]) {
+                limiting = (int)k;
+                break;
+            }
+        if (limiting >= 0)
+            out->param = s[limiting].param, out->dt_max_s = h[limiting];
     }
     return out->substeps ? 0 : HG_ERR_STIFF;
 }
