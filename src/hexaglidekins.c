@@ -122,6 +122,7 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     pose_from_emc(pos, pose);
     for (k = 0; k < 6; k++)
         z[k] = joints[k] / HG_MM_PER_M;
+    hg_fk_options_default(&opt);
     opt.max_iterations = *hd->fk_max_iterations;
     opt.tolerance_m = *hd->fk_tolerance_mm / HG_MM_PER_M;
     rc = current_geometry(&g);

@@ -79,6 +79,13 @@ static void latch_fault(hg_board *b, hg_board_outputs *out, int rc, int cause)
     b->fault_code = rc;
 }
 
+/* The plant's tool-path error at commands pos_cmd (m; -1 none, never NaN). */
+static double tool_error(const hg_board *b, const double pos_cmd[HG_CHANNELS_MAX])
+{
+    double e = hg_board_plant(b)->tool_error(&b->m, &b->d, pos_cmd);
+    return isfinite(e) && e >= 0.0 ? e : -1.0;
+}
+
 /* Machine at HOME at rest, counters at 0 and disarmed, fault cleared. */
 static void reinit_at_home(hg_board *b, hg_board_outputs *out)
 {
@@ -90,6 +97,7 @@ static void reinit_at_home(hg_board *b, hg_board_outputs *out)
     if (rc)
         latch_fault(b, out, rc, HG_FAULT_HOME);
     pl->sense(&b->m, &b->d, &b->sense);
+    b->tool_error = 0.0;               /* (at HOME the command is HOME's until a step says otherwise) */
     for (k = 0; k < HG_BOARD_ENCODERS; k++) {
         int used = k < b->sense.channels;
         hg_encoder_init(&b->enc[k], used ? b->sense.turns[k] : 0.0, used ? b->sense.counts_per_rev[k] : 0.0);
@@ -365,6 +373,7 @@ static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outpu
     /* E-STOP and an expired watchdog switch the outputs off in hardware */
     out->dout_word = (!in || open || b->wd.expired) ? 0u : (in->dout_values ^ in->dout_inverts);
     out->estop_in = open;
+    out->tool_error = b->tool_error;
     out->sim_time_s = s->sim_time_s;
     out->steps = b->steps;
     out->fault = b->fault;
@@ -511,6 +520,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     out->amps_on = amps_on && !b->fault;
 
     pl->sense(&b->m, &b->d, &b->sense);
+    b->tool_error = tool_error(b, in->pos_cmd);
     encoders(b, in, out);
     for (k = 0; k < b->sense.channels; k++)
         b->switches[k] = hg_switches_stuck(b->sense.switches[k], b->switches[k], in->stuck[k]) | in->tripped[k];

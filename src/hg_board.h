@@ -78,6 +78,9 @@ typedef struct {
                                          (the glue clears the pin after the step: added once) */
     unsigned inject[HG_CHANNELS_MAX]; /* bit i: the plant's fault injection i (its table's HAL
                                          name, e.g. the Hexaglide's bar-broken) */
+    /* motenc-hexaglide.B.joint-N.pos-cmd: the joint's commanded position (LinuxCNC's
+     * joint.N.pos-cmd, without backlash compensation), SI; only for the tool-path error */
+    double pos_cmd[HG_CHANNELS_MAX];
     /* the parameter block as HAL shows it (converted to SI: HAL value /
      * hg_param_info.hal_scale), .substeps, .integrator; a change is tried
      * when it differs (bitwise) from the block of the previous step, so a
@@ -142,6 +145,8 @@ typedef struct {
     double current_a[HG_CHANNELS_MAX]; /* joint-N.current (0 while faulted) */
     double force[HG_CHANNELS_MAX];    /* joint-N.force (N or N m) */
     double extra[HG_PLANT_EXTRA_MAX]; /* the plant's own outputs (SI; its output table) */
+    double tool_error;                /* tool-error: the tool's distance from where pos_cmd puts it
+                                         (m), -1 when the plant finds no such place */
     double sim_time_s;                /* sim-time */
     unsigned steps;                   /* steps: servo periods integrated since load/reset */
     int fault;                        /* fault */
@@ -202,6 +207,7 @@ typedef struct {
     unsigned steps;                   /* servo periods integrated since load */
     int order_bad_run;                /* consecutive steps without a fresh dac-write (ADDF_ORDER) */
     int order_reported;               /* ADDF_ORDER already reported since load or reset */
+    double tool_error;                /* the tool-path error after the last step (m, -1: none) */
 } hg_board;
 
 /* The plant of a board (the registry's entry). */

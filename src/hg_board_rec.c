@@ -144,8 +144,10 @@ static void outputs(builder *t, const hg_plant *p, int nch, int motor_pos)
     out1(t, "out.estop-in", HG_BRF_BIT, OUT_OFF(estop_in));
     array(t, "out.z", HG_BRF_F64, HG_BRS_OUT, OUT_OFF(pos), sizeof(double), nch, 1, 0);
     array(t, "out.zd", HG_BRF_F64, HG_BRS_OUT, OUT_OFF(vel), sizeof(double), nch, 1, 0);
-    if (motor_pos)
+    if (motor_pos) {                  /* format 2: the drive train's encoder side, the tool */
         array(t, "out.motor-pos", HG_BRF_F64, HG_BRS_OUT, OUT_OFF(motor_pos), sizeof(double), nch, 1, 0);
+        out1(t, "out.tool-error", HG_BRF_F64, OUT_OFF(tool_error));
+    }
     array(t, "out.current", HG_BRF_F64, HG_BRS_OUT, OUT_OFF(current_a), sizeof(double), nch, 1, 0);
     for (i = 0; i < p->noutputs && i < HG_PLANT_EXTRA_MAX; i++) /* the plant's own, as recorded */
         if (p->outputs[i].rec_name && !p->outputs[i].is_u32)
@@ -206,6 +208,8 @@ int hg_board_rec_fields(hg_board_rec_field *f, int max, int plant, int variant, 
     add(&t, "in.model", "", HG_BRF_U32, HG_BRS_MODEL, 0);
     inputs(&t, nch);
     injections(&t, p, nch);
+    if (format == 2)                  /* the commands of the tool-path error */
+        array(&t, "in.pos-cmd", HG_BRF_F64, HG_BRS_IN, IN_OFF(pos_cmd), sizeof(double), nch, 1, 1);
     in1(&t, "in.substeps", HG_BRF_U32, IN_OFF(params.substeps), 0);
     in1(&t, "in.integrator", HG_BRF_U32, IN_OFF(params.integrator), 0);
     outputs(&t, p, nch, format == 2);

@@ -27,6 +27,16 @@ void hg_fk_options_default(hg_fk_options *o)
 {
     o->max_iterations = 30;
     o->tolerance_m = 1e-12;
+    o->skip_guard = 0;
+}
+
+void hg_tool_tip(const double pose[6], double tool_d_m, double tip[3])
+{
+    double R[9];
+    int i;
+    hg_rotation(pose[3], pose[4], pose[5], R);
+    for (i = 0; i < 3; i++)
+        tip[i] = pose[i] - tool_d_m * R[3 * i + 2];
 }
 
 /* Rz(alpha_i) (radial, s_j e, 0) for bar k. */
@@ -285,7 +295,7 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
         rc = HG_ERR_EULER_SINGULAR;
     if (rc == HG_OK && !on_machine_branch(g, z, c))
         rc = HG_ERR_WRONG_BRANCH;
-    if (rc == HG_OK)
+    if (rc == HG_OK && !o.skip_guard)
         rc = hg_guard_check(g, z, c, 0, report ? &report->guard : 0);
     if (rc == HG_OK)
         for (k = 0; k < 6; k++)

@@ -42,6 +42,8 @@ typedef struct {
     int max_iterations;        /* hard bound on iterations, >= 1 */
     double tolerance_m;        /* stop when the Newton step (m, angles as arc length l*rad)
                                   is below this; the residual is then far below it */
+    int skip_guard;            /* 1: no mechanical guard on the answer (a measure near a pose the
+                                  machine holds: the commanded tool of a tool-path error) */
 } hg_fk_options;
 
 typedef struct {
@@ -50,7 +52,7 @@ typedef struct {
     hg_guard_report guard;     /* the limit crossed, when the answer was refused by the guard */
 } hg_fk_report;
 
-/* Default FK options: 30 iterations, 1e-12 m. */
+/* Default FK options: 30 iterations, 1e-12 m, guarded. */
 void hg_fk_options_default(hg_fk_options *o);
 
 /* Base point of guide k at height 0: Rz(alpha_i)(lb, s_j e, 0). */
@@ -80,6 +82,9 @@ void hg_frame_of(const hg_geometry *g, hg_frame *f);
  * (hg_rotation_sc) given: the same bits. */
 void hg_joint_points_rot(const hg_frame *f, const double R[9], const double z[6],
                          const double pose[6], double B[6][3], double A[6][3]);
+
+/* The tool tip of pose (tool_d below Op along the head's -z axis), world frame (m). */
+void hg_tool_tip(const double pose[6], double tool_d_m, double tip[3]);
 
 /* Bar constraints Phi_k = |B_k - A_k|^2 - l^2 (m^2). */
 void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6],

@@ -2,6 +2,7 @@
 #include "hg_loop.h"
 #include "hg_errors.h"
 #include "hg_math.h"
+#include "hg_units.h"
 
 void hg_loop_config_default(hg_loop_config *c)
 {
@@ -86,7 +87,11 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
         if (out)
             out->output_v[k] = dac[k];
     }
+    for (k = 0; k < L->joints; k++)      /* the board's tool-path error pairs them with this step */
+        L->in.pos_cmd[k] = cmd_mm[k] / ((L->out.rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M);
     rc = plant_step(L, dac, period_ns);
+    if (out)
+        out->tool_error_mm = L->out.tool_error < 0.0 ? -1.0 : L->out.tool_error * HG_MM_PER_M;
     for (k = 0; k < L->joints; k++)
         L->prev_cmd_mm[k] = cmd_mm[k];
     L->periods++;
@@ -128,8 +133,11 @@ int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *fer
             if (L->cfg.ferror_limit_mm > 0 && !(fe <= L->cfg.ferror_limit_mm) && sum->tripped_at < 0)
                 sum->tripped_at = i;
         }
-        if (i >= from)
+        if (i >= from) {
             counted++;
+            if (sum->peak_tool_error_mm >= 0.0 && (s.tool_error_mm < 0.0 || s.tool_error_mm > sum->peak_tool_error_mm))
+                sum->peak_tool_error_mm = s.tool_error_mm;
+        }
         if (sum->tripped_at >= 0) {
             i++;
             break;

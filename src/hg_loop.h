@@ -48,6 +48,8 @@ typedef struct {
     double fb_mm[HG_LOOP_JOINTS];      /* encoder position read this period */
     double ferror_mm[HG_LOOP_JOINTS];  /* motion's f-error */
     double output_v[HG_LOOP_JOINTS];   /* pid.N.output */
+    double tool_error_mm;              /* the board's tool-error: the tool against this period's
+                                          commands after its step (-1: the plant found no pose) */
 } hg_loop_sample;
 
 /* Summary of a run. */
@@ -55,6 +57,7 @@ typedef struct {
     double peak_ferror_mm[HG_LOOP_JOINTS]; /* max |f-error| */
     double peak_output_v[HG_LOOP_JOINTS];  /* max |pid output| */
     double rms_ferror_mm[HG_LOOP_JOINTS];
+    double peak_tool_error_mm;         /* max tool-error (-1 if the plant found no pose in some period) */
     long periods;                      /* periods run */
     long tripped_at;                   /* first period with |f-error| > ferror_limit_mm, or -1 */
 } hg_loop_summary;

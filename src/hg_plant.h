@@ -162,6 +162,10 @@ typedef struct {
                 unsigned enabled, double dt_s, hg_plant_report *r);
     /* what the sensors show */
     void (*sense)(const hg_plant_model *m, const hg_plant_data *d, hg_plant_sense *s);
+    /* the tool-path error (m): the distance of the tool from where the
+     * commanded load positions pos_cmd[ch] (SI) put it; -1 when they put
+     * it nowhere the plant can find (no pose near the present one) */
+    double (*tool_error)(const hg_plant_model *m, const hg_plant_data *d, const double pos_cmd[HG_CHANNELS_MAX]);
     /* a report as one sentence (names its parameter by HAL name when hal is 1) */
     void (*describe)(const hg_plant_report *r, int hal, char buf[HG_PLANT_TEXT_LEN]);
 } hg_plant;

@@ -8,12 +8,14 @@
 #include "hg_string.h"
 #include "hg_plant_hexaglide.h"
 #include "hg_dynamics.h"
+#include "hg_kinematics.h"
 #include "hg_stability.h"
 #include "hg_guard_text.h"
 #include "hg_errors.h"
 #include "hg_units.h"
 
 #define CHANNELS 6
+#define TOOL_FK_ITERATIONS 8         /* Newton from the present pose: quadratic, 1e-12 m in 2-3 */
 
 /* The plant's model: the dynamics' and what the sensors derive from the
  * parameters once per build (not per period). */
@@ -282,6 +284,30 @@ static void sense(const hg_plant_model *m, const hg_plant_data *d, hg_plant_sens
     s->sim_time_s = finite_or_zero(hd->t_s);
 }
 
+/* The tool tip's distance from where the commanded carriages put it: their
+ * forward kinematics by Newton from the present pose (unguarded: a measure,
+ * not a move), the tips tool_d below Op. */
+static double tool_error(const hg_plant_model *m, const hg_plant_data *d, const double pos_cmd[HG_CHANNELS_MAX])
+{
+    const hg_model *hm = model_of(m);
+    const hg_data *hd = cdata_of(d);
+    hg_fk_options o;
+    double pose[6], tip[3], tip_cmd[3], e = 0.0;
+    int k;
+    hg_fk_options_default(&o);
+    o.max_iterations = TOOL_FK_ITERATIONS;
+    o.skip_guard = 1;
+    memcpy(pose, hd->pose, sizeof pose);
+    if (hg_forward_kinematics(&hm->p.geo, pos_cmd, pose, &o, 0))
+        return -1.0;
+    hg_tool_tip(hd->pose, hm->p.tool_d_m, tip);
+    hg_tool_tip(pose, hm->p.tool_d_m, tip_cmd);
+    for (k = 0; k < 3; k++)
+        e += (tip_cmd[k] - tip[k]) * (tip_cmd[k] - tip[k]);
+    e = sqrt(e);
+    return isfinite(e) ? e : -1.0;
+}
+
 static void describe(const hg_plant_report *r, int hal, char buf[HG_PLANT_TEXT_LEN])
 {
     hg_guard_report g;
@@ -324,6 +350,7 @@ const hg_plant hg_plant_hexaglide = {
     inject,
     step,
     sense,
+    tool_error,
     describe,
 };
 

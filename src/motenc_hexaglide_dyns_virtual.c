@@ -48,7 +48,7 @@ typedef struct {
 } enc_hal;
 typedef struct { hal_float_t *value; hal_float_t offset, gain; } analog_hal;
 typedef struct {
-    hal_float_t *pos, *vel, *motor_pos, *volts, *current, *force;
+    hal_float_t *pos, *vel, *motor_pos, *volts, *current, *force, *pos_cmd;
     hal_bit_t *amp_fail, *stuck[3], *tripped[3], *index_lost, *inject[HG_PLANT_INJECT_MAX];
     hal_s32_t *enc_glitch;
 } joint_hal;
@@ -67,7 +67,7 @@ typedef struct {
     hal_u32_t watchdog_control;
     joint_hal joint[HG_CHANNELS_MAX];
     extra_pin extra[HG_PLANT_EXTRA_MAX]; /* the plant's own outputs (its table: head pose, ...) */
-    hal_float_t *sim_time;
+    hal_float_t *sim_time, *tool_error;
     hal_u32_t *steps, *step_ns, *step_max_ns, *dout_word, *substeps_run;
     hal_bit_t *fault, *reset, *amps_on, *estop_button, *watchdog_expired, *param_error, *dac_nan;
     hal_s32_t *fault_code;
@@ -321,6 +321,7 @@ static void publish(board_t *b)
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         b->enc[k].scale = o->enc_scale[k];
     *b->sim_time = o->sim_time_s;
+    *b->tool_error = o->tool_error < 0.0 ? -1.0 : o->tool_error * HG_MM_PER_M;
     *b->steps = o->steps;
     *b->substeps_run = o->substeps_run;
     *b->fault = o->fault;
@@ -390,6 +391,7 @@ static void dynamics(void *arg, long period)
         in->tripped[k] = SW3(*j->tripped[0], *j->tripped[1], *j->tripped[2]);
         in->index_lost[k] = *j->index_lost;
         in->enc_glitch[k] = *j->enc_glitch;
+        in->pos_cmd[k] = *j->pos_cmd / ((b->o.rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M);
         in->inject[k] = 0;
         for (i = 0; i < hg_board_plant(&b->b)->ninjections; i++)
             in->inject[k] |= (*j->inject[i] ? 1u : 0u) << i;
@@ -520,6 +522,7 @@ static int export_extra(board_t *b)
         PIN(float, HAL_OUT, &j->pos, XP ".%d.joint-%d.pos", id, k);
         PIN(float, HAL_OUT, &j->vel, XP ".%d.joint-%d.vel", id, k);
         PIN(float, HAL_OUT, &j->motor_pos, XP ".%d.joint-%d.motor-pos", id, k);
+        PIN(float, HAL_IN, &j->pos_cmd, XP ".%d.joint-%d.pos-cmd", id, k);
         PIN(float, HAL_OUT, &j->volts, XP ".%d.joint-%d.volts", id, k);
         PIN(float, HAL_OUT, &j->current, XP ".%d.joint-%d.current", id, k);
         PIN(float, HAL_OUT, &j->force, XP ".%d.joint-%d.force", id, k);
@@ -540,6 +543,7 @@ static int export_extra(board_t *b)
             PIN(float, HAL_OUT, &b->extra[k].f, XP ".%d.%s", id, pl->outputs[k].hal_name);
     }
     PIN(float, HAL_OUT, &b->sim_time, XP ".%d.sim-time", id);
+    PIN(float, HAL_OUT, &b->tool_error, XP ".%d.tool-error", id);
     PIN(u32, HAL_OUT, &b->steps, XP ".%d.steps", id);
     PIN(u32, HAL_OUT, &b->substeps_run, XP ".%d.substeps-run", id);
     PIN(u32, HAL_OUT, &b->step_ns, XP ".%d.step-time-ns", id);

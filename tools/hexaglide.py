@@ -82,7 +82,7 @@ class LoopConfig(C.Structure):
 class LoopSummary(C.Structure):
     """hg_loop_summary."""
     _fields_ = [("peak_ferror_mm", _dc), ("peak_output_v", _dc), ("rms_ferror_mm", _dc),
-                ("periods", C.c_long), ("tripped_at", C.c_long)]
+                ("peak_tool_error_mm", C.c_double), ("periods", C.c_long), ("tripped_at", C.c_long)]
 
 
 _board_sizeof = _sig("hg_loop_sizeof", C.c_ulong, C.c_int)
@@ -151,7 +151,7 @@ class BoardInputs(C.Structure):
                 ("index_enable", _e8i), ("enc_reset", _e8i), ("enc_scale", _e8d), ("adc_read", C.c_int),
                 ("adc_gain", _e8d), ("adc_offset", _e8d), ("adc_volts_per_amp", C.c_double),
                 ("amp_fail", _e8i), ("stuck", _e8u), ("tripped", _e8u), ("index_lost", _e8i),
-                ("enc_glitch", _e8i), ("inject", _e8u), ("params", BoardParams)]
+                ("enc_glitch", _e8i), ("inject", _e8u), ("pos_cmd", _e8d), ("params", BoardParams)]
 
 
 class BoardOutputs(C.Structure):
@@ -160,7 +160,7 @@ class BoardOutputs(C.Structure):
                 ("enc_scale", _e8d), ("in_", C.c_ubyte * 68), ("dout_word", C.c_uint), ("estop_in", C.c_int),
                 ("adc", _e8d), ("channels", C.c_int), ("rotary", C.c_uint), ("pos", _e8d), ("vel", _e8d),
                 ("motor_pos", _e8d), ("volts", _e8d), ("current_a", _e8d), ("force", _e8d),
-                ("extra", C.c_double * PLANT_EXTRA_MAX), ("sim_time_s", C.c_double),
+                ("extra", C.c_double * PLANT_EXTRA_MAX), ("tool_error", C.c_double), ("sim_time_s", C.c_double),
                 ("steps", C.c_uint), ("fault", C.c_int), ("fault_code", C.c_int),
                 ("fault_report", PlantReport), ("amps_on", C.c_int), ("watchdog_expired", C.c_int),
                 ("param_error", C.c_int), ("dac_nan", C.c_int), ("params", BoardParams), ("events", C.c_uint),

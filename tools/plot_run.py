@@ -8,6 +8,8 @@ period) and writes, in the spirit of Fig. 6 of Ros et al. 2011:
   <stem>_ferror.png    following error of every joint (LinuxCNC's joint.N.f-error)
   <stem>_step_time.png time of each dynamics step (motenc-hexaglide.0.step-time-ns)
   <stem>_pose.png      head pose of the simulated machine
+  <stem>_tool_error.png the encoders' following errors beside the tool-path error
+                       (motenc-hexaglide.0.tool-error: what the part gets)
 and prints a summary (max following error per joint, step time max and
 median) which it also writes to <stem>_summary.json.
 """
@@ -55,6 +57,12 @@ def summarize(d):
         s["step_time_us"] = {"median": float(np.median(st) / 1e3),
                              "p99": float(np.percentile(st, 99) / 1e3),
                              "max": float(st.max() / 1e3), "n": int(len(st))}
+    te = d.get("motenc-hexaglide.0.tool-error")
+    if te is not None:
+        ok = run & (te >= 0)
+        s["tool_error_mm"] = {"max": float(te[ok].max()) if ok.any() else None,
+                              "rms": float(np.sqrt(np.mean(te[ok] ** 2))) if ok.any() else None,
+                              "no_pose_samples": int((run & (te < 0)).sum())}
     it = d.get("hexaglidekins.fk-iterations")
     if it is not None:
         s["fk"] = {"iterations_max": int(it[run].max()),
@@ -149,6 +157,35 @@ def plot_pose(d, path):
     return True
 
 
+def plot_tool_error(d, path):
+    """The following error the encoders show (every joint) over the tool-path error."""
+    te = d.get("motenc-hexaglide.0.tool-error")
+    if te is None:
+        return False
+    run = program_window(d)
+    t = d["t_s"][run]
+    fig, ax = plt.subplots(2, 1, figsize=(10, 6), sharex=True)
+    for j, name in enumerate(JOINTS):
+        fe = d.get("joint.%d.f-error" % j)
+        if fe is not None:
+            ax[0].plot(t, fe[run] * 1e3, lw=0.6, label=name)
+    ax[0].set_ylabel("um")
+    ax[0].set_title("Following error the encoders see (joint.N.f-error)", fontsize=10)
+    ax[0].legend(fontsize=7, ncol=6)
+    v = np.where(te[run] >= 0, te[run], np.nan)
+    ax[1].plot(t, v * 1e3, "k", lw=0.7)
+    ax[1].set_ylabel("um")
+    ax[1].set_title("Tool-path error: the tool tip's distance from where the commanded joints put it "
+                    "(motenc-hexaglide.0.tool-error)", fontsize=10)
+    for a in ax:
+        a.grid(True, alpha=0.3)
+    ax[1].set_xlabel("simulated time (s)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return True
+
+
 def main(argv):
     if len(argv) < 2:
         print(__doc__, file=sys.stderr)
@@ -161,6 +198,7 @@ def main(argv):
     plot_ferror(d, stem + "_ferror.png")
     plot_step_time(d, stem + "_step_time.png")
     plot_pose(d, stem + "_pose.png")
+    tool = plot_tool_error(d, stem + "_tool_error.png")
     s = summarize(d)
     with open(stem + "_summary.json", "w") as f:
         json.dump(s, f, indent=1)
@@ -178,7 +216,12 @@ def main(argv):
         fk = s["fk"]
         print("forward kinematics: max %d iterations, %d samples with an error, fail count %d"
               % (fk["iterations_max"], fk["error_nonzero_samples"], fk["fail_count_end"]))
-    print("plots: %s_{z11_z12,ferror,step_time,pose}.png" % stem)
+    if s.get("tool_error_mm", {}).get("max") is not None:
+        te = s["tool_error_mm"]
+        print("tool-path error (motenc-hexaglide.0.tool-error): max %.4f mm, rms %.4f mm%s"
+              % (te["max"], te["rms"], ", %d samples without a pose" % te["no_pose_samples"]
+                 if te["no_pose_samples"] else ""))
+    print("plots: %s_{z11_z12,ferror,step_time,pose%s}.png" % (stem, ",tool_error" if tool else ""))
     return 0
 
 

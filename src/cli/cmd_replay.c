@@ -285,6 +285,7 @@ typedef struct {
     int z[HG_CHANNELS_MAX], count[HG_CHANNELS_MAX], cmd[HG_CHANNELS_MAX];
     int extra[HG_PLANT_EXTRA_MAX];    /* out.<rec_name> of the plant's float outputs, -1 if none */
     int fault_code;
+    int pos_cmd;                      /* in.pos-cmd-0 (format 2: the tool-path error's commands), -1 if none */
     const hg_plant *plant;
 } replay_cols;
 
@@ -294,9 +295,10 @@ static int csv_extra(const hg_plant *p, int i)
     return p->outputs[i].rec_name && !p->outputs[i].is_u32;
 }
 
-/* One CSV row: sample, time, recorded and replayed joints (mm), counts, the
- * plant's own outputs (its HAL units), fault codes; with joint commands:
- * f-errors (mm) and drive volts. */
+/* One CSV row: sample, time, recorded and replayed joints (mm), the replayed
+ * motors (the encoders' side, mm), counts, the plant's own outputs (its HAL
+ * units), the replayed tool-path error (mm, -1 none: a format-1 record has
+ * no commands), fault codes; with joint commands: f-errors (mm) and drive volts. */
 static void csv_row(FILE *f, long n, const double *row, const replay_cols *c, const hg_board_outputs *o,
                     const double (*fe)[HG_CHANNELS_MAX], const double (*volts)[HG_CHANNELS_MAX])
 {
@@ -308,6 +310,8 @@ static void csv_row(FILE *f, long n, const double *row, const replay_cols *c, co
     for (k = 0; k < c->nj; k++)
         fprintf(f, ",%.17g", o->pos[k] * HG_MM_PER_M);
     for (k = 0; k < c->nj; k++)
+        fprintf(f, ",%.17g", o->motor_pos[k] * HG_MM_PER_M);
+    for (k = 0; k < c->nj; k++)
         fprintf(f, ",%.0f", row[c->count[k]]);
     for (k = 0; k < c->nj; k++)
         fprintf(f, ",%d", o->count[k]);
@@ -317,6 +321,7 @@ static void csv_row(FILE *f, long n, const double *row, const replay_cols *c, co
     for (k = 0; k < p->noutputs; k++)
         if (csv_extra(p, k) && c->extra[k] >= 0)
             fprintf(f, ",%.17g", o->extra[k] * p->outputs[k].hal_scale);
+    fprintf(f, ",%.17g", c->pos_cmd >= 0 && o->tool_error >= 0.0 ? o->tool_error * HG_MM_PER_M : -1.0);
     fprintf(f, ",%d,%d", (int)row[c->fault_code], o->fault_code);
     if (fe)
         for (w = 0; w < 2; w++)
@@ -336,6 +341,8 @@ static void csv_header(FILE *f, const replay_cols *c, int with_loop)
     for (k = 0; k < c->nj; k++)
         fprintf(f, ",z%d_mm", k);
     for (k = 0; k < c->nj; k++)
+        fprintf(f, ",zm%d_mm", k);
+    for (k = 0; k < c->nj; k++)
         fprintf(f, ",count%d_rec", k);
     for (k = 0; k < c->nj; k++)
         fprintf(f, ",count%d", k);
@@ -345,7 +352,7 @@ static void csv_header(FILE *f, const replay_cols *c, int with_loop)
                 const char *r = p->outputs[k].rec_name, *dash = strchr(r, '-');
                 fprintf(f, ",%s%s", dash ? dash + 1 : r, w ? "" : "_rec");
             }
-    fprintf(f, ",fault_code_rec,fault_code");
+    fprintf(f, ",tool_error_mm,fault_code_rec,fault_code");
     if (with_loop) {
         for (k = 0; k < c->nj; k++)
             fprintf(f, ",ferror%d_rec_mm,volts%d_rec", k, k);
@@ -801,6 +808,7 @@ int cmd_replay(int argc, char **argv)
         }
     }
     cols.fault_code = hg_record_column(&r, "out.fault-code");
+    cols.pos_cmd = hg_record_column(&r, "in.pos-cmd-0");
     col_latched = hg_record_column(&r, "out.index-latched");
     {
         int used = nf + (has_cmd ? nj : 0);

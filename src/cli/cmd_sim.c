@@ -19,7 +19,8 @@ const char cli_usage_sim[] =
     "                     [--substeps N] [--integrator improved-euler|heun|rk4]\n"
     "                     [--ini FILE] [--set name=value]... [--csv FILE] [--record FILE] [--list-params]\n"
     "  the virtual board with constant DAC volts, amplifiers on, one CSV row per servo period:\n"
-    "  t_s, z0_mm..z5_mm (joints), zd0_mm_s..zd5_mm_s (joint velocities), x_mm y_mm z_mm,\n"
+    "  t_s, z0_mm..z5_mm (joints: the carriages), zd0_mm_s..zd5_mm_s (joint velocities),\n"
+    "  zm0_mm..zm5_mm (the motors: the encoders' side of the drive trains), x_mm y_mm z_mm,\n"
     "  a_deg b_deg c_deg (head pose); a rotary channel's columns are in deg, deg_s\n"
     "defaults: the hexaglide plant, its default model (reduced-cartesian), 1 s, dt 0.001 s, 0 V,\n"
     "CSV to stdout; --volts takes one value per channel of the plant; --substeps and --integrator\n"
@@ -59,6 +60,8 @@ static void write_row(FILE *f, double t, const hg_plant *pl, const hg_board_outp
         fprintf(f, ",%.9g", o->pos[k] * channel_scale(o, k));
     for (k = 0; k < o->channels; k++)
         fprintf(f, ",%.9g", o->vel[k] * channel_scale(o, k));
+    for (k = 0; k < o->channels; k++)
+        fprintf(f, ",%.9g", o->motor_pos[k] * channel_scale(o, k));
     for (k = 0; k < pl->noutputs; k++)
         if (pl->outputs[k].csv_name)
             fprintf(f, ",%.9g", o->extra[k] * pl->outputs[k].hal_scale);
@@ -74,6 +77,8 @@ static void write_header(FILE *f, const hg_plant *pl, const hg_board_outputs *o)
         fprintf(f, ",z%d_%s", k, (o->rotary >> k) & 1u ? "deg" : "mm");
     for (k = 0; k < o->channels; k++)
         fprintf(f, ",zd%d_%s", k, (o->rotary >> k) & 1u ? "deg_s" : "mm_s");
+    for (k = 0; k < o->channels; k++)
+        fprintf(f, ",zm%d_%s", k, (o->rotary >> k) & 1u ? "deg" : "mm");
     for (k = 0; k < pl->noutputs; k++)
         if (pl->outputs[k].csv_name)
             fprintf(f, ",%s", pl->outputs[k].csv_name);

@@ -188,6 +188,7 @@ int cmd_soak(int argc, char **argv)
     const char *ini = 0, *v;
     double hours = 8.0, dt = 0, seed_d = 1, t0, wall, e0k, e0p, ek, ep, net, mismatch;
     double work_j = 0, friction_j = 0, drift = 0, ferr_max = 0, ferr_counts = 0, cmd_prev[6] = {0}, cmd_prev2[6] = {0};
+    double tool_max = 0;               /* the tool-path error after the ramp-in (mm; -1: a period without a pose) */
     int kind = HG_MODEL_REDUCED_CARTESIAN, k, o, nset = 0, rc = 0, faults = 0, trips = 0, ferr_joint = 0;
     int integrator = -1;
     long n, s;
@@ -325,6 +326,8 @@ int cmd_soak(int argc, char **argv)
                 friction_j -= w;
             }
         }
+        if (t > SOAK_SETTLED_S && tool_max >= 0 && (smp.tool_error_mm < 0 || smp.tool_error_mm > tool_max))
+            tool_max = smp.tool_error_mm;
         {
             double e = bar_length_error(&hm->p.geo, L->out.pos, L->out.extra);   /* extra[0..5]: the head pose */
             if (!(e <= drift))
@@ -351,10 +354,16 @@ int cmd_soak(int argc, char **argv)
                L->out.substeps_run);
     printf("soak: max following error after the %.1f s ramp-in: %.4f mm = %.2f counts (joint %d, through the "
            "encoder)\n", SOAK_SETTLED_S, ferr_max, ferr_counts, ferr_joint);
+    if (tool_max >= 0)
+        printf("soak: max tool-path error after the ramp-in: %.4f mm (the tool tip against where the commanded "
+               "joints put it)\n", tool_max);
+    else
+        printf("soak: tool-path error: some period's commands had no pose near the machine's\n");
     printf("soak: faults: %d, following-error trips: %d\n", faults, trips);
     printf("SOAK drift_m=%.3e energy_net_j=%.6g energy_mismatch_j=%.3e energy_rel=%.3e friction_j=%.6g "
-           "faults=%d trips=%d ferr_mm=%.6f ferr_counts=%.3f wall_s=%.1f steps=%ld\n", drift, net, mismatch,
-           fabs(mismatch) / (net != 0 ? fabs(net) : 1), friction_j, faults, trips, ferr_max, ferr_counts, wall, s);
+           "faults=%d trips=%d ferr_mm=%.6f ferr_counts=%.3f tool_mm=%.6f wall_s=%.1f steps=%ld\n", drift, net,
+           mismatch, fabs(mismatch) / (net != 0 ? fabs(net) : 1), friction_j, faults, trips, ferr_max, ferr_counts,
+           tool_max, wall, s);
     free(L);
     return (rc || faults || trips) ? 1 : 0;
 }

@@ -525,6 +525,48 @@ static void test_addf_order(void)
     CHECK(order_events(200) == 1, "... and one again after a reset");
 }
 
+/* The tool-path error against closed forms: the commands of the pose the
+ * machine holds (0), of every carriage 0.5 mm higher (the tool 0.5 mm
+ * higher: 0.5 mm), of the pose tilted by A = 0.2 deg about Op (the tip
+ * tool_d below Op swings by 2 tool_d sin(A/2)), and of carriages no pose
+ * can take (-1). The commands come from the closed-form inverse kinematics. */
+static void test_tool_error(void)
+{
+    hg_params p;
+    double pose[6] = {0, 0, 0, 0, 0, 0}, z[6], want, e;
+    const double a = 0.2 * 3.14159265358979323846 / 180;
+    int k;
+    fresh();
+    hg_params_default(&p);
+    hg_inverse_kinematics(&p.geo, pose, z);
+    for (k = 0; k < 6; k++)
+        in.pos_cmd[k] = z[k];
+    run(1);
+    e = out.tool_error;
+    for (k = 0; k < 6; k++)
+        in.pos_cmd[k] = out.pos[k] + 0.5e-3;
+    hg_board_step(&b, &in, &out, 0);         /* (a bad period: nothing moves, the sensors read again) */
+    CHECK(fabs(out.tool_error - 0.5e-3) < 1e-11, "carriages commanded 0.5 mm above where the step left them: "
+          "tool-error %.9f mm (HOME's commands, the machine sinking one period: %.6f mm)", 1e3 * out.tool_error,
+          1e3 * e);
+    memcpy(pose, out.extra, sizeof pose);    /* the pose the step left: commands of it tilted by a */
+    pose[3] += a;
+    hg_inverse_kinematics(&p.geo, pose, z);
+    for (k = 0; k < 6; k++)
+        in.pos_cmd[k] = z[k];
+    hg_board_step(&b, &in, &out, 0);
+    want = 2 * p.tool_d_m * sin(a / 2);
+    CHECK(fabs(out.tool_error - want) < 1e-11, "the pose's commands tilted 0.2 deg about X: tool-error %.9f mm "
+          "= 2 tool_d sin(A/2) = %.9f mm", 1e3 * out.tool_error, 1e3 * want);
+    for (k = 0; k < 6; k++)
+        in.pos_cmd[k] = 5.0;
+    hg_board_step(&b, &in, &out, 0);
+    CHECK(out.tool_error == -1.0, "carriages commanded 5 m high: no pose, tool-error -1 (%g)", out.tool_error);
+    in.pos_cmd[2] = NAN;
+    hg_board_step(&b, &in, &out, 0);
+    CHECK(out.tool_error == -1.0, "a NaN command: tool-error -1 (%g)", out.tool_error);
+}
+
 int main(void)
 {
     test_estop_loop();
@@ -539,5 +581,6 @@ int main(void)
     test_dac_nan_determinism();
     test_check_all_and_format();
     test_addf_order();
+    test_tool_error();
     return hg_test_exit();
 }

@@ -118,6 +118,7 @@ def sampled_pins():
         want.append("motenc-hexaglide.0.head-%s" % a)
     want += ["motenc-hexaglide.0.step-time-ns", "motenc-hexaglide.0.fault",
              "motenc-hexaglide.0.amps-on", "motenc-hexaglide.0.residual",
+             "motenc-hexaglide.0.tool-error",
              "hexaglidekins.fk-iterations", "hexaglidekins.fk-error",
              "hexaglidekins.fk-fault", "hexaglidekins.fk-fail-count",
              "hexaglidekins.fk-residual",
