@@ -22,11 +22,14 @@ endif
 # (docs/replay.md); and the same -fno-builtin-sin/cos/sincos as the realtime
 # build (rtapi_math has no sincos), so both call the same libm functions
 RT_SAME_FLAGS := -ffp-contract=off -fno-builtin-sin -fno-builtin-cos -fno-builtin-sincos
-CFLAGS_HOST := -std=gnu99 -O2 -g $(RT_SAME_FLAGS) -Wall -Wextra -Werror -Isrc -Isrc/generated -MMD -MP $(SANFLAGS)
-LDLIBS_HOST := -lm $(SANFLAGS)
+CFLAGS_HOST := -std=gnu99 -O2 -g $(RT_SAME_FLAGS) -Wall -Wextra -Werror -pthread -Isrc -Isrc/generated -MMD -MP $(SANFLAGS)
+LDLIBS_HOST := -lm -pthread $(SANFLAGS)
 
 # pure math, no LinuxCNC dependency: every src/hg_*.c and src/generated/*.c
 CORE_SRCS := $(sort $(wildcard src/hg_*.c) $(wildcard src/generated/*.c))
+# the host-only core files that start threads (hg_batch: runs over every core);
+# not in the FMU (src/fmu/fmu.mk) nor in the realtime modules (src/Makefile.modules)
+THREAD_SRCS := src/hg_batch.c
 CORE_OBJS := $(patsubst src/%.c,$(BUILD)/host/%.o,$(CORE_SRCS))
 CLI_SRCS  := $(sort $(wildcard src/cli/*.c))
 CLI_OBJS  := $(patsubst src/%.c,$(BUILD)/host/%.o,$(CLI_SRCS))

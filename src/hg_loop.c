@@ -1,4 +1,4 @@
-/* hg_loop.c - six LinuxCNC pid loops around the virtual board, one servo period at a time. */
+/* hg_loop.c - six LinuxCNC pid loops (and biquads) around the virtual board, one servo period at a time. */
 #include "hg_loop.h"
 #include "hg_errors.h"
 #include "hg_math.h"
@@ -10,6 +10,7 @@ void hg_loop_config_default(hg_loop_config *c)
     *c = (hg_loop_config){0};
     for (k = 0; k < HG_LOOP_JOINTS; k++) {
         hg_pid_defaults(&c->pid[k]);
+        hg_biquad_defaults(&c->biquad[k]);
         c->input_scale[k] = 1000.0;
         c->output_scale[k] = 1.0;
     }
@@ -42,6 +43,9 @@ int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p)
     hg_board_peek(&L->board, &L->out);
     for (k = 0; k < HG_LOOP_JOINTS; k++) {
         hg_pid_reset(&L->pid[k]);
+        L->biquad[k] = c->biquad[k];   /* a fresh instance with the config's setp values */
+        L->biquad[k].last_enable = L->biquad[k].valid = 0;
+        L->biquad[k].in = L->biquad[k].out = L->biquad[k].s1 = L->biquad[k].s2 = 0.0;
         L->prev_cmd_mm[k] = 0.0;
     }
     L->periods = 0;
@@ -68,6 +72,12 @@ static double plant_position_mm(const hg_loop *L, int k)
     return L->out.position[k];
 }
 
+/* The board's unit of channel k in the config's: mm or degrees per m or rad. */
+static double user_per_si(const hg_loop *L, int k)
+{
+    return (L->out.rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M;
+}
+
 int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
                     long period_ns, hg_loop_sample *out)
 {
@@ -82,16 +92,23 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
             out->fb_mm[k] = fb[k];
             out->ferror_mm[k] = L->prev_cmd_mm[k] - fb[k];
         }
-        dac[k] = hg_pid_calc(&L->cfg.pid[k], &L->pid[k], cmd_mm[k], fb[k], enable[k],
-                             L->in.index_enable[k], period_ns);
-        if (out)
-            out->output_v[k] = dac[k];
+        L->biquad[k].in = hg_pid_calc(&L->cfg.pid[k], &L->pid[k], cmd_mm[k], fb[k], enable[k],
+                                      L->in.index_enable[k], period_ns);
+        hg_biquad_run(&L->biquad[k], period_ns);   /* after the pids, before dac-write */
+        dac[k] = L->biquad[k].out;
+        if (out) {
+            out->output_v[k] = L->biquad[k].in;
+            out->dac_value_v[k] = dac[k];
+        }
     }
     for (k = 0; k < L->joints; k++)      /* the board's tool-path error pairs them with this step */
-        L->in.pos_cmd[k] = cmd_mm[k] / ((L->out.rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M);
+        L->in.pos_cmd[k] = cmd_mm[k] / user_per_si(L, k);
     rc = plant_step(L, dac, period_ns);
-    if (out)
+    if (out) {
         out->tool_error_mm = L->out.tool_error < 0.0 ? -1.0 : L->out.tool_error * HG_MM_PER_M;
+        for (k = 0; k < L->joints; k++)
+            out->load_mm[k] = L->out.pos[k] * user_per_si(L, k);
+    }
     for (k = 0; k < L->joints; k++)
         L->prev_cmd_mm[k] = cmd_mm[k];
     L->periods++;
@@ -107,6 +124,27 @@ int hg_loop_step(hg_loop *L, const double *cmd_mm, hg_loop_sample *out)
 int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
                 double *output_v, hg_loop_summary *sum)
 {
+    hg_loop_trace tr = {ferror_mm, output_v, 0};
+    return hg_loop_run_traced(L, cmd_mm, n, from, &tr, sum);
+}
+
+/* Store period i's values of s into the traces tr asks for. */
+static void trace_store(const hg_loop_trace *tr, const hg_loop_sample *s, long i, int J)
+{
+    int k;
+    for (k = 0; k < J; k++) {
+        if (tr->ferror_mm)
+            tr->ferror_mm[J * i + k] = s->ferror_mm[k];
+        if (tr->output_v)
+            tr->output_v[J * i + k] = s->output_v[k];
+        if (tr->load_mm)
+            tr->load_mm[J * i + k] = s->load_mm[k];
+    }
+}
+
+int hg_loop_run_traced(hg_loop *L, const double *cmd_mm, long n, long from, const hg_loop_trace *tr,
+                       hg_loop_summary *sum)
+{
     hg_loop_sample s;
     double sq[HG_LOOP_JOINTS] = {0};
     long i, counted = 0;
@@ -117,12 +155,10 @@ int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *fer
         rc = hg_loop_step(L, cmd_mm + J * i, &s);
         if (rc)
             break;
+        if (tr)
+            trace_store(tr, &s, i, J);
         for (k = 0; k < J; k++) {
-            double fe = fabs(s.ferror_mm[k]), v = fabs(s.output_v[k]);
-            if (ferror_mm)
-                ferror_mm[J * i + k] = s.ferror_mm[k];
-            if (output_v)
-                output_v[J * i + k] = s.output_v[k];
+            double fe = fabs(s.ferror_mm[k]), v = fabs(s.dac_value_v[k]);
             if (i < from)
                 continue;
             if (fe > sum->peak_ferror_mm[k] || !isfinite(fe))
@@ -161,6 +197,7 @@ unsigned long hg_loop_sizeof(int which)
     case 9: return sizeof(hg_board_inputs);
     case 10: return sizeof(hg_board_outputs);
     case 11: return sizeof(hg_pid_state);
+    case 13: return sizeof(hg_biquad);
     default: return 0;
     }
 }

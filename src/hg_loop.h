@@ -2,9 +2,12 @@
  * board's plant: the Hexaglide's six, a serial machine's axes): joint
  * commands in, following errors and DAC volts out, one servo period per
  * call, in the order of configs/hexaglide.hal's servo thread:
- *   encoder-read -> motion (command, f-error) -> pid.0..5 -> dac-write -> dynamics
- * with LinuxCNC's pid (hg_pid) and the virtual board's core (the plant), so
- * that what `hexaglide tune` predicts is what LinuxCNC runs.
+ *   encoder-read -> motion (command, f-error) -> pid.0..5 [-> biquad.0..5]
+ *   -> dac-write -> dynamics
+ * with LinuxCNC's pid (hg_pid), optionally its biquad filter per joint
+ * between pid.N.output and the DAC (hg_biquad: a notch), and the virtual
+ * board's core (the plant), so that what `hexaglide tune` predicts is what
+ * LinuxCNC runs.
  *
  * Units: the config's (joint commands and feedback in mm, output in volts,
  * INPUT_SCALE counts per mm). f-error is motion's: the previous period's
@@ -14,6 +17,7 @@
 #ifndef HG_LOOP_H
 #define HG_LOOP_H
 
+#include "hg_biquad.h"
 #include "hg_board.h"
 #include "hg_pid.h"
 
@@ -22,6 +26,8 @@
 /* What a config's INI sets per joint, plus the servo period and the plant. */
 typedef struct {
     hg_pid_gains pid[HG_LOOP_JOINTS];  /* pid.N pins */
+    hg_biquad biquad[HG_LOOP_JOINTS];  /* biquad.N as set at load, between pid.N.output and the
+                                          DAC (disabled: out = in, as without one) */
     double input_scale[HG_LOOP_JOINTS];   /* INPUT_SCALE: encoder counts per mm */
     double output_scale[HG_LOOP_JOINTS];  /* OUTPUT_SCALE: DAC gain */
     double output_offset[HG_LOOP_JOINTS]; /* OUTPUT_OFFSET (V) */
@@ -38,6 +44,7 @@ typedef struct {
     hg_board_inputs in;                /* what the HAL glue would copy in each period */
     hg_board_outputs out;              /* the board's outputs after the last period */
     hg_pid_state pid[HG_LOOP_JOINTS];
+    hg_biquad biquad[HG_LOOP_JOINTS];  /* the running biquad.N (cfg's settings, fresh state) */
     double prev_cmd_mm[HG_LOOP_JOINTS]; /* motion's command of the previous period */
     long periods;                      /* periods run since hg_loop_init */
     int joints;                        /* the plant's channels: one loop each */
@@ -48,6 +55,9 @@ typedef struct {
     double fb_mm[HG_LOOP_JOINTS];      /* encoder position read this period */
     double ferror_mm[HG_LOOP_JOINTS];  /* motion's f-error */
     double output_v[HG_LOOP_JOINTS];   /* pid.N.output */
+    double dac_value_v[HG_LOOP_JOINTS]; /* motenc.0.dac-NN-value: pid.N.output through biquad.N */
+    double load_mm[HG_LOOP_JOINTS];    /* the load's (carriage's) position after the step: the
+                                          tool's side of the drive train */
     double tool_error_mm;              /* the board's tool-error: the tool against this period's
                                           commands after its step (-1: the plant found no pose) */
 } hg_loop_sample;
@@ -55,17 +65,24 @@ typedef struct {
 /* Summary of a run. */
 typedef struct {
     double peak_ferror_mm[HG_LOOP_JOINTS]; /* max |f-error| */
-    double peak_output_v[HG_LOOP_JOINTS];  /* max |pid output| */
+    double peak_output_v[HG_LOOP_JOINTS];  /* max |DAC value| (the pid output, through biquad.N) */
     double rms_ferror_mm[HG_LOOP_JOINTS];
     double peak_tool_error_mm;         /* max tool-error (-1 if the plant found no pose in some period) */
     long periods;                      /* periods run */
     long tripped_at;                   /* first period with |f-error| > ferror_limit_mm, or -1 */
 } hg_loop_summary;
 
+/* Per-period traces of a run, n x joints each (row-major); any may be 0. */
+typedef struct {
+    double *ferror_mm;                 /* motion's f-error */
+    double *output_v;                  /* pid.N.output */
+    double *load_mm;                   /* the load's position (hg_loop_sample.load_mm) */
+} hg_loop_trace;
+
 /* Config with pid.c's load-time gains (hg_pid_defaults: Pgain 1, the rest 0),
- * configs/hexaglide.ini's scales (1000 counts/mm, DAC gain 1, offset 0), a
- * 1 ms period, the Hexaglide with its default model (reduced-cartesian),
- * no trip limit. */
+ * no biquad (disabled instances: out = in), configs/hexaglide.ini's scales
+ * (1000 counts/mm, DAC gain 1, offset 0), a 1 ms period, the Hexaglide with
+ * its default model (reduced-cartesian), no trip limit. */
 void hg_loop_config_default(hg_loop_config *c);
 
 /* Machine at HOME at rest, counters at 0, amplifiers on (E-STOP loop closed),
@@ -96,11 +113,15 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
 int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
                 double *output_v, hg_loop_summary *sum);
 
+/* hg_loop_run with the traces tr holds (tr may be 0). */
+int hg_loop_run_traced(hg_loop *L, const double *cmd_mm, long n, long from, const hg_loop_trace *tr,
+                       hg_loop_summary *sum);
+
 /* sizeof the structs, for bindings that mirror them (tools/hexaglide.py). */
 unsigned long hg_loop_sizeof(int which);   /* 0 hg_loop, 1 config, 2 summary, 3 pid gains,
                                              7 hg_board_params, 8 hg_board,
                                              9 hg_board_inputs, 10 hg_board_outputs,
-                                             11 hg_pid_state; else 0 (the Hexaglide's own
+                                             11 hg_pid_state, 13 hg_biquad; else 0 (the Hexaglide's own
                                              types: hg_hexaglide_sizeof) */
 
 #endif

@@ -70,13 +70,21 @@ class PidGains(C.Structure):
 
 CHANNELS_MAX = 8            # HG_CHANNELS_MAX: the MOTENC-100's channels, the most any plant uses
 _dc = C.c_double * CHANNELS_MAX
+BIQUAD_NOTCH = 2            # biquad.N.type of a notch (src/hg_biquad.h)
+
+
+class Biquad(C.Structure):
+    """hg_biquad: one biquad.N of LinuxCNC's biquad component, its pins and parameters (src/hg_biquad.h)."""
+    _fields_ = [("in_", C.c_double), ("out", C.c_double), ("enable", C.c_int), ("valid", C.c_int),
+                ("type", C.c_uint), ("f0", C.c_double), ("Q", C.c_double)] + \
+        [(n, C.c_double) for n in ("d1", "d2", "n0", "n1", "n2", "s1", "s2")] + [("last_enable", C.c_int)]
 
 
 class LoopConfig(C.Structure):
     """hg_loop_config."""
-    _fields_ = [("pid", PidGains * CHANNELS_MAX), ("input_scale", _dc), ("output_scale", _dc),
-                ("output_offset", _dc), ("ferror_limit_mm", C.c_double), ("period_ns", C.c_long),
-                ("plant", C.c_int), ("variant", C.c_int)]
+    _fields_ = [("pid", PidGains * CHANNELS_MAX), ("biquad", Biquad * CHANNELS_MAX), ("input_scale", _dc),
+                ("output_scale", _dc), ("output_offset", _dc), ("ferror_limit_mm", C.c_double),
+                ("period_ns", C.c_long), ("plant", C.c_int), ("variant", C.c_int)]
 
 
 class LoopSummary(C.Structure):
@@ -118,7 +126,7 @@ class Data(C.Structure):
     _fields_ = _DATA_STATE + [("work", C.c_double * max(0, (_sizeof(5) - C.sizeof(_DataState)) // 8))]
 
 
-for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data), (12, _DataState)):
+for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data), (12, _DataState), (13, Biquad)):
     if _sizeof(_i) != C.sizeof(_s):
         raise ImportError("%s: layout differs from the library's (%d vs %d bytes): rebuild both"
                           % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
@@ -204,6 +212,10 @@ _loop_init = _sig("hg_loop_init", C.c_int, _P, C.POINTER(LoopConfig), _P)
 _loop_step = _sig("hg_loop_step", C.c_int, _P, _dc, _P)
 _dp = np.ctypeslib.ndpointer(dtype=np.float64, flags="C_CONTIGUOUS")
 _loop_run = _sig("hg_loop_run", C.c_int, _P, _dp, C.c_long, C.c_long, _P, _P, C.POINTER(LoopSummary))
+_biquad_notch = _sig("hg_biquad_notch", None, C.POINTER(Biquad), C.c_double, C.c_double)
+_biquad_response = _sig("hg_biquad_response", C.c_int, C.POINTER(Biquad), C.c_long, C.c_double,
+                        C.POINTER(C.c_double), C.POINTER(C.c_double))
+_batch_cores = _sig("hg_batch_cores", C.c_int)
 
 
 class ParamInfo(C.Structure):
@@ -377,13 +389,15 @@ class Board:
 
 
 class RunResult:
-    """What Loop.run returns: per-period f-errors and outputs (n, 6), and the summary."""
+    """What Loop.run and batch return: per-period f-errors, pid outputs and load (carriage)
+    positions (n, 6) when kept, and the summary."""
 
-    def __init__(self, ferror, output, summ, rc):
-        self.ferror_mm, self.output_v, self.rc = ferror, output, rc
-        self.peak_ferror_mm = np.array(summ.peak_ferror_mm[:])
-        self.peak_output_v = np.array(summ.peak_output_v[:])
-        self.rms_ferror_mm = np.array(summ.rms_ferror_mm[:])
+    def __init__(self, ferror, output, summ, rc, load=None):
+        self.ferror_mm, self.output_v, self.load_mm, self.rc = ferror, output, load, rc
+        self.peak_ferror_mm = np.array(summ.peak_ferror_mm[:JOINTS])
+        self.peak_output_v = np.array(summ.peak_output_v[:JOINTS])
+        self.rms_ferror_mm = np.array(summ.rms_ferror_mm[:JOINTS])
+        self.peak_tool_error_mm = summ.peak_tool_error_mm
         self.periods = summ.periods
         self.tripped_at = summ.tripped_at
 
@@ -474,33 +488,56 @@ def read_gains(path):
     return gains, pred
 
 
-class Loop:
-    """Six LinuxCNC pid loops around the virtual board (src/hg_loop.h), mm and volts.
+def loop_config(gains=None, ferror_limit_mm=0.0, period_ns=1000000, model="reduced-cartesian", notch=None):
+    """hg_loop_config of six joints: gains a list of six dicts of INI keys (P, I, D, FF0, FF1,
+    FF2, FF3, BIAS, DEADBAND, MAX_OUTPUT, MAX_ERROR_I, INPUT_SCALE, OUTPUT_SCALE, OUTPUT_OFFSET;
+    keys not given keep pid.c's load-time values: Pgain 1, the rest 0; None: configs/hexaglide.ini's);
+    notch: per joint None or (f0 Hz, Q), a biquad.N notch between pid.N.output and the DAC."""
+    cfg = LoopConfig()
+    _loop_default(C.byref(cfg))
+    cfg.ferror_limit_mm = ferror_limit_mm
+    cfg.period_ns = period_ns
+    cfg.plant = 0
+    cfg.variant = MODELS.index(model)
+    if gains is None:
+        gains = read_ini()[0]
+    for j, g in enumerate(gains):
+        for key, v in g.items():
+            if key in GAIN_KEYS:
+                setattr(cfg.pid[j], GAIN_KEYS[key], float(v))
+        if "INPUT_SCALE" in g:
+            cfg.input_scale[j] = g["INPUT_SCALE"]
+        if "OUTPUT_SCALE" in g:
+            cfg.output_scale[j] = g["OUTPUT_SCALE"]
+        if "OUTPUT_OFFSET" in g:
+            cfg.output_offset[j] = g["OUTPUT_OFFSET"]
+    for j, nf in enumerate(notch or []):
+        if nf is not None:
+            _biquad_notch(C.byref(cfg.biquad[j]), float(nf[0]), float(nf[1]))
+    return cfg
 
-    gains: a list of six dicts of INI keys (P, I, D, FF0, FF1, FF2, FF3, BIAS,
-    DEADBAND, MAX_OUTPUT, MAX_ERROR_I); keys not given keep pid.c's load-time
-    values (Pgain 1, the rest 0). None: configs/hexaglide.ini's gains."""
+
+def notch_response(f0, q, freqs, period_ns=1000000):
+    """LinuxCNC's biquad notch (f0 Hz, Q) in a thread of period_ns: its complex response at
+    freqs (src/hg_biquad.c, the coefficients the enable edge computes), and whether
+    biquad.comp accepts f0 and Q (its valid pin)."""
+    b = Biquad()
+    _biquad_notch(C.byref(b), float(f0), float(q))
+    re, im = C.c_double(), C.c_double()
+    h, valid = [], 1
+    for f in np.atleast_1d(freqs):
+        valid = _biquad_response(C.byref(b), period_ns, float(f), C.byref(re), C.byref(im))
+        h.append(complex(re.value, im.value))
+    return np.array(h), bool(valid)
+
+
+class Loop:
+    """Six LinuxCNC pid loops (and biquad notches) around the virtual board (src/hg_loop.h),
+    mm and volts; gains and notch as loop_config takes them."""
 
     def __init__(self, gains=None, params=None, ferror_limit_mm=0.0, period_ns=1000000,
-                 model="reduced-cartesian", substeps=1, integrator=DEFAULT_INTEGRATOR):
-        self.cfg = LoopConfig()
-        _loop_default(C.byref(self.cfg))
-        self.cfg.ferror_limit_mm = ferror_limit_mm
-        self.cfg.period_ns = period_ns
-        self.cfg.plant = 0
-        self.cfg.variant = MODELS.index(model)
-        if gains is None:
-            gains = read_ini()[0]
-        for j, g in enumerate(gains):
-            for key, v in g.items():
-                if key in GAIN_KEYS:
-                    setattr(self.cfg.pid[j], GAIN_KEYS[key], float(v))
-            if "INPUT_SCALE" in g:
-                self.cfg.input_scale[j] = g["INPUT_SCALE"]
-            if "OUTPUT_SCALE" in g:
-                self.cfg.output_scale[j] = g["OUTPUT_SCALE"]
-            if "OUTPUT_OFFSET" in g:
-                self.cfg.output_offset[j] = g["OUTPUT_OFFSET"]
+                 model="reduced-cartesian", substeps=1, integrator=DEFAULT_INTEGRATOR, notch=None):
+        self.cfg = loop_config(gains, ferror_limit_mm, period_ns, model, notch)
         self.params = params or Params()
         self.board_params = self.params.board_params(substeps, integrator)
         self.buf = C.create_string_buffer(_sizeof(0))
@@ -514,9 +551,7 @@ class Loop:
 
     def run(self, cmd_mm, start=0, keep=True):
         """Run the commands (n, 6) from the current state; summary over rows >= start."""
-        cmd = np.ascontiguousarray(cmd_mm, dtype=np.float64)
-        if cmd.ndim != 2 or cmd.shape[1] != JOINTS:
-            raise ValueError("commands must be an (n, 6) array, got %s" % (cmd.shape,))
+        cmd = _commands(cmd_mm)
         n = cmd.shape[0]
         fe = np.zeros((n, JOINTS)) if keep else None
         out = np.zeros((n, JOINTS)) if keep else None
@@ -527,6 +562,79 @@ class Loop:
         if keep and summ.periods < n:
             fe, out = fe[:summ.periods], out[:summ.periods]
         return RunResult(fe, out, summ, rc)
+
+
+def _commands(cmd_mm):
+    """cmd_mm as a C-contiguous (n, 6) float64 array, else ValueError."""
+    cmd = np.ascontiguousarray(cmd_mm, dtype=np.float64)
+    if cmd.ndim != 2 or cmd.shape[1] != JOINTS:
+        raise ValueError("commands must be an (n, 6) array, got %s" % (cmd.shape,))
+    return cmd
+
+
+class _Trace(C.Structure):
+    _fields_ = [("ferror_mm", _P), ("output_v", _P), ("load_mm", _P)]
+
+
+class _BatchJob(C.Structure):
+    _fields_ = [("cfg", C.POINTER(LoopConfig)), ("params", C.POINTER(BoardParams)), ("cmd_mm", _P),
+                ("n", C.c_long), ("from_", C.c_long), ("trace", _Trace)]
+
+
+class _BatchResult(C.Structure):
+    _fields_ = [("sum", LoopSummary), ("rc", C.c_int)]
+
+
+_batch_sizeof = _sig("hg_batch_sizeof", C.c_ulong, C.c_int)
+for _i, _s in ((0, _BatchJob), (1, _BatchResult)):
+    if _batch_sizeof(_i) != C.sizeof(_s):
+        raise ImportError("%s: layout differs from the library's: rebuild both" % _s.__name__)
+_batch_run = _sig("hg_batch_run", C.c_int, C.POINTER(_BatchJob), C.c_long, C.c_int, C.POINTER(_BatchResult))
+
+
+class Job:
+    """One closed-loop run for batch(): from HOME at rest, the commands cmd (n, 6) through the
+    loop of cfg (loop_config) and board parameters board_params (Params.board_params);
+    summary over rows >= start; keep: the f-error and pid-output traces, load: the load's
+    (carriage's) positions. Jobs may share cfg, board_params and cmd."""
+
+    def __init__(self, cfg, board_params, cmd, start=0, keep=False, load=False):
+        self.cfg, self.board_params, self.cmd = cfg, board_params, _commands(cmd)
+        self.start, self.keep, self.load = start, keep, load
+
+
+def cores():
+    """The online processors: batch's default thread count (hg_batch_cores)."""
+    return _batch_cores()
+
+
+def batch(jobs, threads=0):
+    """Run the Jobs over `threads` POSIX threads (0: every core; src/hg_batch.h), no Python
+    per period; [RunResult] in the jobs' order, bit for bit what Loop(...).run gives each."""
+    jobs = list(jobs)
+    cj = (_BatchJob * max(1, len(jobs)))()
+    traces = []
+    for i, j in enumerate(jobs):
+        n = j.cmd.shape[0]
+        fe = np.zeros((n, JOINTS)) if j.keep else None
+        out = np.zeros((n, JOINTS)) if j.keep else None
+        load = np.zeros((n, JOINTS)) if j.load else None
+        traces.append((fe, out, load))
+        cj[i].cfg = C.pointer(j.cfg)
+        cj[i].params = C.pointer(j.board_params)
+        cj[i].cmd_mm = j.cmd.ctypes.data_as(_P)
+        cj[i].n, cj[i].from_ = n, j.start
+        cj[i].trace = _Trace(*[a.ctypes.data_as(_P) if a is not None else None for a in (fe, out, load)])
+    res = (_BatchResult * max(1, len(jobs)))()
+    rc = _batch_run(cj, len(jobs), int(threads), res)
+    if rc:
+        raise HexaglideError("batch", rc)
+    out_list = []
+    for (fe, out, load), r in zip(traces, res):
+        m = r.sum.periods
+        cut = (lambda a: a[:m] if a is not None else None)
+        out_list.append(RunResult(cut(fe), cut(out), r.sum, r.rc, cut(load)))
+    return out_list
 
 
 class PidState(C.Structure):

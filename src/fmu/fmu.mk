@@ -19,7 +19,8 @@ FMU_CFLAGS := $(CFLAGS_HOST) -I$(FMI3_INC) -Isrc/fmu -fPIC
 FMU_GLUE  := src/fmu/fmu_fmi3.c src/fmu/fmu_vars.c src/fmu/fmu_plant.c
 FMU_HDRS  := $(wildcard src/fmu/*.h)
 FMU_OBJS  := $(patsubst src/%.c,$(FMU_DIR)/obj/%.o,$(FMU_GLUE))
-FMU_CORE  := $(patsubst src/%.c,$(FMU_DIR)/obj/%.o,$(CORE_SRCS))
+FMU_CORE_SRCS := $(filter-out $(THREAD_SRCS),$(CORE_SRCS))   # an FMU starts no threads
+FMU_CORE  := $(patsubst src/%.c,$(FMU_DIR)/obj/%.o,$(FMU_CORE_SRCS))
 
 .PHONY: fmu fmu-deps
 
@@ -48,7 +49,7 @@ $(FMU_TREE)/binaries/$(FMU_PLAT)/hexaglide.so: $(FMU_OBJS) $(FMU_CORE) src/fmu/f
 	$(CC) -shared -Wl,--version-script=src/fmu/fmu.map -Wl,-Bsymbolic -o $@ $(FMU_OBJS) $(FMU_CORE) $(LDLIBS_HOST)
 
 # sources/: everything another platform needs to build the binary, and its buildDescription.xml
-FMU_SRC_FILES := $(CORE_SRCS) $(FMU_GLUE) $(wildcard src/*.h src/generated/*.h) $(FMU_HDRS) \
+FMU_SRC_FILES := $(FMU_CORE_SRCS) $(FMU_GLUE) $(wildcard src/*.h src/generated/*.h) $(FMU_HDRS) \
                  $(wildcard $(FMI3_INC)/*.h)
 $(FMU_TREE)/sources/buildDescription.xml: $(FMU_SRC_FILES) src/fmu/fmu.mk
 	@rm -rf $(FMU_TREE)/sources && mkdir -p $(FMU_TREE)/sources
@@ -59,7 +60,7 @@ $(FMU_TREE)/sources/buildDescription.xml: $(FMU_SRC_FILES) src/fmu/fmu.mk
 	  echo '  <!-- compile with $(RT_SAME_FLAGS) to round as build/hexaglide does -->'; \
 	  echo '  <BuildConfiguration modelIdentifier="hexaglide" description="the virtual Hexaglide, C99, libm">'; \
 	  echo '    <SourceFileSet language="C99">'; \
-	  for f in $(notdir $(CORE_SRCS) $(FMU_GLUE)); do echo "      <SourceFile name=\"$$f\"/>"; done; \
+	  for f in $(notdir $(FMU_CORE_SRCS) $(FMU_GLUE)); do echo "      <SourceFile name=\"$$f\"/>"; done; \
 	  echo '    </SourceFileSet>'; \
 	  echo '    <Library name="m"/>'; \
 	  echo '  </BuildConfiguration>'; \
@@ -102,7 +103,7 @@ $(FMU_DIR)/tests/%: tests/fmu/%.c tests/fmu/fmu_test.h $(FMU_OBJS) $(FMU_CORE)
 
 # ... and under ASan + UBSan (the FMU's and the core's sources compiled again, into asan-obj)
 FMU_ASAN := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-FMU_ASAN_OBJS := $(patsubst src/%.c,$(FMU_DIR)/asan-obj/%.o,$(FMU_GLUE) $(CORE_SRCS))
+FMU_ASAN_OBJS := $(patsubst src/%.c,$(FMU_DIR)/asan-obj/%.o,$(FMU_GLUE) $(FMU_CORE_SRCS))
 $(FMU_DIR)/asan-obj/%.o: src/%.c $(wildcard src/*.h src/generated/*.h) $(FMU_HDRS)
 	@mkdir -p $(dir $@)
 	$(CC) $(FMU_CFLAGS) $(FMU_ASAN) -c -o $@ $<

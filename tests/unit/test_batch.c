@@ -1,0 +1,116 @@
+/* test_batch.c - hg_batch_run against serial runs: every job's summary
+ * and traces equal what hg_loop_init + hg_loop_run give on their own, bit
+ * for bit, with 1, 2 and 5 threads (rigid and flexible trains, three gain
+ * sets, a notch on two joints, a trip, a job whose config is refused);
+ * the refused arguments; and the notch in the loop is biquad.N between
+ * pid.N.output and the DAC (its DAC values are a biquad fed the pid outputs). */
+#include <string.h>
+#include "hg_batch.h"
+#include "hg_errors.h"
+#include "hg_scheme.h"
+#include "hg_test.h"
+
+#define N 1200
+#define JOBS 8
+
+static double cmd[N * 6];
+
+/* Serial reference of one job: hg_loop_run on a loop of its own. */
+static int serial(const hg_batch_job *j, hg_loop_summary *sum, double *fe, double *out)
+{
+    static hg_loop L;
+    int rc = hg_loop_init(&L, j->cfg, j->params);
+    if (rc)
+        return rc;
+    return hg_loop_run(&L, j->cmd_mm, j->n, j->from, fe, out, sum);
+}
+
+int main(void)
+{
+    static hg_loop_config cfg[JOBS];
+    static double fe[JOBS][N * 6], out[JOBS][N * 6], fe_s[N * 6], out_s[N * 6], load[N * 6];
+    hg_board_params flex, rigid;
+    hg_batch_job jobs[JOBS];
+    hg_batch_result res[JOBS];
+    hg_params p;
+    int i, k, t, same_sum = 1, same_trace = 1, same_rc = 1;
+    static const int threads[] = {1, 2, 5};
+
+    for (i = 0; i < N; i++)
+        for (k = 0; k < 6; k++)
+            cmd[6 * i + k] = (5.0 + k) * (1 - cos(2 * 3.14159265358979323846 * i / N));
+    hg_params_default(&p);
+    hg_test_block(&flex, &p, 1, HG_INTEGRATOR_HEUN);
+    p.k_axial_n_per_m = 0.0;
+    hg_test_block(&rigid, &p, 1, HG_INTEGRATOR_HEUN);
+    for (i = 0; i < JOBS; i++) {
+        hg_loop_config_default(&cfg[i]);
+        for (k = 0; k < 6; k++) {
+            cfg[i].pid[k].pgain = 10.0 + 5.0 * (i % 3);
+            cfg[i].pid[k].igain = 40.0 * (1 + i % 2);
+            cfg[i].pid[k].dgain = 0.02 + 0.01 * (i % 3);
+            cfg[i].pid[k].ff1 = 0.026;
+            cfg[i].pid[k].ff2 = 0.00036;
+            cfg[i].pid[k].bias = 0.26;
+            cfg[i].pid[k].maxoutput = 10.0;
+        }
+        cfg[i].ferror_limit_mm = 2.0;
+        jobs[i] = (hg_batch_job){&cfg[i], i % 2 ? &rigid : &flex, cmd, N, 100, {fe[i], out[i], 0}};
+    }
+    hg_biquad_notch(&cfg[3].biquad[0], 352.75, 0.7);
+    hg_biquad_notch(&cfg[3].biquad[2], 300, 2.0);
+    for (k = 0; k < 6; k++)
+        cfg[5].pid[k].dgain = -0.5;            /* unstable: trips */
+    cfg[6].period_ns = 0;                      /* refused by hg_loop_init */
+    jobs[7].params = 0;                        /* the plant's defaults */
+
+    for (t = 0; t < 3; t++) {
+        memset(res, 0x55, sizeof res);
+        CHECK(hg_batch_run(jobs, JOBS, threads[t], res) == 0, "hg_batch_run on %d thread(s) returns 0", threads[t]);
+        for (i = 0; i < JOBS; i++) {
+            hg_loop_summary sum;
+            int rc = serial(&jobs[i], &sum, fe_s, out_s);
+            same_rc &= rc == res[i].rc;
+            if (rc == HG_ERR_BAD_DT)
+                continue;
+            same_sum &= memcmp(&sum, &res[i].sum, sizeof sum) == 0;
+            same_trace &= memcmp(fe_s, fe[i], sizeof(double) * 6 * sum.periods) == 0 &&
+                          memcmp(out_s, out[i], sizeof(double) * 6 * sum.periods) == 0;
+        }
+    }
+    CHECK(same_rc && res[6].rc == HG_ERR_BAD_DT, "every job's code as the serial run's (the refused period: %d)", res[6].rc);
+    CHECK(same_sum, "every summary (peaks, RMS, tool error, periods, trip) = hg_loop_run's, bit for bit, on 1, 2, 5 threads");
+    CHECK(same_trace, "every f-error and pid-output trace = hg_loop_run's, bit for bit");
+    CHECK(res[5].sum.tripped_at >= 0 && res[5].sum.periods == res[5].sum.tripped_at + 1,
+          "the unstable job tripped (period %ld) and stopped there", res[5].sum.tripped_at);
+    CHECK(res[0].sum.periods == N && res[0].sum.tripped_at < 0, "a stable job ran its %d periods", N);
+
+    /* the notch sits between pid.N.output and the DAC: the peak DAC value of
+     * the notched joint is that of a biquad fed the pid outputs */
+    {
+        hg_biquad b;
+        double peak = 0;
+        hg_biquad_notch(&b, 352.75, 0.7);
+        for (i = 0; i < res[3].sum.periods; i++) {
+            b.in = out[3][6 * i];
+            hg_biquad_run(&b, 1000000);
+            if (i >= 100 && fabs(b.out) > peak)
+                peak = fabs(b.out);
+        }
+        CHECK(peak == res[3].sum.peak_output_v[0] && peak != res[3].sum.peak_output_v[1],
+              "notched joint 0: peak DAC value %.6f V = a biquad on its pid outputs (joint 1 unfiltered: %.6f V)",
+              peak, res[3].sum.peak_output_v[1]);
+    }
+    /* the load trace is the carriage: it lags the encoder by the train's windup */
+    {
+        hg_batch_job j = jobs[0];
+        j.trace = (hg_loop_trace){0, 0, load};
+        hg_batch_run(&j, 1, 1, res);
+        CHECK(fabs(load[6 * (N / 2)] - cmd[6 * (N / 2)]) < 0.05, "load trace near the command mid-move (%.4f vs %.4f mm)",
+              load[6 * (N / 2)], cmd[6 * (N / 2)]);
+    }
+    CHECK(hg_batch_run(jobs, -1, 2, res) == HG_ERR_BAD_PARAM && hg_batch_run(0, 3, 2, res) == HG_ERR_BAD_PARAM &&
+          hg_batch_run(jobs, 0, 2, 0) == 0, "njobs < 0 or no jobs array refused; an empty batch is 0");
+    CHECK(hg_batch_cores() >= 1, "hg_batch_cores: %d", hg_batch_cores());
+    return hg_test_exit();
+}
