@@ -12,7 +12,6 @@ Exit codes: 0 ok, 1 no stable gains / unstable gains given, 2 bad input.
 """
 import argparse
 import ctypes as C
-import multiprocessing
 import os
 import re
 import sys
@@ -30,6 +29,7 @@ except ImportError as _ex:  # a message, not a traceback: which interpreter is n
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
+import hg_margins as hgm  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 PERIOD_S = 0.001
@@ -284,25 +284,13 @@ def model_start(cmd, params=None):
             "c_visc": m.params["c_visc"], "fpv": fpv}
 
 
-def pid_from_bandwidth(start, hz, zeta):
-    """P, I, D (per joint) placing the closed-loop poles of m s^3 + (c + D) s^2 + P s + I at
-    (s + w)(s^2 + 2 zeta w s + w^2), w = 2 pi hz (SI, then mm and volts)."""
-    w = 2 * np.pi * hz
-    m, c, fpv = start["mass_kg"], start["c_visc"], start["fpv"]
-    P = m * (1 + 2 * zeta) * w * w / fpv / 1000.0
-    D = np.maximum(m * (2 * zeta + 1) * w - c, 0.0) / fpv / 1000.0
-    I = m * w ** 3 / fpv / 1000.0
-    return P, I, D
+pid_from_bandwidth = hgm.pid_from_bandwidth
 
 
 # ------------------------------------------------------------------ evaluation (runs in workers)
-PROBLEM = {}
-
-
-def gains_from_x(x, prob=None):
+def gains_from_x(x, prob):
     """Search vector -> six INI gain dicts: x = log10 of multipliers of the model's P, I, D,
     and multipliers of FF1, FF2."""
-    prob = prob or PROBLEM
     b = prob["base"]
     out = []
     for j in range(6):
@@ -337,41 +325,61 @@ def approach_of(i):
     return None if i == 0 else APPROACH_MM * np.array([1.0 if (i >> j) & 1 else -1.0 for j in range(6)])
 
 
-def trajectory_runs(gains, prob, settles, keep=False):
+def loop_cfg(gains, prob, notch=None):
+    """hg_loop_config of the gains (and notch) with the problem's trip limit."""
+    return hg.loop_config(gains, ferror_limit_mm=prob["ferror_limit"], notch=notch)
+
+
+def trajectory_jobs(cfg, prob, settles, keep=False):
+    """The batch jobs of trajectory_runs: the trajectory after each settle and approach."""
+    jobs = []
+    for i, settle in enumerate(settles):
+        key = (settle, i)
+        if key not in prob.setdefault("seqs", {}):
+            prob["seqs"][key] = lead_in(prob["cmd"], settle, approach_of(i))
+        seq, s = prob["seqs"][key]
+        jobs.append(hg.Job(cfg, prob["board_params"], seq, start=s, keep=keep))
+    return jobs
+
+
+def trajectory_runs(gains, prob, settles, keep=False, notch=None):
     """Closed-loop runs over the trajectory after different settle times and
     approaches to the start (the encoder and DAC quantization and where
     static friction holds each carriage make single runs differ by about a
-    count)."""
-    res = []
-    for i, settle in enumerate(settles):
-        seq, s = lead_in(prob["cmd"], settle, approach_of(i))
-        loop = hg.Loop(gains, ferror_limit_mm=prob["ferror_limit"])
-        r = loop.run(seq, start=s, keep=keep)
-        if keep and r.ferror_mm is not None:
-            r.ferror_mm, r.output_v = r.ferror_mm[s:], r.output_v[s:]
-        res.append(r)
+    count), through hg.batch on prob["threads"] threads."""
+    jobs = trajectory_jobs(loop_cfg(gains, prob, notch), prob, settles, keep)
+    res = hg.batch(jobs, prob.get("threads", 1))
+    if keep:
+        for j, r in zip(jobs, res):
+            if r.ferror_mm is not None:
+                r.ferror_mm, r.output_v = r.ferror_mm[j.start:], r.output_v[j.start:]
     return res
 
 
-def step_response(gains, prob, joint=0, step_mm=0.05, gain_factor=1.0, n=600):
-    """Feedback (mm) of joint `joint` after a command step (others hold), after settling;
-    P, I, D scaled by gain_factor (gain-margin test). None when the loop tripped."""
-    g = [dict(x) for x in gains]
-    for x in g:
-        for k in ("P", "I", "D"):
-            x[k] *= gain_factor
-    loop = hg.Loop(g, ferror_limit_mm=prob["ferror_limit"])
-    pre = np.zeros((SETTLE, 6))
-    r0 = loop.run(pre, keep=False)
-    if not r0.ok:
-        return None
-    cmd = np.zeros((n, 6))
-    cmd[:, joint] = step_mm
-    r = loop.run(cmd)
+def step_job(cfg, prob, joint=0, step_mm=0.05, n=600):
+    """The batch job of step_response: SETTLE periods at HOME, then a command step."""
+    key = ("step", joint, step_mm, n)
+    if key not in prob.setdefault("seqs", {}):
+        cmd = np.zeros((SETTLE + n, 6))
+        cmd[SETTLE:, joint] = step_mm
+        prob["seqs"][key] = cmd
+    return hg.Job(cfg, prob["board_params"], prob["seqs"][key], keep=True)
+
+
+def step_feedback(job, r, joint=0):
+    """The feedback (mm) after the step of step_job's run r; None when the loop tripped."""
     if not r.ok:
         return None
-    fb = cmd[:, joint] - np.r_[r.ferror_mm[1:, joint], r.ferror_mm[-1, joint]]
-    return fb
+    fe = r.ferror_mm[SETTLE:, joint]
+    cmd = job.cmd[SETTLE:, joint]
+    return cmd - np.r_[fe[1:], fe[-1]]
+
+
+def step_response(gains, prob, joint=0, step_mm=0.05, n=600, notch=None):
+    """Feedback (mm) of joint `joint` after a command step (others hold), after settling.
+    None when the loop tripped."""
+    job = step_job(loop_cfg(gains, prob, notch), prob, joint, step_mm, n)
+    return step_feedback(job, hg.batch([job], 1)[0], joint)
 
 
 def step_metrics(fb, step_mm=0.05):
@@ -384,90 +392,56 @@ def step_metrics(fb, step_mm=0.05):
     return over, settled
 
 
-def gain_margin_ok(gains, prob):
-    """The loop still settles with P, I, D doubled (gain margin >= 6 dB)."""
-    fb = step_response(gains, prob, gain_factor=prob["gm_factor"], n=800)
-    over, settled = step_metrics(fb)
-    return settled and over < 1.0
+def margins_of(gains, prob, notch=None):
+    """The loop's margins on the measured plant (hg_margins.margins)."""
+    return hgm.margins(gains, prob["frf_hz"], prob["frf"], notch, prob["mode_hz"])
 
 
-def cost(x):
-    """What the search minimizes: worst peak |f-error| over joints and runs (mm),
-    plus penalties for voltage above the limit, step overshoot and gain margin."""
-    prob = PROBLEM
-    gains = gains_from_x(x)
-    runs = trajectory_runs(gains, prob, prob["search_settles"])
-    if not all(r.ok for r in runs):
-        return 1.0 + np.sum([r.periods for r in runs]) * -1e-9
-    peak = max(r.peak_ferror_mm.max() for r in runs)
-    rms = max(r.rms_ferror_mm.max() for r in runs)
-    volts = max(r.peak_output_v.max() for r in runs)
-    c = peak + 0.2 * rms
-    c += 1.0 * max(0.0, volts - prob["vmax"])      # 1 mm per volt over: a hard limit in effect
-    over, settled = step_metrics(step_response(gains, prob))
-    if not settled:
-        return 0.5 + c
-    c += 1.0 * max(0.0, over - prob["max_overshoot"])  # 0.01 mm per % over: hard in effect
-    if not gain_margin_ok(gains, prob):
-        c += 0.05
+def margin_penalty(m):
+    """What the search adds for margins short of what tune asks: 0.05 mm per criterion
+    missed plus the shortfall (hg_margins.verdict's criteria)."""
+    c = 0.0
+    if m["mode_modulus"] is not None and m["mode_modulus"] < hgm.MIN_MODULUS:
+        c += 0.05 + 0.1 * (hgm.MIN_MODULUS - m["mode_modulus"])
+    if m["gm_db"] < hgm.MIN_GM_DB:
+        c += 0.05 + 0.01 * (hgm.MIN_GM_DB - m["gm_db"])
+    if m["pm_deg"] < hgm.MIN_PM_DEG:
+        c += 0.05 + 0.001 * (hgm.MIN_PM_DEG - m["pm_deg"])
     return c
 
 
-def init_worker(prob):
-    PROBLEM.clear()
-    PROBLEM.update(prob)
-
-
-# ------------------------------------------------------------------ frequency response
-def sine_sweep(gains, prob, freqs, joint=0, amp_mm=0.02):
-    """Closed-loop gain and phase (deg) from command to feedback of one joint,
-    by correlating the feedback with the commanded sine over the second half
-    of the run. Feedback of period k is the encoder position read at its start
-    (time k T), the command the one motion issues then."""
-    mags, phases = [], []
-    for f in freqs:
-        loop = hg.Loop(gains, ferror_limit_mm=prob["ferror_limit"])
-        loop.run(np.zeros((SETTLE, 6)), keep=False)
-        cycles = max(4, int(np.ceil(f * 0.3)))
-        n = int(round(cycles / f / PERIOD_S))
-        t = np.arange(n) * PERIOD_S
-        cmd = np.zeros((n, 6))
-        cmd[:, joint] = amp_mm * np.sin(2 * np.pi * f * t)
-        r = loop.run(cmd)
-        if not r.ok:
-            mags.append(np.nan)
-            phases.append(np.nan)
+def costs(xs, prob, notch=None):
+    """What the search minimizes, for every candidate x of xs in one batch (prob["threads"]
+    threads, no Python per period): worst peak |f-error| over joints and runs (mm), plus
+    penalties for voltage above the limit, step overshoot and the margins on the plant."""
+    cands, jobs = [], []
+    for x in xs:
+        gains = gains_from_x(x, prob)
+        cfg = loop_cfg(gains, prob, notch)
+        tj = trajectory_jobs(cfg, prob, prob["search_settles"])
+        sj = step_job(cfg, prob)
+        cands.append((gains, cfg, len(jobs), len(tj), sj))
+        jobs.extend(tj + [sj])
+    res = hg.batch(jobs, prob.get("threads", 1))
+    out = []
+    for gains, _cfg, i0, nt, sj in cands:
+        runs = res[i0:i0 + nt]
+        if not all(r.ok for r in runs):
+            out.append(1.0 + np.sum([r.periods for r in runs]) * -1e-9)
             continue
-        fb = np.r_[0.0, cmd[:-1, joint] - r.ferror_mm[1:, joint]]   # f-error = previous command - position
-        kk = np.arange(n // 2, n)
-        ref = np.exp(-2j * np.pi * f * t[kk])
-        h = np.sum(fb[kk] * ref) / np.sum(cmd[kk, joint] * ref)
-        mags.append(abs(h))
-        phases.append(np.degrees(np.angle(h)))
-    return np.array(mags), np.array(phases)
-
-
-def loop_margins(gains, prob, freqs):
-    """Open-loop response L = T / (1 - T) from a sweep with the feed-forward
-    terms off (then T = L / (1 + L)); gain margin (dB) at the phase crossover,
-    phase margin (deg) at the gain crossover; nan where none is in the range."""
-    g0 = [dict(g, FF0=0.0, FF1=0.0, FF2=0.0, FF3=0.0) for g in gains]
-    mag, ph = sine_sweep(g0, prob, freqs)
-    T = mag * np.exp(1j * np.radians(ph))
-    L = T / (1 - T)
-    phase = np.degrees(np.unwrap(np.angle(L)))
-    gm = pm = np.nan
-    k = np.where((phase[:-1] > -180) & (phase[1:] <= -180))[0]
-    if len(k):
-        i = k[0]
-        w = (-180 - phase[i]) / (phase[i + 1] - phase[i])
-        gm = -20 * np.log10(np.exp(np.log(abs(L[i])) * (1 - w) + np.log(abs(L[i + 1])) * w))
-    k = np.where((abs(L[:-1]) >= 1) & (abs(L[1:]) < 1))[0]
-    if len(k):
-        i = k[0]
-        w = np.log(abs(L[i])) / (np.log(abs(L[i])) - np.log(abs(L[i + 1])))
-        pm = 180 + phase[i] + w * (phase[i + 1] - phase[i])
-    return L, phase, gm, pm
+        peak = max(r.peak_ferror_mm.max() for r in runs)
+        rms = max(r.rms_ferror_mm.max() for r in runs)
+        volts = max(r.peak_output_v.max() for r in runs)
+        c = peak + 0.2 * rms
+        c += 1.0 * max(0.0, volts - prob["vmax"])      # 1 mm per volt over: a hard limit in effect
+        over, settled = step_metrics(step_feedback(sj, res[i0 + nt]))
+        if not settled:
+            out.append(0.5 + c)
+            continue
+        c += 1.0 * max(0.0, over - prob["max_overshoot"])  # 0.01 mm per % over: hard in effect
+        c += margin_penalty(margins_of(gains, prob, notch))
+        out.append(c)
+    return out
 
 
 # ------------------------------------------------------------------ output
@@ -489,29 +463,41 @@ def atomic_write(path, write):
         raise
 
 
-MARGIN_FREQS = np.logspace(0, np.log10(400), 36)   # sine sweep: 1-400 Hz (Nyquist 500 Hz)
 
 
-def ini_text(gains, pred, source):
-    """The suggestion as INI sections + predicted peaks (comment lines)."""
+def ini_text(gains, pred, source, notch=None, without=None):
+    """The suggestion as INI sections + predicted peaks and margins (comment lines); with a
+    notch (f0, Q) its hal lines (commented) and the margins without it (without: predict's)."""
     out = []
     for j, g in enumerate(gains):
         out.append("[JOINT_%d]" % j)
         for k in KEYS:
             out.append("%s = %.6g" % (k, g.get(k, 0.0)))
         out.append("")
-    out.append("# predicted with these gains on %s (%d closed-loop runs through the board model):" % (source, pred["runs"]))
+    out.append("# predicted with these gains%s on %s (%d closed-loop runs through the board model):"
+               % (" and the notch below" if notch else "", source, pred["runs"]))
     for j in range(6):
         out.append("# joint %d: peak |f-error| %.5f mm (%.5f..%.5f), peak output %.3f V"
                    % (j, pred["ferror"][j], pred["ferror_lo"][j], pred["ferror_hi"][j], pred["volts"][j]))
-    if "gm" in pred:
-        out.append("# joint 0 loop margins (sine sweep, feed-forward off): gain margin %.1f dB, phase margin %.0f deg"
-                   % (pred["gm"], pred["pm"]))
+    out.append("# peak tool-path error %.5f mm (the tool against the commanded joints; median of the runs)"
+               % pred["tool"])
+    if "margins" in pred:
+        out.append("# margins on the plant at HOME (docs/tuning.md \"Margins\"): %s" % hgm.describe(pred["margins"]))
+    if notch:
+        out.append("# LinuxCNC's biquad notch f0 %.6g Hz, Q %.6g between pid.N.output and the DAC: in"
+                   % notch)
+        out.append("# configs/hexaglide.hal replace each joint's \"net zNN-output <= pid.N.output => "
+                   "motenc.0.dac-NN-value\" by its two nets")
+        out.append("# below; the addf lines put biquad.N after pid.5.do-pid-calcs, before motenc.0.dac-write:")
+        out += ["#   " + line for line in hgm.notch_hal(*notch).splitlines()]
+        if without:
+            out.append("# without the notch, these gains: %s" % (
+                hgm.describe(without["margins"]) if "margins" in without else "unstable"))
     return "\n".join(out) + "\n"
 
 
-def predict(gains, prob, settles):
-    runs = trajectory_runs(gains, prob, settles)
+def predict(gains, prob, settles, notch=None):
+    runs = trajectory_runs(gains, prob, settles, notch=notch)
     if not all(r.ok for r in runs):
         bad = next(r for r in runs if not r.ok)
         at = bad.tripped_at if bad.tripped_at >= 0 else bad.periods
@@ -521,7 +507,9 @@ def predict(gains, prob, settles):
     fe = np.array([r.peak_ferror_mm for r in runs])
     v = np.array([r.peak_output_v for r in runs])
     return {"ferror": np.median(fe, 0), "ferror_lo": fe.min(0), "ferror_hi": fe.max(0),
-            "volts": v.max(0), "volts_median": np.median(v.max(1)), "runs": len(runs)}, None
+            "volts": v.max(0), "volts_median": np.median(v.max(1)), "runs": len(runs),
+            "tool": float(np.median([r.peak_tool_error_mm for r in runs])),
+            "margins": margins_of(gains, prob, notch)}, None
 
 
 def png_saver(outdir, paths):
@@ -537,7 +525,7 @@ def png_saver(outdir, paths):
     return save
 
 
-def plots(outdir, cur, sug, prob, source):
+def plots(outdir, cur, sug, prob, source, notch=None):
     """step.png, ferror.png, bode.png in outdir (each written to a temp, then renamed)."""
     import matplotlib
     matplotlib.use("Agg")
@@ -579,21 +567,23 @@ def plots(outdir, cur, sug, prob, source):
         a.grid(alpha=0.3)
     save(fig, "tune_ferror.png")
 
-    freqs = MARGIN_FREQS
+    freqs = prob["frf_hz"]
     fig, axs = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
-    for (lab, g), col in zip((("current", cur), ("suggested", sug)), ("C0", "C1")):
-        mag, ph = sine_sweep(g, prob, freqs)
-        L, lph, gm, pm = loop_margins(g, prob, freqs)
-        axs[0].semilogx(freqs, 20 * np.log10(np.maximum(abs(L), 1e-6)), "o-", ms=3, color=col,
-                        label="%s: open loop L (GM %.1f dB, PM %.0f deg)" % (lab, gm, pm))
-        axs[0].semilogx(freqs, 20 * np.log10(np.maximum(mag, 1e-6)), "--", color=col,
-                        label="%s: closed loop fb/cmd" % lab)
-        axs[1].semilogx(freqs, lph, "o-", ms=3, color=col, label="%s: open loop L" % lab)
-        axs[1].semilogx(freqs, np.degrees(np.unwrap(np.radians(ph))), "--", color=col, label="%s: closed loop" % lab)
+    for (lab, g, nf), col in zip((("current", cur, None), ("suggested", sug, notch)), ("C0", "C1")):
+        lam = hgm.loci(g, freqs, prob["frf"], nf)
+        m = margins_of(g, prob, nf)
+        c = int(np.argmin(np.abs(1 + lam).min(0)))          # the locus nearest -1
+        axs[0].semilogx(freqs, 20 * np.log10(np.maximum(abs(lam[:, c]), 1e-6)), "-", color=col,
+                        label="%s%s: L's locus nearest -1 (GM %.1f dB, PM %.0f deg)"
+                        % (lab, " + notch" if nf else "", m["gm_db"], m["pm_deg"]))
+        axs[1].semilogx(freqs, np.degrees(np.unwrap(np.angle(lam[:, c]))), "-", color=col, label=lab)
+    if prob["mode_hz"]:
+        for a in axs:
+            a.axvline(prob["mode_hz"], color="k", lw=0.5, ls=":")
     axs[0].axhline(0, color="k", lw=0.5)
     axs[1].axhline(-180, color="k", lw=0.5)
     axs[0].set_ylabel("gain (dB)")
-    axs[0].set_title("Sine sweep, joint 0, 0.02 mm (model); L from the sweep without feed-forward")
+    axs[0].set_title("Open loop on the plant measured at HOME (docs/tuning.md \"Margins\")")
     axs[1].set_ylabel("phase (deg)")
     axs[1].set_xlabel("frequency (Hz)")
     for a in axs:
@@ -603,9 +593,9 @@ def plots(outdir, cur, sug, prob, source):
     return paths
 
 
-def search(a, prob, joints, cmd):
-    """Model start + differential evolution on all cores; the best six gain dicts."""
-    start = model_start(cmd)
+def setup(a, prob, joints, cmd):
+    """The search's base: the model start's gains (prob["base"], ["fixed"])."""
+    start = model_start(cmd, prob["params"])
     P, I, D = pid_from_bandwidth(start, a.bandwidth, a.damping)
     prob["base"] = {"P": P, "I": I, "D": D, "FF1": start["FF1"], "FF2": start["FF2"], "BIAS": start["BIAS"]}
     prob["fixed"] = [{k: g[k] for k in ("DEADBAND", "MAX_OUTPUT", "MAX_ERROR_I", "INPUT_SCALE", "OUTPUT_SCALE",
@@ -614,37 +604,43 @@ def search(a, prob, joints, cmd):
         "effective mass %.1f-%.1f kg" % (a.bandwidth, a.damping, P[0], I[0], D[0], start["FF1"][0],
                                          start["FF2"][0], start["BIAS"][0], start["mass_kg"].min(),
                                          start["mass_kg"].max()))
-    init_worker(prob)
+    return start
+
+
+def search(a, prob, notch=None):
+    """Differential evolution, every generation's candidates in one hg.batch over a.jobs
+    threads; the best six gain dicts and their cost."""
     x0 = np.array([0.0, 0.0, 0.0, 1.0, 1.0])
-    log("model start: cost %.5f" % cost(x0))
+    log("model start%s: cost %.5f" % (" with the notch" if notch else "", costs([x0], prob, notch)[0]))
     from scipy.optimize import differential_evolution
     bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)]
-    jobs = max(1, a.jobs)
-    evals = [0]
+    gen = [0]
+    best = {}
     t0 = time.time()
 
-    def progress(xk, convergence):
-        evals[0] += 1
-        log("generation %d: best cost %.5f (%.0f s)" % (evals[0], cost(xk), time.time() - t0))
+    def cost(x):
+        return costs([x], prob, notch)[0]
 
-    if jobs > 1:
-        ctx = multiprocessing.get_context("fork")
-        pool = ctx.Pool(jobs, initializer=init_worker, initargs=(prob,))
-        workers = pool.map
-    else:
-        pool, workers = None, 1
-    try:
-        res = differential_evolution(cost, bounds, x0=x0, maxiter=a.maxiter, popsize=a.popsize,
-                                     seed=a.seed, polish=False, tol=1e-3, updating="deferred",
-                                     workers=workers, callback=progress, init="sobol")
-    finally:
-        if pool:
-            pool.close()
-            pool.join()
+    def batch_map(_func, xs):
+        xs = list(xs)
+        cs = costs(xs, prob, notch)
+        for x, c in zip(xs, cs):
+            if not best or c < best["c"]:
+                best.update(c=c, x=np.array(x))
+        return cs
+
+    def progress(xk, convergence):
+        gen[0] += 1
+        log("generation %d: best cost %.5f (%.0f s)" % (gen[0], best.get("c", np.nan), time.time() - t0))
+
+    res = differential_evolution(cost, bounds, x0=x0, maxiter=a.maxiter, popsize=a.popsize,
+                                 seed=a.seed, polish=False, tol=1e-3, updating="deferred",
+                                 workers=batch_map, callback=progress, init="sobol")
     took = time.time() - t0
-    log("sweep: %d closed-loop evaluations in %.1f s on %d process%s (%.0f per second)"
-        % (res.nfev, took, jobs, "es" if jobs > 1 else "", res.nfev / max(took, 1e-9)))
-    return gains_from_x(res.x)
+    log("sweep%s: %d candidates in %.1f s, %d thread%s (hg.batch; %.1f per second)"
+        % (" with the notch" if notch else "", res.nfev, took, prob["threads"],
+           "s" if prob["threads"] > 1 else "", res.nfev / max(took, 1e-9)))
+    return gains_from_x(res.x, prob), float(res.fun)
 
 
 # ------------------------------------------------------------------ main
@@ -670,7 +666,14 @@ def main(argv=None):
     ap.add_argument("--damping", type=float, default=0.7, help="start damping ratio")
     ap.add_argument("--maxiter", type=int, default=25, help="generations of differential evolution")
     ap.add_argument("--popsize", type=int, default=8, help="population per search variable")
-    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="processes (default: all cores)")
+    ap.add_argument("--jobs", type=int, default=0,
+                    help="threads the closed-loop runs share (hg_batch; default 0: every core); the answer "
+                    "is the same for any number")
+    ap.add_argument("--param", action="append", default=[], metavar="NAME=V",
+                    help="a model parameter of the machine tuned on (SI, docs/model.md), e.g. k_axial=0 "
+                    "for rigid drive trains; default the board's defaults (flexible trains)")
+    ap.add_argument("--no-notch", action="store_true",
+                    help="do not try a biquad notch at the drive trains' resonance")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--output", help="also write the suggestion to this file")
     ap.add_argument("--plots", help="directory for tune_step.png, tune_ferror.png, tune_bode.png")
@@ -695,22 +698,45 @@ def main(argv=None):
                 raise BadInput("--set %s: not a number" % s)
             if not np.isfinite(sets[k]):
                 raise BadInput("--set %s: not a finite number" % s)
+        params = hg.Params()
+        for s in a.param:
+            k, _, v = s.partition("=")
+            try:
+                params[k] = float(v)
+            except (KeyError, ValueError):
+                raise BadInput("--param %s: not a model parameter with a number it accepts (names: docs/model.md)"
+                               % s)
+        if a.jobs < 0:
+            raise BadInput("--jobs %d: a number of threads, 0 for every core" % a.jobs)
     except BadInput as ex:
         log(ex)
         return 2
     log("trajectory: %s, %d samples (%.1f s)" % (source, len(cmd), len(cmd) * PERIOD_S))
     cur = [dict(pid_keys(g), **sets) for g in joints]
     ferror_limit = min(g.get("FERROR", 2.0) for g in joints)
-    prob = {"cmd": cmd, "ferror_limit": ferror_limit, "gm_factor": 2.0,
-            "max_overshoot": a.max_overshoot,
-            "search_settles": [SETTLE + 137 * i for i in range(max(1, a.runs))]}
+    threads = a.jobs or hg.cores()
+    prob = {"cmd": cmd, "ferror_limit": ferror_limit, "max_overshoot": a.max_overshoot,
+            "search_settles": [SETTLE + 137 * i for i in range(max(1, a.runs))],
+            "params": params, "board_params": params.board_params(), "threads": threads}
     settles = PREDICT_SETTLES
+    start = setup(a, prob, joints, cmd)
+    t0 = time.time()
+    prob["frf_hz"], prob["frf"] = hgm.plant_frf(start, params, threads)
+    prob["mode_hz"] = hgm.first_mode(prob["frf_hz"], prob["frf"])
+    log("plant at HOME measured (%d tones, %.1f s): %s" % (
+        len(prob["frf_hz"]), time.time() - t0,
+        "first drive-train resonance the loops see at %.0f Hz" % prob["mode_hz"] if prob["mode_hz"]
+        else "no drive-train resonance below %.0f Hz (rigid trains)" % (0.5 / PERIOD_S)))
 
     cur_pred, why = predict(cur, prob, settles)
     if a.evaluate:
         if cur_pred is None:
             log("gains of %s%s: %s" % (a.ini, " with " + " ".join(a.set) if a.set else "", why))
             return 1
+        bad = hgm.verdict(cur_pred["margins"])
+        log("margins: %s" % hgm.describe(cur_pred["margins"]))
+        if bad:
+            log("warning: gains of %s%s: %s" % (a.ini, " with " + " ".join(a.set) if a.set else "", bad))
         text = ini_text([dict({k: 0.0 for k in KEYS}, **g) for g in cur], cur_pred, source)
         if a.output:
             atomic_write(a.output, lambda f: f.write(text.encode()))
@@ -733,31 +759,45 @@ def main(argv=None):
             return 2
         sug = [dict(c, **g) for c, g in zip(cur, given)]
         log("gains of %s (no search)" % a.gains)
+        notch, without = None, None
     else:
-        sug = search(a, prob, joints, cmd)
-    pred, why = predict(sug, prob, settles)
+        sug, c_plain = search(a, prob)
+        notch, without = None, None
+        if prob["mode_hz"] and not a.no_notch:
+            nf = hgm.notch_for(sug, prob["frf_hz"], prob["frf"], prob["mode_hz"])
+            log("trying LinuxCNC's biquad notch f0 %.0f Hz Q %.1f at the resonance (--no-notch skips it)" % nf)
+            sug_n, c_notch = search(a, prob, [nf] * 6)
+            if c_notch < c_plain:
+                without, _ = predict(sug_n, prob, settles)
+                sug, notch = sug_n, nf
+                log("the notch lets these gains work: cost %.5f against %.5f without it" % (c_notch, c_plain))
+            else:
+                log("the notch does not help (cost %.5f against %.5f without it): none proposed" % (c_notch, c_plain))
+    pred, why = predict(sug, prob, settles, [notch] * 6 if notch else None)
     if pred is None:
         log("no stable gains found: %s" % why)
         return 1
-    over, settled = step_metrics(step_response(sug, prob))
-    _, _, pred["gm"], pred["pm"] = loop_margins(sug, prob, MARGIN_FREQS)
-    if not settled or not gain_margin_ok(sug, prob) or over > a.max_overshoot + 0.02:
-        log("the best gains found do not meet the stability margins (overshoot %.0f%%, settled %s, "
-            "gain margin 6 dB %s): nothing suggested" % (100 * over, settled, gain_margin_ok(sug, prob)))
+    over, settled = step_metrics(step_response(sug, prob, notch=[notch] * 6 if notch else None))
+    bad = hgm.verdict(pred["margins"])
+    if not settled or bad or over > a.max_overshoot + 0.02:
+        log("the best gains found do not meet the stability margins (overshoot %.0f%%, settled %s%s): "
+            "nothing suggested" % (100 * over, settled, "; " + bad if bad else ""))
         return 1
-    log("suggested: peak |f-error| %.5f mm (current %s), peak output %.3f V (limit %.3f V), "
-        "step overshoot %.0f%%, stable with P I D doubled; sweep: gain margin %.1f dB, phase margin %.0f deg"
+    log("suggested: peak |f-error| %.5f mm (current %s), peak tool-path error %.5f mm, peak output %.3f V "
+        "(limit %.3f V), step overshoot %.0f%%; %s"
         % (pred["ferror"].max(), "%.5f mm" % cur_pred["ferror"].max() if cur_pred else "unstable",
-           pred["volts"].max(), prob["vmax"], 100 * over, pred["gm"], pred["pm"]))
+           pred["tool"], pred["volts"].max(), prob["vmax"], 100 * over, hgm.describe(pred["margins"])))
     if cur_pred is not None and pred["ferror"].max() >= cur_pred["ferror"].max():
         log("note: the suggestion is not better than the current gains on this trajectory "
             "(%.5f vs %.5f mm): the current gains are already at the encoder's resolution or the "
             "limits (--max-volts, --max-overshoot) bind" % (pred["ferror"].max(), cur_pred["ferror"].max()))
-    text = ini_text(sug, pred, source)
+    if cur_pred is not None and hgm.verdict(cur_pred["margins"]):
+        log("warning: the current gains: %s" % hgm.verdict(cur_pred["margins"]))
+    text = ini_text(sug, pred, source, notch, without)
     if a.output:
         atomic_write(a.output, lambda f: f.write(text.encode()))
     if a.plots:
-        for p in plots(a.plots, cur if cur_pred else sug, sug, prob, source):
+        for p in plots(a.plots, cur if cur_pred else sug, sug, prob, source, notch):
             log("wrote", p)
     sys.stdout.write(text)
     return 0
