@@ -488,7 +488,7 @@ def ini_text(gains, pred, source, notch=None, without=None):
                    % notch)
         out.append("# configs/hexaglide.hal replace each joint's \"net zNN-output <= pid.N.output => "
                    "motenc.0.dac-NN-value\" by its two nets")
-        out.append("# below; the addf lines put biquad.N after pid.5.do-pid-calcs, before motenc.0.dac-write:")
+        out.append("# below, and put the addf lines after addf pid.5.do-pid-calcs, before addf motenc.0.dac-write:")
         out += ["#   " + line for line in hgm.notch_hal(*notch).splitlines()]
         if without:
             out.append("# without the notch, these gains: %s" % (
@@ -780,8 +780,10 @@ def main(argv=None):
     over, settled = step_metrics(step_response(sug, prob, notch=[notch] * 6 if notch else None))
     bad = hgm.verdict(pred["margins"])
     if not settled or bad or over > a.max_overshoot + 0.02:
-        log("the best gains found do not meet the stability margins (overshoot %.0f%%, settled %s%s): "
-            "nothing suggested" % (100 * over, settled, "; " + bad if bad else ""))
+        log("the %s do not meet the stability margins (overshoot %.0f%%, settled %s%s; %s; peak |f-error| "
+            "%.5f mm, peak tool-path error %.5f mm): nothing suggested"
+            % ("gains of " + a.gains if a.gains else "best gains found", 100 * over, settled,
+               "; " + bad if bad else "", hgm.describe(pred["margins"]), pred["ferror"].max(), pred["tool"]))
         return 1
     log("suggested: peak |f-error| %.5f mm (current %s), peak tool-path error %.5f mm, peak output %.3f V "
         "(limit %.3f V), step overshoot %.0f%%; %s"

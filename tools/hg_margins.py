@@ -275,9 +275,11 @@ HAL_NETS = ["z11", "z12", "z21", "z22", "z31", "z32"]   # configs/hexaglide.hal'
 
 def notch_hal(f0, q, joints=6):
     """The hal lines that put a biquad.N notch (f0 Hz, Q) between pid.N.output and
-    motenc.0.dac-NN-value of configs/hexaglide.hal, as comment-free text."""
+    motenc.0.dac-NN-value of configs/hexaglide.hal, as comment-free text: the addf lines
+    belong after `addf pid.5.do-pid-calcs`, before `addf motenc.0.dac-write` (the servo
+    thread runs functions in the order added); the nets replace the zNN-output nets."""
     out = ["loadrt biquad count=%d" % joints]
-    out += ["addf biquad.%d servo-thread %d" % (j, 12 + j) for j in range(joints)]
+    out += ["addf biquad.%d servo-thread" % j for j in range(joints)]
     for j in range(joints):
         out += ["setp biquad.%d.type 2" % j, "setp biquad.%d.f0 %.6g" % (j, f0), "setp biquad.%d.Q %.6g" % (j, q),
                 "setp biquad.%d.enable 1" % j,
