@@ -330,6 +330,14 @@ def loop_cfg(gains, prob, notch=None):
     return hg.loop_config(gains, ferror_limit_mm=prob["ferror_limit"], notch=notch)
 
 
+def board_params(prob):
+    """The board parameters of the machine tuned on: prob["board_params"], by default the
+    board's defaults (a caller's prob of only cmd and ferror_limit: tools/verify_gains.py)."""
+    if "board_params" not in prob:
+        prob["board_params"] = hg.Params().board_params()
+    return prob["board_params"]
+
+
 def trajectory_jobs(cfg, prob, settles, keep=False):
     """The batch jobs of trajectory_runs: the trajectory after each settle and approach."""
     jobs = []
@@ -338,7 +346,7 @@ def trajectory_jobs(cfg, prob, settles, keep=False):
         if key not in prob.setdefault("seqs", {}):
             prob["seqs"][key] = lead_in(prob["cmd"], settle, approach_of(i))
         seq, s = prob["seqs"][key]
-        jobs.append(hg.Job(cfg, prob["board_params"], seq, start=s, keep=keep))
+        jobs.append(hg.Job(cfg, board_params(prob), seq, start=s, keep=keep))
     return jobs
 
 
@@ -363,7 +371,7 @@ def step_job(cfg, prob, joint=0, step_mm=0.05, n=600):
         cmd = np.zeros((SETTLE + n, 6))
         cmd[SETTLE:, joint] = step_mm
         prob["seqs"][key] = cmd
-    return hg.Job(cfg, prob["board_params"], prob["seqs"][key], keep=True)
+    return hg.Job(cfg, board_params(prob), prob["seqs"][key], keep=True)
 
 
 def step_feedback(job, r, joint=0):
@@ -509,7 +517,7 @@ def predict(gains, prob, settles, notch=None):
     return {"ferror": np.median(fe, 0), "ferror_lo": fe.min(0), "ferror_hi": fe.max(0),
             "volts": v.max(0), "volts_median": np.median(v.max(1)), "runs": len(runs),
             "tool": float(np.median([r.peak_tool_error_mm for r in runs])),
-            "margins": margins_of(gains, prob, notch)}, None
+            **({"margins": margins_of(gains, prob, notch)} if "frf" in prob else {})}, None
 
 
 def png_saver(outdir, paths):
