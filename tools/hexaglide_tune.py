@@ -285,6 +285,7 @@ def model_start(cmd, params=None):
 
 
 pid_from_bandwidth = hgm.pid_from_bandwidth
+_params_check = hg._sig("hg_params_check", C.c_int, C.c_void_p, C.POINTER(C.c_char_p), C.POINTER(C.c_char_p))
 
 
 # ------------------------------------------------------------------ evaluation (runs in workers)
@@ -714,6 +715,10 @@ def main(argv=None):
             except (KeyError, ValueError):
                 raise BadInput("--param %s: not a model parameter with a number it accepts (names: docs/model.md)"
                                % s)
+        bad_field, bad_why = C.c_char_p(), C.c_char_p()
+        if a.param and _params_check(params.buf, C.byref(bad_field), C.byref(bad_why)):
+            raise BadInput("--param %s: the model refuses it: %s %s (docs/model.md)"
+                           % (" ".join(a.param), (bad_field.value or b"?").decode(), (bad_why.value or b"").decode()))
         if a.jobs < 0:
             raise BadInput("--jobs %d: a number of threads, 0 for every core" % a.jobs)
     except BadInput as ex:
@@ -729,7 +734,11 @@ def main(argv=None):
     settles = PREDICT_SETTLES
     start = setup(a, prob, joints, cmd)
     t0 = time.time()
-    prob["frf_hz"], prob["frf"] = hgm.plant_frf(start, params, threads)
+    try:
+        prob["frf_hz"], prob["frf"] = hgm.plant_frf(start, params, threads)
+    except hg.HexaglideError as ex:
+        log("the plant's frequency response at HOME could not be measured: %s (the machine of --param?)" % ex)
+        return 1
     prob["mode_hz"] = hgm.first_mode(prob["frf_hz"], prob["frf"])
     log("plant at HOME measured (%d tones, %.1f s): %s" % (
         len(prob["frf_hz"]), time.time() - t0,
