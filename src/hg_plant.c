@@ -3,10 +3,12 @@
 #include "hg_string.h"
 #include "hg_plant.h"
 #include "hg_plant_hexaglide.h"
+#include "hg_plant_serial.h"
 
 /* Append only: a record names its plant by the index. */
 static const hg_plant *const plants[] = {
     &hg_plant_hexaglide,
+    &hg_plant_serial,
 };
 
 const hg_plant *hg_plant_at(int i)
