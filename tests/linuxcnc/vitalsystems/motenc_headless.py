@@ -11,7 +11,9 @@ $HG_OUT/$HG_TAG.json (and the program's samples to $HG_OUT/$HG_TAG.csv):
     what LinuxCNC says and does; machine on, override limits, jog back off;
  3. home joints 2, 0, 1 one by one (the stock INI has no HOME_SEQUENCE):
     home switch, back off at the latch speed, the encoder index;
- 4. run HG_PROGRAM, sampling joint.N.f-error and vel-cmd every servo period;
+ 4. run HG_PROGRAM, sampling joint.N.f-error and vel-cmd every servo period,
+    with the stock gains, then again with velocity feed-forward FF1 from the
+    INI's OUTPUT_SCALE and the amplifiers' V_RATED ($HG_TAG_ff1.csv);
  5. E-STOP from LinuxCNC (the board's loop opens, its amplifiers go off),
     reset and on; then the board's E-STOP button during an MDI move
     (LinuxCNC sees emc-enable-in drop and goes to ESTOP), release, reset, on.
@@ -162,7 +164,10 @@ def step_home():
 
 
 class Sampler:
-    def __init__(self, path):
+    """sampler on the servo thread (SAMPLED, enabled by a signal); start(path) .. finish()
+    writes one CSV of a run."""
+
+    def __init__(self):
         pins = {}
         for line in halcmd("-s", "show", "pin").splitlines():
             f = line.split()
@@ -177,17 +182,17 @@ class Sampler:
             halcmd("net", sig, "sampler.0.pin.%d" % i)
         halcmd("net", "hgs-enable", "sampler.0.enable")
         halcmd("addf", "sampler.0", "servo-thread")
-        self.out = open(path, "w")
-        self.out.write(",".join(SAMPLED) + "\n")
-        self.out.flush()
-        self.raw = open(path + ".raw", "w")
-        self.proc = subprocess.Popen(["halsampler", "-c", "0"], stdout=self.raw)
-        self.path = path
 
     def enable(self, on):
         halcmd("sets", "hgs-enable", "1" if on else "0")
 
-    def close(self):
+    def start(self, path):
+        self.path = path
+        self.raw = open(path + ".raw", "w")
+        self.proc = subprocess.Popen(["halsampler", "-c", "0"], stdout=self.raw)
+        self.enable(True)
+
+    def finish(self):
         self.enable(False)
         for _ in range(100):
             if int(float(g("sampler.0.curr-depth"))) == 0:
@@ -197,33 +202,59 @@ class Sampler:
         self.proc.terminate()
         self.proc.wait(5)
         self.raw.close()
-        with open(self.path + ".raw") as src:
+        with open(self.path, "w") as out, open(self.path + ".raw") as src:
+            out.write(",".join(SAMPLED) + "\n")
             for line in src:
                 f = line.split()
                 if len(f) == len(SAMPLED):
-                    self.out.write(",".join(f) + "\n")
-        self.out.close()
+                    out.write(",".join(f) + "\n")
         os.remove(self.path + ".raw")
 
 
-def step_program():
-    sm = Sampler(os.path.join(OUT, TAG + ".csv"))
+SAMPLER = []
+
+
+def run_program(path):
+    if not SAMPLER:
+        SAMPLER.append(Sampler())
+    sm = SAMPLER[0]
     c.mode(linuxcnc.MODE_AUTO)
     wait(lambda: s.task_mode == linuxcnc.MODE_AUTO, 5)
     n0 = len(messages)
     c.program_open(PROGRAM)
-    sm.enable(True)
+    sm.start(path)
     t0 = time.time()
     c.auto(linuxcnc.AUTO_RUN, 0)
     wait(lambda: s.interp_state != linuxcnc.INTERP_IDLE, 5)
     done = wait(lambda: s.interp_state == linuxcnc.INTERP_IDLE, 120)
     secs = time.time() - t0
     time.sleep(0.3)
-    sm.close()
+    sm.finish()
     s.poll()
     drain()
-    result["program"] = {"done": done, "seconds": round(secs, 2), "axis_pos_in": list(s.actual_position[:3]),
-                         "board": board(), "enabled": bool(s.enabled), "messages_during": messages[n0:]}
+    return {"done": done, "seconds": round(secs, 2), "axis_pos_in": list(s.actual_position[:3]),
+            "board": board(), "enabled": bool(s.enabled), "messages_during": messages[n0:]}
+
+
+def step_program():
+    """The program with the stock gains."""
+    result["program"] = run_program(os.path.join(OUT, TAG + ".csv"))
+
+
+def step_program_ff1():
+    """Again with velocity feed-forward FF1 = 1 / (OUTPUT_SCALE V_RATED / 10 V): the
+    velocity-mode amplifier's speed per PID output unit, from the INI."""
+    ini = linuxcnc.ini(os.environ["INI_FILE_NAME"])
+    ff1 = []
+    for j in range(3):
+        v_rated_in = float(ini.find("SERIAL", "V_RATED_%d" % j)) / 25.4
+        ff1.append(10.0 / (float(ini.find("JOINT_%d" % j, "OUTPUT_SCALE")) * v_rated_in))
+        halcmd("setp", "pid.%d.FF1" % j, repr(ff1[-1]))
+    r = run_program(os.path.join(OUT, TAG + "_ff1.csv"))
+    r["ff1"] = ff1
+    for j in range(3):
+        halcmd("setp", "pid.%d.FF1" % j, ini.find("JOINT_%d" % j, "FF1"))
+    result["program_ff1"] = r
 
 
 def step_estop():
@@ -267,7 +298,7 @@ def main():
     comp = hal.component("motenc_headless")    # hal.get_value needs a component
     comp.ready()
     try:
-        for step in (step_estop_start, step_limit, step_home, step_program, step_estop):
+        for step in (step_estop_start, step_limit, step_home, step_program, step_program_ff1, step_estop):
             log(step.__name__)
             step()
         rc = 0
