@@ -303,7 +303,7 @@ _rec_open = hg._sig("hg_record_open", C.c_int, C.c_void_p, C.c_char_p, C.c_size_
 _rec_column = hg._sig("hg_record_column", C.c_int, C.c_void_p, C.c_char_p)
 _rec_kind = hg._sig("hg_record_set_kind", None, C.c_void_p, C.c_int, C.c_int)
 _rec_next = hg._sig("hg_record_next", C.c_int, C.c_void_p, _dp, C.POINTER(_RecErr))
-REC_MAGICS = (b"# hexaglide-record 1", b"# hexaglide-record 2")   # the formats identify reads
+REC_MAGICS = hg.RECORD_MAGICS   # the formats identify reads
 REC_BYTES = 1 << 16           # room for the reader's struct (hg_record: about 5 kB)
 
 
