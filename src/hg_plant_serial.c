@@ -805,6 +805,11 @@ static int step(const hg_plant_model *pm, hg_plant_data *pd, const double volts[
     }
     hg_drive_integral(m->drive, m->n, enabled, &drv, z0, z1, dt_s, d->vloop_int);
     memcpy(d->current_a, drv.i_end, (unsigned long)m->n * sizeof(double));
+    for (k = 0; k < m->n; k++)         /* the drives' state is state too: no NaN escapes with rc 0 */
+        if (!(isfinite(d->current_a[k]) && isfinite(d->vloop_int[k]))) {
+            r->kind = 2, r->channel = k, r->other = -1, r->value = d->current_a[k], r->limit = 0.0;
+            return HG_ERR_STATE_NONFINITE;
+        }
     d->t_s += dt_s;
     return HG_OK;
 }

@@ -201,8 +201,8 @@ int hg_stability_check_axes(const hg_stability_axis *ax, int n_axes, hg_integrat
                             unsigned substeps_min, unsigned substeps_max, hg_stability *out)
 {
     test_system s[HG_STAB_AXIS_SYSTEMS];
-    double h[HG_STAB_SYSTEMS_MAX];     /* each system's longest stable step, in the axes' order */
-    const char *name[HG_STAB_SYSTEMS_MAX];
+    double h[HG_STAB_SYSTEMS_MAX] = {0}; /* each system's longest stable step, in the axes' order */
+    const char *name[HG_STAB_SYSTEMS_MAX] = {0};
     int a, i, m, n = 0, limiting = -1;
     unsigned k, last = 0;              /* last: the last count still unstable */
     if (substeps_min < 1)

@@ -26,6 +26,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_INI = os.path.normpath(os.path.join(HERE, "..", "configs", "hexaglide.ini"))
 LIB_PATH = os.environ.get("HEXAGLIDE_LIB", os.path.join(HERE, "..", "build", "libhexaglide.so"))
 JOINTS = 6
+RECORD_MAGICS = (b"# hexaglide-record 1", b"# hexaglide-record 2")   # line 1 of a record, per format (docs/replay.md)
 MODELS = ["standard", "reduced-joints", "reduced-cartesian", "fused-cartesian"]
 
 try:
