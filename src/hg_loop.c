@@ -68,8 +68,11 @@ static double plant_position_mm(const hg_loop *L, int k)
     return L->out.position[k];
 }
 
-int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
-                    long period_ns, hg_loop_sample *out)
+/* One period (hg_loop_step_io) with add_v[k] (may be 0) added to pid k's
+ * output on its way to the DAC, as a HAL sum2 between them would; out's
+ * output_v is what the DAC got. */
+static int step_dac(hg_loop *L, const double *cmd_mm, const int *enable, long period_ns,
+                    const double *add_v, hg_loop_sample *out)
 {
     double fb[HG_LOOP_JOINTS], dac[HG_LOOP_JOINTS] = {0};
     int k, rc;
@@ -83,7 +86,7 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
             out->ferror_mm[k] = L->prev_cmd_mm[k] - fb[k];
         }
         dac[k] = hg_pid_calc(&L->cfg.pid[k], &L->pid[k], cmd_mm[k], fb[k], enable[k],
-                             L->in.index_enable[k], period_ns);
+                             L->in.index_enable[k], period_ns) + (add_v ? add_v[k] : 0.0);
         if (out)
             out->output_v[k] = dac[k];
     }
@@ -98,14 +101,22 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
     return rc;
 }
 
-int hg_loop_step(hg_loop *L, const double *cmd_mm, hg_loop_sample *out)
+int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
+                    long period_ns, hg_loop_sample *out)
 {
-    static const int on[HG_LOOP_JOINTS] = {1, 1, 1, 1, 1, 1, 1, 1};
-    return hg_loop_step_io(L, cmd_mm, on, L->cfg.period_ns, out);
+    return step_dac(L, cmd_mm, enable, period_ns, 0, out);
 }
 
-int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
-                double *output_v, hg_loop_summary *sum)
+static const int every_pid_on[HG_LOOP_JOINTS] = {1, 1, 1, 1, 1, 1, 1, 1};
+
+int hg_loop_step(hg_loop *L, const double *cmd_mm, hg_loop_sample *out)
+{
+    return hg_loop_step_io(L, cmd_mm, every_pid_on, L->cfg.period_ns, out);
+}
+
+/* hg_loop_run with dither_v (n x J, may be 0) added to the pids' outputs. */
+static int run_dac(hg_loop *L, const double *cmd_mm, const double *dither_v, long n, long from,
+                   double *ferror_mm, double *output_v, hg_loop_summary *sum)
 {
     hg_loop_sample s;
     double sq[HG_LOOP_JOINTS] = {0};
@@ -114,7 +125,7 @@ int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *fer
     *sum = (hg_loop_summary){0};
     sum->tripped_at = -1;
     for (i = 0; i < n; i++) {
-        rc = hg_loop_step(L, cmd_mm + J * i, &s);
+        rc = step_dac(L, cmd_mm + J * i, every_pid_on, L->cfg.period_ns, dither_v ? dither_v + J * i : 0, &s);
         if (rc)
             break;
         for (k = 0; k < J; k++) {
@@ -147,6 +158,18 @@ int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *fer
     for (k = 0; k < J; k++)
         sum->rms_ferror_mm[k] = counted ? sqrt(sq[k] / counted) : 0.0;
     return rc;
+}
+
+int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
+                double *output_v, hg_loop_summary *sum)
+{
+    return run_dac(L, cmd_mm, 0, n, from, ferror_mm, output_v, sum);
+}
+
+int hg_loop_run_dither(hg_loop *L, const double *cmd_mm, const double *dither_v, long n, long from,
+                       double *ferror_mm, double *output_v, hg_loop_summary *sum)
+{
+    return run_dac(L, cmd_mm, dither_v, n, from, ferror_mm, output_v, sum);
 }
 
 unsigned long hg_loop_sizeof(int which)

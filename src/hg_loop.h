@@ -96,6 +96,13 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
 int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
                 double *output_v, hg_loop_summary *sum);
 
+/* hg_loop_run with dither_v[n][J] (volts, row-major) added to the pids'
+ * outputs on their way to the DACs, as a HAL sum2 between pid.N.output and
+ * the DAC would (an excitation of the drive trains: hexaglide excite);
+ * output_v gets what the DACs got. */
+int hg_loop_run_dither(hg_loop *L, const double *cmd_mm, const double *dither_v, long n, long from,
+                       double *ferror_mm, double *output_v, hg_loop_summary *sum);
+
 /* sizeof the structs, for bindings that mirror them (tools/hexaglide.py). */
 unsigned long hg_loop_sizeof(int which);   /* 0 hg_loop, 1 config, 2 summary, 3 pid gains,
                                              7 hg_board_params, 8 hg_board,
