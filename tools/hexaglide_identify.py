@@ -303,8 +303,17 @@ _rec_open = hg._sig("hg_record_open", C.c_int, C.c_void_p, C.c_char_p, C.c_size_
 _rec_column = hg._sig("hg_record_column", C.c_int, C.c_void_p, C.c_char_p)
 _rec_kind = hg._sig("hg_record_set_kind", None, C.c_void_p, C.c_int, C.c_int)
 _rec_next = hg._sig("hg_record_next", C.c_int, C.c_void_p, _dp, C.POINTER(_RecErr))
-REC_MAGIC = b"# hexaglide-record 1"
+REC_MAGICS = (b"# hexaglide-record 1", b"# hexaglide-record 2")   # the formats identify reads
 REC_BYTES = 1 << 16           # room for the reader's struct (hg_record: about 5 kB)
+
+
+class _RecEvent(C.Structure):
+    """hg_board_rec_event: one parameter event of a format-2 record (src/hg_board_rec.h)."""
+    _fields_ = [("entry", C.c_uint), ("value", C.c_double), ("at", C.c_ulong)]
+
+
+_rec_event_of = hg._sig("hg_board_rec_event_of", C.c_int, C.c_double, C.c_double, C.c_double, C.c_ulong,
+                        C.POINTER(_RecEvent))
 
 
 def read_board_record(path):
@@ -328,12 +337,14 @@ def read_board_record(path):
             raise BadInput("%s: line %d, column %d (the header): no column '%s': a record of another "
                            "pin set; record with tools/hg_record.py of this board (docs/replay.md)"
                            % (path, hdr_no, len(lines[hdr_no - 1]) + 1, name))
-    known_cols = {}
     t = hg_params_table()
-    for name in KNOWN:
-        hal = t.get(name)
-        if hal and "in.param-" + hal in header:
-            known_cols[name] = header.index("in.param-" + hal)
+    param_cols = {name: header.index("in.param-" + hal) for name, hal in t.items()
+                  if "in.param-" + hal in header}      # format 1: every parameter every period
+    # format 2: the parameters as events in two slots per period (docs/replay.md)
+    slots = [[header.index("in.pev-%d-%s" % (k, part)) for part in ("entry", "value", "age")]
+             for k in range(2) if "in.pev-%d-entry" % k in header]
+    entry_of = {n: i for i, n in enumerate(t)}
+    told = {}
     for name in ("out.count-%02d" % j for j in range(6)):
         _rec_kind(r, header.index(name), 1)                # s32
     for name in ("out.amps-on", "out.fault"):
@@ -341,17 +352,20 @@ def read_board_record(path):
     cols = [header.index(x) for x in need]
     row = np.zeros(len(header) + 8)
     out = []
-    kn = np.zeros(len(KNOWN))
     while True:
         rc = _rec_next(r, row, C.byref(e))
         if rc == 0:
             break
         if rc < 0:
             raise BadInput("%s: %s" % (path, e.msg.decode(errors="replace")))
+        for c_entry, c_value, c_age in slots:
+            ev = _RecEvent()
+            if _rec_event_of(row[c_entry], row[c_value], row[c_age], len(out), C.byref(ev)):
+                told[ev.entry] = ev.value
         out.append(row[cols].copy())
-    if out:
-        for name, c in known_cols.items():
-            kn[KNOWN.index(name)] = row[c]
+    # what the board ran with at the end: format 1's last row, format 2's events
+    recorded = {name: float(row[c]) for name, c in param_cols.items()} if out else {}
+    recorded.update({name: told[i] for name, i in entry_of.items() if i in told})
     a = np.array(out).reshape(-1, len(need))
     run = Run(path, "record")
     run.last_line = hdr_no + len(a)
@@ -374,7 +388,8 @@ def read_board_record(path):
     if len(a) > 1:
         jump[1:] = (np.abs(np.diff(run.counts, axis=0)) > 0.5 * run.count_scale * run.dt).any(1)
     run.ok &= ~jump
-    run.known = {name: kn[KNOWN.index(name)] for name in known_cols}
+    run.known = {name: recorded[name] for name in KNOWN if name in recorded}
+    run.recorded = recorded
     return run
 
 
@@ -531,8 +546,8 @@ def read_run(path, ini):
     if not os.path.isfile(path):
         raise BadInput("%s: no such file" % path)
     with open(path, "rb") as f:
-        first = f.read(len(REC_MAGIC))
-    if first == REC_MAGIC:
+        first = f.read(len(REC_MAGICS[0]))
+    if first in REC_MAGICS:
         return read_board_record(path)
     return read_sampler(path, ini)
 
