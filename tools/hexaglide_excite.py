@@ -71,6 +71,87 @@ class Fourier:
         return x + x0c, xd, xdd
 
 
+DITHER_BAND_HZ = (150.0, 550.0)   # the trains' dither: around their first axial mode (352.75 Hz at HOME)
+DITHER_SWEEP_S = 2.0              # one sweep up and down of the band
+DITHER_V = 0.3                    # volts (amplitude) on each drive's DAC
+
+
+TRAIN_STROKE_MM = 30.0           # the trains' program: vertical strokes down from HOME and back ...
+TRAIN_SPEEDS = (60.0, 25.0, 40.0)  # ... at these speeds in turn (mm/s): viscous friction and gravity
+                                 # preload every train, at a different force each (stiffness apart from backlash)
+TRAIN_ACCEL = 400.0              # ... with this acceleration (mm/s^2) at the ends (the reversals: backlash)
+
+
+def _stroke(dt, stroke_mm, speed, accel):
+    """Distances (mm) of one trapezoidal stroke, every dt, rest to rest."""
+    ta = speed / accel
+    tc = (stroke_mm - speed * ta) / speed
+    T = 2 * ta + tc
+    u = np.arange(1, int(np.ceil(T / dt)) + 1) * dt
+    u = np.minimum(u, T)
+    return np.where(u < ta, 0.5 * accel * u * u,
+                    np.where(u < ta + tc, 0.5 * speed * ta + speed * (u - ta), stroke_mm - 0.5 * accel * (T - u) ** 2))
+
+
+def strokes(n, dt, stroke_mm=TRAIN_STROKE_MM, speeds=TRAIN_SPEEDS, accel=TRAIN_ACCEL):
+    """(n,) head heights (mm, 0 = HOME) of the trains' program (--trains'
+    G-code as LinuxCNC's trapezoidal planner runs it): from rest at HOME
+    down stroke_mm and back up, at each of speeds in turn, accel at the ends."""
+    out = [np.zeros(1)]
+    i = 0
+    while sum(len(x) for x in out) < n:
+        d = _stroke(dt, stroke_mm, speeds[i % len(speeds)], accel)
+        out += [-d, -stroke_mm + d]
+        i += 1
+    return np.concatenate(out)[:n]
+
+
+def _sweep_s(k, sweep_s):
+    """Drive k's sweep time: the six differ by 10% steps, so their chirps drift apart."""
+    return sweep_s * (1.0 + 0.1 * k)
+
+
+def dither(n, dt, band=DITHER_BAND_HZ, amp_v=DITHER_V, sweep_s=DITHER_SWEEP_S):
+    """(n, 6) volts of the trains' dither, as the HAL snippet of --dither makes
+    it from stock components: siggen.N's sine at a frequency swept linearly
+    up and down the band by a slow triangle (siggen.6+N's, through scale.N;
+    siggen's phase accumulates f dt each period), summed into pid.N's output
+    by sum2.N. Drive N sweeps in _sweep_s(N): the six chirps drift apart, so
+    each drive's response is told from the others'."""
+    t = np.arange(1, n + 1) * dt
+    out = np.zeros((n, 6))
+    for k in range(6):
+        u = (t / _sweep_s(k, sweep_s)) % 2.0
+        tri = np.where(u < 1.0, u, 2.0 - u)                      # 0..1..0, one up-and-down per 2 sweeps
+        f = band[0] + (band[1] - band[0]) * tri
+        out[:, k] = amp_v * np.sin(2 * np.pi * np.cumsum(f) * dt)
+    return out
+
+
+def dither_hal(band=DITHER_BAND_HZ, amp_v=DITHER_V, sweep_s=DITHER_SWEEP_S):
+    """The HAL snippet of the trains' dither (dither() is what it makes), to
+    load after configs/hexaglide.hal: each pid.N.output then reaches its DAC
+    through sum2.N, with siggen.N's chirp."""
+    lines = ["# the drive trains' dither (hexaglide excite --dither): chirps %g..%g Hz, %g V"
+             % (band[0], band[1], amp_v),
+             "loadrt siggen num_chan=12", "loadrt sum2 count=6", "loadrt scale count=6"]
+    for k in range(6):
+        tr = 6 + k
+        lines += ["addf siggen.%d.update servo-thread" % tr, "addf scale.%d servo-thread" % k,
+                  "addf siggen.%d.update servo-thread" % k, "addf sum2.%d servo-thread" % k,
+                  "setp siggen.%d.frequency %.6g" % (tr, 0.5 / _sweep_s(k, sweep_s)),
+                  "setp siggen.%d.amplitude 0.5" % tr, "setp siggen.%d.offset 0.5" % tr,
+                  "setp scale.%d.gain %.6g" % (k, band[1] - band[0]), "setp scale.%d.offset %.6g" % (k, band[0]),
+                  "setp siggen.%d.amplitude %.6g" % (k, amp_v),
+                  "net dither-sweep-%d siggen.%d.triangle => scale.%d.in" % (k, tr, k),
+                  "net dither-f-%d scale.%d.out => siggen.%d.frequency" % (k, k, k),
+                  "unlinkp pid.%d.output" % k, "unlinkp motenc.0.dac-%02d-value" % k,
+                  "net pid-out-%d pid.%d.output => sum2.%d.in0" % (k, k, k),
+                  "net dither-%d siggen.%d.sine => sum2.%d.in1" % (k, k, k),
+                  "net dac-%d sum2.%d.out => motenc.0.dac-%02d-value" % (k, k, k)]
+    return "\n".join(lines) + "\n"
+
+
 class Problem:
     """Limits of the config and the prior model, evaluated on a time grid."""
 

@@ -274,7 +274,7 @@ def log(*a):
 MIN_SAMPLES = 2000            # usable servo periods (2 s at 1 ms) a recording must have
 # what a user must know beforehand: read from the record (in.param-*) or
 # --set; everything else is unknown to identify (its prior: the defaults)
-KNOWN = ["l", "lb", "e", "lp", "g", "ka", "kt", "lead", "i_max", "counts_per_rev", "v_stribeck",
+KNOWN = ["l", "lb", "e", "lp", "g", "ka", "kt", "lead", "j_rotor", "i_max", "counts_per_rev", "v_stribeck",
          "r_winding", "l_winding", "v_bus", "amp_mode"]
 
 
@@ -291,6 +291,8 @@ class Run:
         self.cmd_mm = self.ferror_mm = self.running = None
         self.known = {}
         self.integrator = None        # 0 improved Euler (the force acts from the step's start), else mid-step
+        self.substeps = None          # the board's substeps (a board record's), None: a continuous machine
+        self.carriage = None          # (n, 6) m: the carriages' own positions (a linear scale), when recorded
         self.last_line = 0
 
 
@@ -380,6 +382,7 @@ def read_board_record(path):
     run.ok = (a[:, 2] > 0.5) & (a[:, 3] < 0.5)
     run.volts = a[:, 4:10]
     run.pos = a[:, 10:16]
+    run.carriage = run.pos                     # out.z: the carriages themselves (the encoders count the motors)
     run.vel = a[:, 16:22]
     run.counts = a[:, 22:28]
     run.count_scale = a[:, 28:34].mean(0) * 1e3 if len(a) else np.full(6, 1e6)   # counts per m
@@ -522,6 +525,10 @@ def read_sampler(path, ini):
     # the encoder row n was read before V_n: the position after V_n is row n + 1
     run.volts = V[:-1]
     run.pos = P[1:]
+    # the carriages' own positions (a linear scale; the virtual board's joint-N.pos, mm), read with the encoder
+    scale_cols = ["motenc-hexaglide.0.joint-%d.pos" % j for j in range(6)]
+    if all(c in header for c in scale_cols):
+        run.carriage = a[1:, [header.index(c) for c in scale_cols]] * 1e-3
     # the encoder's quantum: counts / INPUT_SCALE (positions in mm are the counts' too)
     run.count_scale = np.array([(joints[j] if j < len(joints) else {}).get("INPUT_SCALE", 1000.0) * 1e3
                                 for j in range(6)])

@@ -1,21 +1,40 @@
 #!/usr/bin/python3
-"""hexaglide_trainid.py - the drive trains' stiffness, damping and rotor
-masses from a record's fast motion, for `hexaglide identify`
-(docs/identification.md: the drive train).
-
-The encoder counts the motor. Around the trains' first axial modes (a few
-hundred Hz) the motor's response to its force tells the spring between
-it and the carriage: above the modes the motor moves as its own mass
-m_r, below them with the carriage side, between them the spring. The
-fast part of the record (high-passed) is predicted by hg_trainid_response
-(src/hg_trainid.h: six rotors, trains and the carriages' mass matrix of
-the rigid estimate, stepped as the machine steps) from the motors' force
-(hg_trainid_drive: the amplifiers and windings under the recorded DAC
-volts), and scipy's least_squares fits k_axial, c_axial and m_r per drive
-to the high-passed counts (output error: unbiased under the quantization
-of the counts, which is white, in closed loop too: the encoder noise of a
-period reaches the force only in the next). Not a program: imported by
+"""hexaglide_trainid.py - the drive trains' stiffness k_axial, damping
+c_axial and backlash per drive from a recording, for `hexaglide identify`
+(docs/identification.md: the drive trains). Not a program: imported by
 hexaglide_identify.py.
+
+What it uses: the encoder (the motor's side), the DAC volts (the motor's
+force through the amplifier's ka and the motor's kt / lead) and the
+carriage's own position (the load's side): on the virtual board its
+joint-N.pos pin (a board record's out.z), on a real machine a linear scale
+on the carriage. The encoder alone sees too little of the trains (the
+rotors are seven times the carriages' share of the load: the axial mode is
+the carriage ringing against a nearly still motor), so without the
+carriage's position nothing is estimated here, and identify says so.
+
+Two fits:
+- slow (stiffness, backlash): below `cutoff_hz` the train's force is the
+  motor's force less the rotor's inertia, f = F - m_r zr'' (m_r = j_rotor
+  (2 pi / lead)^2, a datasheet value), and the deflection is
+  d = zr - zc = f / k + sgn(f) b / 2 (+ an offset: the encoder's and the
+  scale's zeros) while the flanks touch. Linear least squares per drive on
+  the low-passed d, f and sgn(f), away from the moments the train's force
+  changes sign (within `zero_window` cutoff periods of |f| < zero_band_n).
+  The sigmas: a block bootstrap over `block_s` blocks, and the difference
+  from a second fit at `second_cutoff` x the cutoff.
+- fast (damping): the trains' small motion about the slow one
+  (src/hg_trainid.h: six rotors, their trains and the carriages' mass
+  matrix of the rigid estimate, stepped as the board steps, or as a
+  continuous machine: RK4 on 16 substeps of the period) driven by the
+  motors' force (hg_trainid_drive: the amplifiers under the recorded
+  volts), fitted to the high-passed deflection (output error, scipy's
+  least_squares over k and c per drive) on the stretches with the trains'
+  dither (`hexaglide excite --dither`) whose train force keeps its sign
+  and whose carriages keep their direction (the small motion is linear
+  there). The sigmas: the fit's covariance times the residuals'
+  correlation time, and the difference from a second fit above
+  `check_ratio` x the high-pass.
 """
 import ctypes as C
 import os
@@ -39,21 +58,21 @@ NSTATE = 24
 _response = hg._sig("hg_trainid_response", C.c_int, C.POINTER(TrainParams), C.c_int, C.c_int, C.c_double,
                     C.c_long, _dp, C.c_long, _dp, _dp, _dp, C.c_void_p)
 _drive = hg._sig("hg_trainid_drive", C.c_int, C.c_void_p, C.c_int, C.c_double, C.c_long, _dp, _dp, _dp)
+OUTPUT = os.environ.get("TRAINID_OUTPUT", "carriage")
+CONTINUOUS = (2, 16)          # a real machine: RK4 on 16 substeps of the period
 
 
-def response(k, c, m_rotor, c_visc, scheme, ns, dt, mass, every, u, load=False):
-    """Rotor (and carriage) positions (np, 6) of hg_trainid_response from rest."""
+def response(k, c, m_rotor, c_visc, scheme, ns, dt, mass, every, u):
+    """Rotor and carriage positions (np, 6 each) of hg_trainid_response from rest."""
     p = TrainParams(_d6(*k), _d6(*c), _d6(*m_rotor), _d6(*c_visc))
     np_ = len(u) // ns
     x = np.zeros(NSTATE)
-    motor = np.zeros((np_, 6))
-    car = np.zeros((np_, 6)) if load else None
+    motor, car = np.zeros((np_, 6)), np.zeros((np_, 6))
     rc = _response(C.byref(p), int(scheme), int(ns), dt, np_, np.ascontiguousarray(mass, dtype=np.float64),
-                   int(every), np.ascontiguousarray(u, dtype=np.float64), x, motor,
-                   car.ctypes.data_as(C.c_void_p) if load else None)
+                   int(every), np.ascontiguousarray(u, dtype=np.float64), x, motor, car.ctypes.data_as(C.c_void_p))
     if rc:
         raise hg.HexaglideError("train response", rc)
-    return (motor, car) if load else motor
+    return motor, car
 
 
 def drive_force(reg, volts, speed, ns, dt):
@@ -67,248 +86,270 @@ def drive_force(reg, volts, speed, ns, dt):
     return u
 
 
-class _Stability(C.Structure):
-    """hg_stability."""
-    _fields_ = [("substeps", C.c_uint), ("param", C.c_char_p), ("dt_max_s", C.c_double)]
-
-
-_stability = hg._sig("hg_stability_check", C.c_int, C.c_void_p, C.c_int, C.c_double, C.c_uint, C.c_uint,
-                     C.POINTER(_Stability))
-SUBSTEPS_MAX = 64             # HG_SUBSTEPS_MAX
-SCHEMES = {"improved-euler": 0, "heun": 1, "rk4": 2}
-CONTINUOUS = (2, 16)          # a real machine: RK4 on 16 substeps of the period (converged at these modes)
-
-
-def board_substeps(params, scheme, dt, asked=1):
-    """The substeps the virtual board runs for params (its stability rule, src/hg_stability.h)."""
-    st = _Stability()
-    rc = _stability(params.buf, int(scheme), dt, int(asked), SUBSTEPS_MAX, C.byref(st))
-    return int(st.substeps) if rc == 0 and st.substeps else SUBSTEPS_MAX
-
-
 class Settings:
-    """How the fast part of a record becomes the trains' estimate (docs/identification.md)."""
-    highpass_hz = 80.0        # the fit sees the record above this (Butterworth order 4, forwards and backwards)
-    check_ratio = 1.5         # a second fit above check_ratio x highpass: the difference joins the sigmas
-    rms_window_s = 0.05       # the excitation is where the high-passed drive force's RMS over this ...
-    excited_n = 30.0          # ... is above this many N (and above excited_share of its 99th percentile)
-    excited_share = 0.3
-    min_segment_s = 0.5       # excited stretches shorter than this are not used
-    pad_s = 0.2               # filter transients: the response starts this much before a stretch
-    settle_s = 0.05           # ... and the residuals this much after it starts
-    speed_margin = 3.0        # rows kept: carriage speed above this x the fast motion's RMS speed ...
-    force_margin = 3.0        # ... and the train's slow force above this x its fast force's RMS
-    k_grid = np.geomspace(0.1, 10.0, 41)   # the first search: the prior's stiffness times these
+    """How a recording becomes the trains' estimate (docs/identification.md: the drive trains)."""
+    cutoff_hz = 10.0          # slow fit: zero-phase Butterworth low-pass (order 4, forwards and backwards)
+    second_cutoff = 1.5       # ... a second fit at this x cutoff: the difference joins the sigmas
+    zero_band_n = 30.0        # ... rows within zero_window cutoff periods of |f| below this are left out
+    zero_window = 1.0
+    margin_s = 0.3            # ... and the first and last margin_s of a stretch (filter transients)
+    block_s = 0.5             # ... block bootstrap: blocks of this length
+    boot = 200                # ... replicates
+    highpass_hz = 100.0       # fast fit: the deflection above this (Butterworth order 4, twice forwards and backwards)
+    check_ratio = 1.5         # ... a second fit above this x highpass_hz: the difference joins the sigmas
+    excited_v = 0.1           # ... excited: the high-passed volts' RMS over rms_window_s above this on every drive
+    rms_window_s = 0.05
+    preload = 4.0             # ... linear: |slow train force| above this x its fast part's RMS on every drive
+    speed_margin = 3.0        # ... and |slow carriage speed| above this x its fast part's RMS
+    settle_s = 0.1            # ... each stretch simulated from rest: residuals from settle_s on
+    min_stretch_s = 0.25      # ... stretches shorter than settle_s + this are not used
+    every = 10                # ... a new mass matrix every this many periods
+    seed = 5
 
 
-def _hp(s, fs, hz):
-    """Butterworth high-pass (b, a) of order 4 at hz for sampling rate fs."""
+def rotor_mass(params):
+    """The rotor's reflected mass j_rotor (2 pi / lead)^2 (kg)."""
+    return params["j_rotor"] * (2 * np.pi / params["lead"]) ** 2
+
+
+def _lp(dt, hz):
     from scipy.signal import butter
-    return butter(4, hz * 2 / fs, "high")
+    return butter(4, hz * 2 * dt)
 
 
-def excited_rows(F, dt, s):
-    """(n,) rows where every drive's high-passed force has the RMS of an excitation."""
+class Slow:
+    """One stretch's slow signals: rows n (run indexes), zr, zc, d, f (n, 6), filtered at hz."""
+
+
+def slow_signals(run, params, pieces, hz):
+    """The stretches' low-passed encoder position zr, deflection d = zr - zc and
+    train force f = F - m_r zr'' (F of the periods either side of a reading:
+    its acceleration's), per usable piece (list of Slow)."""
     from scipy.signal import filtfilt
-    b, a = _hp(s, 1 / dt, s.highpass_hz)
-    h = filtfilt(b, a, F, axis=0)
-    w = max(1, int(round(s.rms_window_s / dt)))
-    r = np.sqrt(np.apply_along_axis(lambda x: np.convolve(x * x, np.ones(w) / w, "same"), 0, h))
-    lim = np.maximum(s.excited_n, s.excited_share * np.percentile(r, 99, axis=0))
-    return (r > lim).all(1)
-
-
-class Segment:
-    """One excited stretch of a run, as the fit needs it."""
-
-
-def segments(run, reg, params, base, theta, s, mass_of):
-    """The excited stretches of run (Segment: force per substep, mass matrices,
-    measured high-passed counts, slow carriage speed and train force)."""
-    from scipy.signal import filtfilt, butter
     import hexaglide_identify as hid
     dt = run.dt
-    fpv = hid.force_per_volt(params)
-    V = hid.dac_output(run.volts)
+    b, a = _lp(dt, hz)
+    mr = rotor_mass(params)
+    F = hid.force_per_volt(params) * hid.dac_output(run.volts)
     out = []
-    pad, settle = int(round(s.pad_s / dt)), int(round(s.settle_s / dt))
-    for i0, i1 in hid._pieces(run, hid.Settings()):
-        F = fpv * V[i0:i1 + 1]
-        ex = excited_rows(F, dt, s)
-        idx = np.flatnonzero(ex)
-        if not len(idx):
-            continue
-        for seg in np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1):
-            if len(seg) * dt < s.min_segment_s:
-                continue
-            a, b = max(0, seg[0] - pad), min(i1 - i0 + 1, seg[-1] + 1 + pad)
-            g = Segment()
-            g.run, g.i0 = run, i0 + a
-            pos = run.counts[i0 + a:i0 + b] / run.count_scale
-            bl, al = butter(4, 10.0 * 2 * dt)
-            g.z = filtfilt(bl, al, pos, axis=0)
-            g.v = np.gradient(g.z, dt, axis=0)
-            g.acc = np.gradient(g.v, dt, axis=0)
-            bs, as_ = butter(4, min(0.4, 200.0 * 2 * dt))
-            g.speed = np.gradient(filtfilt(bs, as_, pos, axis=0), dt, axis=0)
-            g.volts = V[i0 + a:i0 + b]
-            g.F_lf = filtfilt(bl, al, F[a:b], axis=0)
-            g.pos = pos
-            g.every = 10
-            g.mass = mass_of(g.z[::g.every], g.v[::g.every]).reshape(-1, 36)
-            g.fit = np.zeros(b - a, bool)
-            g.fit[seg[0] - a + settle:seg[-1] - a + 1] = True
-            g.clamped = hid._clamped(run, params)[i0 + a:i0 + b].any(1)
-            out.append(g)
+    for i0, i1 in pieces:
+        g = Slow()
+        n = np.arange(i0, i1)                       # F[n], F[n + 1]: into and out of reading n
+        zr = filtfilt(b, a, run.counts[i0:i1] / run.count_scale, axis=0)
+        g.n = n
+        g.zr = zr
+        g.d = filtfilt(b, a, run.counts[i0:i1] / run.count_scale - run.carriage[i0:i1], axis=0)
+        acc = np.gradient(np.gradient(zr, dt, axis=0), dt, axis=0)
+        g.f = filtfilt(b, a, 0.5 * (F[n] + F[n + 1]), axis=0) - mr * acc
+        g.b, g.a = b, a
+        out.append(g)
     return out
 
 
-class Fit:
-    """The trains' estimate: k, c, m_rotor (6 each), their sigmas, what was used."""
-
-
-def _prepare(segs, reg, scheme, ns, s, hz):
-    """Per segment: the high-passed force per substep and the high-passed counts at cutoff hz."""
-    from scipy.signal import filtfilt
-    for g in segs:
-        dt = g.run.dt
-        bu, au = _hp(s, ns / dt, hz)
-        by, ay = _hp(s, 1 / dt, hz)
-        g.u = filtfilt(bu, au, drive_force(reg, g.volts, g.speed, ns, dt), axis=0)
-        g.y = filtfilt(by, ay, filtfilt(by, ay, g.pos, axis=0), axis=0)
-        g.hp = (by, ay)
-
-
-def _simulate(g, k, c, mr, cv, scheme, ns, load=False):
-    """High-passed rotor (and carriage) response of segment g."""
-    from scipy.signal import filtfilt
-    r = response(k, c, mr, cv, scheme, ns, g.run.dt, g.mass, g.every, g.u, load)
-    if load:
-        return filtfilt(*g.hp, r[0], axis=0), r[1]
-    return filtfilt(*g.hp, r, axis=0)
-
-
-def _masks(segs, k, c, mr, cv, scheme, ns, s):
-    """Rows of each segment the fit uses: excited, not clamped, the carriage fast
-    enough that the fast motion keeps its speed's sign, the train's slow force
-    far enough from 0 that the fast one keeps it (no free play crossed)."""
-    for g in segs:
-        _, car = _simulate(g, k, c, mr, cv, scheme, ns, load=True)
-        dt = g.run.dt
-        vh = np.gradient(car, dt, axis=0)
-        ym = response(k, c, mr, cv, scheme, ns, dt, g.mass, g.every, g.u)
-        fh = np.asarray(k) * (ym - car)
-        sel = g.fit
-        vr = np.sqrt((vh[sel] ** 2).mean(0)) if sel.any() else np.zeros(6)
-        fr = np.sqrt((fh[sel] ** 2).mean(0)) if sel.any() else np.zeros(6)
-        f_lf = g.F_lf - np.asarray(mr) * g.acc
-        g.use = (sel[:, None] & ~g.clamped[:, None] & (np.abs(g.v) > s.speed_margin * vr) &
-                 (np.abs(f_lf) > s.force_margin * fr))
-
-
-def fit(runs, reg, params, base, theta, cvisc, mass_of, s=None, log=None, scheme_ns=None):
-    """k_axial, c_axial, m_rotor per drive (Fit) from the excited stretches of runs,
-    or None when no run has any (with fit.why)."""
-    from scipy.optimize import least_squares
-    s = s or Settings()
-    segs = [g for r in runs for g in segments(r, reg, params, base, theta, s, mass_of)]
-    f = Fit()
-    f.segments = len(segs)
-    f.seconds = sum(g.fit.sum() * g.run.dt for g in segs)
-    if not segs:
-        f.why = ("no excitation near the trains' modes (the drive force's content above %g Hz is the "
-                 "servo loop's alone): record a program with the trains' dither (hexaglide excite)"
-                 % s.highpass_hz)
-        return f
-    k0 = params["k_axial"] if params["k_axial"] > 0 else hg.Params()["k_axial"]
-    c0 = max(params["c_axial"], 100.0)
-    m0 = params["j_rotor"] * (2 * np.pi / params["lead"]) ** 2
-    scheme, ns = scheme_ns(k0 * np.ones(6), m0 * np.ones(6)) if scheme_ns else CONTINUOUS
-    cv = np.asarray(cvisc, float)
-
-    def resid(x, w, hz_segs):
-        k, c, mr = k0 * x[:6], c0 * x[6:12], m0 * x[12:]
-        out = []
-        for g in hz_segs:
-            r = (g.y - _simulate(g, k, c, mr, cv, scheme, ns)) * w
-            out.append(r[g.use])
-        return np.concatenate(out)
-
-    def solve(x0, hz):
-        _prepare(segs, reg, scheme, ns, s, hz)
-        w = np.ones(6)
-        for g in segs:
-            g.use = g.fit[:, None] & ~g.clamped[:, None] & np.ones((1, 6), bool)
-        x = x0.copy()
-        for it in range(3):
-            if it:
-                _masks(segs, k0 * x[:6], c0 * x[6:12], m0 * x[12:], cv, scheme, ns, s)
-            res = least_squares(resid, x, args=(w, segs), bounds=(np.r_[[0.01] * 6, [0.0] * 6, [0.2] * 6],
-                                                                  np.r_[[100.0] * 6, [50.0] * 6, [5.0] * 6]),
-                                x_scale=np.r_[[0.01] * 6, [0.3] * 6, [0.005] * 6], method="trf")
-            x = res.x
-            r = np.concatenate([((g.y - _simulate(g, k0 * x[:6], c0 * x[6:12], m0 * x[12:], cv, scheme, ns))
-                                 [g.use.any(1)]) for g in segs])
-            w = 1.0 / np.maximum(r.std(0), 1e-12)
-        return res, w
-
-    # the first search: one stiffness for all on a grid (a resonance far from the
-    # prior's is a local minimum of the output error), the prior's damping and rotors
-    costs = []
-    for q in s.k_grid:
-        sch = scheme_ns(q * k0 * np.ones(6), m0 * np.ones(6)) if scheme_ns else (scheme, ns)
-        if sch != (scheme, ns) or not costs:
-            scheme, ns = sch
-            _prepare(segs, reg, scheme, ns, s, s.highpass_hz)
-            for g in segs:
-                g.use = g.fit[:, None] & ~g.clamped[:, None] & np.ones((1, 6), bool)
-        try:
-            c = np.sum(resid(np.r_[[q] * 6, [1.0] * 12], np.ones(6), segs) ** 2)
-        except hg.HexaglideError:
-            c = np.inf
-        costs.append(c if np.isfinite(c) else np.inf)
-    q = s.k_grid[int(np.argmin(costs))]
-    if log:
-        log("drive trains: %d excited stretches (%.1f s), first search: k_axial %.3g N/m"
-            % (len(segs), f.seconds, q * k0))
-    if scheme_ns:                      # the board's substeps for that stiffness
-        scheme, ns = scheme_ns(q * k0 * np.ones(6), m0 * np.ones(6))
-    res, w = solve(np.r_[[q] * 6, [1.0] * 12], s.highpass_hz)
-    if scheme_ns:
-        sch2 = scheme_ns(k0 * res.x[:6], m0 * res.x[12:])
-        if sch2 != (scheme, ns):
-            scheme, ns = sch2
-            res, w = solve(res.x, s.highpass_hz)
-    J = res.jac
-    r = res.fun
-    k1, c1, m1 = k0 * res.x[:6], c0 * res.x[6:12], m0 * res.x[12:]
-    tau = np.mean([_corr_time(((g.y - _simulate(g, k1, c1, m1, cv, scheme, ns))[:, j])[g.use[:, j]])
-                   for g in segs for j in range(6) if g.use[:, j].sum() > 20])
-    dof = max(1, len(r) - len(res.x))
-    cov = np.linalg.pinv(J.T @ J) * (r @ r) / dof * tau
-    scale = np.r_[[k0] * 6, [c0] * 6, [m0] * 6]
-    x1 = res.x
-    # the model's check: the same fit above a higher cutoff
-    res2, _ = solve(x1, s.highpass_hz * s.check_ratio)
-    diff = np.abs(res2.x - x1) * scale
-    sig = np.sqrt(np.diag(cov)) * scale
-    f.value = x1 * scale
-    f.sigma_stat = sig
-    f.check = diff
-    f.sigma = np.sqrt(sig ** 2 + diff ** 2)
-    f.k, f.c, f.m_rotor = f.value[:6], f.value[6:12], f.value[12:]
-    f.sk, f.sc, f.sm = f.sigma[:6], f.sigma[6:12], f.sigma[12:]
-    f.scheme, f.ns, f.tau = scheme, ns, tau
-    f.rows = len(r)
-    _prepare(segs, reg, scheme, ns, s, s.highpass_hz)
-    f.rms = np.array([np.sqrt(np.mean(np.concatenate([(g.y - _simulate(g, f.k, f.c, f.m_rotor, cv, scheme, ns))
-                                                       [g.use[:, j], j] for g in segs]) ** 2)) for j in range(6)])
-    f.rms_y = np.array([np.sqrt(np.mean(np.concatenate([g.y[g.use[:, j], j] for g in segs]) ** 2))
-                        for j in range(6)])
-    return f
-
-
-def _corr_time(r, maxlag=200):
-    """Integrated autocorrelation time of residuals (samples)."""
+def _slow_rows(g, run, s, hz):
+    """Rows of a stretch the slow fit uses, per drive (len, 6)."""
     import hexaglide_identify as hid
-    return hid.autocorr_time(r, maxlag)
+    w = int(round(s.zero_window / (hz * run.dt)))
+    edge = int(round(s.margin_s / run.dt))
+    use = np.zeros(g.f.shape, bool)
+    for k in range(6):
+        use[:, k] = ~hid._dilate(np.abs(g.f[:, k]) < s.zero_band_n, w)
+    use[:edge] = use[-edge:] = False
+    return use
+
+
+def slow_fit(runs, params, pieces, s, hz, rng=None):
+    """k (N/m), backlash (m), offset (m) per drive from the slow signals at cutoff hz,
+    and (with rng) block-bootstrap sigmas. Returns dict of arrays (6,) and rows used."""
+    from scipy.signal import filtfilt
+    A_all = [[] for _ in range(6)]
+    y_all = [[] for _ in range(6)]
+    blk = [[] for _ in range(6)]
+    nb = 0
+    for run, pcs in zip(runs, pieces):
+        for g in slow_signals(run, params, pcs, hz):
+            use = _slow_rows(g, run, s, hz)
+            sg = filtfilt(g.b, g.a, np.sign(g.f), axis=0)
+            bl = nb + (np.arange(len(g.n)) * run.dt // s.block_s).astype(int)
+            nb = bl[-1] + 1
+            for k in range(6):
+                u = use[:, k]
+                A_all[k].append(np.c_[g.f[u, k], sg[u, k], np.ones(u.sum())])
+                y_all[k].append(g.d[u, k])
+                blk[k].append(bl[u])
+    out = dict(k=np.full(6, np.nan), backlash=np.full(6, np.nan), offset=np.full(6, np.nan),
+               sk=np.full(6, np.nan), sb=np.full(6, np.nan), rows=np.zeros(6, int), rms=np.full(6, np.nan),
+               span=np.zeros(6))
+    for k in range(6):
+        if not A_all[k]:
+            continue
+        A, y, bl = np.vstack(A_all[k]), np.concatenate(y_all[k]), np.concatenate(blk[k])
+        has_rev = (A[:, 0] > 0).any() and (A[:, 0] < 0).any()
+        cols = [0, 1, 2] if has_rev else [0, 2]
+        if len(y) < 50:
+            continue
+        x, *_ = np.linalg.lstsq(A[:, cols], y, rcond=None)
+        out["rows"][k] = len(y)
+        out["span"][k] = np.ptp(A[:, 0])
+        out["rms"][k] = np.sqrt(np.mean((y - A[:, cols] @ x) ** 2))
+        out["k"][k] = 1.0 / x[0]
+        out["backlash"][k] = 2 * x[1] if has_rev else np.nan
+        out["offset"][k] = x[-1]
+        if rng is None:
+            continue
+        ub = np.unique(bl)
+        reps = []
+        for _ in range(s.boot):
+            pick = rng.choice(ub, len(ub))
+            idx = np.concatenate([np.flatnonzero(bl == q) for q in pick])
+            xb, *_ = np.linalg.lstsq(A[idx][:, cols], y[idx], rcond=None)
+            reps.append([1.0 / xb[0], 2 * xb[1] if has_rev else np.nan])
+        reps = np.array(reps)
+        out["sk"][k] = np.std(reps[:, 0])
+        out["sb"][k] = np.std(reps[:, 1]) if has_rev else np.nan
+    return out
+
+
+def deflection(run, params, k_axial, backlash, s):
+    """The deflection zr - zc (n, 6) of a run for its carriages' motion: the
+    measured one (encoder - carriage) when the run has the carriage's
+    position, else f / k + sgn(f) b / 2 from the slow train force (the
+    rigid fit on a flexible machine without a scale: its k_axial and
+    backlash known). Zero where k_axial is 0 (rigid)."""
+    if getattr(run, "carriage", None) is not None:
+        return run.counts / run.count_scale - run.carriage
+    out = np.zeros(run.counts.shape)
+    k = np.broadcast_to(np.asarray(k_axial, float), (6,))
+    if not (k > 0).all():
+        return out
+    from scipy.signal import filtfilt
+    import hexaglide_identify as hid
+    dt = run.dt
+    b, a = _lp(dt, s.cutoff_hz)
+    F = hid.force_per_volt(params) * hid.dac_output(run.volts)
+    Fn = np.vstack([F[1:], F[-1:]])
+    for i0, i1 in hid._pieces(run, hid.Settings()):
+        zr = filtfilt(b, a, run.counts[i0:i1 + 1] / run.count_scale, axis=0)
+        acc = np.gradient(np.gradient(zr, dt, axis=0), dt, axis=0)
+        f = filtfilt(b, a, 0.5 * (F[i0:i1 + 1] + Fn[i0:i1 + 1]), axis=0) - rotor_mass(params) * acc
+        out[i0:i1 + 1] = f / k + np.sign(f) * 0.5 * np.asarray(backlash, float)
+    return out
+
+
+# ---------------------------------------------------------------- the fast fit
+class Stretch:
+    """One excited, linear stretch: volts, slow speeds, mass matrices, measured high-passed deflection."""
+
+
+def mass_matrices(reg, pi, z):
+    """The rigid model's 6x6 mass matrices (len(z), 36) at carriage positions z (m): Y(z, 0, e_j) pi - Y(z, 0, 0) pi."""
+    n = len(z)
+    zero = np.zeros((n, 6))
+    Y0, _ = reg.joints(z, zero, zero)
+    M = np.zeros((n, 6, 6))
+    for j in range(6):
+        e = np.zeros((n, 6))
+        e[:, j] = 1.0
+        Yj, _ = reg.joints(z, zero, e)
+        M[:, :, j] = (Yj - Y0) @ pi
+    return M.reshape(n, 36)
+
+
+def _rms(x, w):
+    ker = np.ones(w) / w
+    return np.sqrt(np.apply_along_axis(lambda c: np.convolve(c * c, ker, "same"), 0, x))
+
+
+def stretches(runs, pieces, reg, params, pi, k_slow, s):
+    """The stretches of the runs where the dither excites every train and the
+    small motion is linear (list of Stretch)."""
+    from scipy.signal import filtfilt, butter
+    import hexaglide_identify as hid
+    out = []
+    for run, pcs in zip(runs, pieces):
+        dt = run.dt
+        bh, ah = butter(4, s.highpass_hz * 2 * dt, "high")
+        w = max(1, int(round(s.rms_window_s / dt)))
+        V = hid.dac_output(run.volts)
+        for g in slow_signals(run, params, pcs, s.cutoff_hz):
+            i0, i1 = g.n[0], g.n[-1] + 1
+            d = run.counts[i0:i1] / run.count_scale - run.carriage[i0:i1]
+            zc = run.carriage[i0:i1]
+            vh = _rms(filtfilt(bh, ah, V[i0:i1], axis=0), w)
+            fh = _rms(k_slow * filtfilt(bh, ah, d, axis=0), w)
+            vfast = _rms(np.gradient(filtfilt(bh, ah, zc, axis=0), dt, axis=0), w)
+            vslow = np.gradient(filtfilt(g.b, g.a, zc, axis=0), dt, axis=0)
+            ok = ((vh > s.excited_v) & (np.abs(g.f) > s.preload * fh) &
+                  (np.abs(vslow) > s.speed_margin * vfast)).all(1)
+            ok &= ~hid._clamped(run, params)[i0:i1].any(1)
+            idx = np.flatnonzero(ok)
+            for seg in np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1) if len(idx) else []:
+                if len(seg) * dt < s.settle_s + s.min_stretch_s:
+                    continue
+                a, b = seg[0] + i0, seg[-1] + 1 + i0
+                t = Stretch()
+                t.dt = dt
+                t.scheme = (run.integrator, run.substeps) if getattr(run, "substeps", None) else CONTINUOUS
+                t.volts = V[a:b]
+                t.speed = np.gradient(g.zr[a - i0:b - i0], dt, axis=0)
+                t.mass = mass_matrices(reg, pi, g.zr[a - i0:b - i0:s.every] - g.d[a - i0:b - i0:s.every])
+                t.d = d[a - i0:b - i0]
+                t.zc = zc[a - i0:b - i0]
+                t.settle = int(round(s.settle_s / dt))
+                t.every = s.every
+                out.append(t)
+    return out
+
+
+def _prepare(segs, reg, hz):
+    """Per stretch: the high-passed motor force per substep and the twice high-passed deflection at hz."""
+    from scipy.signal import filtfilt, butter
+    for t in segs:
+        scheme, ns = t.scheme
+        bu, au = butter(4, hz * 2 * t.dt / ns, "high")
+        t.hp = butter(4, hz * 2 * t.dt, "high")
+        t.u = filtfilt(bu, au, drive_force(reg, t.volts, t.speed, ns, t.dt), axis=0)
+        t.y = filtfilt(*t.hp, filtfilt(*t.hp, t.zc if OUTPUT == "carriage" else t.d, axis=0), axis=0)
+
+
+def _sim(t, k, c, mr, cv):
+    from scipy.signal import filtfilt
+    scheme, ns = t.scheme
+    m, l = response(k, c, mr, cv, scheme, ns, t.dt, t.mass, t.every, t.u)
+    return filtfilt(*t.hp, l if OUTPUT == "carriage" else m - l, axis=0)
+
+
+def fast_fit(segs, reg, params, pi, k0, s, log=None):
+    """c_axial (and k_axial, a check) per drive from the stretches: dict, or None when there are none."""
+    from scipy.optimize import least_squares
+    import hexaglide_identify as hid
+    if not segs:
+        return None
+    mr = np.full(6, rotor_mass(params))
+    cv = np.array([pi[hid.fric_col("c_visc", k)] for k in range(6)])
+    c0 = max(float(params["c_axial"]), 100.0)
+    k0 = np.asarray(k0, float)
+
+    def resid(x):
+        return np.concatenate([((t.y - _sim(t, k0 * x[:6], c0 * x[6:], mr, cv))[t.settle:]).ravel()
+                               for t in segs]) * 1e6
+
+    def solve(hz, x0):
+        _prepare(segs, reg, hz)
+        return least_squares(resid, x0, x_scale=np.r_[[0.01] * 6, [0.1] * 6], bounds=(
+            np.r_[[0.2] * 6, [0.0] * 6], np.r_[[5.0] * 6, [100.0] * 6]))
+    res = solve(s.highpass_hz, np.ones(12))
+    r = res.fun.reshape(-1, 6)
+    tau = np.mean([hid.autocorr_time(r[:, j]) for j in range(6)])
+    dof = max(1, r.size - 12)
+    cov = np.linalg.pinv(res.jac.T @ res.jac) * (res.fun @ res.fun) / dof * tau
+    scale = np.r_[k0, [c0] * 6]
+    val = res.x * scale
+    sig = np.sqrt(np.diag(cov)) * scale
+    rms = np.sqrt((r ** 2).mean(0)) * 1e-6
+    yr = np.sqrt((np.concatenate([t.y[t.settle:] for t in segs]) ** 2).mean(0))
+    res2 = solve(s.highpass_hz * s.check_ratio, res.x)
+    diff = np.abs(res2.x - res.x) * scale
+    return dict(k=val[:6], c=val[6:], sk_stat=sig[:6], sc_stat=sig[6:], dk=diff[:6], dc=diff[6:],
+                sk=np.hypot(sig[:6], diff[:6]), sc=np.hypot(sig[6:], diff[6:]), rms=rms, y_rms=yr, tau=tau,
+                stretches=len(segs), seconds=sum((len(t.d) - t.settle) * t.dt for t in segs))
