@@ -36,6 +36,7 @@ Two fits:
   correlation time, and the difference from a second fit above
   `check_ratio` x the high-pass.
 """
+import copy
 import ctypes as C
 import os
 import sys
@@ -92,6 +93,7 @@ class Settings:
     second_cutoff = 1.5       # ... a second fit at this x cutoff: the difference joins the sigmas
     zero_band_n = 30.0        # ... rows within zero_window cutoff periods of |f| below this are left out
     zero_window = 1.0
+    window_check = 2.0        # ... a third fit with window_check x the zero_window: the difference joins the sigmas
     margin_s = 0.3            # ... and the first and last margin_s of a stretch (filter transients)
     block_s = 0.5             # ... block bootstrap: blocks of this length
     boot = 200                # ... replicates
@@ -99,6 +101,7 @@ class Settings:
     check_ratio = 1.5         # ... a second fit above this x highpass_hz: the difference joins the sigmas
     excited_v = 0.1           # ... excited: the high-passed volts' RMS over rms_window_s above this on every drive
     rms_window_s = 0.05
+    dither_pad_s = 0.3        # the rigid fit leaves out the dither and this much either side
     preload = 4.0             # ... linear: |slow train force| above this x its fast part's RMS on every drive
     speed_margin = 3.0        # ... and |slow carriage speed| above this x its fast part's RMS
     settle_s = 0.1            # ... each stretch simulated from rest: residuals from settle_s on
@@ -194,7 +197,7 @@ def slow_fit(runs, params, pieces, s, hz, rng=None):
         out["rms"][k] = np.sqrt(np.mean((y - A[:, cols] @ x) ** 2))
         out["k"][k] = 1.0 / x[0]
         out["backlash"][k] = 2 * x[1] if has_rev else np.nan
-        out["offset"][k] = x[-1]
+        out["offset"][k] = x[cols.index(2)]
         if rng is None:
             continue
         ub = np.unique(bl)
@@ -234,6 +237,20 @@ def deflection(run, params, k_axial, backlash, s):
         f = filtfilt(b, a, 0.5 * (F[i0:i1 + 1] + Fn[i0:i1 + 1]), axis=0) - rotor_mass(params) * acc
         out[i0:i1 + 1] = f / k + np.sign(f) * 0.5 * np.asarray(backlash, float)
     return out
+
+
+def dithered(run, s):
+    """(n,) rows of a run within dither_pad_s of the trains' dither (the
+    high-passed volts' RMS above excited_v on any drive): left out of the
+    rigid fit, whose 10 Hz machine has no trains."""
+    from scipy.signal import filtfilt, butter
+    import hexaglide_identify as hid
+    if len(run.volts) < 30:
+        return np.zeros(len(run.volts), bool)
+    bh, ah = butter(4, s.highpass_hz * 2 * run.dt, "high")
+    w = max(1, int(round(s.rms_window_s / run.dt)))
+    on = (_rms(filtfilt(bh, ah, hid.dac_output(run.volts), axis=0), w) > s.excited_v).any(1)
+    return hid._dilate(on, int(round(s.dither_pad_s / run.dt)))
 
 
 # ---------------------------------------------------------------- the fast fit
@@ -312,44 +329,159 @@ def _prepare(segs, reg, hz):
         t.y = filtfilt(*t.hp, filtfilt(*t.hp, t.zc if OUTPUT == "carriage" else t.d, axis=0), axis=0)
 
 
-def _sim(t, k, c, mr, cv):
+def _sim(t, k, c, mr, cv, dm):
+    """The high-passed carriage (or deflection) response of stretch t, the carriages' masses + dm (kg)."""
     from scipy.signal import filtfilt
     scheme, ns = t.scheme
-    m, l = response(k, c, mr, cv, scheme, ns, t.dt, t.mass, t.every, t.u)
+    mass = t.mass + (np.diag(dm).ravel() if np.any(dm) else 0.0)
+    m, l = response(k, c, mr, cv, scheme, ns, t.dt, mass, t.every, t.u)
     return filtfilt(*t.hp, l if OUTPUT == "carriage" else m - l, axis=0)
 
 
-def fast_fit(segs, reg, params, pi, k0, s, log=None):
-    """c_axial (and k_axial, a check) per drive from the stretches: dict, or None when there are none."""
+def fast_fit(segs, reg, params, pi, k, s):
+    """c_axial per drive from the stretches, the stiffness k held (the slow
+    fit's), with a correction dm of each carriage's mass (the rigid estimate
+    knows the rotor plus carriage, m_drive, to a kg or two, the carriage
+    behind the spring far less well; the mode's frequency tells it): dict."""
     from scipy.optimize import least_squares
     import hexaglide_identify as hid
-    if not segs:
-        return None
     mr = np.full(6, rotor_mass(params))
-    cv = np.array([pi[hid.fric_col("c_visc", k)] for k in range(6)])
+    cv = np.array([pi[hid.fric_col("c_visc", j)] for j in range(6)])
     c0 = max(float(params["c_axial"]), 100.0)
-    k0 = np.asarray(k0, float)
+    k = np.asarray(k, float)
+    load = min(np.min(t.mass[:, ::7] - mr) for t in segs)     # the lightest carriage behind its spring (kg)
 
     def resid(x):
-        return np.concatenate([((t.y - _sim(t, k0 * x[:6], c0 * x[6:], mr, cv))[t.settle:]).ravel()
+        return np.concatenate([((t.y - _sim(t, k, c0 * x[:6], mr, cv, x[6:]))[t.settle:]).ravel()
                                for t in segs]) * 1e6
 
     def solve(hz, x0):
         _prepare(segs, reg, hz)
-        return least_squares(resid, x0, x_scale=np.r_[[0.01] * 6, [0.1] * 6], bounds=(
-            np.r_[[0.2] * 6, [0.0] * 6], np.r_[[5.0] * 6, [100.0] * 6]))
-    res = solve(s.highpass_hz, np.ones(12))
+        return least_squares(resid, x0, x_scale=np.r_[[0.1] * 6, [0.1] * 6],
+                             bounds=(np.r_[[0.0] * 6, [-0.8 * load] * 6], np.r_[[100.0] * 6, [5 * load] * 6]))
+    res = solve(s.highpass_hz, np.r_[[1.0] * 6, [0.0] * 6])
     r = res.fun.reshape(-1, 6)
     tau = np.mean([hid.autocorr_time(r[:, j]) for j in range(6)])
     dof = max(1, r.size - 12)
     cov = np.linalg.pinv(res.jac.T @ res.jac) * (res.fun @ res.fun) / dof * tau
-    scale = np.r_[k0, [c0] * 6]
+    scale = np.r_[[c0] * 6, [1.0] * 6]
     val = res.x * scale
     sig = np.sqrt(np.diag(cov)) * scale
     rms = np.sqrt((r ** 2).mean(0)) * 1e-6
     yr = np.sqrt((np.concatenate([t.y[t.settle:] for t in segs]) ** 2).mean(0))
     res2 = solve(s.highpass_hz * s.check_ratio, res.x)
     diff = np.abs(res2.x - res.x) * scale
-    return dict(k=val[:6], c=val[6:], sk_stat=sig[:6], sc_stat=sig[6:], dk=diff[:6], dc=diff[6:],
-                sk=np.hypot(sig[:6], diff[:6]), sc=np.hypot(sig[6:], diff[6:]), rms=rms, y_rms=yr, tau=tau,
-                stretches=len(segs), seconds=sum((len(t.d) - t.settle) * t.dt for t in segs))
+    return dict(c=val[:6], dm=val[6:], sc_stat=sig[:6], sdm=sig[6:], dc=diff[:6], sc=np.hypot(sig[:6], diff[:6]),
+                rms=rms, y_rms=yr, tau=tau, stretches=len(segs),
+                seconds=sum((len(t.d) - t.settle) * t.dt for t in segs))
+
+
+# ---------------------------------------------------------------- for identify
+class Trains:
+    """The trains' estimate of identify: slow (dict of slow_fit), fast (dict of fast_fit or None), why (str)."""
+    slow = fast = None
+    why = fast_why = ""
+
+
+def estimate_slow(runs, params, pieces, s, log=None):
+    """The slow fit (Trains) when every run has the carriages' positions, else Trains.why."""
+    t = Trains()
+    if not all(getattr(r, "carriage", None) is not None for r in runs):
+        t.why = ("no carriage position in %s: the drive trains need the load's side (a linear scale; the "
+                 "virtual board's motenc-hexaglide.0.joint-N.pos) beside the encoder (docs/identification.md: "
+                 "the drive trains); the rigid fit takes the encoder for the carriage%s"
+                 % (", ".join(r.path for r in runs if getattr(r, "carriage", None) is None),
+                    " less the deflection of the known k_axial" if params["k_axial"] > 0 else ""))
+        return t
+    t.slow = slow_fit(runs, params, pieces, s, s.cutoff_hz, np.random.default_rng(s.seed))
+    t.slow2 = slow_fit(runs, params, pieces, s, s.cutoff_hz * s.second_cutoff)
+    wide = copy.copy(s)
+    wide.zero_window = s.zero_window * s.window_check
+    t.slow3 = slow_fit(runs, params, pieces, wide, s.cutoff_hz)
+    for key, sk in (("k", "sk"), ("backlash", "sb")):
+        t.slow["d" + key] = np.abs(t.slow2[key] - t.slow[key])
+        t.slow["w" + key] = np.abs(t.slow3[key] - t.slow[key])
+        t.slow[sk + "_stat"] = t.slow[sk].copy()
+        t.slow[sk] = np.sqrt(t.slow[sk] ** 2 + t.slow["d" + key] ** 2 + t.slow["w" + key] ** 2)
+    if log:
+        log("drive trains: stiffness and backlash from %s rows per drive" % "/".join("%d" % x for x in t.slow["rows"]))
+    return t
+
+
+def estimate_fast(t, runs, pieces, reg, params, pi, s, log=None):
+    """The fast fit (t.fast) on the dither's stretches, else t.fast_why."""
+    if t.slow is None:
+        return
+    if not (np.isfinite(t.slow["k"]) & (t.slow["k"] > 0)).all():
+        t.fast_why = "the slow fit found no stiffness on every drive"
+        return
+    k0 = t.slow["k"]
+    segs = stretches(runs, pieces, reg, params, pi, k0, s)
+    if not segs:
+        t.fast_why = ("no stretch with the trains' dither (high-passed volts above %g V RMS on every drive) "
+                      "whose train forces keep their sign and carriages their direction: record `hexaglide "
+                      "excite --trains` with its --dither HAL snippet (docs/identification.md)" % s.excited_v)
+        return
+    if log:
+        log("drive trains: damping from %d dithered stretches" % len(segs))
+    try:
+        t.fast = fast_fit(segs, reg, params, pi, k0, s)
+    except hg.HexaglideError as ex:
+        t.fast_why = ("the rigid estimate's carriage masses leave no load behind the rotors (%s): identify "
+                      "the rigid parameters too (a record of hexaglide excite's program beside the trains')" % ex)
+
+
+def report_lines(t, params, s):
+    """identify's lines of the trains: NAME[k] = VALUE ± SIGMA UNIT and '#' notes."""
+    out = []
+    if t.slow is None:
+        return ["# drive trains not estimated: " + t.why]
+    sl = t.slow
+    out.append("# drive trains: the encoder (motor side) against the carriage's position (load side: a linear "
+               "scale, the board's joint-N.pos); train force = DAC force - m_r zr'' (m_r = j_rotor (2 pi/lead)^2 "
+               "= %.4g kg, known beforehand)" % rotor_mass(params))
+    out.append("# k_axial, backlash: deflection = f/k + sgn(f) backlash/2 + offset below %.3g Hz, %s rows per "
+               "drive (|f| spans %s N); sigma: block bootstrap (%g s blocks), the differences at %.3g Hz and with "
+               "%g x the window left out about the force's sign changes"
+               % (s.cutoff_hz, "/".join("%d" % x for x in sl["rows"]), "/".join("%.0f" % x for x in sl["span"]),
+                  s.block_s, s.cutoff_hz * s.second_cutoff, s.window_check))
+    for k in range(6):
+        if np.isfinite(sl["k"][k]) and sl["k"][k] > 0 and sl["sk"][k] < 0.3 * sl["k"][k]:
+            out.append("k_axial[%d] = %.6g ± %.2g N/m" % (k, sl["k"][k], sl["sk"][k]))
+        else:
+            out.append("# k_axial[%d] not estimated: the deflection does not follow the train force (%.3g N/m); "
+                       "a rigid train (k_axial 0) or too little force" % (k, sl["k"][k]))
+    for k in range(6):
+        if np.isfinite(sl["backlash"][k]):
+            out.append("backlash[%d] = %.4g ± %.2g m" % (k, sl["backlash"][k], sl["sb"][k]))
+        else:
+            out.append("# backlash[%d] not estimated: the train force never changes sign" % k)
+    f = t.fast
+    if f is None:
+        out.append("# c_axial not estimated: " + t.fast_why)
+        return out
+    out.append("# c_axial: output error of the trains' small motion (%s, the rigid estimate's mass matrix, k_axial "
+               "held) against "
+               "the carriage's position above %.3g Hz on %d dithered stretches (%.1f s); residual RMS %s nm of "
+               "%s nm; sigma: covariance x correlation time %.1f, and the difference above %.3g Hz"
+               % ("RK4 on 16 substeps: a continuous machine", s.highpass_hz, f["stretches"], f["seconds"],
+                  "/".join("%.0f" % (x * 1e9) for x in f["rms"]), "/".join("%.0f" % (x * 1e9) for x in f["y_rms"]),
+                  f["tau"], s.highpass_hz * s.check_ratio))
+    for k in range(6):
+        out.append("c_axial[%d] = %.5g ± %.2g N s/m" % (k, f["c"][k], f["sc"][k]))
+    out.append("# the carriages' masses behind the springs, as the mode's frequency tells them: the rigid "
+               "estimate's %s kg" % " ".join("%+.3g±%.1g" % (f["dm"][k], f["sdm"][k]) for k in range(6)))
+    return out
+
+
+def spec(t):
+    """{spec name: [six values]} of the trains for identify's setp lines."""
+    out = {}
+    if t.slow is not None:
+        if np.isfinite(t.slow["k"]).all():
+            out["k_axial"] = list(t.slow["k"])
+        if np.isfinite(t.slow["backlash"]).all():
+            out["backlash"] = list(np.maximum(t.slow["backlash"], 0.0))
+    if t.fast is not None:
+        out["c_axial"] = list(t.fast["c"])
+    return out

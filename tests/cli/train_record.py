@@ -30,6 +30,9 @@ def main():
     ap.add_argument("out")
     ap.add_argument("sets", nargs="*")
     ap.add_argument("--seconds", type=float, default=12.0)
+    ap.add_argument("--program", choices=["trains", "fourier"], default="trains",
+                    help="trains: excite --trains' strokes; fourier: excite's design for the rigid parameters "
+                    "(one start, 15 iterations, as tests/cli/test_identify_cli)")
     ap.add_argument("--substeps", type=int, default=16)
     ap.add_argument("--integrator", type=int, default=2, help="0 improved Euler, 1 Heun, 2 RK4")
     ap.add_argument("--dither-v", type=float, default=1.0)
@@ -40,10 +43,20 @@ def main():
     dt = 0.001
     n = int(a.seconds / dt)
     t = np.arange(n) * dt
-    # the trains' program (hexaglide excite --trains): vertical strokes at constant speed
-    pose = np.zeros((n, 6))
-    pose[:, 2] = ex.strokes(n, dt)
+    if a.program == "trains":     # the trains' program (hexaglide excite --trains): vertical strokes
+        pose = np.zeros((n, 6))
+        pose[:, 2] = ex.strokes(n, dt)
+    else:
+        e = argparse.Namespace(ini=hg.DEFAULT_INI, margin=0.8, max_volts=4.0, harmonics=5, period=8.0, grid=160,
+                               segment=0.2, starts=1, maxiter=15)
+        prob = ex.Problem(e, hg.Params())
+        th, _ = ex.design(e, prob, np.random.default_rng(1))
+        pose = prob.fourier.eval(th, t)[0]
     cmd = np.array([hg.ik(x) for x in pose])
+    if a.program == "fourier":        # from HOME at rest to the program's start (tune's lead-in)
+        import hexaglide_tune as tune
+        cmd = tune.lead_in(cmd, 1000)[0][:n]
+
     dither = ex.dither(n, dt, a.band, a.dither_v) if a.dither_v > 0 else np.zeros((n, 6))
     dither[t < 1.0] = 0.0
     b = hg.Board(params=p, substeps=a.substeps, integrator=a.integrator)
