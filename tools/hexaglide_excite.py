@@ -71,9 +71,9 @@ class Fourier:
         return x + x0c, xd, xdd
 
 
-DITHER_BAND_HZ = (150.0, 550.0)   # the trains' dither: around their first axial mode (352.75 Hz at HOME)
+DITHER_BAND_HZ = (200.0, 500.0)   # the trains' dither: around their first axial mode (352.75 Hz at HOME)
 DITHER_SWEEP_S = 2.0              # one sweep up and down of the band
-DITHER_V = 0.3                    # volts (amplitude) on each drive's DAC
+DITHER_V = 0.5                    # volts (amplitude) on each drive's DAC
 
 
 TRAIN_STROKE_MM = 30.0           # the trains' program: vertical strokes down from HOME and back ...

@@ -60,7 +60,8 @@ _response = hg._sig("hg_trainid_response", C.c_int, C.POINTER(TrainParams), C.c_
                     C.c_long, _dp, C.c_long, _dp, _dp, _dp, C.c_void_p)
 _drive = hg._sig("hg_trainid_drive", C.c_int, C.c_void_p, C.c_int, C.c_double, C.c_long, _dp, _dp, _dp)
 OUTPUT = os.environ.get("TRAINID_OUTPUT", "carriage")
-CONTINUOUS = (2, 16)          # a real machine: RK4 on 16 substeps of the period
+CONTINUOUS = (2, 16)
+K_NOMINAL = 3e7               # N/m: the fast force's scale in the row choice when the prior is a rigid train          # a real machine: RK4 on 16 substeps of the period
 
 
 def response(k, c, m_rotor, c_visc, scheme, ns, dt, mass, every, u):
@@ -124,11 +125,11 @@ class Slow:
     """One stretch's slow signals: rows n (run indexes), zr, zc, d, f (n, 6), filtered at hz."""
 
 
-def slow_signals(run, params, pieces, hz):
+def slow_signals(run, params, pieces, hz, hp_hz=Settings.highpass_hz):
     """The stretches' low-passed encoder position zr, deflection d = zr - zc and
     train force f = F - m_r zr'' (F of the periods either side of a reading:
     its acceleration's), per usable piece (list of Slow)."""
-    from scipy.signal import filtfilt
+    from scipy.signal import filtfilt, butter
     import hexaglide_identify as hid
     dt = run.dt
     b, a = _lp(dt, hz)
@@ -144,19 +145,27 @@ def slow_signals(run, params, pieces, hz):
         g.d = filtfilt(b, a, run.counts[i0:i1] / run.count_scale - run.carriage[i0:i1], axis=0)
         acc = np.gradient(np.gradient(zr, dt, axis=0), dt, axis=0)
         g.f = filtfilt(b, a, 0.5 * (F[n] + F[n + 1]), axis=0) - mr * acc
+        # the fast part of the deflection (the dither's): its RMS (m)
+        bh, ah = butter(4, min(0.45, hp_hz * 2 * dt), "high")
+        draw = run.counts[i0:i1] / run.count_scale - run.carriage[i0:i1]
+        g.fast = _rms(filtfilt(bh, ah, draw, axis=0), max(1, int(round(0.05 / dt))))
         g.b, g.a = b, a
         out.append(g)
     return out
 
 
-def _slow_rows(g, run, s, hz):
-    """Rows of a stretch the slow fit uses, per drive (len, 6)."""
+def _slow_rows(g, run, s, hz, k_nom):
+    """Rows of a stretch the slow fit uses, per drive (len, 6): away from the
+    train force's sign changes, by zero_band_n and by preload x the fast
+    (dither's) force k_nom x its deflection's RMS (it chatters through the
+    free play there)."""
     import hexaglide_identify as hid
     w = int(round(s.zero_window / (hz * run.dt)))
     edge = int(round(s.margin_s / run.dt))
     use = np.zeros(g.f.shape, bool)
+    band = s.zero_band_n + s.preload * k_nom * g.fast
     for k in range(6):
-        use[:, k] = ~hid._dilate(np.abs(g.f[:, k]) < s.zero_band_n, w)
+        use[:, k] = ~hid._dilate(np.abs(g.f[:, k]) < band[:, k], w)
     use[:edge] = use[-edge:] = False
     return use
 
@@ -168,27 +177,33 @@ def slow_fit(runs, params, pieces, s, hz, rng=None):
     A_all = [[] for _ in range(6)]
     y_all = [[] for _ in range(6)]
     blk = [[] for _ in range(6)]
-    nb = 0
+    nb = npc = 0
     for run, pcs in zip(runs, pieces):
         for g in slow_signals(run, params, pcs, hz):
-            use = _slow_rows(g, run, s, hz)
+            use = _slow_rows(g, run, s, hz, params["k_axial"] if params["k_axial"] > 0 else K_NOMINAL)
             sg = filtfilt(g.b, g.a, np.sign(g.f), axis=0)
             bl = nb + (np.arange(len(g.n)) * run.dt // s.block_s).astype(int)
             nb = bl[-1] + 1
+            npc += 1
             for k in range(6):
                 u = use[:, k]
-                A_all[k].append(np.c_[g.f[u, k], sg[u, k], np.ones(u.sum())])
+                A_all[k].append(np.c_[g.f[u, k], sg[u, k], np.ones(u.sum()), np.full(u.sum(), npc - 1)])
                 y_all[k].append(g.d[u, k])
                 blk[k].append(bl[u])
     out = dict(k=np.full(6, np.nan), backlash=np.full(6, np.nan), offset=np.full(6, np.nan),
                sk=np.full(6, np.nan), sb=np.full(6, np.nan), rows=np.zeros(6, int), rms=np.full(6, np.nan),
+               hk=np.zeros(6), hb=np.zeros(6),
                span=np.zeros(6))
     for k in range(6):
         if not A_all[k]:
             continue
         A, y, bl = np.vstack(A_all[k]), np.concatenate(y_all[k]), np.concatenate(blk[k])
+        # an offset per stretch (the encoder's and the scale's zeros: a reset, a homing between)
+        pc = A[:, 3].astype(int)
+        live = np.unique(pc)
+        A = np.c_[A[:, :2], (pc[:, None] == live[None, :]).astype(float)]
         has_rev = (A[:, 0] > 0).any() and (A[:, 0] < 0).any()
-        cols = [0, 1, 2] if has_rev else [0, 2]
+        cols = ([0, 1] if has_rev else [0]) + list(range(2, A.shape[1]))
         if len(y) < 50:
             continue
         x, *_ = np.linalg.lstsq(A[:, cols], y, rcond=None)
@@ -197,7 +212,17 @@ def slow_fit(runs, params, pieces, s, hz, rng=None):
         out["rms"][k] = np.sqrt(np.mean((y - A[:, cols] @ x) ** 2))
         out["k"][k] = 1.0 / x[0]
         out["backlash"][k] = 2 * x[1] if has_rev else np.nan
-        out["offset"][k] = x[cols.index(2)]
+        out["offset"][k] = x[cols.index(2)]        # the first stretch's
+        # the model's check: the first and the second half of the blocks fitted apart
+        ub = np.unique(bl)
+        half = bl <= ub[len(ub) // 2 - 1] if len(ub) > 1 else np.ones(len(bl), bool)
+        hv = []
+        for sel in (half, ~half):
+            c2 = [c for c in cols if c < 2 or A[sel, c].any()]
+            xh, *_ = np.linalg.lstsq(A[sel][:, c2], y[sel], rcond=None) if sel.sum() > 50 else (None,)
+            hv.append([1.0 / xh[0], 2 * xh[1] if has_rev else np.nan] if xh is not None else [np.nan, np.nan])
+        out["hk"][k] = 0.5 * abs(hv[0][0] - hv[1][0])
+        out["hb"][k] = 0.5 * abs(hv[0][1] - hv[1][1])
         if rng is None:
             continue
         ub = np.unique(bl)
@@ -402,7 +427,8 @@ def estimate_slow(runs, params, pieces, s, log=None):
         t.slow["d" + key] = np.abs(t.slow2[key] - t.slow[key])
         t.slow["w" + key] = np.abs(t.slow3[key] - t.slow[key])
         t.slow[sk + "_stat"] = t.slow[sk].copy()
-        t.slow[sk] = np.sqrt(t.slow[sk] ** 2 + t.slow["d" + key] ** 2 + t.slow["w" + key] ** 2)
+        h = np.nan_to_num(t.slow["h" + key[0]])
+        t.slow[sk] = np.sqrt(t.slow[sk] ** 2 + t.slow["d" + key] ** 2 + t.slow["w" + key] ** 2 + h ** 2)
     if log:
         log("drive trains: stiffness and backlash from %s rows per drive" % "/".join("%d" % x for x in t.slow["rows"]))
     return t
@@ -442,7 +468,8 @@ def report_lines(t, params, s):
                "= %.4g kg, known beforehand)" % rotor_mass(params))
     out.append("# k_axial, backlash: deflection = f/k + sgn(f) backlash/2 + offset below %.3g Hz, %s rows per "
                "drive (|f| spans %s N); sigma: block bootstrap (%g s blocks), the differences at %.3g Hz and with "
-               "%g x the window left out about the force's sign changes"
+               "%g x the window left out about the force's sign changes, half the difference of the data's "
+               "halves fitted apart"
                % (s.cutoff_hz, "/".join("%d" % x for x in sl["rows"]), "/".join("%.0f" % x for x in sl["span"]),
                   s.block_s, s.cutoff_hz * s.second_cutoff, s.window_check))
     for k in range(6):

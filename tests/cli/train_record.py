@@ -35,8 +35,8 @@ def main():
                     "(one start, 15 iterations, as tests/cli/test_identify_cli)")
     ap.add_argument("--substeps", type=int, default=16)
     ap.add_argument("--integrator", type=int, default=2, help="0 improved Euler, 1 Heun, 2 RK4")
-    ap.add_argument("--dither-v", type=float, default=1.0)
-    ap.add_argument("--band", type=float, nargs=2, default=(150.0, 550.0))
+    ap.add_argument("--dither-v", type=float, default=ex.DITHER_V)
+    ap.add_argument("--band", type=float, nargs=2, default=ex.DITHER_BAND_HZ)
     a = ap.parse_args()
     p = hg.Params(**{k: float(v) for k, v in (s.split("=") for s in a.sets)})
     gains = hg.read_ini()[0]
