@@ -1600,7 +1600,7 @@ def main(argv=None):
         trains = trainid.estimate_slow(runs, params, pieces, ts, log)
         told = any(x.split("=")[0].strip() in ("k_axial", "backlash") for x in a.set)
         for r in runs:
-            if r.carriage is not None or told:
+            if (r.carriage is not None and trainid.flexible(trains)) or (r.carriage is None and told):
                 r.deflection = trainid.deflection(r, params, params["k_axial"], params["backlash"], ts)
         # records dithered most of the time are the trains' (hexaglide excite --trains): not the rigid fit's
         all_runs, all_pieces = runs, pieces

@@ -93,8 +93,8 @@ class Settings:
     cutoff_hz = 10.0          # slow fit: zero-phase Butterworth low-pass (order 4, forwards and backwards)
     second_cutoff = 1.5       # ... a second fit at this x cutoff: the difference joins the sigmas
     zero_band_n = 30.0        # ... rows within zero_window cutoff periods of |f| below this are left out
-    zero_window = 1.0
-    window_check = 2.0        # ... a third fit with window_check x the zero_window: the difference joins the sigmas
+    zero_window = 3.0
+    window_check = 0.5        # ... a third fit with window_check x the zero_window: the difference joins the sigmas
     margin_s = 0.3            # ... and the first and last margin_s of a stretch (filter transients)
     block_s = 0.5             # ... block bootstrap: blocks of this length
     boot = 200                # ... replicates
@@ -192,7 +192,6 @@ def slow_fit(runs, params, pieces, s, hz, rng=None):
                 blk[k].append(bl[u])
     out = dict(k=np.full(6, np.nan), backlash=np.full(6, np.nan), offset=np.full(6, np.nan),
                sk=np.full(6, np.nan), sb=np.full(6, np.nan), rows=np.zeros(6, int), rms=np.full(6, np.nan),
-               hk=np.zeros(6), hb=np.zeros(6),
                span=np.zeros(6))
     for k in range(6):
         if not A_all[k]:
@@ -213,16 +212,6 @@ def slow_fit(runs, params, pieces, s, hz, rng=None):
         out["k"][k] = 1.0 / x[0]
         out["backlash"][k] = 2 * x[1] if has_rev else np.nan
         out["offset"][k] = x[cols.index(2)]        # the first stretch's
-        # the model's check: the first and the second half of the blocks fitted apart
-        ub = np.unique(bl)
-        half = bl <= ub[len(ub) // 2 - 1] if len(ub) > 1 else np.ones(len(bl), bool)
-        hv = []
-        for sel in (half, ~half):
-            c2 = [c for c in cols if c < 2 or A[sel, c].any()]
-            xh, *_ = np.linalg.lstsq(A[sel][:, c2], y[sel], rcond=None) if sel.sum() > 50 else (None,)
-            hv.append([1.0 / xh[0], 2 * xh[1] if has_rev else np.nan] if xh is not None else [np.nan, np.nan])
-        out["hk"][k] = 0.5 * abs(hv[0][0] - hv[1][0])
-        out["hb"][k] = 0.5 * abs(hv[0][1] - hv[1][1])
         if rng is None:
             continue
         ub = np.unique(bl)
@@ -427,19 +416,28 @@ def estimate_slow(runs, params, pieces, s, log=None):
         t.slow["d" + key] = np.abs(t.slow2[key] - t.slow[key])
         t.slow["w" + key] = np.abs(t.slow3[key] - t.slow[key])
         t.slow[sk + "_stat"] = t.slow[sk].copy()
-        h = np.nan_to_num(t.slow["h" + key[0]])
-        t.slow[sk] = np.sqrt(t.slow[sk] ** 2 + t.slow["d" + key] ** 2 + t.slow["w" + key] ** 2 + h ** 2)
+        t.slow[sk] = np.sqrt(t.slow[sk] ** 2 + t.slow["d" + key] ** 2 + t.slow["w" + key] ** 2)
     if log:
         log("drive trains: stiffness and backlash from %s rows per drive" % "/".join("%d" % x for x in t.slow["rows"]))
     return t
+
+
+def _stiff(sl, k):
+    """Drive k's slow fit found a stiffness (the deflection follows the train force), else a rigid train."""
+    return bool(np.isfinite(sl["k"][k]) and sl["k"][k] > 0 and sl["sk"][k] < 0.3 * sl["k"][k])
+
+
+def flexible(t):
+    """Every drive's train found flexible by the slow fit."""
+    return t.slow is not None and all(_stiff(t.slow, k) for k in range(6))
 
 
 def estimate_fast(t, runs, pieces, reg, params, pi, s, log=None):
     """The fast fit (t.fast) on the dither's stretches, else t.fast_why."""
     if t.slow is None:
         return
-    if not (np.isfinite(t.slow["k"]) & (t.slow["k"] > 0)).all():
-        t.fast_why = "the slow fit found no stiffness on every drive"
+    if not flexible(t):
+        t.fast_why = "the slow fit found no flexible train on every drive"
         return
     k0 = t.slow["k"]
     segs = stretches(runs, pieces, reg, params, pi, k0, s)
@@ -468,17 +466,18 @@ def report_lines(t, params, s):
                "= %.4g kg, known beforehand)" % rotor_mass(params))
     out.append("# k_axial, backlash: deflection = f/k + sgn(f) backlash/2 + offset below %.3g Hz, %s rows per "
                "drive (|f| spans %s N); sigma: block bootstrap (%g s blocks), the differences at %.3g Hz and with "
-               "%g x the window left out about the force's sign changes, half the difference of the data's "
-               "halves fitted apart"
+               "%g x the window left out about the force's sign changes"
                % (s.cutoff_hz, "/".join("%d" % x for x in sl["rows"]), "/".join("%.0f" % x for x in sl["span"]),
                   s.block_s, s.cutoff_hz * s.second_cutoff, s.window_check))
     for k in range(6):
-        if np.isfinite(sl["k"][k]) and sl["k"][k] > 0 and sl["sk"][k] < 0.3 * sl["k"][k]:
+        if _stiff(sl, k):
             out.append("k_axial[%d] = %.6g ± %.2g N/m" % (k, sl["k"][k], sl["sk"][k]))
         else:
-            out.append("# k_axial[%d] not estimated: the deflection does not follow the train force (%.3g N/m); "
-                       "a rigid train (k_axial 0) or too little force" % (k, sl["k"][k]))
+            out.append("# k_axial[%d], backlash[%d] not estimated: the deflection does not follow the train force "
+                       "(%.3g ± %.2g N/m); a rigid train (k_axial 0) or too little force" % (k, k, sl["k"][k], sl["sk"][k]))
     for k in range(6):
+        if not _stiff(sl, k):
+            continue
         if np.isfinite(sl["backlash"][k]):
             out.append("backlash[%d] = %.4g ± %.2g m" % (k, sl["backlash"][k], sl["sb"][k]))
         else:
@@ -504,9 +503,8 @@ def report_lines(t, params, s):
 def spec(t):
     """{spec name: [six values]} of the trains for identify's setp lines."""
     out = {}
-    if t.slow is not None:
-        if np.isfinite(t.slow["k"]).all():
-            out["k_axial"] = list(t.slow["k"])
+    if flexible(t):
+        out["k_axial"] = list(t.slow["k"])
         if np.isfinite(t.slow["backlash"]).all():
             out["backlash"] = list(np.maximum(t.slow["backlash"], 0.0))
     if t.fast is not None:
