@@ -222,9 +222,17 @@ def slow_fit(runs, params, pieces, s, hz, rng=None):
             xb, *_ = np.linalg.lstsq(A[idx][:, cols], y[idx], rcond=None)
             reps.append([1.0 / xb[0], 2 * xb[1] if has_rev else np.nan])
         reps = np.array(reps)
-        out["sk"][k] = np.std(reps[:, 0])
-        out["sb"][k] = np.std(reps[:, 1]) if has_rev else np.nan
+        # the replicates' spread, half the 16..84 percentile range (a replicate drawn with
+        # (nearly) no reversal has no backlash to speak of: robust to those)
+        out["sk"][k] = _spread(reps[:, 0])
+        out["sb"][k] = _spread(reps[:, 1]) if has_rev else np.nan
     return out
+
+
+def _spread(x):
+    """Half the 16..84 percentile range of x (a standard deviation when normal)."""
+    lo, hi = np.percentile(x, [15.865, 84.135])
+    return 0.5 * (hi - lo)
 
 
 def deflection(run, params, k_axial, backlash, s):
@@ -465,7 +473,7 @@ def report_lines(t, params, s):
                "scale, the board's joint-N.pos); train force = DAC force - m_r zr'' (m_r = j_rotor (2 pi/lead)^2 "
                "= %.4g kg, known beforehand)" % rotor_mass(params))
     out.append("# k_axial, backlash: deflection = f/k + sgn(f) backlash/2 + offset below %.3g Hz, %s rows per "
-               "drive (|f| spans %s N); sigma: block bootstrap (%g s blocks), the differences at %.3g Hz and with "
+               "drive (|f| spans %s N); sigma: block bootstrap (%g s blocks, the 16..84%% spread), the differences at %.3g Hz and with "
                "%g x the window left out about the force's sign changes"
                % (s.cutoff_hz, "/".join("%d" % x for x in sl["rows"]), "/".join("%.0f" % x for x in sl["span"]),
                   s.block_s, s.cutoff_hz * s.second_cutoff, s.window_check))
