@@ -68,11 +68,8 @@ static double plant_position_mm(const hg_loop *L, int k)
     return L->out.position[k];
 }
 
-/* One period (hg_loop_step_io) with add_v[k] (may be 0) added to pid k's
- * output on its way to the DAC, as a HAL sum2 between them would; out's
- * output_v is what the DAC got. */
-static int step_dac(hg_loop *L, const double *cmd_mm, const int *enable, long period_ns,
-                    const double *add_v, hg_loop_sample *out)
+int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
+                    long period_ns, hg_loop_sample *out)
 {
     double fb[HG_LOOP_JOINTS], dac[HG_LOOP_JOINTS] = {0};
     int k, rc;
@@ -86,12 +83,10 @@ static int step_dac(hg_loop *L, const double *cmd_mm, const int *enable, long pe
             out->ferror_mm[k] = L->prev_cmd_mm[k] - fb[k];
         }
         dac[k] = hg_pid_calc(&L->cfg.pid[k], &L->pid[k], cmd_mm[k], fb[k], enable[k],
-                             L->in.index_enable[k], period_ns) + (add_v ? add_v[k] : 0.0);
+                             L->in.index_enable[k], period_ns);
         if (out)
             out->output_v[k] = dac[k];
     }
-    for (k = 0; k < L->joints; k++)      /* the board's tool-path error pairs them with this step */
-        L->in.pos_cmd[k] = cmd_mm[k] / ((L->out.rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M);
     rc = plant_step(L, dac, period_ns);
     if (out)
         out->tool_error_mm = L->out.tool_error < 0.0 ? -1.0 : L->out.tool_error * HG_MM_PER_M;
@@ -101,22 +96,17 @@ static int step_dac(hg_loop *L, const double *cmd_mm, const int *enable, long pe
     return rc;
 }
 
-int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
-                    long period_ns, hg_loop_sample *out)
-{
-    return step_dac(L, cmd_mm, enable, period_ns, 0, out);
-}
-
-static const int every_pid_on[HG_LOOP_JOINTS] = {1, 1, 1, 1, 1, 1, 1, 1};
-
 int hg_loop_step(hg_loop *L, const double *cmd_mm, hg_loop_sample *out)
 {
-    return hg_loop_step_io(L, cmd_mm, every_pid_on, L->cfg.period_ns, out);
+    static const int on[HG_LOOP_JOINTS] = {1, 1, 1, 1, 1, 1, 1, 1};
+    int k;
+    for (k = 0; k < L->joints; k++)      /* the board's tool-path error pairs them with this step */
+        L->in.pos_cmd[k] = cmd_mm[k] / ((L->out.rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M);
+    return hg_loop_step_io(L, cmd_mm, on, L->cfg.period_ns, out);
 }
 
-/* hg_loop_run with dither_v (n x J, may be 0) added to the pids' outputs. */
-static int run_dac(hg_loop *L, const double *cmd_mm, const double *dither_v, long n, long from,
-                   double *ferror_mm, double *output_v, hg_loop_summary *sum)
+int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
+                double *output_v, hg_loop_summary *sum)
 {
     hg_loop_sample s;
     double sq[HG_LOOP_JOINTS] = {0};
@@ -125,7 +115,7 @@ static int run_dac(hg_loop *L, const double *cmd_mm, const double *dither_v, lon
     *sum = (hg_loop_summary){0};
     sum->tripped_at = -1;
     for (i = 0; i < n; i++) {
-        rc = step_dac(L, cmd_mm + J * i, every_pid_on, L->cfg.period_ns, dither_v ? dither_v + J * i : 0, &s);
+        rc = hg_loop_step(L, cmd_mm + J * i, &s);
         if (rc)
             break;
         for (k = 0; k < J; k++) {
@@ -158,18 +148,6 @@ static int run_dac(hg_loop *L, const double *cmd_mm, const double *dither_v, lon
     for (k = 0; k < J; k++)
         sum->rms_ferror_mm[k] = counted ? sqrt(sq[k] / counted) : 0.0;
     return rc;
-}
-
-int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
-                double *output_v, hg_loop_summary *sum)
-{
-    return run_dac(L, cmd_mm, 0, n, from, ferror_mm, output_v, sum);
-}
-
-int hg_loop_run_dither(hg_loop *L, const double *cmd_mm, const double *dither_v, long n, long from,
-                       double *ferror_mm, double *output_v, hg_loop_summary *sum)
-{
-    return run_dac(L, cmd_mm, dither_v, n, from, ferror_mm, output_v, sum);
 }
 
 unsigned long hg_loop_sizeof(int which)

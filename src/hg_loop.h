@@ -84,8 +84,11 @@ int hg_loop_step(hg_loop *L, const double *cmd_mm, hg_loop_sample *out);
  * the pids overwrite dac_v[0..5]), pid.N.enable is enable[N] (motion's
  * joint.N.amp-enable-out), pid.N.index-enable is L->in.index_enable[N]
  * (one signal with the encoder's, as in configs/hexaglide.hal), and the
- * period is period_ns for the pids and the board. Otherwise as hg_loop_step,
- * which is this call with every pid enabled and cfg.period_ns. */
+ * period is period_ns for the pids and the board; the tool-path error's
+ * joint commands are L->in.pos_cmd (LinuxCNC's joint.N.pos-cmd: motor-pos-cmd
+ * without motor offset and backlash compensation). Otherwise as hg_loop_step,
+ * which is this call with every pid enabled, cfg.period_ns and pos_cmd the
+ * pids' commands. */
 int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
                     long period_ns, hg_loop_sample *out);
 
@@ -95,13 +98,6 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
  * trip (see ferror_limit_mm). 0 or the first step's negative code. */
 int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
                 double *output_v, hg_loop_summary *sum);
-
-/* hg_loop_run with dither_v[n][J] (volts, row-major) added to the pids'
- * outputs on their way to the DACs, as a HAL sum2 between pid.N.output and
- * the DAC would (an excitation of the drive trains: hexaglide excite);
- * output_v gets what the DACs got. */
-int hg_loop_run_dither(hg_loop *L, const double *cmd_mm, const double *dither_v, long n, long from,
-                       double *ferror_mm, double *output_v, hg_loop_summary *sum);
 
 /* sizeof the structs, for bindings that mirror them (tools/hexaglide.py). */
 unsigned long hg_loop_sizeof(int which);   /* 0 hg_loop, 1 config, 2 summary, 3 pid gains,

@@ -86,7 +86,7 @@ static int variant_name(int variant, char *buf, int len)
     int k;
     if (!n || len < 1)
         return -1;
-    for (k = 0; n[k] && k < len - 1; k++)
+    for (k = 0; k < len - 1 && n[k]; k++)
         buf[k] = n[k];
     buf[k] = '\0';
     return 0;

@@ -222,7 +222,7 @@ int hg_stability_check(const hg_params *p, hg_integrator scheme, double period_s
      * bound; the first listed within 5% of it when there is one (a system listed earlier is a
      * part of later ones: viscous friction alone comes before the stop that adds to it) */
     {
-        double h[8];
+        double h[8] = {0};
         for (k = 0; last && k < (unsigned)n; k++) {
             h[k] = stable(&s[k], scheme, period_s / last) ? DBL_MAX
                                                           : longest_step(&s[k], scheme, period_s / substeps_min);

@@ -26,6 +26,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_INI = os.path.normpath(os.path.join(HERE, "..", "configs", "hexaglide.ini"))
 LIB_PATH = os.environ.get("HEXAGLIDE_LIB", os.path.join(HERE, "..", "build", "libhexaglide.so"))
 JOINTS = 6
+RECORD_MAGICS = (b"# hexaglide-record 1", b"# hexaglide-record 2")   # line 1 of a record, per format (docs/replay.md)
 MODELS = ["standard", "reduced-joints", "reduced-cartesian", "fused-cartesian"]
 
 try:
@@ -204,8 +205,6 @@ _loop_init = _sig("hg_loop_init", C.c_int, _P, C.POINTER(LoopConfig), _P)
 _loop_step = _sig("hg_loop_step", C.c_int, _P, _dc, _P)
 _dp = np.ctypeslib.ndpointer(dtype=np.float64, flags="C_CONTIGUOUS")
 _loop_run = _sig("hg_loop_run", C.c_int, _P, _dp, C.c_long, C.c_long, _P, _P, C.POINTER(LoopSummary))
-_loop_run_dither = _sig("hg_loop_run_dither", C.c_int, _P, _dp, _dp, C.c_long, C.c_long, _P, _P,
-                        C.POINTER(LoopSummary))
 
 
 class ParamInfo(C.Structure):
@@ -514,25 +513,18 @@ class Loop:
         if rc:
             raise HexaglideError("loop init", rc)
 
-    def run(self, cmd_mm, start=0, keep=True, dither_v=None):
-        """Run the commands (n, 6) from the current state; summary over rows >= start.
-        dither_v (n, 6): volts added to the pids' outputs before the DACs (output_v: the DACs')."""
+    def run(self, cmd_mm, start=0, keep=True):
+        """Run the commands (n, 6) from the current state; summary over rows >= start."""
         cmd = np.ascontiguousarray(cmd_mm, dtype=np.float64)
         if cmd.ndim != 2 or cmd.shape[1] != JOINTS:
             raise ValueError("commands must be an (n, 6) array, got %s" % (cmd.shape,))
         n = cmd.shape[0]
-        if dither_v is not None:
-            dither_v = np.ascontiguousarray(dither_v, dtype=np.float64)
-            if dither_v.shape != cmd.shape:
-                raise ValueError("dither must be shaped like the commands %s, got %s" % (cmd.shape, dither_v.shape))
         fe = np.zeros((n, JOINTS)) if keep else None
         out = np.zeros((n, JOINTS)) if keep else None
         summ = LoopSummary()
-        outs = (fe.ctypes.data_as(_P) if keep else None, out.ctypes.data_as(_P) if keep else None, C.byref(summ))
-        if dither_v is None:
-            rc = _loop_run(self.buf, cmd, n, start, *outs)
-        else:
-            rc = _loop_run_dither(self.buf, cmd, dither_v, n, start, *outs)
+        rc = _loop_run(self.buf, cmd, n, start,
+                       fe.ctypes.data_as(_P) if keep else None,
+                       out.ctypes.data_as(_P) if keep else None, C.byref(summ))
         if keep and summ.periods < n:
             fe, out = fe[:summ.periods], out[:summ.periods]
         return RunResult(fe, out, summ, rc)

@@ -306,7 +306,7 @@ _rec_open = hg._sig("hg_record_open", C.c_int, C.c_void_p, C.c_char_p, C.c_size_
 _rec_column = hg._sig("hg_record_column", C.c_int, C.c_void_p, C.c_char_p)
 _rec_kind = hg._sig("hg_record_set_kind", None, C.c_void_p, C.c_int, C.c_int)
 _rec_next = hg._sig("hg_record_next", C.c_int, C.c_void_p, _dp, C.POINTER(_RecErr))
-REC_MAGICS = (b"# hexaglide-record 1", b"# hexaglide-record 2")   # the formats identify reads
+REC_MAGICS = hg.RECORD_MAGICS   # the formats identify reads
 REC_BYTES = 1 << 16           # room for the reader's struct (hg_record: about 5 kB)
 
 
@@ -347,7 +347,7 @@ def read_board_record(path):
     slots = [[header.index("in.pev-%d-%s" % (k, part)) for part in ("entry", "value", "age")]
              for k in range(2) if "in.pev-%d-entry" % k in header]
     entry_of = {n: i for i, n in enumerate(t)}
-    told = {}
+    told, events = {}, {}
     for name in ("out.count-%02d" % j for j in range(6)):
         _rec_kind(r, header.index(name), 1)                # s32
     for name in ("out.amps-on", "out.fault"):
@@ -365,6 +365,7 @@ def read_board_record(path):
             ev = _RecEvent()
             if _rec_event_of(row[c_entry], row[c_value], row[c_age], len(out), C.byref(ev)):
                 told[ev.entry] = ev.value
+                events[(ev.entry, ev.at)] = ev.value
         out.append(row[cols].copy())
     # what the board ran with at the end: format 1's last row, format 2's events
     recorded = {name: float(row[c]) for name, c in param_cols.items()} if out else {}
@@ -394,6 +395,8 @@ def read_board_record(path):
     run.ok &= ~jump
     run.known = {name: recorded[name] for name in KNOWN if name in recorded}
     run.recorded = recorded
+    names = list(t)
+    run.events = sorted((at, names[e], v) for (e, at), v in events.items() if e < len(names))  # (row, name, value)
     return run
 
 
