@@ -353,6 +353,8 @@ def read_board_record(path):
     for name in ("out.amps-on", "out.fault"):
         _rec_kind(r, header.index(name), 3)                # bit
     cols = [header.index(x) for x in need]
+    if "in.substeps" in header:                         # the board's asked substeps (the trains' fast fit)
+        cols.append(header.index("in.substeps"))
     row = np.zeros(len(header) + 8)
     out = []
     while True:
@@ -370,7 +372,7 @@ def read_board_record(path):
     # what the board ran with at the end: format 1's last row, format 2's events
     recorded = {name: float(row[c]) for name, c in param_cols.items()} if out else {}
     recorded.update({name: told[i] for name, i in entry_of.items() if i in told})
-    a = np.array(out).reshape(-1, len(need))
+    a = np.array(out).reshape(-1, len(cols))
     run = Run(path, "record")
     run.last_line = hdr_no + len(a)
     if len(a):
@@ -381,6 +383,8 @@ def read_board_record(path):
                            "identify one period at a time" % (path, hdr_no + 1 + bad, per[bad]))
         run.dt = per[0] * 1e-9
         run.integrator = int(np.bincount(a[:, 1].astype(int)).argmax())
+        if len(cols) > len(need):
+            run.substeps = int(np.bincount(a[:, len(need)].astype(int)).argmax())
     run.ok = (a[:, 2] > 0.5) & (a[:, 3] < 0.5)
     run.volts = a[:, 4:10]
     run.pos = a[:, 10:16]

@@ -88,6 +88,30 @@ def drive_force(reg, volts, speed, ns, dt):
     return u
 
 
+class _Stability(C.Structure):
+    """hg_stability."""
+    _fields_ = [("substeps", C.c_uint), ("param", C.c_char_p), ("dt_max_s", C.c_double)]
+
+
+_stability = hg._sig("hg_stability_check", C.c_int, C.c_void_p, C.c_int, C.c_double, C.c_uint, C.c_uint,
+                     C.POINTER(_Stability))
+SUBSTEPS_MAX = 64             # HG_SUBSTEPS_MAX
+
+
+def board_scheme(run, params, k):
+    """(integrator, substeps) the fast fit steps a run with: a board record's
+    (its integrator, and the substeps its stability rule runs for these
+    trains: src/hg_stability.h), else a continuous machine's (CONTINUOUS)."""
+    if run.integrator is None or getattr(run, "substeps", None) is None:
+        return CONTINUOUS
+    import hexaglide_identify as hid
+    p = hid.params_copy(params)
+    p["k_axial"] = float(np.max(k))
+    st = _Stability()
+    rc = _stability(p.buf, int(run.integrator), run.dt, max(1, int(run.substeps)), SUBSTEPS_MAX, C.byref(st))
+    return int(run.integrator), int(st.substeps) if rc == 0 and st.substeps else SUBSTEPS_MAX
+
+
 class Settings:
     """How a recording becomes the trains' estimate (docs/identification.md: the drive trains)."""
     cutoff_hz = 10.0          # slow fit: zero-phase Butterworth low-pass (order 4, forwards and backwards)
@@ -328,7 +352,7 @@ def stretches(runs, pieces, reg, params, pi, k_slow, s):
                 a, b = seg[0] + i0, seg[-1] + 1 + i0
                 t = Stretch()
                 t.dt = dt
-                t.scheme = (run.integrator, run.substeps) if getattr(run, "substeps", None) else CONTINUOUS
+                t.scheme = board_scheme(run, params, k_slow)
                 t.volts = V[a:b]
                 t.speed = np.gradient(g.zr[a - i0:b - i0], dt, axis=0)
                 t.mass = mass_matrices(reg, pi, g.zr[a - i0:b - i0:s.every] - g.d[a - i0:b - i0:s.every])
@@ -393,7 +417,7 @@ def fast_fit(segs, reg, params, pi, k, s):
     yr = np.sqrt((np.concatenate([t.y[t.settle:] for t in segs]) ** 2).mean(0))
     res2 = solve(s.highpass_hz * s.check_ratio, res.x)
     diff = np.abs(res2.x - res.x) * scale
-    return dict(c=val[:6], dm=val[6:], sc_stat=sig[:6], sdm=sig[6:], dc=diff[:6], sc=np.hypot(sig[:6], diff[:6]),
+    return dict(schemes=[t.scheme for t in segs], c=val[:6], dm=val[6:], sc_stat=sig[:6], sdm=sig[6:], dc=diff[:6], sc=np.hypot(sig[:6], diff[:6]),
                 rms=rms, y_rms=yr, tau=tau, stretches=len(segs),
                 seconds=sum((len(t.d) - t.settle) * t.dt for t in segs))
 
@@ -463,6 +487,12 @@ def estimate_fast(t, runs, pieces, reg, params, pi, s, log=None):
                       "the rigid parameters too (a record of hexaglide excite's program beside the trains')" % ex)
 
 
+def _scheme_text(sch):
+    if tuple(sch) == CONTINUOUS:
+        return "RK4 on %d substeps: a continuous machine" % CONTINUOUS[1]
+    return "the board's %s on %d substeps" % (("improved Euler", "Heun", "RK4")[sch[0]], sch[1])
+
+
 def report_lines(t, params, s):
     """identify's lines of the trains: NAME[k] = VALUE ± SIGMA UNIT and '#' notes."""
     out = []
@@ -498,7 +528,8 @@ def report_lines(t, params, s):
                "held) against "
                "the carriage's position above %.3g Hz on %d dithered stretches (%.1f s); residual RMS %s nm of "
                "%s nm; sigma: covariance x correlation time %.1f, and the difference above %.3g Hz"
-               % ("RK4 on 16 substeps: a continuous machine", s.highpass_hz, f["stretches"], f["seconds"],
+               % (", ".join(sorted(set(_scheme_text(x) for x in f["schemes"]))), s.highpass_hz, f["stretches"],
+                  f["seconds"],
                   "/".join("%.0f" % (x * 1e9) for x in f["rms"]), "/".join("%.0f" % (x * 1e9) for x in f["y_rms"]),
                   f["tau"], s.highpass_hz * s.check_ratio))
     for k in range(6):
