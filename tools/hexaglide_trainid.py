@@ -384,11 +384,12 @@ def _sim(t, k, c, mr, cv, dm):
     return filtfilt(*t.hp, l if OUTPUT == "carriage" else m - l, axis=0)
 
 
-def fast_fit(segs, reg, params, pi, k, s):
+def fast_fit(segs, reg, params, pi, k, s, sk=None):
     """c_axial per drive from the stretches, the stiffness k held (the slow
-    fit's), with a correction dm of each carriage's mass (the rigid estimate
-    knows the rotor plus carriage, m_drive, to a kg or two, the carriage
-    behind the spring far less well; the mode's frequency tells it): dict."""
+    fit's, sigmas sk: carried into c's through the fit's sensitivity to k),
+    with a correction dm of each carriage's mass (the rigid estimate knows
+    the rotor plus carriage, m_drive, well, the carriage behind the spring
+    less well; the mode's frequency tells it): dict."""
     from scipy.optimize import least_squares
     import hexaglide_identify as hid
     mr = np.full(6, rotor_mass(params))
@@ -397,8 +398,8 @@ def fast_fit(segs, reg, params, pi, k, s):
     k = np.asarray(k, float)
     load = min(np.min(t.mass[:, ::7] - mr) for t in segs)     # the lightest carriage behind its spring (kg)
 
-    def resid(x):
-        return np.concatenate([((t.y - _sim(t, k, c0 * x[:6], mr, cv, x[6:]))[t.settle:]).ravel()
+    def resid(x, kk=k):
+        return np.concatenate([((t.y - _sim(t, kk, c0 * x[:6], mr, cv, x[6:]))[t.settle:]).ravel()
                                for t in segs]) * 1e6
 
     def solve(hz, x0):
@@ -413,11 +414,19 @@ def fast_fit(segs, reg, params, pi, k, s):
     scale = np.r_[[c0] * 6, [1.0] * 6]
     val = res.x * scale
     sig = np.sqrt(np.diag(cov)) * scale
+    # the stiffness held: its uncertainty moves the fit by -pinv(J_x) J_k dk (J_k by finite differences)
+    dk_sig = np.zeros(6)
+    if sk is not None:
+        Jk = np.stack([(resid(res.x, k * (1 + 1e-3 * (np.arange(6) == j))) - res.fun) / (1e-3 * k[j])
+                       for j in range(6)], 1)
+        S = -np.linalg.pinv(res.jac) @ Jk                       # dx / dk (x scaled)
+        dk_sig = np.sqrt(np.diag(S @ np.diag(np.asarray(sk, float) ** 2) @ S.T)) * scale
     rms = np.sqrt((r ** 2).mean(0)) * 1e-6
     yr = np.sqrt((np.concatenate([t.y[t.settle:] for t in segs]) ** 2).mean(0))
     res2 = solve(s.highpass_hz * s.check_ratio, res.x)
     diff = np.abs(res2.x - res.x) * scale
-    return dict(schemes=[t.scheme for t in segs], c=val[:6], dm=val[6:], sc_stat=sig[:6], sdm=sig[6:], dc=diff[:6], sc=np.hypot(sig[:6], diff[:6]),
+    return dict(schemes=[t.scheme for t in segs], c=val[:6], dm=val[6:], sc_stat=sig[:6], sdm=sig[6:],
+                dc=diff[:6], sc_k=dk_sig[:6], sc=np.sqrt(sig[:6] ** 2 + diff[:6] ** 2 + dk_sig[:6] ** 2),
                 rms=rms, y_rms=yr, tau=tau, stretches=len(segs),
                 seconds=sum((len(t.d) - t.settle) * t.dt for t in segs))
 
@@ -481,7 +490,7 @@ def estimate_fast(t, runs, pieces, reg, params, pi, s, log=None):
     if log:
         log("drive trains: damping from %d dithered stretches" % len(segs))
     try:
-        t.fast = fast_fit(segs, reg, params, pi, k0, s)
+        t.fast = fast_fit(segs, reg, params, pi, k0, s, t.slow["sk"])
     except hg.HexaglideError as ex:
         t.fast_why = ("the rigid estimate's carriage masses leave no load behind the rotors (%s): identify "
                       "the rigid parameters too (a record of hexaglide excite's program beside the trains')" % ex)
@@ -527,7 +536,8 @@ def report_lines(t, params, s):
     out.append("# c_axial: output error of the trains' small motion (%s, the rigid estimate's mass matrix, k_axial "
                "held) against "
                "the carriage's position above %.3g Hz on %d dithered stretches (%.1f s); residual RMS %s nm of "
-               "%s nm; sigma: covariance x correlation time %.1f, and the difference above %.3g Hz"
+               "%s nm; sigma: covariance x correlation time %.1f, the difference above %.3g Hz, and k_axial's sigma "
+               "through the fit's sensitivity to it"
                % (", ".join(sorted(set(_scheme_text(x) for x in f["schemes"]))), s.highpass_hz, f["stretches"],
                   f["seconds"],
                   "/".join("%.0f" % (x * 1e9) for x in f["rms"]), "/".join("%.0f" % (x * 1e9) for x in f["y_rms"]),
