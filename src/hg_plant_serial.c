@@ -786,7 +786,7 @@ static int step(const hg_plant_model *pm, hg_plant_data *pd, const double volts[
     const serial_model *m = model_of(pm);
     serial_data *d = data_of(pd);
     double speed[AXES_MAX], z0[AXES_MAX], z1[AXES_MAX];
-    hg_plant_report unused;
+    hg_plant_report unused = {0};
     hg_drive_out drv;
     int k, rc;
     hg_plant_report *r = rep ? rep : &unused;
