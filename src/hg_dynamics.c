@@ -337,8 +337,10 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
     default:
         rc = HG_ERR_BAD_PARAM;
     }
-    if (rc == 0 && !(hg_all_finite(n, q1) && hg_all_finite(n, qd1) && hg_all_finite(n, qdd)))
-        rc = HG_ERR_STATE_NONFINITE;
+    if (rc == 0 && !(hg_all_finite(n, q1) && hg_all_finite(n, qd1) && hg_all_finite(n, qdd) &&
+                     hg_all_finite(6, drv.i_end) &&
+                     (!m->flexible || (hg_all_finite(6, d->work.rotor1_m) && hg_all_finite(6, d->work.rotor1_mps)))))
+        rc = HG_ERR_STATE_NONFINITE;   /* the rotors and the currents too: no NaN into the state */
     if (rc == 0 && !(res <= HG_STAB_MAX_RESIDUAL_M))
         rc = HG_ERR_STABILIZATION;
     if (rc == 0) {                     /* the machine's mechanical limits, intact or broken */

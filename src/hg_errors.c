@@ -21,6 +21,7 @@ const char *hg_strerror(int code)
     case HG_ERR_JOINT_RANGE: return "a bar left the angular range of its carriage or head joint";
     case HG_ERR_BAR_CLEARANCE: return "two bars came closer than the bar diameter (they touch)";
     case HG_ERR_STIFF: return "the parameters are too stiff for the integration step at this period";
+    case HG_ERR_THROUGH_STOP: return "an axis went through its hard stop (the machine has crashed)";
     case HG_ERR_NO_MEMORY: return "out of memory for the batch of closed-loop runs";
     default: return "unknown error";
     }

@@ -22,7 +22,8 @@ enum hg_error {
     HG_ERR_JOINT_RANGE = -14,      /* a bar left the angular range of its carriage or head joint */
     HG_ERR_BAR_CLEARANCE = -15,    /* two bars came closer than the bar diameter */
     HG_ERR_STIFF = -16,            /* parameters too stiff for the step at this period, even with the most substeps */
-    HG_ERR_NO_MEMORY = -17,        /* host only: memory for a batch of runs could not be had */
+    HG_ERR_THROUGH_STOP = -17,     /* an axis went through its hard stop (beyond what the stop's spring represents) */
+    HG_ERR_NO_MEMORY = -18,        /* host only: memory for a batch of runs could not be had */
     HG_ERR_LAST = HG_ERR_NO_MEMORY /* the most negative code: keep it the last */
 };
 

@@ -1,21 +1,12 @@
 /* hg_forces.c - drive, viscous and hard-stop forces on the carriages. */
 #include "hg_math.h"
 #include "hg_forces.h"
+#include "hg_stop.h"
 
 /* Force (N, +z) of the hard stops on a carriage at z_m moving at zd_mps. */
 static inline double stop_force(const hg_params *p, double z_m, double zd_mps)
 {
-    double f = 0.0;
-    if (z_m > p->stop_max_m) {
-        f = -p->k_stop_n_per_m * (z_m - p->stop_max_m) - p->c_stop_ns_per_m * zd_mps;
-        if (f > 0.0)
-            f = 0.0;
-    } else if (z_m < p->stop_min_m) {
-        f = p->k_stop_n_per_m * (p->stop_min_m - z_m) - p->c_stop_ns_per_m * zd_mps;
-        if (f < 0.0)
-            f = 0.0;
-    }
-    return f;
+    return hg_stop_force(z_m, zd_mps, p->stop_min_m, p->stop_max_m, p->k_stop_n_per_m, p->c_stop_ns_per_m);
 }
 
 void hg_carriage_forces(const hg_model *m, const double z_m[6], const double zd_mps[6],

@@ -23,26 +23,6 @@ typedef struct {
 } stage_ws;
 typedef char hg_stage_ws_fits[sizeof(stage_ws) <= sizeof(((hg_work *)0)->stage) ? 1 : -1];
 
-/* RK4's stage offsets (c_i dt) and weights (b_i); Heun's are the first two */
-static const double rk4_c[4] = {0.0, 0.5, 0.5, 1.0};
-static const double rk4_b[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
-static const double heun_c[2] = {0.0, 1.0};
-static const double heun_b[2] = {0.5, 0.5};
-
-int hg_scheme_tableau(hg_integrator scheme, const double **c, const double **b)
-{
-    switch (scheme) {
-    case HG_INTEGRATOR_HEUN:
-        *c = heun_c, *b = heun_b;
-        return 2;
-    case HG_INTEGRATOR_RK4:
-        *c = rk4_c, *b = rk4_b;
-        return 4;
-    default:
-        return 0;
-    }
-}
-
 /* The paper's step: q1 = q0 + q0' dt + q0'' dt^2/2, q1' = q0' + q0'' dt
  * (the five vectors must not overlap: restrict lets the compiler pack them). */
 static inline __attribute__((always_inline)) void

@@ -44,12 +44,6 @@ typedef struct {
                      double *residual_m);
 } hg_dae;
 
-/* Stage offsets c_i and weights b_i of an explicit Runge-Kutta scheme
- * whose stage i starts from y0 + c_i dt k_(i-1) (Heun's and classical
- * RK4's tableaux; improved Euler has none): the number of stages, 0 for
- * improved Euler or an unknown scheme. */
-int hg_scheme_tableau(hg_integrator scheme, const double **c, const double **b);
-
 /* Advance (q0, qd0) by dt with `scheme`: drive_n the forces held over
  * the step (N: the drives', hg_drive.h, plus the friction expected,
  * ctx->work.fric_est_n: the last step's), fz0 the smooth carriage forces at the start

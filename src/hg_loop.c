@@ -101,8 +101,6 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
             out->dac_value_v[k] = dac[k];
         }
     }
-    for (k = 0; k < L->joints; k++)      /* the board's tool-path error pairs them with this step */
-        L->in.pos_cmd[k] = cmd_mm[k] / user_per_si(L, k);
     rc = plant_step(L, dac, period_ns);
     if (out) {
         out->tool_error_mm = L->out.tool_error < 0.0 ? -1.0 : L->out.tool_error * HG_MM_PER_M;
@@ -118,6 +116,9 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
 int hg_loop_step(hg_loop *L, const double *cmd_mm, hg_loop_sample *out)
 {
     static const int on[HG_LOOP_JOINTS] = {1, 1, 1, 1, 1, 1, 1, 1};
+    int k;
+    for (k = 0; k < L->joints; k++)      /* the board's tool-path error pairs them with this step */
+        L->in.pos_cmd[k] = cmd_mm[k] / user_per_si(L, k);
     return hg_loop_step_io(L, cmd_mm, on, L->cfg.period_ns, out);
 }
 

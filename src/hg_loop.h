@@ -101,8 +101,11 @@ int hg_loop_step(hg_loop *L, const double *cmd_mm, hg_loop_sample *out);
  * the pids overwrite dac_v[0..5]), pid.N.enable is enable[N] (motion's
  * joint.N.amp-enable-out), pid.N.index-enable is L->in.index_enable[N]
  * (one signal with the encoder's, as in configs/hexaglide.hal), and the
- * period is period_ns for the pids and the board. Otherwise as hg_loop_step,
- * which is this call with every pid enabled and cfg.period_ns. */
+ * period is period_ns for the pids and the board; the tool-path error's
+ * joint commands are L->in.pos_cmd (LinuxCNC's joint.N.pos-cmd: motor-pos-cmd
+ * without motor offset and backlash compensation). Otherwise as hg_loop_step,
+ * which is this call with every pid enabled, cfg.period_ns and pos_cmd the
+ * pids' commands. */
 int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
                     long period_ns, hg_loop_sample *out);
 

@@ -7,7 +7,7 @@
  * serial-axis machine, hg_plant_serial.c) knows nothing of the board.
  *
  * A plant is a table of functions and facts (hg_plant), found by name in
- * the registry (hg_plants.c). Its parameters are a block of doubles in SI
+ * the registry (hg_plant.c). Its parameters are a block of doubles in SI
  * units, entry i being entry i of its parameter table (hg_param_table.h:
  * name, unit, HAL name and scale, INI key). Its model (constant after
  * build) and data (mutable state, then scratch) live in storage the
@@ -175,6 +175,15 @@ typedef struct {
  * stable: records name their plant by it. */
 const hg_plant *hg_plant_at(int i);
 int hg_plant_find(const char *name);
+
+/* Add plant p to the registry after the built-in plants (a plant of a
+ * program's own: a test's, an application's): its index, or -1 (a null
+ * plant or name, a name taken, storage too small for its model or data,
+ * or HG_PLANTS_ADDED_MAX added already). Not thread-safe; call before any
+ * board uses the index. The index of an added plant is the program's
+ * own: records naming it replay only where the same plant is added. */
+#define HG_PLANTS_ADDED_MAX 4
+int hg_plant_register(const hg_plant *p);
 
 /* Variant called name of plant p (its default for a null name), or -1. */
 int hg_plant_variant(const hg_plant *p, const char *name);

@@ -86,7 +86,7 @@ static int variant_name(int variant, char *buf, int len)
     int k;
     if (!n || len < 1)
         return -1;
-    for (k = 0; n[k] && k < len - 1; k++)
+    for (k = 0; k < len - 1 && n[k]; k++)
         buf[k] = n[k];
     buf[k] = '\0';
     return 0;
@@ -189,6 +189,44 @@ static unsigned change(int variant, const hg_plant_params *a, const hg_plant_par
     if (p.lead_m != q.lead_m || p.counts_per_rev != q.counts_per_rev)
         c |= HG_PLANT_CHANGE_RESCALE;
     return c;
+}
+
+/* The Hexaglide's carriage as the stability check's axis (every carriage
+ * alike): a rigid train moves the rotor with its carriage; behind a
+ * flexible one the carriage with its bar end is the least inertia any
+ * carriage has (the machine's carriage-space mass matrix is at least
+ * (m_carriage + m_end) I). */
+static void stability_axis(const hg_params *p, hg_stability_axis *a)
+{
+    static const char *const names[HG_STAB_NAMES] = {"c_visc", "k_stop", "c_stop", "r_winding", "kp_vel",
+                                                      "k_axial", "c_axial"};
+    const double k = 2.0 * HG_PI / p->lead_m;
+    const double m_end = 2.0 * p->i_bar_kgm2 / (p->geo.l_m * p->geo.l_m) - 0.5 * p->m_bar_kg;
+    int i;
+    a->m_rotor = p->j_rotor_kgm2 * k * k;
+    a->m_rigid = p->m_carriage_kg + a->m_rotor;
+    a->m_load = p->m_carriage_kg + m_end;
+    a->c_visc = p->c_visc_ns_per_m;
+    a->k_stop = p->k_stop_n_per_m;
+    a->c_stop = p->c_stop_ns_per_m;
+    a->force_per_amp = p->kt_nm_per_a * k;
+    a->r_winding = p->r_winding_ohm;
+    a->l_winding = p->l_winding_h;
+    a->velocity_mode = p->amp_mode == 1.0;
+    a->kp_vel = p->kp_vel_as_per_m;
+    a->ki_vel = p->ki_vel_a_per_m;
+    a->k_axial = p->k_axial_n_per_m;
+    a->c_axial = p->c_axial_ns_per_m;
+    for (i = 0; i < HG_STAB_NAMES; i++)
+        a->name[i] = names[i];
+}
+
+int hg_stability_check(const hg_params *p, hg_integrator scheme, double period_s, unsigned substeps_min,
+                       unsigned substeps_max, hg_stability *out)
+{
+    hg_stability_axis a;
+    stability_axis(p, &a);
+    return hg_stability_check_axes(&a, 1, scheme, period_s, substeps_min, substeps_max, out);
 }
 
 static int stability(int variant, const hg_plant_params *v, int integrator, double period_s,

@@ -1,6 +1,6 @@
 /* hg_scheme.h - the time integration schemes every plant's step offers
- * (hg_integrate.h runs them on the Hexaglide's state), their names and the
- * default. Pure C. */
+ * (hg_integrate.h runs them on the Hexaglide's state), their names, their
+ * tableaux and the default. Pure C. */
 #ifndef HG_SCHEME_H
 #define HG_SCHEME_H
 
@@ -24,5 +24,11 @@ int hg_integrator_default(void);
 
 /* Scheme for a name, or -1 when the name is unknown. */
 int hg_integrator_from_name(const char *name);
+
+/* Stage offsets c_i and weights b_i of an explicit Runge-Kutta scheme
+ * whose stage i starts from y0 + c_i dt k_(i-1) (Heun's and classical
+ * RK4's tableaux, every plant's; improved Euler has none): the number of
+ * stages, 0 for improved Euler or an unknown scheme. */
+int hg_scheme_tableau(hg_integrator scheme, const double **c, const double **b);
 
 #endif

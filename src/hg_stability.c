@@ -1,11 +1,9 @@
 /* hg_stability.c - linear stability of the board's step on the stiff
- * test systems of one carriage (hg_stability.h). */
+ * test systems of each axis (hg_stability.h). */
 #include <float.h>
 #include "hg_math.h"
 #include "hg_stability.h"
-#include "hg_integrate.h"
 #include "hg_errors.h"
-#include "hg_units.h"
 
 #define BISECT_ITER 40        /* the largest stable step, to 1e-12 of the period */
 #define STAB_NEAR 1.05        /* a bound within 5% of the shortest: the simpler system names it */
@@ -122,67 +120,66 @@ static int stable(const test_system *s, hg_integrator scheme, double dt)
     }
 }
 
-/* The test systems of p; returns how many (at most 8). A rigid train
- * moves the rotor with its carriage: every system has their two masses.
- * A flexible one (k_axial > 0) parts them: the carriage alone (with its
- * bar end, the least inertia any carriage has: the machine's carriage-
- * space mass matrix is at least (m_carriage + m_end) I) meets the stop and
- * viscous friction; the rotor alone the drive; and the train's mode of the
- * two, stiffness k_axial on their reduced mass, bounds every mode of the
- * machine on its springs. */
-static int test_systems(const hg_params *p, test_system s[8])
+/* The test systems of axis a; returns how many (at most
+ * HG_STAB_AXIS_SYSTEMS). A rigid train moves the rotor with its load:
+ * every system has their two masses (m_rigid). A flexible one (k_axial >
+ * 0) parts them: the load alone (m_load, the least inertia it has) meets
+ * the stop and viscous friction; the rotor alone the drive; and the
+ * train's mode of the two, stiffness k_axial on their reduced mass, bounds
+ * every mode of the machine on its springs. */
+static int test_systems(const hg_stability_axis *a, test_system s[HG_STAB_AXIS_SYSTEMS])
 {
-    const double k = 2.0 * HG_PI / p->lead_m, fpa = p->kt_nm_per_a * k, rotor = p->j_rotor_kgm2 * k * k;
-    const int flexible = p->k_axial_n_per_m > 0.0;
-    const double m_end = 2.0 * p->i_bar_kgm2 / (p->geo.l_m * p->geo.l_m) - 0.5 * p->m_bar_kg;
-    const double carriage = flexible ? p->m_carriage_kg + m_end : p->m_carriage_kg + rotor;
-    const test_system base = {carriage, 0.0, p->c_visc_ns_per_m, 0, fpa, fpa / p->r_winding_ohm,
-                              p->l_winding_h / p->r_winding_ohm, p->kp_vel_as_per_m,
-                              p->ki_vel_a_per_m, "c_visc"};
+    const double fpa = a->force_per_amp, rotor = a->m_rotor;
+    const int flexible = a->k_axial > 0.0;
+    const double carriage = flexible ? a->m_load : a->m_rigid;
+    const test_system base = {carriage, 0.0, a->c_visc, 0, fpa, fpa / a->r_winding,
+                              a->l_winding / a->r_winding, a->kp_vel, a->ki_vel, a->name[HG_STAB_C_VISC]};
     test_system stop, drive = base;
     int n = 0;
     if (flexible)                                           /* the drive turns the rotor alone */
         drive.m = rotor, drive.c = 0.0;
-    if (p->c_visc_ns_per_m > 0.0) {                         /* viscous friction alone */
+    if (a->c_visc > 0.0) {                                  /* viscous friction alone */
         s[n] = base;
-        s[n].param = "c_visc", n++;
+        s[n].param = a->name[HG_STAB_C_VISC], n++;
     }
     s[n] = base;                                            /* in a hard stop (and on its train) */
-    s[n].k = p->k_stop_n_per_m + (flexible ? p->k_axial_n_per_m : 0.0), s[n].c += p->c_stop_ns_per_m;
-    s[n].param = s[n].c > 0.0 ? "k_stop" : "c_stop", n++;
+    s[n].k = a->k_stop + (flexible ? a->k_axial : 0.0), s[n].c += a->c_stop;
+    s[n].param = a->name[s[n].c > 0.0 ? HG_STAB_K_STOP : HG_STAB_C_STOP], n++;
     stop = flexible ? drive : s[n - 1];                     /* a rotor's drive does not meet the stop */
     s[n] = drive;                                           /* back-EMF of a drive at its bus voltage */
-    s[n].drive = 1, s[n].param = "r_winding", n++;
+    s[n].drive = 1, s[n].param = a->name[HG_STAB_R_WINDING], n++;
     if (!flexible) {
         s[n] = stop;                                        /* ... in a hard stop */
         s[n].drive = 1, n++;
     }
-    if (p->amp_mode == 1.0) {
+    if (a->velocity_mode) {
         s[n] = drive;                                       /* the velocity loop */
-        s[n].drive = 2, s[n].param = "kp_vel", n++;
+        s[n].drive = 2, s[n].param = a->name[HG_STAB_KP_VEL], n++;
         if (!flexible) {
             s[n] = stop;                                    /* ... in a hard stop */
             s[n].drive = 2, n++;
         }
     }
-    if (flexible) {                                         /* the train's mode, motor against carriage */
+    if (flexible) {                                         /* the train's mode, motor against load */
         s[n] = base;
         s[n].m = 1.0 / (1.0 / rotor + 1.0 / carriage);
-        s[n].k = p->k_axial_n_per_m;
-        s[n].c = p->c_axial_ns_per_m;
-        s[n].param = s[n].c > 0.0 ? "k_axial" : "c_axial", n++;
+        s[n].k = a->k_axial;
+        s[n].c = a->c_axial;
+        s[n].param = a->name[s[n].c > 0.0 ? HG_STAB_K_AXIAL : HG_STAB_C_AXIAL], n++;
     }
     return n;
 }
 
-/* Index of the first test system unstable at dt, or -1. */
-static int first_unstable(const test_system *s, int n, hg_integrator scheme, double dt)
+/* 1 when every test system of the n axes is stable at dt. */
+static int all_stable(const hg_stability_axis *ax, int n, hg_integrator scheme, double dt)
 {
-    int i;
-    for (i = 0; i < n; i++)
-        if (!stable(&s[i], scheme, dt))
-            return i;
-    return -1;
+    test_system s[HG_STAB_AXIS_SYSTEMS];
+    int a, i, m;
+    for (a = 0; a < n; a++)
+        for (i = 0, m = test_systems(&ax[a], s); i < m; i++)
+            if (!stable(&s[i], scheme, dt))
+                return 0;
+    return 1;
 }
 
 /* The longest stable step of system s below hi (bisection). */
@@ -200,19 +197,23 @@ static double longest_step(const test_system *s, hg_integrator scheme, double hi
     return lo;
 }
 
-int hg_stability_check(const hg_params *p, hg_integrator scheme, double period_s, unsigned substeps_min,
-                       unsigned substeps_max, hg_stability *out)
+int hg_stability_check_axes(const hg_stability_axis *ax, int n_axes, hg_integrator scheme, double period_s,
+                            unsigned substeps_min, unsigned substeps_max, hg_stability *out)
 {
-    test_system s[8];
-    int n = test_systems(p, s), limiting = -1;
+    test_system s[HG_STAB_AXIS_SYSTEMS];
+    double h[HG_STAB_SYSTEMS_MAX] = {0}; /* each system's longest stable step, in the axes' order */
+    const char *name[HG_STAB_SYSTEMS_MAX] = {0};
+    int a, i, m, n = 0, limiting = -1;
     unsigned k, last = 0;              /* last: the last count still unstable */
     if (substeps_min < 1)
         substeps_min = 1;
+    if (n_axes > HG_STAB_AXES_MAX)
+        n_axes = HG_STAB_AXES_MAX;
     out->substeps = 0;
     out->param = 0;
     out->dt_max_s = 0.0;
     for (k = substeps_min; k <= substeps_max; k++) {
-        if (first_unstable(s, n, scheme, period_s / k) < 0) {
+        if (all_stable(ax, n_axes, scheme, period_s / k)) {
             out->substeps = k;
             break;
         }
@@ -221,21 +222,20 @@ int hg_stability_check(const hg_params *p, hg_integrator scheme, double period_s
     /* of the systems unstable at that count, the one with the shortest stable step names the
      * bound; the first listed within 5% of it when there is one (a system listed earlier is a
      * part of later ones: viscous friction alone comes before the stop that adds to it) */
-    {
-        double h[8];
-        for (k = 0; last && k < (unsigned)n; k++) {
-            h[k] = stable(&s[k], scheme, period_s / last) ? DBL_MAX
-                                                          : longest_step(&s[k], scheme, period_s / substeps_min);
-            if (h[k] < DBL_MAX && (limiting < 0 || h[k] < h[limiting]))
-                limiting = (int)k;
+    for (a = 0; last && a < n_axes; a++)
+        for (i = 0, m = test_systems(&ax[a], s); i < m; i++, n++) {
+            h[n] = stable(&s[i], scheme, period_s / last) ? DBL_MAX
+                                                         : longest_step(&s[i], scheme, period_s / substeps_min);
+            name[n] = s[i].param;
+            if (h[n] < DBL_MAX && (limiting < 0 || h[n] < h[limiting]))
+                limiting = n;
         }
-        for (k = 0; limiting >= 0 && k < (unsigned)limiting; k++)
-            if (h[k] <= STAB_NEAR * h[limiting]) {
-                limiting = (int)k;
-                break;
-            }
-        if (limiting >= 0)
-            out->param = s[limiting].param, out->dt_max_s = h[limiting];
-    }
+    for (i = 0; limiting >= 0 && i < limiting; i++)
+        if (h[i] <= STAB_NEAR * h[limiting]) {
+            limiting = i;
+            break;
+        }
+    if (limiting >= 0)
+        out->param = name[limiting], out->dt_max_s = h[limiting];
     return out->substeps ? 0 : HG_ERR_STIFF;
 }

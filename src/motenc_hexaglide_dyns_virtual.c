@@ -32,7 +32,8 @@ MODULE_LICENSE("GPL");
 static char *plant = "hexaglide";
 RTAPI_MP_STRING(plant, "the machine behind the board: hexaglide (default) or serial");
 static char *model = 0;
-RTAPI_MP_STRING(model, "the plant's model: hexaglide standard, reduced-joints, reduced-cartesian (default), fused-cartesian");
+RTAPI_MP_STRING(model, "the plant's model: hexaglide standard, reduced-joints, reduced-cartesian (default), fused-cartesian; "
+                "serial the axes, 1 to 8 letters of XYZUVW (linear) and ABC (rotary), XYZ the default");
 static int board = 0;
 RTAPI_MP_INT(board, "board id 0..3, the <board> in motenc.<board>. names");
 static int record = 0;

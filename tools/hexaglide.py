@@ -26,6 +26,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_INI = os.path.normpath(os.path.join(HERE, "..", "configs", "hexaglide.ini"))
 LIB_PATH = os.environ.get("HEXAGLIDE_LIB", os.path.join(HERE, "..", "build", "libhexaglide.so"))
 JOINTS = 6
+RECORD_MAGICS = (b"# hexaglide-record 1", b"# hexaglide-record 2")   # line 1 of a record, per format (docs/replay.md)
 MODELS = ["standard", "reduced-joints", "reduced-cartesian", "fused-cartesian"]
 
 try:
@@ -227,6 +228,16 @@ class ParamInfo(C.Structure):
 
 _plant_nparams = _sig("hg_plant_nparams_at", C.c_int, C.c_int, C.c_int)
 _plant_param = _sig("hg_plant_param_at", C.c_int, C.c_int, C.c_int, C.c_int, C.POINTER(ParamInfo))
+_plant_defaults = _sig("hg_plant_defaults_at", C.c_int, C.c_int, C.c_int, _P)
+_plant_name_at = _sig("hg_plant_name_at", C.c_char_p, C.c_int)
+
+
+def plant_names():
+    """The registry's plants, by index: ["hexaglide", "serial"]."""
+    out = []
+    while _plant_name_at(len(out)):
+        out.append(_plant_name_at(len(out)).decode())
+    return out
 
 
 def params_table(plant=0, variant=None):
@@ -266,6 +277,44 @@ class Params:
         bp = BoardParams()
         for i, info in enumerate(params_table()):
             bp.plant[i] = self[info.name.decode()]
+        bp.substeps, bp.integrator = substeps, integrator
+        return bp
+
+
+class PlantParams:
+    """Any plant's parameter block by spec name (SI), from its defaults:
+    PlantParams("serial", "XYZ", mass_0=60)["lead_0"]. Unknown plants,
+    models and names raise, naming what there is."""
+
+    def __init__(self, plant="hexaglide", model=None, **values):
+        self.plant = _plant_find(plant.encode())
+        if self.plant < 0:
+            raise ValueError("unknown plant %r; one of %s" % (plant, plant_names()))
+        self.variant = _plant_variant_named(self.plant, model.encode() if model else None)
+        if self.variant < 0:
+            raise ValueError("unknown model %r of plant %s" % (model, plant))
+        self.names = [e.name.decode() for e in params_table(self.plant, self.variant)]
+        self.v = (C.c_double * PLANT_PARAMS_MAX)()
+        _plant_defaults(self.plant, self.variant, C.byref(self.v))
+        for k, x in values.items():
+            self[k] = x
+
+    def _index(self, name):
+        try:
+            return self.names.index(name)
+        except ValueError:
+            raise KeyError("%s: not a parameter of this plant and model (params_table lists them)" % name)
+
+    def __getitem__(self, name):
+        return self.v[self._index(name)]
+
+    def __setitem__(self, name, value):
+        self.v[self._index(name)] = float(value)
+
+    def board_params(self, substeps=1, integrator=DEFAULT_INTEGRATOR):
+        bp = BoardParams()
+        for i in range(len(self.names)):
+            bp.plant[i] = self.v[i]
         bp.substeps, bp.integrator = substeps, integrator
         return bp
 
@@ -360,14 +409,24 @@ class Board:
     b.inputs is the full hg_board_inputs record (fault injection, index-enable, ...)."""
 
     def __init__(self, kind="reduced-cartesian", params=None, substeps=1, integrator=DEFAULT_INTEGRATOR, period_ns=1000000,
-                 estop_closed=True):
-        k = _plant_variant_named(0, kind.encode())
-        if k < 0:
-            raise ValueError("unknown model %r; one of %s" % (kind, MODELS))
-        self.params = params or Params()
+                 estop_closed=True, plant="hexaglide"):
+        """plant: the machine behind the board (plant_names()); for a plant other than the
+        Hexaglide, kind is its model (the serial plant's axes, "XYZ"; None its default) and
+        params a PlantParams of that plant and model (None: its defaults)."""
+        if plant == "hexaglide" and not isinstance(params, PlantParams):
+            pi = 0
+            k = _plant_variant_named(0, kind.encode())
+            if k < 0:
+                raise ValueError("unknown model %r; one of %s" % (kind, MODELS))
+            self.params = params or Params()
+        else:
+            self.params = params or PlantParams(plant, kind)
+            if not isinstance(self.params, PlantParams) or plant_names()[self.params.plant] != plant:
+                raise ValueError("params of plant %s: give PlantParams(%r, model)" % (plant, plant))
+            pi, k = self.params.plant, self.params.variant
         self.buf = C.create_string_buffer(_sizeof(8))
         self.board_params = self.params.board_params(substeps, integrator)
-        rc = _board_init(self.buf, 0, k, C.byref(self.board_params))
+        rc = _board_init(self.buf, pi, k, C.byref(self.board_params))
         if rc:
             raise HexaglideError("board init", rc)
         self.inputs = BoardInputs()

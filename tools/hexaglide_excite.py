@@ -71,6 +71,88 @@ class Fourier:
         return x + x0c, xd, xdd
 
 
+DITHER_BAND_HZ = (200.0, 490.0)   # the trains' dither: around their first axial mode (352.75 Hz at HOME)
+DITHER_SWEEP_S = 2.0              # one sweep up and down of the band
+DITHER_V = 0.5                    # volts (amplitude) on each drive's DAC
+DITHER_V_MAX = 2.0                # at most (the DAC's +-10 V less the program's --max-volts and a margin)
+
+
+TRAIN_STROKE_MM = 30.0           # the trains' program: vertical strokes down from HOME and back ...
+TRAIN_SPEEDS = (40.0, 20.0, 30.0)  # ... at these speeds in turn (mm/s; 0.8 of [AXIS_Z] MAX_VELOCITY at most): viscous friction, gravity
+                                 # preload every train, at a different force each (stiffness apart from backlash)
+TRAIN_ACCEL = 400.0              # ... with this acceleration (mm/s^2, 0.8 of [AXIS_Z] MAX_ACCELERATION) at the ends (reversals: backlash)
+
+
+def _stroke(dt, stroke_mm, speed, accel):
+    """Distances (mm) of one trapezoidal stroke, every dt, rest to rest."""
+    ta = speed / accel
+    tc = (stroke_mm - speed * ta) / speed
+    T = 2 * ta + tc
+    u = np.arange(1, int(np.ceil(T / dt)) + 1) * dt
+    u = np.minimum(u, T)
+    return np.where(u < ta, 0.5 * accel * u * u,
+                    np.where(u < ta + tc, 0.5 * speed * ta + speed * (u - ta), stroke_mm - 0.5 * accel * (T - u) ** 2))
+
+
+def strokes(n, dt, stroke_mm=TRAIN_STROKE_MM, speeds=TRAIN_SPEEDS, accel=TRAIN_ACCEL):
+    """(n,) head heights (mm, 0 = HOME) of the trains' program (--trains'
+    G-code as LinuxCNC's trapezoidal planner runs it): from rest at HOME
+    down stroke_mm and back up, at each of speeds in turn, accel at the ends."""
+    out = [np.zeros(1)]
+    i = 0
+    while sum(len(x) for x in out) < n:
+        d = _stroke(dt, stroke_mm, speeds[i % len(speeds)], accel)
+        out += [-d, -stroke_mm + d]
+        i += 1
+    return np.concatenate(out)[:n]
+
+
+def _sweep_s(k, sweep_s):
+    """Drive k's sweep time: the six differ by 10% steps, so their chirps drift apart."""
+    return sweep_s * (1.0 + 0.1 * k)
+
+
+def dither(n, dt, band=DITHER_BAND_HZ, amp_v=DITHER_V, sweep_s=DITHER_SWEEP_S):
+    """(n, 6) volts of the trains' dither, as the HAL snippet of --dither makes
+    it from stock components: siggen.N's sine at a frequency swept linearly
+    up and down the band by a slow triangle (siggen.6+N's, through scale.N;
+    siggen's phase accumulates f dt each period), summed into pid.N's output
+    by sum2.N. Drive N sweeps in _sweep_s(N): the six chirps drift apart, so
+    each drive's response is told from the others'."""
+    t = np.arange(1, n + 1) * dt
+    out = np.zeros((n, 6))
+    for k in range(6):
+        u = (t / _sweep_s(k, sweep_s)) % 2.0
+        tri = np.where(u < 1.0, u, 2.0 - u)                      # 0..1..0, one up-and-down per 2 sweeps
+        f = band[0] + (band[1] - band[0]) * tri
+        out[:, k] = amp_v * np.sin(2 * np.pi * np.cumsum(f) * dt)
+    return out
+
+
+def dither_hal(band=DITHER_BAND_HZ, amp_v=DITHER_V, sweep_s=DITHER_SWEEP_S):
+    """The HAL snippet of the trains' dither (dither() is what it makes), to
+    load after configs/hexaglide.hal: each pid.N.output then reaches its DAC
+    through sum2.N, with siggen.N's chirp."""
+    lines = ["# the drive trains' dither (hexaglide excite --dither): chirps %g..%g Hz, %g V"
+             % (band[0], band[1], amp_v),
+             "loadrt siggen num_chan=12", "loadrt sum2 count=6", "loadrt scale count=6"]
+    for k in range(6):
+        tr = 6 + k
+        lines += ["addf siggen.%d.update servo-thread" % tr, "addf scale.%d servo-thread" % k,
+                  "addf siggen.%d.update servo-thread" % k, "addf sum2.%d servo-thread" % k,
+                  "setp siggen.%d.frequency %.6g" % (tr, 0.5 / _sweep_s(k, sweep_s)),
+                  "setp siggen.%d.amplitude 0.5" % tr, "setp siggen.%d.offset 0.5" % tr,
+                  "setp scale.%d.gain %.6g" % (k, band[1] - band[0]), "setp scale.%d.offset %.6g" % (k, band[0]),
+                  "setp siggen.%d.amplitude %.6g" % (k, amp_v),
+                  "net dither-sweep-%d siggen.%d.triangle => scale.%d.in" % (k, tr, k),
+                  "net dither-f-%d scale.%d.out => siggen.%d.frequency" % (k, k, k),
+                  "unlinkp pid.%d.output" % k, "unlinkp motenc.0.dac-%02d-value" % k,
+                  "net pid-out-%d pid.%d.output => sum2.%d.in0" % (k, k, k),
+                  "net dither-%d siggen.%d.sine => sum2.%d.in1" % (k, k, k),
+                  "net dac-%d sum2.%d.out => motenc.0.dac-%02d-value" % (k, k, k)]
+    return "\n".join(lines) + "\n"
+
+
 class Problem:
     """Limits of the config and the prior model, evaluated on a time grid."""
 
@@ -227,6 +309,37 @@ def gcode(prob, theta, a, cond):
     return "\n".join(lines), total
 
 
+def trains_gcode(a, axes):
+    """The trains' program: vertical strokes from HOME down --stroke mm and back
+    at each of TRAIN_SPEEDS (held to --margin of [AXIS_Z] MAX_VELOCITY and
+    the stroke to --margin of its range), exact stop at each end (the
+    reversals that show the backlash), repeated for --seconds. ValueError
+    naming the limit when the config leaves no room."""
+    z = axes.get("Z", {})
+    lo, vmax = z.get("MIN_LIMIT"), z.get("MAX_VELOCITY")
+    if lo is None or vmax is None:
+        raise ValueError("%s: [AXIS_Z] needs MIN_LIMIT and MAX_VELOCITY for the trains' program" % a.ini)
+    if not (0 < a.stroke <= a.margin * -lo):
+        raise ValueError("--stroke %g mm: must be in (0, %g] (--margin %g of [AXIS_Z] MIN_LIMIT %g below HOME)"
+                         % (a.stroke, a.margin * -lo, a.margin, lo))
+    speeds = [v for v in TRAIN_SPEEDS if v <= a.margin * vmax]
+    if not speeds:
+        raise ValueError("[AXIS_Z] MAX_VELOCITY %g mm/s: the trains' speeds %s need at least %g"
+                         % (vmax, TRAIN_SPEEDS, min(TRAIN_SPEEDS) / a.margin))
+    lines = ["( hexaglide excite --trains: the drive trains' program for hexaglide identify, docs/identification.md )",
+             "( vertical strokes of %g mm at %s mm/s, exact stop at the ends; load the --dither HAL snippet too )"
+             % (a.stroke, "/".join("%g" % v for v in speeds)),
+             "G21 G90 G17 G40 G49 G54 G94", "G61", "G1 X0 Y0 Z0 A0 B0 C0 F600"]
+    t, i = 0.0, 0
+    while t < a.seconds:
+        v = speeds[i % len(speeds)]
+        lines += ["G1 Z%.4f F%.6g" % (-a.stroke, 60 * v), "G1 Z0 F%.6g" % (60 * v)]
+        t += 2 * a.stroke / v
+        i += 1
+    lines += ["M2", ""]
+    return "\n".join(lines)
+
+
 def main(argv=None):
     """hexaglide excite: design, check on 1 ms, write the G-code."""
     argv = sys.argv[1:] if argv is None else argv
@@ -249,8 +362,39 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                     help="prior parameter (spec name, SI unit as sim --list-params), e.g. m_head=8")
+    ap.add_argument("--trains", action="store_true",
+                    help="the drive trains' program instead: vertical strokes (with --dither's HAL snippet)")
+    ap.add_argument("--stroke", type=float, default=TRAIN_STROKE_MM, help="--trains: stroke, mm (default %(default)s)")
+    ap.add_argument("--seconds", type=float, default=30.0, help="--trains: run time, s (default %(default)s)")
+    ap.add_argument("--dither", metavar="FILE",
+                    help="write the trains' dither as a HAL snippet (stock siggen, scale, sum2 between pid.N.output "
+                    "and the DACs) to FILE")
+    ap.add_argument("--dither-volts", type=float, default=DITHER_V,
+                    help="the dither's amplitude, V (default %(default)s)")
+    ap.add_argument("--dither-band", type=float, nargs=2, default=DITHER_BAND_HZ, metavar=("LO", "HI"),
+                    help="the chirps' band, Hz (default %g %g: about the trains' axial mode)" % DITHER_BAND_HZ)
     a = ap.parse_args(argv)
     a.argv = argv
+    if a.dither or a.trains:
+        try:
+            if not (0 < a.dither_volts <= DITHER_V_MAX and 0 < a.dither_band[0] < a.dither_band[1] < 500.0
+                    and a.seconds > 0):
+                raise ValueError("--dither-volts in (0, %g] V, 0 < --dither-band LO < HI < 500 Hz (half the 1 kHz "
+                                 "servo rate), --seconds > 0" % DITHER_V_MAX)
+            text = trains_gcode(a, hg.read_ini(a.ini)[1]) if a.trains else None
+        except ValueError as ex:
+            log(ex)
+            return 2
+        if a.dither:
+            hid.atomic_write(a.dither, lambda f: f.write(dither_hal(tuple(a.dither_band), a.dither_volts).encode()))
+            log("wrote the dither's HAL snippet to %s" % a.dither)
+        if text is None:
+            return 0
+        if a.output:
+            hid.atomic_write(a.output, lambda f: f.write(text.encode()))
+        else:
+            sys.stdout.write(text)
+        return 0
     try:
         if not (a.period > 0 and a.periods >= 1 and a.harmonics >= 2 and 0 < a.margin <= 1
                 and a.max_volts > 0 and 0 < a.segment <= a.period / 10 and a.grid >= 20):

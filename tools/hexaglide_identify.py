@@ -24,6 +24,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
+import hexaglide_trainid as trainid  # noqa: E402
 
 _reg_sizeof = hg._sig("hg_regressor_sizeof", C.c_ulong)
 _reg_init = hg._sig("hg_regressor_init", C.c_int, C.c_void_p, C.c_void_p, C.POINTER(C.c_char_p),
@@ -274,7 +275,7 @@ def log(*a):
 MIN_SAMPLES = 2000            # usable servo periods (2 s at 1 ms) a recording must have
 # what a user must know beforehand: read from the record (in.param-*) or
 # --set; everything else is unknown to identify (its prior: the defaults)
-KNOWN = ["l", "lb", "e", "lp", "g", "ka", "kt", "lead", "i_max", "counts_per_rev", "v_stribeck",
+KNOWN = ["l", "lb", "e", "lp", "g", "ka", "kt", "lead", "j_rotor", "i_max", "counts_per_rev", "v_stribeck",
          "r_winding", "l_winding", "v_bus", "amp_mode"]
 
 
@@ -291,6 +292,8 @@ class Run:
         self.cmd_mm = self.ferror_mm = self.running = None
         self.known = {}
         self.integrator = None        # 0 improved Euler (the force acts from the step's start), else mid-step
+        self.substeps = None          # the board's substeps (a board record's), None: a continuous machine
+        self.carriage = None          # (n, 6) m: the carriages' own positions (a linear scale), when recorded
         self.last_line = 0
 
 
@@ -303,7 +306,7 @@ _rec_open = hg._sig("hg_record_open", C.c_int, C.c_void_p, C.c_char_p, C.c_size_
 _rec_column = hg._sig("hg_record_column", C.c_int, C.c_void_p, C.c_char_p)
 _rec_kind = hg._sig("hg_record_set_kind", None, C.c_void_p, C.c_int, C.c_int)
 _rec_next = hg._sig("hg_record_next", C.c_int, C.c_void_p, _dp, C.POINTER(_RecErr))
-REC_MAGICS = (b"# hexaglide-record 1", b"# hexaglide-record 2")   # the formats identify reads
+REC_MAGICS = hg.RECORD_MAGICS   # the formats identify reads
 REC_BYTES = 1 << 16           # room for the reader's struct (hg_record: about 5 kB)
 
 
@@ -344,12 +347,14 @@ def read_board_record(path):
     slots = [[header.index("in.pev-%d-%s" % (k, part)) for part in ("entry", "value", "age")]
              for k in range(2) if "in.pev-%d-entry" % k in header]
     entry_of = {n: i for i, n in enumerate(t)}
-    told = {}
+    told, events = {}, {}
     for name in ("out.count-%02d" % j for j in range(6)):
         _rec_kind(r, header.index(name), 1)                # s32
     for name in ("out.amps-on", "out.fault"):
         _rec_kind(r, header.index(name), 3)                # bit
     cols = [header.index(x) for x in need]
+    if "in.substeps" in header:                         # the board's asked substeps (the trains' fast fit)
+        cols.append(header.index("in.substeps"))
     row = np.zeros(len(header) + 8)
     out = []
     while True:
@@ -362,11 +367,12 @@ def read_board_record(path):
             ev = _RecEvent()
             if _rec_event_of(row[c_entry], row[c_value], row[c_age], len(out), C.byref(ev)):
                 told[ev.entry] = ev.value
+                events[(ev.entry, ev.at)] = ev.value
         out.append(row[cols].copy())
     # what the board ran with at the end: format 1's last row, format 2's events
     recorded = {name: float(row[c]) for name, c in param_cols.items()} if out else {}
     recorded.update({name: told[i] for name, i in entry_of.items() if i in told})
-    a = np.array(out).reshape(-1, len(need))
+    a = np.array(out).reshape(-1, len(cols))
     run = Run(path, "record")
     run.last_line = hdr_no + len(a)
     if len(a):
@@ -377,9 +383,12 @@ def read_board_record(path):
                            "identify one period at a time" % (path, hdr_no + 1 + bad, per[bad]))
         run.dt = per[0] * 1e-9
         run.integrator = int(np.bincount(a[:, 1].astype(int)).argmax())
+        if len(cols) > len(need):
+            run.substeps = int(np.bincount(a[:, len(need)].astype(int)).argmax())
     run.ok = (a[:, 2] > 0.5) & (a[:, 3] < 0.5)
     run.volts = a[:, 4:10]
     run.pos = a[:, 10:16]
+    run.carriage = run.pos                     # out.z: the carriages themselves (the encoders count the motors)
     run.vel = a[:, 16:22]
     run.counts = a[:, 22:28]
     run.count_scale = a[:, 28:34].mean(0) * 1e3 if len(a) else np.full(6, 1e6)   # counts per m
@@ -390,6 +399,8 @@ def read_board_record(path):
     run.ok &= ~jump
     run.known = {name: recorded[name] for name in KNOWN if name in recorded}
     run.recorded = recorded
+    names = list(t)
+    run.events = sorted((at, names[e], v) for (e, at), v in events.items() if e < len(names))  # (row, name, value)
     return run
 
 
@@ -522,6 +533,10 @@ def read_sampler(path, ini):
     # the encoder row n was read before V_n: the position after V_n is row n + 1
     run.volts = V[:-1]
     run.pos = P[1:]
+    # the carriages' own positions (a linear scale; the virtual board's joint-N.pos, mm), read with the encoder
+    scale_cols = ["motenc-hexaglide.0.joint-%d.pos" % j for j in range(6)]
+    if all(c in header for c in scale_cols):
+        run.carriage = a[1:, [header.index(c) for c in scale_cols]] * 1e-3
     # the encoder's quantum: counts / INPUT_SCALE (positions in mm are the counts' too)
     run.count_scale = np.array([(joints[j] if j < len(joints) else {}).get("INPUT_SCALE", 1000.0) * 1e3
                                 for j in range(6)])
@@ -597,18 +612,28 @@ def _pieces(run, s):
     return [(seg[0], seg[-1]) for seg in pieces if len(seg) >= 2 * edge + 10 * dec + 3]
 
 
-def _counts_motion(run, s, i0, i1):
+def _load_positions(run):
+    """The carriages' positions (n, 6, m) the rigid equations take: the
+    encoder's less the trains' deflection (run.deflection, when the trains
+    are known: hexaglide_trainid.deflection), else the encoder's (a rigid train)."""
+    z = run.counts / run.count_scale
+    d = getattr(run, "deflection", None)
+    return z if d is None else z - d
+
+
+def _counts_motion(run, s, i0, i1, series=None):
     """The carriages' motion from the counts of stretch i0..i1, on the
     half-period grid: period p = n + 1 (n = i0 + 1 .. i1 - 2) moves a
     carriage from the position of row n to that of row n + 1; its mean speed
     v is the difference of the two, its acceleration the difference of the
     neighbouring speeds (the average of periods n, n + 1 twice and n + 2).
-    Returns n, the heights at the period's start and middle, v, acceleration."""
+    Returns n, the heights at the period's start and middle, v, acceleration
+    (of series instead of the carriages' positions when given)."""
     from scipy.signal import filtfilt
     dt = run.dt
     bd, ad = _butter(s, dt, min(s.cutoff_hz * s.diff_ratio, 0.4 / dt))
     n = np.arange(i0 + 1, i1 - 1)
-    zf = filtfilt(bd, ad, run.counts[i0:i1 + 1] / run.count_scale, axis=0)
+    zf = filtfilt(bd, ad, (_load_positions(run) if series is None else series)[i0:i1 + 1], axis=0)
     vh = np.diff(zf, axis=0) / dt               # vh[m]: mean speed of period i0 + m + 1
     j = n - i0
     return n, zf[j], 0.5 * (zf[j] + zf[j + 1]), vh[j], (vh[j + 1] - vh[j - 1]) / (2 * dt)
@@ -668,6 +693,8 @@ def equations(run, reg, params, s):
     # a continuous machine, Heun, RK4: V_n+1 acts around the middle of the period
     start_timing = _start_timing(run, s)
     clamped = _clamped(run, params)
+    # the trains' dither: its chatter in the free play and the friction is no rigid machine's
+    dith = trainid.dithered(run, trainid.Settings())[:, None]
     Fr = fpv * dac_output(run.volts)
     Ys, Fs, Us, Bs, Ts = [], [], [], [], []
     for i0, i1 in _pieces(run, s):
@@ -684,6 +711,10 @@ def equations(run, reg, params, s):
             # the forces averaged with the acceleration's weights (_counts_motion)
             n, z0, zm, v, acc = _counts_motion(run, s, i0, i1)
             F_at = filtfilt(bd, ad, 0.25 * (Fr[n] + 2 * Fr[n + 1] + Fr[n + 2]), axis=0)
+            if getattr(run, "deflection", None) is not None:
+                # the rotors (in the regressor's carriage masses m_drive) accelerate with the
+                # encoder, the carriages with the scale: the difference m_r d'' is the rotors'
+                F_at = F_at - trainid.rotor_mass(params) * _counts_motion(run, s, i0, i1, run.deflection)[4]
             if start_timing:
                 # improved Euler: uniform acceleration from state n, friction at state n
                 z, v = z0, v - 0.5 * dt * acc
@@ -705,7 +736,7 @@ def equations(run, reg, params, s):
         wide = int(round(s.slow_window / (s.cutoff_hz * dt)))
         keep = np.arange(edge, len(n) - edge, dec)
         for out, slow in ((Us, band), (Bs, rev | _stretches_with(band, _stuck_readings(run, n + 1)))):
-            bad = clamped[n] | clamped[n + 1] | slow
+            bad = clamped[n] | clamped[n + 1] | slow | dith[n]
             out.append(~np.stack([_dilate(bad[:, k], wide) for k in range(6)], 1)[keep])
         Ys.append(Yf[keep])
         Fs.append(Ff[keep])
@@ -1570,6 +1601,20 @@ def main(argv=None):
         vrun = read_run(a.validate, a.ini) if a.validate else None
         params = known_params(runs, a.set)
         reg = Regressor(params)
+        # the drive trains: stiffness and backlash first (the rigid equations take the carriages' motion)
+        ts = trainid.Settings()
+        pieces = [_pieces(r, Settings()) for r in runs]
+        trains = trainid.estimate_slow(runs, params, pieces, ts, log)
+        told = any(x.split("=")[0].strip() in ("k_axial", "backlash") for x in a.set)
+        for r in runs:
+            if (r.carriage is not None and trainid.flexible(trains)) or (r.carriage is None and told):
+                r.deflection = trainid.deflection(r, params, params["k_axial"], params["backlash"], ts)
+        # records dithered most of the time are the trains' (hexaglide excite --trains): not the rigid fit's
+        all_runs, all_pieces = runs, pieces
+        runs = [r for r in all_runs if trainid.dithered(r, ts).mean() <= 0.5]
+        if not runs:
+            raise BadInput("%s: the trains' dither throughout: the rigid parameters need a record of "
+                           "hexaglide excite's program as well (docs/identification.md)" % all_runs[0].path)
         eqs = []
         for r in runs:
             e = equations(r, reg, params, s)
@@ -1611,7 +1656,11 @@ def main(argv=None):
         est.cutoff2 = s2.cutoff_hz
     put_breakaway(est, base)
     make_consistent(est, base, pi0)
+    # the trains' damping: their small motion with the rigid estimate's masses and viscous friction
     sys.stdout.write(report(est, base, runs, s, params, pi0))
+    sys.stdout.flush()
+    trainid.estimate_fast(trains, all_runs, all_pieces, reg, params, est.pi, ts, log)
+    sys.stdout.write("\n".join(trainid.report_lines(trains, params, ts)) + "\n")
     vtext, vdata = "", None
     if vrun is not None:
         try:
@@ -1621,12 +1670,14 @@ def main(argv=None):
             return 2
         sys.stdout.write(vtext)
     spec = spec_of_pi(est.pi, params)
+    spec.update(trainid.spec(trains))
     if a.plots:
         for p in plots(a.plots, eqs, est, base, pi0, vdata):
             log("wrote", p)
     if a.output:
-        atomic_write(a.output, lambda f: f.write(setp_text(spec, ", ".join(a.records),
-                                                           touched_spec(base, est)).encode()))
+        touched = touched_spec(base, est)
+        touched.update({name: True for name in trainid.spec(trains)})
+        atomic_write(a.output, lambda f: f.write(setp_text(spec, ", ".join(a.records), touched).encode()))
     return 0
 
 

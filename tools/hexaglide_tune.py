@@ -37,7 +37,6 @@ MIN_SAMPLES = 200          # a trajectory shorter than this is refused (0.2 s)
 SETTLE = 1500              # periods at the first command before the trajectory
 RAMP = 500                 # periods of the smooth move from HOME to the first command
 LEAD_IN = 300              # rows kept before the program starts (recorded runs)
-RECORD_MAGIC = "# hexaglide-record 1"   # line 1 of a record (src/hg_record.h)
 PREDICT_SETTLES = [SETTLE + 53 * i for i in range(15)]   # the prediction's 15 runs
 KEYS = ["P", "I", "D", "FF0", "FF1", "FF2", "FF3", "BIAS"]
 
@@ -77,7 +76,7 @@ def load_trajectory(path):
     if not os.path.isfile(path):
         raise BadInput("no such trajectory file: %s" % path)
     with open(path, "rb") as f:
-        if f.readline().rstrip(b"\r\n") == RECORD_MAGIC.encode():
+        if f.readline().rstrip(b"\r\n") in hg.RECORD_MAGICS:
             return check_trajectory(path, load_record(path))
     import gzip
     opener = gzip.open if path.endswith(".gz") else open

@@ -290,6 +290,11 @@ int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int vari
         pl->param(variant, i, &t[i]);
     size_t k;
     key_list(t, n, keys, sizeof keys);
+    if (!cli_ini_has_section(ini, sec)) {   /* --ini names the file of this plant's parameters */
+        fprintf(stderr, "hexaglide %s: %s has no [%s] section (the parameters of plant %s, keys %s ...): add it, "
+                "or drop --ini to run the defaults\n", cmd, ini->path, sec, pl->name, t[0].ini_key ? t[0].ini_key : "");
+        return -1;
+    }
     for (i = 0; i < ini->n; i++) {     /* every key of the section is one of ours */
         const cli_ini_entry *e = &ini->e[i];
         if (!e->key || strcmp(e->section, sec) != 0)

@@ -12,9 +12,10 @@ reflected rotor, the carriage's weight on the offset), and every printed
     identify_truth.py STDOUT_FILE [--setp FILE] [--pct 5] [--pct-breakaway 10] [--within 1]
                       [--z-out FILE] [--sigma-only] NAME=VALUE...
 prints TAP lines: every estimate within 3 sigma (at least the fraction
---within of them); estimates containing the head mass and the viscous and
-sliding friction estimates within --pct percent, the breakaway heights
-within --pct-breakaway percent; with --setp, the setp lines of m-head,
+--within of them); estimates containing the head mass, the viscous and
+sliding friction, the trains' k_axial[k] and c_axial[k] within --pct
+percent, the breakaway heights and backlash[k] within --pct-breakaway
+percent; with --setp, the setp lines of m-head,
 c-visc, f-coulomb, f-static, m-carriage within --pct percent. --z-out
 appends each estimate's |estimate - truth| / sigma to FILE (a line
 "NAME Z"), for a check over several runs."""
@@ -25,7 +26,7 @@ import sys
 SPEC = {"m_head": 6.697, "head_com": 0.035572, "i_head_xx": 0.028319, "i_head_yy": 0.028319,
         "i_head_zz": 0.038045, "m_bar": 2.9369, "i_bar": 1.0435, "l": 1.0, "m_carriage": 2.867,
         "lead": 0.010, "j_rotor": 1.3168e-4, "g": 9.81, "c_visc": 5665.6, "f_coulomb": 40.0,
-        "f_static": 50.0}
+        "f_static": 50.0, "k_axial": 3.0e7, "c_axial": 800.0, "backlash": 0.0}
 
 
 def physical(p):
@@ -42,6 +43,8 @@ def physical(p):
         t["c_visc[%d]" % k] = p["c_visc"]
         t["f_coulomb[%d]" % k] = p["f_coulomb"]
         t["f_breakaway[%d]" % k] = p["f_static"] - p["f_coulomb"]
+        for name in ("k_axial", "c_axial", "backlash"):      # the drive trains (docs/model.md)
+            t["%s[%d]" % (name, k)] = p[name]
     return t
 
 
@@ -104,11 +107,15 @@ def main(argv):
     head = [(n, v, tr) for n, v, s, tr in rows if re.search(r"\bm_head\b(?!\*com)", n)]
     fric = [(n, v, tr) for n, v, s, tr in rows if re.match(r"^(c_visc|f_coulomb)\[\d\]$", n)]
     brk = [(n, v, tr) for n, v, s, tr in rows if re.match(r"^f_breakaway\[\d\]$", n) and tr]
+    stiff = [(n, v, tr) for n, v, s, tr in rows if re.match(r"^(k_axial|c_axial)\[\d\]$", n)]
+    lash = [(n, v, tr) for n, v, s, tr in rows if re.match(r"^backlash\[\d\]$", n) and tr]
     for what, sel, lim in () if sigma_only else (("head-mass-containing", head, pct),
                                                  ("viscous and sliding friction", fric, pct),
-                                                 ("breakaway", brk, pct_b)):
-        if what == "breakaway" and not sel:
-            continue                     # no breakaway in the truth: within 3 sigma of 0 above
+                                                 ("breakaway", brk, pct_b),
+                                                 ("train stiffness and damping", stiff, pct),
+                                                 ("backlash", lash, pct_b)):
+        if what in ("breakaway", "train stiffness and damping", "backlash") and not sel:
+            continue                     # not in the truth or not estimated: within 3 sigma above
         worst = max((abs(v - tr) / abs(tr) for n, v, tr in sel if tr), default=float("nan"))
         check(sel and worst <= lim / 100, "%d %s estimates within %g%% of the truth (worst %.3g%%)"
               % (len(sel), what, lim, 100 * worst))

@@ -22,7 +22,8 @@ static int state_finite(const hg_data *d)
     int k;
     for (k = 0; k < 6; k++)
         if (!isfinite(d->z_m[k]) || !isfinite(d->zd_mps[k]) || !isfinite(d->pose[k]) ||
-            !isfinite(d->posed[k]) || !isfinite(d->current_a[k]) || !isfinite(d->force_n[k]))
+            !isfinite(d->posed[k]) || !isfinite(d->current_a[k]) || !isfinite(d->force_n[k]) ||
+            !isfinite(d->zr_m[k]) || !isfinite(d->zrd_mps[k]) || !isfinite(d->vloop_int_m[k]))
             return 0;
     for (k = 0; k < 12; k++)
         if (!isfinite(d->bar_rad[k]) || !isfinite(d->bar_radps[k]))

@@ -16,7 +16,7 @@
 #include "hg_drivetrain.h"
 #include "hg_dynamics.h"
 #include "hg_errors.h"
-#include "hg_stability.h"
+#include "hg_plant_hexaglide.h"
 
 #define PI 3.14159265358979323846
 

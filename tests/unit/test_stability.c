@@ -12,7 +12,7 @@
 #include "hg_test.h"
 #include "hg_board.h"
 #include "hg_dynamics.h"
-#include "hg_stability.h"
+#include "hg_plant_hexaglide.h"
 #include "hg_errors.h"
 
 /* The spec's machine with head and bars of almost no mass. */
