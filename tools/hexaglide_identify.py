@@ -1374,8 +1374,9 @@ def params_of_spec(spec, params):
 
 
 def predict_ferror(cmd, gains, params, settles):
-    """Peak |f-error| per joint (mm), median over closed-loop runs (hg_loop,
-    LinuxCNC's pid around the board) with different settling before cmd."""
+    """Peak |f-error| per joint (mm) over closed-loop runs (hg_loop, LinuxCNC's
+    pid around the board) with different settling before cmd: (median, lowest,
+    highest, the first run's f-error series), or Nones when a run is unstable."""
     import hexaglide_tune as tune
     peaks = []
     series = None
@@ -1384,11 +1385,12 @@ def predict_ferror(cmd, gains, params, settles):
         loop = hg.Loop(gains, params=params)
         r = loop.run(seq, start=s0, keep=series is None)
         if not r.ok:
-            return None, None
+            return None, None, None, None
         if series is None:
             series = r.ferror_mm[s0:]
         peaks.append(r.peak_ferror_mm)
-    return np.median(np.array(peaks), 0), series
+    peaks = np.array(peaks)
+    return np.median(peaks, 0), peaks.min(0), peaks.max(0), series
 
 
 def rest_before(cmd, start, lead=None):
@@ -1452,18 +1454,20 @@ def validate(vrun, a, reg, params, s, est, pi0, base):
         return "\n".join(out) + "\n", data
     gains = [tune.pid_keys(g) for g in tune.read_ini(a.ini)[0]]
     ident = params_of_spec(spec_of_pi(est.pi, params), params)
-    pk, series = predict_ferror(cmd, gains, ident, tune.PREDICT_SETTLES)
-    pk0, _ = predict_ferror(cmd, gains, params_of_spec(spec_of_pi(pi0, params), params), tune.PREDICT_SETTLES)
+    pk, lo, hi, series = predict_ferror(cmd, gains, ident, tune.PREDICT_SETTLES)
+    pk0, _, _, _ = predict_ferror(cmd, gains, params_of_spec(spec_of_pi(pi0, params), params), tune.PREDICT_SETTLES)
     if pk is None:
         out.append("# closed loop: the identified model is unstable with the gains of %s" % a.ini)
         return "\n".join(out) + "\n", data
     data.update(cmd=cmd, fe_pred=series, fe_meas=fe)
     meas = np.abs(fe).max(0) if fe is not None else None
     for j in range(6):
-        out.append("# validate closed loop joint %d: peak |f-error| predicted %.5f mm (prior model %s)%s"
-                   % (j, pk[j], "%.5f mm" % pk0[j] if pk0 is not None else "unstable",
+        out.append("# validate closed loop joint %d: peak |f-error| predicted %.5f mm (%.5f-%.5f over %d settlings; "
+                   "prior model %s)%s"
+                   % (j, pk[j], lo[j], hi[j], len(tune.PREDICT_SETTLES),
+                      "%.5f mm" % pk0[j] if pk0 is not None else "unstable",
                       ", recorded %.5f mm (ratio %.3f)" % (meas[j], pk[j] / meas[j]) if meas is not None else ""))
-    data.update(peak_pred=pk, peak_meas=meas, peak_prior=pk0)
+    data.update(peak_pred=pk, peak_lo=lo, peak_hi=hi, peak_meas=meas, peak_prior=pk0)
     return "\n".join(out) + "\n", data
 
 
