@@ -54,7 +54,8 @@ def run_linuxcnc(gains, program, out, tag):
 
 
 def measured(csv):
-    """Peak |f-error| (mm) and peak |pid output| (V) per joint while the program ran."""
+    """Peak |f-error| (mm) and peak |pid output| (V) per joint while the program ran,
+    and the peak tool-path error (mm; the board's tool-error, None when not sampled)."""
     names = open(csv).readline().strip().split(",")
     d = np.loadtxt(csv, delimiter=",", skiprows=1, ndmin=2)
     run = d[:, names.index("halui.program.is-running")] > 0.5
@@ -62,7 +63,11 @@ def measured(csv):
         raise RuntimeError("%s: the program never ran" % csv)
     fe = np.array([np.abs(d[run, names.index("joint.%d.f-error" % j)]).max() for j in range(6)])
     v = np.array([np.abs(d[run, names.index("pid.%d.output" % j)]).max() for j in range(6)])
-    return fe, v
+    tool = None
+    if "motenc-hexaglide.0.tool-error" in names:
+        te = d[run, names.index("motenc-hexaglide.0.tool-error")]
+        tool = te.max() if (te >= 0).all() else -1.0      # -1: some period without a pose
+    return fe, v, tool
 
 
 def main():
@@ -84,7 +89,7 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     try:
         csv = a.csv or run_linuxcnc(gains, os.path.abspath(a.program), a.out, a.tag)
-        fe, volts = measured(csv)
+        fe, volts, tool = measured(csv)
     except RuntimeError as ex:
         print("verify_gains: %s" % ex, file=sys.stderr)
         return 2
@@ -121,6 +126,9 @@ def main():
     print("# peak over joints: measured %.5f mm at %.3f V; predicted %.5f mm at %.3f V%s"
           % (fe.max(), volts.max(), again["ferror"].max(), again["volts"].max(),
              "; gains file: %.5f mm" % max(pred.values()) if pred else ""))
+    if tool is not None:
+        print("# peak tool-path error: measured %.5f mm, predicted %.5f mm (ratio %.3f)"
+              % (tool, again["tool"], tool / again["tool"] if again["tool"] > 0 else np.inf))
     print("VERIFY %s max_ferror_mm=%.5f max_volts=%.3f worst_ratio=%.3f"
           % ("ok" if ok else "off", fe.max(), volts.max(), worst))
     return 0 if ok else 1
