@@ -621,6 +621,15 @@ def _load_positions(run):
     return z if d is None else z - d
 
 
+def _load_counts(run):
+    """The carriages' positions in counts (n, 6): the encoder's on rigid trains;
+    with the trains' deflection known (run.deflection), the load's, quantized to
+    the count below as an encoder on the carriage would read it: static friction
+    holds the carriage, not the rotor, which winds the spring on."""
+    d = getattr(run, "deflection", None)
+    return run.counts if d is None else np.floor(run.counts - d * run.count_scale)
+
+
 def _counts_motion(run, s, i0, i1, series=None):
     """The carriages' motion from the counts of stretch i0..i1, on the
     half-period grid: period p = n + 1 (n = i0 + 1 .. i1 - 2) moves a
@@ -658,7 +667,7 @@ def slow_speed(params, s):
 
 def _stuck_readings(run, p, n_equal=3):
     """(len(p), 6): carriage k's count after period p and the n_equal - 1 before it equal (about stuck)."""
-    c = run.counts
+    c = _load_counts(run)
     out = np.ones((len(p), 6), bool)
     for l in range(1, n_equal):
         out &= c[p] == c[np.maximum(p - l, 0)]
@@ -992,7 +1001,8 @@ def stick_events(run, s, params, r):
     heights, speeds, accelerations)."""
     dt = run.dt
     nper = len(run.volts)
-    mot = {key: np.full((nper, 6), np.nan) for key in ("z", "v", "a", "zend")}
+    mot = {key: np.full((nper, 6), np.nan) for key in ("z", "v", "a", "zend", "dacc")}
+    counts = _load_counts(run)
     clamped = _clamped(run, params).any(1)
     L = max(2, int(round(s.stick_s / dt)))
     H = max(5, int(round(max((s.event_s,) + tuple(s.event_check_s)) / dt)))
@@ -1005,9 +1015,13 @@ def stick_events(run, s, params, r):
         p = n + 1
         mot["z"][p], mot["v"][p], mot["a"][p] = zm, v, acc
         mot["zend"][p] = np.vstack([z0[1:], z0[-1:]])    # filtered height at the end of period p
+        # on flexible trains the deflection's acceleration: the rotors' inertia beyond the
+        # carriages' (as in equations(); SlowData)
+        mot["dacc"][p] = (0.0 if getattr(run, "deflection", None) is None
+                          else _counts_motion(run, s, i0, i1, run.deflection)[4])
         lo, hi = p[0] + edge, p[-1] - edge
         for k in range(6):
-            c = run.counts[:, k]
+            c = counts[:, k]
             slow = np.abs(v[:, k]) < vslow
             stuck = slow.copy()
             for l in range(1, L):
@@ -1048,7 +1062,8 @@ class SlowData:
             evs, mot = stick_events(run, s, params, r)
             steps = sorted({q for k in range(6) for _, p0, L, _, _, _ in evs[k] for q in range(p0 + 1, p0 + 1 + L)})
             steps = np.array(steps, dtype=int)
-            d = {"steps": steps, "index": {q: i for i, q in enumerate(steps)}}
+            d = {"steps": steps, "index": {q: i for i, q in enumerate(steps)},
+                 "m_rotor": 0.0 if getattr(run, "deflection", None) is None else trainid.rotor_mass(params)}
             if len(steps):
                 z, v, a = mot["z"][steps], mot["v"][steps], mot["a"][steps]
                 Y0, _ = reg.joints(z, v, np.zeros_like(a))
@@ -1059,11 +1074,13 @@ class SlowData:
                     e[:, j] = 1.0
                     Yj, _ = reg.joints(z, v, e)
                     D[:, :, j, :] = (Yj[:, :, base.base] - Y0)[:, :, self.mcols]
+                # flexible trains: the drive's force less the rotors' inertia beyond the carriages'
+                # (m_rotor d'', d the deflection), the carriage and its rotor sliding as one
                 d.update(Y0=Y0[:, :, self.hcols], D=D, a=a,
-                         F=force_per_volt(params) * dac_output(run.volts)[steps])
+                         F=force_per_volt(params) * dac_output(run.volts)[steps] - d["m_rotor"] * mot["dacc"][steps])
             d["integrator"] = 0 if _start_timing(run, s) else (run.integrator or hg.DEFAULT_INTEGRATOR)
             d["dt"] = run.dt
-            d["counts"] = run.counts
+            d["counts"] = _load_counts(run)
             d["scale"] = run.count_scale
             self.per.append(d)
             for k in range(6):
