@@ -630,19 +630,21 @@ def _load_counts(run):
     return run.counts if d is None else np.floor(run.counts - d * run.count_scale)
 
 
-def _counts_motion(run, s, i0, i1, series=None):
+def _counts_motion(run, s, i0, i1, series=None, raw=False):
     """The carriages' motion from the counts of stretch i0..i1, on the
     half-period grid: period p = n + 1 (n = i0 + 1 .. i1 - 2) moves a
     carriage from the position of row n to that of row n + 1; its mean speed
     v is the difference of the two, its acceleration the difference of the
     neighbouring speeds (the average of periods n, n + 1 twice and n + 2).
     Returns n, the heights at the period's start and middle, v, acceleration
-    (of series instead of the carriages' positions when given)."""
+    (of series instead of the carriages' positions when given; unfiltered
+    when raw)."""
     from scipy.signal import filtfilt
     dt = run.dt
     bd, ad = _butter(s, dt, min(s.cutoff_hz * s.diff_ratio, 0.4 / dt))
     n = np.arange(i0 + 1, i1 - 1)
-    zf = filtfilt(bd, ad, (_load_positions(run) if series is None else series)[i0:i1 + 1], axis=0)
+    zf = (_load_positions(run) if series is None else series)[i0:i1 + 1]
+    zf = zf if raw else filtfilt(bd, ad, zf, axis=0)
     vh = np.diff(zf, axis=0) / dt               # vh[m]: mean speed of period i0 + m + 1
     j = n - i0
     return n, zf[j], 0.5 * (zf[j] + zf[j + 1]), vh[j], (vh[j + 1] - vh[j - 1]) / (2 * dt)
@@ -1016,9 +1018,11 @@ def stick_events(run, s, params, r):
         mot["z"][p], mot["v"][p], mot["a"][p] = zm, v, acc
         mot["zend"][p] = np.vstack([z0[1:], z0[-1:]])    # filtered height at the end of period p
         # on flexible trains the deflection's acceleration: the rotors' inertia beyond the
-        # carriages' (as in equations(); SlowData)
+        # carriages' (as in equations(); SlowData). Unfiltered: the spring lets go at the
+        # breakaway within a period or two, and a filtered force peaks lower (the breakaway
+        # came out 5-30% low with the rigid fit's filter)
         mot["dacc"][p] = (0.0 if getattr(run, "deflection", None) is None
-                          else _counts_motion(run, s, i0, i1, run.deflection)[4])
+                          else _counts_motion(run, s, i0, i1, run.deflection, raw=True)[4])
         lo, hi = p[0] + edge, p[-1] - edge
         for k in range(6):
             c = counts[:, k]
