@@ -786,3 +786,67 @@ def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000, state=
 
 if _sizeof(11) != C.sizeof(PidState):
     raise ImportError("PidState: layout differs from the library's: rebuild both")
+
+
+class _RecCtx(C.Structure):
+    """hg_board_rec_ctx (src/hg_board_rec.h)."""
+    _fields_ = [("in_", C.POINTER(BoardInputs)), ("out", C.POINTER(BoardOutputs)), ("period_ns", C.c_long),
+                ("plant", C.c_int), ("variant", C.c_int), ("stream", _P)]
+
+
+_REC_FIELD_BYTES = 56          # sizeof(hg_board_rec_field): name[32], 7 bytes, offset, nf_index (checked below)
+_rec_fields = _sig("hg_board_rec_fields", C.c_int, _P, C.c_int, C.c_int, C.c_int, C.c_int)
+_rec_stream_start = _sig("hg_board_rec_stream_start", None, _P)
+_rec_stream_step = _sig("hg_board_rec_stream_step", None, _P, C.POINTER(BoardParams), C.c_int)
+_rec_get = _sig("hg_board_rec_get", C.c_double, _P, C.c_int, C.c_int, C.POINTER(_RecCtx))
+
+
+class Recorder:
+    """A format-2 record of a Board's periods (docs/replay.md), as `hexaglide sim --record` and the HAL
+    glue's rec pins write it (src/hg_board_rec.h's table and event stream):
+        b = Board("XYZ", PlantParams("serial", "XYZ"), plant="serial")
+        b.inputs.params = hidden.board_params()     # applied by the first period, recorded as events
+        with Recorder(path, b, "test") as r:
+            for v in volts: r.step(v)"""
+
+    def __init__(self, path, board, source="tools/hexaglide.py Recorder"):
+        """board: a Board of PlantParams (any plant's)."""
+        if not isinstance(board.params, PlantParams):
+            raise ValueError("Recorder: give a Board of PlantParams")
+        self.b, pi, var = board, board.params.plant, board.params.variant
+        self.fields = C.create_string_buffer(_REC_FIELD_BYTES * 256)
+        self.n = _rec_fields(self.fields, 256, pi, var, 2)
+        if self.n < 0:
+            raise ValueError("no record table for this board")
+        names = [self.fields.raw[i * _REC_FIELD_BYTES:i * _REC_FIELD_BYTES + 32].split(b"\0")[0].decode()
+                 for i in range(self.n)]
+        if names[0] != "in.period-ns":
+            raise ImportError("hg_board_rec_field: layout differs from the library's: rebuild both (%r)" % names[:2])
+        self.np = len(board.params.names)
+        self.stream = C.create_string_buffer(1 << 17)
+        _rec_stream_start(self.stream)
+        self.f = open(path, "w")
+        self.f.write("# hexaglide-record 2\n# source %s\n# board 0\n# plant %s\n# closed-loop no: %s\nsample,%s\n"
+                     % (source, plant_names()[pi], source, ",".join(names)))
+        self.ctx = _RecCtx(C.pointer(board.inputs), C.pointer(board.outputs), board.period_ns, pi, var,
+                           C.cast(self.stream, _P))
+        self.s = 0
+
+    def step(self, dac_volts=None):
+        """One Board.step, recorded; returns the outputs."""
+        out = self.b.step(dac_volts)
+        _rec_stream_step(self.stream, C.byref(self.b.inputs.params), self.np)
+        self.f.write("%d,%s\n" % (self.s, ",".join("%.17g" % _rec_get(self.fields, self.n, k, C.byref(self.ctx))
+                                                   for k in range(self.n))))
+        self.s += 1
+        return out
+
+    def close(self):
+        self.f.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
