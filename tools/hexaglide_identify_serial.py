@@ -50,13 +50,25 @@ def log(*a):
 
 
 def is_serial_record(path):
-    """True for a board record whose header names the serial plant."""
+    """True for a board record of the serial plant: its header's "# plant serial" line (hexaglide sim,
+    hg.Recorder) or its first row's in.plant column (tools/hg_record.py's records)."""
     try:
         with open(path, "rb") as f:
-            head = [f.readline() for _ in range(6)]
-    except OSError:
+            if f.readline().rstrip(b"\r\n") not in hg.RECORD_MAGICS:
+                return False
+            for _ in range(64):
+                line = f.readline()
+                if line.strip() == b"# plant serial":
+                    return True
+                if line.startswith(b"sample,"):
+                    header = line.decode().rstrip("\r\n").split(",")
+                    row = f.readline().decode().split(",")
+                    if "in.plant" not in header or len(row) != len(header):
+                        return False
+                    return int(float(row[header.index("in.plant")])) == hg.plant_names().index("serial")
+    except (OSError, ValueError, UnicodeDecodeError):
         return False
-    return head[0].rstrip(b"\r\n") in hg.RECORD_MAGICS and any(l.strip() == b"# plant serial" for l in head)
+    return False
 
 
 class Record:
