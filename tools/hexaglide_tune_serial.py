@@ -205,11 +205,14 @@ def run(m, gains, cmd):
 
 
 def step_overshoot(m, gains, j, step):
-    """Overshoot (fraction) and settled error of joint j's step of `step` units, the rest at rest."""
+    """Overshoot (fraction) and settled error of joint j's step of `step` units, the rest at rest, with
+    the feedback gains alone (the feed-forward terms act outside the loop: a step's derivative would
+    only kick it)."""
     n = 600
     cmd = np.zeros((n, m.n))
     cmd[100:, j] = step
-    r = hg.Loop(gains, params=m.params).run(cmd)
+    fb_only = [dict(g, FF0=0.0, FF1=0.0, FF2=0.0, FF3=0.0) for g in gains]
+    r = hg.Loop(fb_only, params=m.params).run(cmd)
     if not r.ok:
         return np.inf, np.inf
     fb = (np.vstack([np.zeros((1, m.n)), cmd[:-1]]) - r.ferror_mm)[:, j]
@@ -232,7 +235,7 @@ def search(m, cmd, a):
         ff1_hi = 2.0 * ff1 if ff1 else 1.0
         p0 = m.joints[j].get("P", 1.0)
         bounds = [(np.log10(max(1.0, p0 / 10)), np.log10(max(10.0, p0 * 50))), (0.0, ff1_hi), (0.0, 0.01)]
-        step = 20.0 / abs(m.joints[j]["INPUT_SCALE"])     # 20 counts
+        step = 200.0 / abs(m.joints[j]["INPUT_SCALE"])    # 200 counts: a count is 0.5 % of it
         maxout = m.joints[j].get("MAX_OUTPUT", 0.0)
 
         def gains_of(x, j=j):
