@@ -671,12 +671,10 @@ def main(argv=None):
     if plant not in (None, "hexaglide"):
         log("--plant %s: unknown plant; use hexaglide, serial" % plant)
         return 2
-    argv = [x for i, x in enumerate(sys.argv[1:] if argv is None else argv)]
-    if "--plant" in argv:
-        i = argv.index("--plant")
-        del argv[i:i + 2]
-    argv = [x for x in argv if not x.startswith("--plant=")]
     ap = argparse.ArgumentParser(prog="hexaglide tune", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--plant", choices=["hexaglide", "serial"], default="hexaglide",
+                    help="the machine: hexaglide (default), or serial (implied by an --ini with a [SERIAL] "
+                    "section: tools/hexaglide_tune_serial.py, docs/serial.md)")
     ap.add_argument("--trajectory", help="recorded joint commands (see docs/tuning.md); "
                     "default: a generated S-curve move of every axis")
     ap.add_argument("--ini", default=os.path.join(ROOT, "configs", "hexaglide.ini"),
