@@ -61,6 +61,16 @@ def _ini(path):
     return cp
 
 
+def read_ini_file(path, what):
+    """The parsed INI file at path (what: "INI", "gains"), BadInput naming what is wrong."""
+    if not os.path.isfile(path):
+        raise BadInput("no such %s file: %s" % (what, path))
+    try:
+        return _ini(path)
+    except configparser.Error as ex:
+        raise BadInput("%s does not parse as an INI file: %s" % (path, ex))
+
+
 def is_serial_ini(path):
     """True for an INI whose machine is the serial plant: a [SERIAL] section."""
     try:
@@ -73,12 +83,7 @@ class Machine:
     """What the INI says: joints, their pid keys and scales, the plant's parameters, the units."""
 
     def __init__(self, ini, model=None):
-        if not os.path.isfile(ini):
-            raise BadInput("no such INI file: %s" % ini)
-        try:
-            cp = _ini(ini)
-        except configparser.Error as ex:
-            raise BadInput("%s does not parse as an INI file: %s" % (ini, ex))
+        cp = read_ini_file(ini, "INI")
         if not cp.has_section("SERIAL"):
             raise BadInput("%s has no [SERIAL] section: the serial plant's machine (docs/serial.md); add it, "
                            "or tune the Hexaglide without --plant serial" % ini)
@@ -284,12 +289,7 @@ def ini_text(m, gains, pred, stock, source):
 
 def read_gain_file(path, n):
     """[JOINT_N] gain keys of a file (tune's output or an INI)."""
-    if not os.path.isfile(path):
-        raise BadInput("no such gains file: %s" % path)
-    try:
-        cp = _ini(path)
-    except configparser.Error as ex:
-        raise BadInput("%s does not parse as an INI file: %s" % (path, ex))
+    cp = read_ini_file(path, "gains")
     out = []
     for j in range(n):
         sec = "JOINT_%d" % j
