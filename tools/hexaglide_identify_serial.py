@@ -17,9 +17,10 @@ monitor), x the motor's travel from the encoder counts (lead / counts_per_rev
 per count), v and a its derivatives after a zero-phase Butterworth low-pass
 applied alike to both sides. Known beforehand (from the record's parameter
 events or --set, the motor's and encoder's data sheets): kt, lead,
-counts_per_rev, j_rotor, g, v_stribeck. Periods slower than --slow
-v_stribeck are left out of the sliding fit (stick, or about to), as are
-periods with the amplifier off or a fault. Rotary axes: the same with N m,
+counts_per_rev, j_rotor, g, v_stribeck. Periods slower than v_stribeck (3
+v_stribeck when the record has too little slow sliding for the breakaway
+column) are left out (stick, or about to), with the filter's response time
+around them, as are periods with the amplifier off or a fault. Rotary axes: the same with N m,
 kg m^2 and rad (ratio instead of 2 pi / lead).
 
 stdout: NAME = VALUE ± SIGMA UNIT lines, '#' lines for the rest; --output:
@@ -36,7 +37,9 @@ import hexaglide as hg  # noqa: E402
 CUTOFF_HZ = 25.0
 ORDER = 4
 MIN_SAMPLES = 500
-SLOW = 3.0          # v_stribeck: slower periods are not the sliding fit's
+SLOW = 1.0          # v_stribeck: slower periods are not the sliding fit's (stick, or about to) ...
+SLOW_NO_BREAKAWAY = 3.0   # ... and slower than this when the breakaway is not excited (the Stribeck
+                          # excess, exp(-9) of it at 3 v_stribeck, is then not in the fit)
 KNOWN = ("kt", "lead", "ratio", "counts_per_rev", "j_rotor", "g", "v_stribeck")
 MIN_BREAKAWAY = 300  # sliding periods with exp(-(v/v_s)^2) > 0.05 that make the breakaway identifiable
 
@@ -150,8 +153,9 @@ def known(rec, sets):
     return kn
 
 
-def axis_rows(rec, k, kn):
-    """Rows (X, y, used mask, info) of axis k's force balance from one record."""
+def axis_rows(rec, k, kn, slow_vs=SLOW):
+    """Rows (X, y, used mask, info) of axis k's force balance from one record, periods slower than
+    slow_vs v_stribeck (and the filter's response time around them) left out."""
     from scipy.signal import butter, filtfilt
     rot = rec.rotary[k]
     get = lambda name: kn[name + "_%d" % k]
@@ -182,7 +186,7 @@ def axis_rows(rec, k, kn):
         bad[s:] |= ~ok[:-s]
         bad[:-s] |= ~ok[s:]
     bad[:margin] = bad[-margin:] = True
-    slow = np.abs(v) <= SLOW * vs                         # and where the friction's sign change, smoothed
+    slow = np.abs(v) <= slow_vs * vs                         # and where the friction's sign change, smoothed
     near = slow.copy()                                    # by the filter, is still in the force: the
     for s in range(1, margin):                            # filter's response time around each slow stretch
         near[s:] |= slow[:-s]
@@ -195,9 +199,11 @@ def axis_rows(rec, k, kn):
 
 
 def fit_axis(recs, k, kns):
+    excited = sum(axis_rows(rec, k, kn)[3]["excited"] for rec, kn in zip(recs, kns))
+    slow_vs = SLOW if excited >= MIN_BREAKAWAY else SLOW_NO_BREAKAWAY
     X, y, info = [], [], None
     for rec, kn in zip(recs, kns):
-        Xi, yi, use, inf = axis_rows(rec, k, kn)
+        Xi, yi, use, inf = axis_rows(rec, k, kn, slow_vs)
         X.append(Xi[use])
         y.append(yi[use])
         if info is None:
@@ -209,7 +215,7 @@ def fit_axis(recs, k, kns):
     keep = [i for i, nm in enumerate(names) if nm != "f_breakaway" or info["excited"] >= MIN_BREAKAWAY]
     if len(y) < MIN_SAMPLES:
         raise BadInput("axis %d: %d usable periods (amplifier on, sliding faster than %g v_stribeck); "
-                       "identify needs %d: a longer or faster excitation" % (k, len(y), SLOW, MIN_SAMPLES))
+                       "identify needs %d: a longer or faster excitation" % (k, len(y), slow_vs, MIN_SAMPLES))
     Xk = X[:, keep]
     scale = np.sqrt((Xk ** 2).sum(0))
     theta, *_ = np.linalg.lstsq(Xk / scale, y, rcond=None)
@@ -222,7 +228,7 @@ def fit_axis(recs, k, kns):
     sig = np.sqrt(np.diag(cov))
     est = {names[i]: (theta[j], sig[j]) for j, i in enumerate(keep)}
     u, sv, vt = np.linalg.svd(Xk / scale, full_matrices=False)
-    info.update(rows=len(y), tau=tau, rms=np.sqrt(s2), cond=sv[0] / sv[-1], dropped=[names[i] for i in range(len(names)) if i not in keep])
+    info.update(rows=len(y), tau=tau, slow_vs=slow_vs, excited=excited, rms=np.sqrt(s2), cond=sv[0] / sv[-1], dropped=[names[i] for i in range(len(names)) if i not in keep])
     return est, info
 
 
@@ -260,7 +266,8 @@ def main(argv):
     out = ["# hexaglide identify (serial plant): %s" % ", ".join("%s (%d periods)" % (r.path, len(r.ok)) for r in recs),
            "# force balance per axis (docs/serial.md): kt 2 pi/lead i = M a + c_visc v + f_coulomb sgn v + "
            "f_breakaway exp(-(v/v_stribeck)^2) sgn v [+ net_weight]; zero-phase low-pass %g Hz (Butterworth "
-           "order %d); periods slower than %g v_stribeck left out" % (CUTOFF_HZ, ORDER, SLOW)]
+           "order %d); periods slower than %g v_stribeck left out (%g without the breakaway)"
+           % (CUTOFF_HZ, ORDER, SLOW, SLOW_NO_BREAKAWAY)]
     spec = {}
     for k, (est, info) in enumerate(fits):
         rot = recs[0].rotary[k]
