@@ -104,6 +104,12 @@ const char *hg_plant_name_at(int plant)
     return p ? p->name : 0;
 }
 
+const char *hg_plant_ini_section_at(int plant)
+{
+    const hg_plant *p = hg_plant_at(plant);
+    return p ? p->ini_section : 0;
+}
+
 int hg_plant_variant_named(int plant, const char *name)
 {
     const hg_plant *p = hg_plant_at(plant);

@@ -230,6 +230,7 @@ _plant_nparams = _sig("hg_plant_nparams_at", C.c_int, C.c_int, C.c_int)
 _plant_param = _sig("hg_plant_param_at", C.c_int, C.c_int, C.c_int, C.c_int, C.POINTER(ParamInfo))
 _plant_defaults = _sig("hg_plant_defaults_at", C.c_int, C.c_int, C.c_int, _P)
 _plant_name_at = _sig("hg_plant_name_at", C.c_char_p, C.c_int)
+_plant_ini_section = _sig("hg_plant_ini_section_at", C.c_char_p, C.c_int)
 
 
 def plant_names():
@@ -310,6 +311,17 @@ class PlantParams:
 
     def __setitem__(self, name, value):
         self.v[self._index(name)] = float(value)
+
+    @property
+    def channels(self):
+        """The board channels this plant and model use (one servo loop each)."""
+        bp = self.board_params()
+        buf = C.create_string_buffer(_sizeof(8))
+        if _board_init(buf, self.plant, self.variant, C.byref(bp)):
+            raise ValueError("these parameters are refused by plant %s" % plant_names()[self.plant])
+        out = BoardOutputs()
+        _board_peek(buf, C.byref(out))
+        return out.channels
 
     def board_params(self, substeps=1, integrator=DEFAULT_INTEGRATOR):
         bp = BoardParams()
@@ -451,11 +463,11 @@ class RunResult:
     """What Loop.run and batch return: per-period f-errors, pid outputs and load (carriage)
     positions (n, 6) when kept, and the summary."""
 
-    def __init__(self, ferror, output, summ, rc, load=None):
+    def __init__(self, ferror, output, summ, rc, load=None, joints=JOINTS):
         self.ferror_mm, self.output_v, self.load_mm, self.rc = ferror, output, load, rc
-        self.peak_ferror_mm = np.array(summ.peak_ferror_mm[:JOINTS])
-        self.peak_output_v = np.array(summ.peak_output_v[:JOINTS])
-        self.rms_ferror_mm = np.array(summ.rms_ferror_mm[:JOINTS])
+        self.peak_ferror_mm = np.array(summ.peak_ferror_mm[:joints])
+        self.peak_output_v = np.array(summ.peak_output_v[:joints])
+        self.rms_ferror_mm = np.array(summ.rms_ferror_mm[:joints])
         self.peak_tool_error_mm = summ.peak_tool_error_mm
         self.periods = summ.periods
         self.tripped_at = summ.tripped_at
@@ -465,9 +477,10 @@ class RunResult:
         return self.rc == 0 and self.tripped_at < 0
 
 
-def read_ini(path=DEFAULT_INI):
-    """[JOINT_0..5] and [AXIS_X..C] of a LinuxCNC INI as ([six {KEY: float}], {axis: {KEY: float}});
-    ValueError naming the file, section and key when something is missing or not a number."""
+def read_ini(path=DEFAULT_INI, n_joints=JOINTS):
+    """[JOINT_0..n_joints-1] and [AXIS_X..C] of a LinuxCNC INI as ([{KEY: float}] per joint,
+    {axis: {KEY: float}}); ValueError naming the file, section and key when something is
+    missing or not a number."""
     if not os.path.isfile(path):
         raise ValueError("no such INI file: %s" % path)
     cp = configparser.ConfigParser(strict=False, interpolation=None, comment_prefixes=("#", ";"))
@@ -487,7 +500,7 @@ def read_ini(path=DEFAULT_INI):
                 pass                     # words (TYPE = LINEAR, HOME_USE_INDEX = YES)
         return out
     joints = []
-    for j in range(JOINTS):
+    for j in range(n_joints):
         if not cp.has_section("JOINT_%d" % j):
             raise ValueError("%s has no [JOINT_%d] section" % (path, j))
         joints.append(numbers("JOINT_%d" % j))
@@ -547,17 +560,50 @@ def read_gains(path):
     return gains, pred
 
 
-def loop_config(gains=None, ferror_limit_mm=0.0, period_ns=1000000, model="reduced-cartesian", notch=None):
+def plant_params_from_ini(path, plant="serial", model=None):
+    """PlantParams of `plant` and `model` from the INI's plant section ([SERIAL]: keys in the HAL
+    unit, as the CLI's --ini and the HAL file's setp lines read them; the rest the defaults).
+    ValueError naming the file, section and key for a missing section, an unknown key or a
+    value that is not a number."""
+    pp = PlantParams(plant, model)
+    sec = _plant_ini_section(pp.plant).decode()
+    cp = configparser.ConfigParser(strict=False, interpolation=None, comment_prefixes=("#", ";"))
+    cp.optionxform = str.upper
+    with open(path) as f:
+        cp.read_string("".join(l for l in f if not l.startswith("#INCLUDE")))
+    if not cp.has_section(sec):
+        raise ValueError("%s has no [%s] section (the parameters of plant %s)" % (path, sec, plant))
+    table = params_table(pp.plant, pp.variant)
+    keys = {e.ini_key.decode(): e for e in table if e.ini_key}
+    for k, v in cp.items(sec):
+        if k not in keys:
+            raise ValueError("%s: [%s]%s is not a key of this section for model %s" % (path, sec, k, model))
+        try:
+            x = float(v)
+        except ValueError:
+            raise ValueError("%s: [%s]%s = %r is not a number" % (path, sec, k, v))
+        pp[keys[k].name.decode()] = x / keys[k].hal_scale
+    return pp
+
+
+def loop_config(gains=None, ferror_limit_mm=0.0, period_ns=1000000, model="reduced-cartesian", notch=None,
+                plant=None):
     """hg_loop_config of six joints: gains a list of six dicts of INI keys (P, I, D, FF0, FF1,
     FF2, FF3, BIAS, DEADBAND, MAX_OUTPUT, MAX_ERROR_I, INPUT_SCALE, OUTPUT_SCALE, OUTPUT_OFFSET;
     keys not given keep pid.c's load-time values: Pgain 1, the rest 0; None: configs/hexaglide.ini's);
-    notch: per joint None or (f0 Hz, Q), a biquad.N notch between pid.N.output and the DAC."""
+    notch: per joint None or (f0 Hz, Q), a biquad.N notch between pid.N.output and the DAC;
+    plant: a PlantParams of another plant (its plant and model; model is then ignored). The loop's
+    units are the config's: INPUT_SCALE counts per unit, the commands in that unit (inches for an
+    inch config), as LinuxCNC's HAL file sets enc-NN-scale and dac-NN-gain."""
     cfg = LoopConfig()
     _loop_default(C.byref(cfg))
     cfg.ferror_limit_mm = ferror_limit_mm
     cfg.period_ns = period_ns
-    cfg.plant = 0
-    cfg.variant = MODELS.index(model)
+    if plant is None:
+        cfg.plant = 0
+        cfg.variant = MODELS.index(model)
+    else:
+        cfg.plant, cfg.variant = plant.plant, plant.variant
     if gains is None:
         gains = read_ini()[0]
     for j, g in enumerate(gains):
@@ -596,7 +642,10 @@ class Loop:
 
     def __init__(self, gains=None, params=None, ferror_limit_mm=0.0, period_ns=1000000,
                  model="reduced-cartesian", substeps=1, integrator=DEFAULT_INTEGRATOR, notch=None):
-        self.cfg = loop_config(gains, ferror_limit_mm, period_ns, model, notch)
+        """params: Params of the Hexaglide, or PlantParams of any plant (its channels are the loops)."""
+        plant = params if isinstance(params, PlantParams) else None
+        self.cfg = loop_config(gains, ferror_limit_mm, period_ns, model, notch, plant)
+        self.joints = plant.channels if plant else JOINTS
         self.params = params or Params()
         self.board_params = self.params.board_params(substeps, integrator)
         self.buf = C.create_string_buffer(_sizeof(0))
@@ -610,24 +659,24 @@ class Loop:
 
     def run(self, cmd_mm, start=0, keep=True):
         """Run the commands (n, 6) from the current state; summary over rows >= start."""
-        cmd = _commands(cmd_mm)
+        cmd = _commands(cmd_mm, self.joints)
         n = cmd.shape[0]
-        fe = np.zeros((n, JOINTS)) if keep else None
-        out = np.zeros((n, JOINTS)) if keep else None
+        fe = np.zeros((n, self.joints)) if keep else None
+        out = np.zeros((n, self.joints)) if keep else None
         summ = LoopSummary()
         rc = _loop_run(self.buf, cmd, n, start,
                        fe.ctypes.data_as(_P) if keep else None,
                        out.ctypes.data_as(_P) if keep else None, C.byref(summ))
         if keep and summ.periods < n:
             fe, out = fe[:summ.periods], out[:summ.periods]
-        return RunResult(fe, out, summ, rc)
+        return RunResult(fe, out, summ, rc, joints=self.joints)
 
 
-def _commands(cmd_mm):
-    """cmd_mm as a C-contiguous (n, 6) float64 array, else ValueError."""
+def _commands(cmd_mm, joints=JOINTS):
+    """cmd_mm as a C-contiguous (n, joints) float64 array, else ValueError."""
     cmd = np.ascontiguousarray(cmd_mm, dtype=np.float64)
-    if cmd.ndim != 2 or cmd.shape[1] != JOINTS:
-        raise ValueError("commands must be an (n, 6) array, got %s" % (cmd.shape,))
+    if cmd.ndim != 2 or cmd.shape[1] != joints:
+        raise ValueError("commands must be an (n, %d) array, got %s" % (joints, cmd.shape))
     return cmd
 
 
@@ -657,8 +706,10 @@ class Job:
     summary over rows >= start; keep: the f-error and pid-output traces, load: the load's
     (carriage's) positions. Jobs may share cfg, board_params and cmd."""
 
-    def __init__(self, cfg, board_params, cmd, start=0, keep=False, load=False):
-        self.cfg, self.board_params, self.cmd = cfg, board_params, _commands(cmd)
+    def __init__(self, cfg, board_params, cmd, start=0, keep=False, load=False, joints=JOINTS):
+        """joints: the plant's channels (cfg's plant: PlantParams.channels), the columns of cmd."""
+        self.cfg, self.board_params, self.cmd = cfg, board_params, _commands(cmd, joints)
+        self.joints = joints
         self.start, self.keep, self.load = start, keep, load
 
 
@@ -675,9 +726,9 @@ def batch(jobs, threads=0):
     traces = []
     for i, j in enumerate(jobs):
         n = j.cmd.shape[0]
-        fe = np.zeros((n, JOINTS)) if j.keep else None
-        out = np.zeros((n, JOINTS)) if j.keep else None
-        load = np.zeros((n, JOINTS)) if j.load else None
+        fe = np.zeros((n, j.joints)) if j.keep else None
+        out = np.zeros((n, j.joints)) if j.keep else None
+        load = np.zeros((n, j.joints)) if j.load else None
         traces.append((fe, out, load))
         cj[i].cfg = C.pointer(j.cfg)
         cj[i].params = C.pointer(j.board_params)
@@ -689,10 +740,10 @@ def batch(jobs, threads=0):
     if rc:
         raise HexaglideError("batch", rc)
     out_list = []
-    for (fe, out, load), r in zip(traces, res):
+    for j, (fe, out, load), r in zip(jobs, traces, res):
         m = r.sum.periods
         cut = (lambda a: a[:m] if a is not None else None)
-        out_list.append(RunResult(cut(fe), cut(out), r.sum, r.rc, cut(load)))
+        out_list.append(RunResult(cut(fe), cut(out), r.sum, r.rc, cut(load), j.joints))
     return out_list
 
 
@@ -735,3 +786,67 @@ def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000, state=
 
 if _sizeof(11) != C.sizeof(PidState):
     raise ImportError("PidState: layout differs from the library's: rebuild both")
+
+
+class _RecCtx(C.Structure):
+    """hg_board_rec_ctx (src/hg_board_rec.h)."""
+    _fields_ = [("in_", C.POINTER(BoardInputs)), ("out", C.POINTER(BoardOutputs)), ("period_ns", C.c_long),
+                ("plant", C.c_int), ("variant", C.c_int), ("stream", _P)]
+
+
+_REC_FIELD_BYTES = 56          # sizeof(hg_board_rec_field): name[32], 7 bytes, offset, nf_index (checked below)
+_rec_fields = _sig("hg_board_rec_fields", C.c_int, _P, C.c_int, C.c_int, C.c_int, C.c_int)
+_rec_stream_start = _sig("hg_board_rec_stream_start", None, _P)
+_rec_stream_step = _sig("hg_board_rec_stream_step", None, _P, C.POINTER(BoardParams), C.c_int)
+_rec_get = _sig("hg_board_rec_get", C.c_double, _P, C.c_int, C.c_int, C.POINTER(_RecCtx))
+
+
+class Recorder:
+    """A format-2 record of a Board's periods (docs/replay.md), as `hexaglide sim --record` and the HAL
+    glue's rec pins write it (src/hg_board_rec.h's table and event stream):
+        b = Board("XYZ", PlantParams("serial", "XYZ"), plant="serial")
+        b.inputs.params = hidden.board_params()     # applied by the first period, recorded as events
+        with Recorder(path, b, "test") as r:
+            for v in volts: r.step(v)"""
+
+    def __init__(self, path, board, source="tools/hexaglide.py Recorder"):
+        """board: a Board of PlantParams (any plant's)."""
+        if not isinstance(board.params, PlantParams):
+            raise ValueError("Recorder: give a Board of PlantParams")
+        self.b, pi, var = board, board.params.plant, board.params.variant
+        self.fields = C.create_string_buffer(_REC_FIELD_BYTES * 256)
+        self.n = _rec_fields(self.fields, 256, pi, var, 2)
+        if self.n < 0:
+            raise ValueError("no record table for this board")
+        names = [self.fields.raw[i * _REC_FIELD_BYTES:i * _REC_FIELD_BYTES + 32].split(b"\0")[0].decode()
+                 for i in range(self.n)]
+        if names[0] != "in.period-ns":
+            raise ImportError("hg_board_rec_field: layout differs from the library's: rebuild both (%r)" % names[:2])
+        self.np = len(board.params.names)
+        self.stream = C.create_string_buffer(1 << 17)
+        _rec_stream_start(self.stream)
+        self.f = open(path, "w")
+        self.f.write("# hexaglide-record 2\n# source %s\n# board 0\n# plant %s\n# closed-loop no: %s\nsample,%s\n"
+                     % (source, plant_names()[pi], source, ",".join(names)))
+        self.ctx = _RecCtx(C.pointer(board.inputs), C.pointer(board.outputs), board.period_ns, pi, var,
+                           C.cast(self.stream, _P))
+        self.s = 0
+
+    def step(self, dac_volts=None):
+        """One Board.step, recorded; returns the outputs."""
+        out = self.b.step(dac_volts)
+        _rec_stream_step(self.stream, C.byref(self.b.inputs.params), self.np)
+        self.f.write("%d,%s\n" % (self.s, ",".join("%.17g" % _rec_get(self.fields, self.n, k, C.byref(self.ctx))
+                                                   for k in range(self.n))))
+        self.s += 1
+        return out
+
+    def close(self):
+        self.f.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+

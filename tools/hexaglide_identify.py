@@ -1592,6 +1592,11 @@ def known_params(runs, sets):
 def main(argv=None):
     """hexaglide identify: read, fit, report, validate, write."""
     import argparse
+    import hexaglide_identify_serial as ids
+    args = list(sys.argv[1:] if argv is None else argv)
+    recs = [x for x in args if not x.startswith("-") and os.path.isfile(x)]
+    if recs and ids.is_serial_record(recs[0]):    # the serial plant's records: its own force balance
+        return ids.main(args)
     ap = argparse.ArgumentParser(prog="hexaglide identify", description=__doc__.split("\n\n")[0])
     ap.add_argument("records", nargs="+", metavar="RECORD",
                     help="board records (HG_RECORD, docs/replay.md) or sampler recordings of a real machine")

@@ -652,8 +652,29 @@ def search(a, prob, notch=None):
 
 
 # ------------------------------------------------------------------ main
+def serial_plant(argv):
+    """True when the command line asks for the serial plant: --plant serial, or an --ini with a
+    [SERIAL] section (docs/serial.md): tools/hexaglide_tune_serial.py tunes it."""
+    import hexaglide_tune_serial as ts
+    args = list(sys.argv[1:] if argv is None else argv)
+    val = lambda opt: next((args[i + 1] for i, x in enumerate(args[:-1]) if x == opt),
+                           next((x.split("=", 1)[1] for x in args if x.startswith(opt + "=")), None))
+    plant, ini = val("--plant"), val("--ini")
+    return plant == "serial" or (plant is None and ini is not None and ts.is_serial_ini(ini)), plant
+
+
 def main(argv=None):
+    serial, plant = serial_plant(argv)
+    if serial:
+        import hexaglide_tune_serial as ts
+        return ts.main(sys.argv[1:] if argv is None else argv)
+    if plant not in (None, "hexaglide"):
+        log("--plant %s: unknown plant; use hexaglide, serial" % plant)
+        return 2
     ap = argparse.ArgumentParser(prog="hexaglide tune", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--plant", choices=["hexaglide", "serial"], default="hexaglide",
+                    help="the machine: hexaglide (default), or serial (implied by an --ini with a [SERIAL] "
+                    "section: tools/hexaglide_tune_serial.py, docs/serial.md)")
     ap.add_argument("--trajectory", help="recorded joint commands (see docs/tuning.md); "
                     "default: a generated S-curve move of every axis")
     ap.add_argument("--ini", default=os.path.join(ROOT, "configs", "hexaglide.ini"),

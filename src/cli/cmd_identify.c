@@ -12,7 +12,9 @@ const char cli_usage_identify[] =
     "usage: hexaglide identify RECORD... [--validate RECORD] [--output FILE] [--plots DIR] [...]\n"
     "  the model's dynamic parameters from recorded runs (docs/identification.md); every option\n"
     "  is tools/hexaglide_identify.py's, whose --help lists them all (Python 3 with numpy, scipy\n"
-    "  and matplotlib: $HEXAGLIDE_PYTHON, else the first python3 on $PATH that has them).\n";
+    "  and matplotlib: $HEXAGLIDE_PYTHON, else the first python3 on $PATH that has them).\n"
+    "  A serial plant's board record: per axis mass, friction and net weight\n"
+    "  (tools/hexaglide_identify_serial.py, docs/serial.md).\n";
 
 const char cli_usage_excite[] =
     "usage: hexaglide excite [--output FILE] [--ini FILE] [...]\n"

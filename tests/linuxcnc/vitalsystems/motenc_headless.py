@@ -18,6 +18,11 @@ $HG_OUT/$HG_TAG.json (and the program's samples to $HG_OUT/$HG_TAG.csv):
     reset and on; then the board's E-STOP button during an MDI move
     (LinuxCNC sees emc-enable-in drop and goes to ESTOP), release, reset, on.
 The test (tests/linuxcnc/test_motenc_stock) judges the JSON.
+
+HG_SCENARIO=program (tests/linuxcnc/test_serial_identify, test_serial_tune):
+only HG_SETP ("pin value;pin value...", set before estop reset: a hidden
+machine, gains under test), steps 1, 3 and one run of HG_PROGRAM, sampled
+unless the board's recorder runs (HG_RECORD: it takes `sampler`).
 """
 import json
 import os
@@ -33,7 +38,7 @@ OUT = os.environ.get("HG_OUT", "../out")
 TAG = os.environ.get("HG_TAG", "motenc_stock")
 PROGRAM = os.environ.get("HG_PROGRAM", "serial_mill.ngc")
 SAMPLED = ["joint.%d.f-error" % j for j in range(3)] + ["joint.%d.vel-cmd" % j for j in range(3)] + \
-          ["%s.joint-%d.pos" % (X, j) for j in range(3)]
+          ["%s.joint-%d.pos" % (X, j) for j in range(3)] + ["joint.%d.motor-pos-cmd" % j for j in range(3)]
 
 s = linuxcnc.stat()
 c = linuxcnc.command()
@@ -215,21 +220,26 @@ SAMPLER = []
 
 
 def run_program(path):
-    if not SAMPLER:
-        SAMPLER.append(Sampler())
-    sm = SAMPLER[0]
+    if path is None:                       # unsampled (the recorder has sampler)
+        sm = None
+    else:
+        if not SAMPLER:
+            SAMPLER.append(Sampler())
+        sm = SAMPLER[0]
     c.mode(linuxcnc.MODE_AUTO)
     wait(lambda: s.task_mode == linuxcnc.MODE_AUTO, 5)
     n0 = len(messages)
     c.program_open(PROGRAM)
-    sm.start(path)
+    if sm:
+        sm.start(path)
     t0 = time.time()
     c.auto(linuxcnc.AUTO_RUN, 0)
     wait(lambda: s.interp_state != linuxcnc.INTERP_IDLE, 5)
     done = wait(lambda: s.interp_state == linuxcnc.INTERP_IDLE, 120)
     secs = time.time() - t0
     time.sleep(0.3)
-    sm.finish()
+    if sm:
+        sm.finish()
     s.poll()
     drain()
     return {"done": done, "seconds": round(secs, 2), "axis_pos_in": list(s.actual_position[:3]),
@@ -239,6 +249,11 @@ def run_program(path):
 def step_program():
     """The program with the stock gains."""
     result["program"] = run_program(os.path.join(OUT, TAG + ".csv"))
+
+
+def step_program_only():
+    """HG_SCENARIO=program: the program once, sampled unless the recorder runs."""
+    result["program"] = run_program(None if os.environ.get("HG_RECORD") else os.path.join(OUT, TAG + ".csv"))
 
 
 def step_program_ff1():
@@ -298,7 +313,12 @@ def main():
     comp = hal.component("motenc_headless")    # hal.get_value needs a component
     comp.ready()
     try:
-        for step in (step_estop_start, step_limit, step_home, step_program, step_program_ff1, step_estop):
+        steps = (step_estop_start, step_limit, step_home, step_program, step_program_ff1, step_estop)
+        if os.environ.get("HG_SCENARIO") == "program":
+            for item in filter(None, os.environ.get("HG_SETP", "").split(";")):
+                halcmd("setp", *item.split())
+            steps = (step_estop_start, step_home, step_program_only)
+        for step in steps:
             log(step.__name__)
             step()
         rc = 0

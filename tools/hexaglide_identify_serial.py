@@ -1,0 +1,326 @@
+#!/usr/bin/python3
+"""hexaglide_identify_serial.py - `hexaglide identify` for the serial-axis
+plant (docs/serial.md): per axis, from board records (format 2, `plant
+serial`) of a run, the reflected moving mass, viscous friction c, sliding
+(Coulomb) friction, the breakaway excess where the record has slow sliding,
+and on a vertical axis the net weight (gravity less counterbalance), by
+linear least squares on the axis's force balance (src/hg_plant_serial.c,
+rigid train: the encoder counts the motor, the load follows it within
+force / k_axial):
+
+    kt 2 pi / lead  i  =  M a + c v + F_c sgn v + (F_s - F_c) exp(-(v/v_s)^2) sgn v + W
+    M = mass + j_rotor (2 pi / lead)^2       (the reflected total: load and rotor)
+    W = mass g - counterbalance              (axes with gravity only)
+
+i is the drive's winding current (out.current-K, the drive's current
+monitor), x the motor's travel from the encoder counts (lead / counts_per_rev
+per count), v and a its derivatives after a zero-phase Butterworth low-pass
+applied alike to both sides. Known beforehand (from the record's parameter
+events or --set, the motor's and encoder's data sheets): kt, lead,
+counts_per_rev, j_rotor, g, v_stribeck. Periods slower than v_stribeck (3
+v_stribeck when the record has too little slow sliding for the breakaway
+column) are left out (stick, or about to), with the filter's response time
+around them, as are periods with the amplifier off or a fault. Rotary axes: the same with N m,
+kg m^2 and rad (ratio instead of 2 pi / lead).
+
+stdout: NAME = VALUE ± SIGMA UNIT lines, '#' lines for the rest; --output:
+setp lines (HAL units) and [SERIAL] INI lines. Exit 0 ok, 2 bad input."""
+import ctypes as C
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import hexaglide as hg  # noqa: E402
+
+CUTOFF_HZ = 25.0
+ORDER = 4
+MIN_SAMPLES = 500
+SLOW = 1.0          # v_stribeck: slower periods are not the sliding fit's (stick, or about to) ...
+SLOW_NO_BREAKAWAY = 3.0   # ... and slower than this when the breakaway is not excited (the Stribeck
+                          # excess, exp(-9) of it at 3 v_stribeck, is then not in the fit)
+KNOWN = ("kt", "lead", "ratio", "counts_per_rev", "j_rotor", "g", "v_stribeck")
+MIN_BREAKAWAY = 300  # sliding periods with exp(-(v/v_s)^2) > 0.05 that make the breakaway identifiable
+
+
+class BadInput(Exception):
+    pass
+
+
+def log(*a):
+    print("hexaglide identify:", *a, file=sys.stderr, flush=True)
+
+
+def is_serial_record(path):
+    """True for a board record of the serial plant: its header's "# plant serial" line (hexaglide sim,
+    hg.Recorder) or its first row's in.plant column (tools/hg_record.py's records)."""
+    try:
+        with open(path, "rb") as f:
+            if f.readline().rstrip(b"\r\n") not in hg.RECORD_MAGICS:
+                return False
+            for _ in range(64):
+                line = f.readline()
+                if line.strip() == b"# plant serial":
+                    return True
+                if line.startswith(b"sample,"):
+                    header = line.decode().rstrip("\r\n").split(",")
+                    row = f.readline().decode().split(",")
+                    if "in.plant" not in header or len(row) != len(header):
+                        return False
+                    return int(float(row[header.index("in.plant")])) == hg.plant_names().index("serial")
+    except (OSError, ValueError, UnicodeDecodeError):
+        return False
+    return False
+
+
+class Record:
+    """What the fit needs of one record: per period current, counts, amplifier state, the parameters."""
+
+
+def read_record(path):
+    import hexaglide_identify as hid
+    with open(path, "rb") as f:
+        data = f.read()
+    r = C.create_string_buffer(hid.REC_BYTES)
+    e = hid._RecErr()
+    if hid._rec_open(r, data, len(data), C.byref(e)):
+        raise BadInput("%s: %s" % (path, e.msg.decode(errors="replace")))
+    lines = data.split(b"\n", 64)
+    hdr_no = next(i for i, l in enumerate(lines) if l.startswith(b"sample,")) + 1
+    header = lines[hdr_no - 1].decode().rstrip("\r").split(",")
+    n = sum(1 for h in header if h.startswith("out.current-"))
+    need = ["in.period-ns", "in.model", "out.amps-on", "out.fault"] + ["out.count-%02d" % k for k in range(n)] + \
+        ["out.current-%d" % k for k in range(n)]
+    for name in need:
+        if name not in header:
+            raise BadInput("%s: line %d (the header): no column '%s': not a serial plant's board record" %
+                           (path, hdr_no, name))
+    for name in ("out.count-%02d" % k for k in range(n)):
+        hid._rec_kind(r, header.index(name), 1)
+    for name in ("out.amps-on", "out.fault"):
+        hid._rec_kind(r, header.index(name), 3)
+    slots = [[header.index("in.pev-%d-%s" % (k, part)) for part in ("entry", "value", "age")]
+             for k in range(2) if "in.pev-%d-entry" % k in header]
+    cols = [header.index(x) for x in need]
+    row = np.zeros(len(header) + 8)
+    out, told = [], {}
+    while True:
+        rc = hid._rec_next(r, row, C.byref(e))
+        if rc == 0:
+            break
+        if rc < 0:
+            raise BadInput("%s: %s" % (path, e.msg.decode(errors="replace")))
+        for c_entry, c_value, c_age in slots:
+            ev = hid._RecEvent()
+            if hid._rec_event_of(row[c_entry], row[c_value], row[c_age], len(out), C.byref(ev)):
+                told[ev.entry] = ev.value
+        out.append(row[cols].copy())
+    a = np.array(out).reshape(-1, len(cols))
+    if len(a) < MIN_SAMPLES:
+        raise BadInput("%s: %d periods; identify needs at least %d" % (path, len(a), MIN_SAMPLES))
+    if np.ptp(a[:, 0]) > 0 or np.ptp(a[:, 1]) > 0:
+        raise BadInput("%s: the servo period or the model changes within the record" % path)
+    rec = Record()
+    rec.path, rec.n, rec.dt = path, n, a[0, 0] * 1e-9
+    plant = hg.plant_names().index("serial")
+    rec.variant = int(a[0, 1])
+    rec.names = [x.name.decode() for x in hg.params_table(plant, rec.variant)]
+    rec.told = {rec.names[i]: v for i, v in told.items() if i < len(rec.names)}
+    rec.ok = (a[:, 2] > 0.5) & (a[:, 3] < 0.5)
+    rec.counts = a[:, 4:4 + n]
+    rec.current = a[:, 4 + n:4 + 2 * n]
+    rec.rotary = [("inertia_%d" % k) in rec.names for k in range(n)]
+    return rec
+
+
+def known(rec, sets):
+    """The known parameters per axis: the record's events, then --set (spec names, SI)."""
+    kn = {}
+    for name, v in rec.told.items():
+        base = name.rsplit("_", 1)[0]
+        if base in KNOWN:
+            kn[name] = v
+    for s in sets:
+        k, _, v = s.partition("=")
+        if k.rsplit("_", 1)[0] not in KNOWN or k not in rec.names:
+            raise BadInput("--set %s: not a known-beforehand parameter of this record (%s, per axis _K)"
+                           % (s, ", ".join(KNOWN)))
+        try:
+            kn[k] = float(v)
+        except ValueError:
+            raise BadInput("--set %s: not a number" % s)
+    return kn
+
+
+def axis_rows(rec, k, kn, slow_vs=SLOW):
+    """Rows (X, y, used mask, info) of axis k's force balance from one record, periods slower than
+    slow_vs v_stribeck (and the filter's response time around them) left out."""
+    from scipy.signal import butter, filtfilt
+    rot = rec.rotary[k]
+    get = lambda name: kn[name + "_%d" % k]
+    if rot:
+        per_rev = 2 * np.pi / get("ratio")               # axis rad per motor rev
+        force_per_amp = get("kt") * get("ratio")
+        j_refl = get("j_rotor") * get("ratio") ** 2
+    else:
+        per_rev = get("lead")
+        force_per_amp = get("kt") * 2 * np.pi / get("lead")
+        j_refl = get("j_rotor") * (2 * np.pi / get("lead")) ** 2
+    x = rec.counts[:, k] * per_rev / get("counts_per_rev")
+    dt = rec.dt
+    b, a = butter(ORDER, CUTOFF_HZ * 2 * dt)
+    xf = filtfilt(b, a, x)
+    i_end = rec.current[:, k]
+    i_eff = np.append(0.5 * (i_end[:-1] + i_end[1:]), i_end[-1])   # the current over steps n and n+1, which
+    f = filtfilt(b, a, force_per_amp * i_eff)                        # the central differences at n span
+    v = np.gradient(xf, dt)
+    acc = np.gradient(v, dt)
+    vs = get("v_stribeck")
+    sg = np.sign(v)
+    shape = np.exp(-(v / vs) ** 2)
+    ok = rec.ok.copy()
+    margin = int(3 / (CUTOFF_HZ * dt))                    # the filter's edges and the amplifier's switching
+    bad = ~ok
+    for s in range(1, margin):
+        bad[s:] |= ~ok[:-s]
+        bad[:-s] |= ~ok[s:]
+    bad[:margin] = bad[-margin:] = True
+    slow = np.abs(v) <= slow_vs * vs                         # and where the friction's sign change, smoothed
+    near = slow.copy()                                    # by the filter, is still in the force: the
+    for s in range(1, margin):                            # filter's response time around each slow stretch
+        near[s:] |= slow[:-s]
+        near[:-s] |= slow[s:]
+    use = ~bad & ~near
+    grav = (not rot) and get("g") != 0.0
+    cols = [acc, v, sg, shape * sg] + ([np.ones_like(v)] if grav else [])
+    return np.column_stack(cols), f, use, dict(j_refl=j_refl, grav=grav, g=get("g") if not rot else 0.0,
+                                              excited=int(((shape > 0.05) & use).sum()))
+
+
+def fit_axis(recs, k, kns):
+    excited = sum(axis_rows(rec, k, kn)[3]["excited"] for rec, kn in zip(recs, kns))
+    slow_vs = SLOW if excited >= MIN_BREAKAWAY else SLOW_NO_BREAKAWAY
+    X, y, info = [], [], None
+    for rec, kn in zip(recs, kns):
+        Xi, yi, use, inf = axis_rows(rec, k, kn, slow_vs)
+        X.append(Xi[use])
+        y.append(yi[use])
+        if info is None:
+            info = inf
+        else:
+            info["excited"] += inf["excited"]
+    X, y = np.vstack(X), np.concatenate(y)
+    names = ["M", "c_visc", "f_coulomb", "f_breakaway"] + (["net_weight"] if info["grav"] else [])
+    keep = [i for i, nm in enumerate(names) if nm != "f_breakaway" or info["excited"] >= MIN_BREAKAWAY]
+    if len(y) < MIN_SAMPLES:
+        raise BadInput("axis %d: %d usable periods (amplifier on, sliding faster than %g v_stribeck); "
+                       "identify needs %d: a longer or faster excitation" % (k, len(y), slow_vs, MIN_SAMPLES))
+    Xk = X[:, keep]
+    scale = np.sqrt((Xk ** 2).sum(0))
+    theta, *_ = np.linalg.lstsq(Xk / scale, y, rcond=None)
+    theta /= scale
+    r = y - Xk @ theta
+    import hexaglide_identify as hid
+    tau = hid.autocorr_time(r, maxlag=2000)
+    s2 = r @ r / (len(y) - len(keep))
+    cov = np.linalg.inv(Xk.T @ Xk) * s2 * tau
+    sig = np.sqrt(np.diag(cov))
+    est = {names[i]: (theta[j], sig[j]) for j, i in enumerate(keep)}
+    u, sv, vt = np.linalg.svd(Xk / scale, full_matrices=False)
+    info.update(rows=len(y), tau=tau, slow_vs=slow_vs, excited=excited, rms=np.sqrt(s2), cond=sv[0] / sv[-1], dropped=[names[i] for i in range(len(names)) if i not in keep])
+    return est, info
+
+
+def unit(rot, what):
+    return {("M", 0): "kg", ("M", 1): "kg m^2", ("c_visc", 0): "N s/m", ("c_visc", 1): "N m s/rad",
+            ("f_coulomb", 0): "N", ("f_coulomb", 1): "N m", ("f_breakaway", 0): "N", ("f_breakaway", 1): "N m",
+            ("net_weight", 0): "N", ("mass", 0): "kg", ("counterbalance", 0): "N", ("f_static", 0): "N",
+            ("f_static", 1): "N m", ("inertia", 1): "kg m^2"}[(what, int(rot))]
+
+
+def main(argv):
+    import argparse
+    ap = argparse.ArgumentParser(prog="hexaglide identify (serial plant)")
+    ap.add_argument("records", nargs="+")
+    ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
+    ap.add_argument("--output")
+    a, rest = ap.parse_known_args(argv)
+    try:
+        if rest:
+            raise BadInput("%s: not an option of identify for the serial plant (it takes RECORD... --set "
+                           "--output)" % " ".join(rest))
+        recs = [read_record(p) for p in a.records]
+        if len({(r.n, tuple(r.names)) for r in recs}) > 1:
+            raise BadInput("the records are of different models")
+        kns = [known(r, a.set) for r in recs]
+        n = recs[0].n
+        for k in range(n):
+            for nm in ("kt", "ratio" if recs[0].rotary[k] else "lead", "counts_per_rev", "j_rotor", "v_stribeck"):
+                if nm + "_%d" % k not in kns[0]:
+                    raise BadInput("%s: no %s_%d in the record: --set %s_%d=VALUE (SI)" % (a.records[0], nm, k, nm, k))
+        fits = [fit_axis(recs, k, kns) for k in range(n)]
+    except BadInput as ex:
+        log(ex)
+        return 2
+    out = ["# hexaglide identify (serial plant): %s" % ", ".join("%s (%d periods)" % (r.path, len(r.ok)) for r in recs),
+           "# force balance per axis (docs/serial.md): kt 2 pi/lead i = M a + c_visc v + f_coulomb sgn v + "
+           "f_breakaway exp(-(v/v_stribeck)^2) sgn v [+ net_weight]; zero-phase low-pass %g Hz (Butterworth "
+           "order %d); periods slower than %g v_stribeck left out (%g without the breakaway)"
+           % (CUTOFF_HZ, ORDER, SLOW, SLOW_NO_BREAKAWAY)]
+    spec = {}
+    for k, (est, info) in enumerate(fits):
+        rot = recs[0].rotary[k]
+        kn = kns[0]
+        out.append("# axis %d: %d periods, residual RMS %.3g %s, correlation time %.1f periods (sigmas include "
+                   "it), condition number %.1f; known: kt %g, %s, counts_per_rev %g, j_rotor %g, v_stribeck %g"
+                   % (k, info["rows"], info["rms"], "N m" if rot else "N", info["tau"], info["cond"],
+                      kn["kt_%d" % k], ("ratio %g" % kn["ratio_%d" % k]) if rot else ("lead %g m" % kn["lead_%d" % k]),
+                      kn["counts_per_rev_%d" % k], kn["j_rotor_%d" % k], kn["v_stribeck_%d" % k]))
+        M, sM = est["M"]
+        out.append("M_%d = %.6g ± %.2g %s   # reflected total: the load and the rotor, %s + j_rotor %s"
+                   % (k, M, sM, unit(rot, "M"), "inertia" if rot else "mass",
+                      "ratio^2" if rot else "(2 pi/lead)^2"))
+        load = "inertia" if rot else "mass"
+        mval = M - info["j_refl"]
+        out.append("%s_%d = %.6g ± %.2g %s   # M less the known rotor (%.6g)" % (load, k, mval, sM, unit(rot, load), info["j_refl"]))
+        spec["%s_%d" % (load, k)] = mval
+        for nm in ("c_visc", "f_coulomb"):
+            v, s = est[nm]
+            out.append("%s_%d = %.6g ± %.2g %s" % (nm, k, v, s, unit(rot, nm)))
+            spec["%s_%d" % (nm, k)] = v
+        if "f_breakaway" in est:
+            v, s = est["f_breakaway"]
+            fc = est["f_coulomb"][0]
+            out.append("f_breakaway_%d = %.6g ± %.2g %s   # f_static - f_coulomb" % (k, v, s, unit(rot, "f_breakaway")))
+            out.append("f_static_%d = %.6g ± %.2g %s" % (k, fc + v, np.hypot(s, est["f_coulomb"][1]), unit(rot, "f_static")))
+            spec["f_static_%d" % k] = fc + v
+        else:
+            out.append("# f_breakaway_%d not estimated: %d sliding periods near v_stribeck (exp(-(v/v_s)^2) > 0.05), "
+                       "%d needed: the excitation never slides slowly" % (k, info["excited"], MIN_BREAKAWAY))
+        if "net_weight" in est:
+            v, s = est["net_weight"]
+            g = info["g"]
+            out.append("net_weight_%d = %.6g ± %.2g N   # mass g - counterbalance" % (k, v, s))
+            cb = mval * g - v
+            out.append("counterbalance_%d = %.6g ± %.2g N   # mass g - net_weight, g %g" % (k, cb, np.hypot(sM * g, s), g))
+            spec["counterbalance_%d" % k] = cb
+    sys.stdout.write("\n".join(out) + "\n")
+    if a.output:
+        table = {x.name.decode(): x for x in hg.params_table(hg.plant_names().index("serial"), recs[0].variant)}
+        lines = ["# hexaglide identify (serial plant) of %s: setp lines (HAL units)" % ", ".join(a.records)]
+        for name, v in spec.items():
+            e = table[name]
+            lines.append("setp motenc-hexaglide.0.%s %.6g" % (e.hal_name.decode(), v * e.hal_scale))
+        lines.append("# the same as [SERIAL] INI lines")
+        lines.append("[SERIAL]")
+        for name, v in spec.items():
+            e = table[name]
+            lines.append("%s = %.6g" % (e.ini_key.decode(), v * e.hal_scale))
+        with open(a.output, "w") as f:
+            f.write("\n".join(lines) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,370 @@
+#!/usr/bin/python3
+"""hexaglide_tune_serial.py - `hexaglide tune` for the serial-axis plant
+(docs/serial.md): LinuxCNC's pid around the virtual board's serial axes
+(src/hg_loop.c, the plant src/hg_plant_serial.c), in the config's own units.
+
+The loop's units are the INI's, exactly as its HAL file scales the board:
+motenc_motion.hal sets enc-NN-scale to [JOINT_N]INPUT_SCALE (counts per
+inch in the stock MOTENC config) and dac-NN-gain to OUTPUT_SCALE (volts per
+PID output unit), and hg_loop applies the same two numbers, read from the
+same INI, so the commands, feedback and following errors are in inches
+here. The machine is the INI's [SERIAL] section (the HAL file's setp lines
+read it too).
+
+Started by tools/hexaglide_tune.py when the plant is serial (`--plant
+serial`, or an INI with a [SERIAL] section and no [HEXAGLIDE]); see
+docs/tuning.md and docs/serial.md. stdout: [JOINT_N] sections, then the
+predicted peak following error per joint. Exit 0 ok, 1 no stable gains, 2
+bad input.
+
+The Hexaglide's own parts of tune are not run here, and the output says so:
+the stability margins at HOME (tools/hg_margins.py linearizes the
+Hexaglide's coupled six-joint model), the tool-path error (the Hexaglide's
+pose error from its kinematics; with trivkins it is the joints' errors
+themselves) and the notch (against the Hexaglide's structural mode). A
+serial axis's stability is checked here on a step response instead."""
+import argparse
+import configparser
+import os
+import re
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import hexaglide as hg  # noqa: E402
+
+PERIOD_S = 0.001
+MIN_SAMPLES = 200
+SETTLE = 500                      # periods at rest before the trajectory
+SEARCH_KEYS = ["P", "FF1", "FF2"]
+OUT_KEYS = ["P", "I", "D", "FF0", "FF1", "FF2", "DEADBAND"]
+SKIPPED = ("# not run for the serial plant: the margins at HOME (tools/hg_margins.py linearizes the "
+           "Hexaglide's coupled joints), the tool-path error (the Hexaglide's pose from its kinematics; with "
+           "trivkins each axis's error is its joint's f-error, above) and the notch (the Hexaglide's structural "
+           "mode); each axis's stability is checked on a step response instead")
+
+
+class BadInput(Exception):
+    """A user error: exit 2 with the message."""
+
+
+def log(*a):
+    print("hexaglide tune:", *a, file=sys.stderr, flush=True)
+
+
+def _ini(path):
+    cp = configparser.ConfigParser(strict=False, interpolation=None, comment_prefixes=("#", ";"))
+    cp.optionxform = str.upper
+    with open(path) as f:
+        cp.read_string("".join(l for l in f if not l.startswith("#INCLUDE")))
+    return cp
+
+
+def read_ini_file(path, what):
+    """The parsed INI file at path (what: "INI", "gains"), BadInput naming what is wrong."""
+    if not os.path.isfile(path):
+        raise BadInput("no such %s file: %s" % (what, path))
+    try:
+        return _ini(path)
+    except configparser.Error as ex:
+        raise BadInput("%s does not parse as an INI file: %s" % (path, ex))
+
+
+def is_serial_ini(path):
+    """True for an INI whose machine is the serial plant: a [SERIAL] section."""
+    try:
+        return _ini(path).has_section("SERIAL")
+    except (OSError, configparser.Error):
+        return False
+
+
+class Machine:
+    """What the INI says: joints, their pid keys and scales, the plant's parameters, the units."""
+
+    def __init__(self, ini, model=None):
+        cp = read_ini_file(ini, "INI")
+        if not cp.has_section("SERIAL"):
+            raise BadInput("%s has no [SERIAL] section: the serial plant's machine (docs/serial.md); add it, "
+                           "or tune the Hexaglide without --plant serial" % ini)
+        if model is None:
+            coords = cp.get("TRAJ", "COORDINATES", fallback="").replace(" ", "")
+            joints = cp.getint("KINS", "JOINTS", fallback=len(coords))
+            if not coords or len(coords) != joints:
+                raise BadInput("%s: [TRAJ]COORDINATES %r and [KINS]JOINTS %d do not name one axis per joint: "
+                               "give --model (the axes, e.g. XYZ)" % (ini, coords, joints))
+            model = coords.upper()
+        self.model = model
+        try:
+            self.params = hg.plant_params_from_ini(ini, "serial", model)
+            self.n = self.params.channels
+            self.joints, _ = hg.read_ini(ini, self.n)
+        except ValueError as ex:
+            raise BadInput(str(ex))
+        for j, g in enumerate(self.joints):
+            for k in ("INPUT_SCALE", "OUTPUT_SCALE"):
+                if not g.get(k):
+                    raise BadInput("%s [JOINT_%d] needs a nonzero %s (the HAL file's enc/dac scale)" % (ini, j, k))
+        self.unit = {"inch": "in", "in": "in", "mm": "mm", "metric": "mm"}.get(
+            cp.get("TRAJ", "LINEAR_UNITS", fallback="mm").strip().lower(), "mm")
+        self.rotary = [c in "ABC" for c in model]
+        self.ini = ini
+
+    def unit_of(self, j):
+        return "deg" if self.rotary[j] else self.unit
+
+    def gains(self, overrides=None):
+        """The loop's per-joint keys: the INI's pid keys and scales, overridden per joint."""
+        out = []
+        for j, g in enumerate(self.joints):
+            d = {k: v for k, v in g.items() if k in hg.GAIN_KEYS or k in ("INPUT_SCALE", "OUTPUT_SCALE",
+                                                                           "OUTPUT_OFFSET")}
+            d.update((overrides or [{}] * self.n)[j])
+            out.append(d)
+        return out
+
+    def ff1_model(self, j):
+        """FF1 that commands the velocity-mode amplifier's speed: 10 V / (OUTPUT_SCALE V_RATED) in the
+        INI's units (V_RATED from [SERIAL], mm/s or deg/s on HAL); None for torque mode."""
+        pp = self.params
+        if pp["amp_mode_%d" % j] < 0.5:
+            return None
+        v_si = pp["v_rated_%d" % j]
+        v_user = v_si * (180 / np.pi if self.rotary[j] else (1000 / 25.4 if self.unit == "in" else 1000.0))
+        return 10.0 / (self.joints[j]["OUTPUT_SCALE"] * v_user)
+
+
+def load_trajectory(path, n):
+    """Joint commands (rows, n) from a CSV of joint.N.motor-pos-cmd columns (LinuxCNC's sampled run,
+    the headless runners' CSV), comma or space separated; rows of n numbers without a header."""
+    if not os.path.isfile(path):
+        raise BadInput("no such trajectory file: %s" % path)
+    header, rows = None, []
+    with open(path) as f:
+        for no, line in enumerate(f, 1):
+            s = line.strip()
+            if not s or s.startswith("#"):
+                continue
+            fields = s.replace(",", " ").split()
+            if header is None and not rows and not re.match(r"[-+0-9.]", fields[0]):
+                header = fields
+                continue
+            try:
+                vals = [float(x) for x in fields]
+            except ValueError:
+                raise BadInput("%s line %d does not parse as numbers: %r" % (path, no, s[:80]))
+            if not np.all(np.isfinite(vals)):
+                raise BadInput("%s line %d holds a NaN or infinite value" % (path, no))
+            rows.append(vals)
+    if not rows:
+        raise BadInput("%s: no samples" % path)
+    a = np.array(rows)
+    if header is not None:
+        cols = []
+        for j in range(n):
+            name = "joint.%d.motor-pos-cmd" % j
+            if name not in header:
+                raise BadInput("%s: column %s missing (the serial plant's model has joints 0..%d)" % (path, name, n - 1))
+            cols.append(header.index(name))
+        if "halui.program.is-running" in header:      # the program, with its lead-in and tail kept
+            run = a[:, header.index("halui.program.is-running")] > 0.5
+            if run.any():
+                i0, i1 = np.argmax(run), len(run) - np.argmax(run[::-1])
+                a = a[max(0, i0 - 300):min(len(a), i1 + 300)]
+        cmd = a[:, cols]
+    else:
+        if a.shape[1] != n:
+            raise BadInput("%s: %d numbers a row; the model's %d joints need %d" % (path, a.shape[1], n, n))
+        cmd = a
+    if len(cmd) < MIN_SAMPLES:
+        raise BadInput("%s: %d samples; at least %d (%.1f s at 1 kHz)" % (path, len(cmd), MIN_SAMPLES,
+                                                                        MIN_SAMPLES * PERIOD_S))
+    return cmd
+
+
+def generated_move(m):
+    """Each joint out and back over a quarter of its travel (at most 2 units) at its MAX_VELOCITY and
+    MAX_ACCELERATION, toward - (the stock config's machine 0 is its + end)."""
+    import hexaglide_tune as tune
+    segs = [np.zeros((1, m.n))]
+    for j in range(m.n):
+        g = m.joints[j]
+        dist = min(2.0, 0.25 * abs(g.get("MAX_LIMIT", 0.0) - g.get("MIN_LIMIT", -8.0)))
+        prof = tune.s_curve(dist, g.get("MAX_VELOCITY", 1.0), g.get("MAX_ACCELERATION", 4.0))
+        for path in (-prof, prof - dist):
+            seg = np.repeat(segs[-1][-1:], len(prof), 0)
+            seg[:, j] = path
+            segs.append(seg)
+    return np.vstack(segs)
+
+
+def with_settle(cmd):
+    """The commands relative to the first (the plant starts at rest at its power-up position 0), after
+    SETTLE periods at rest there."""
+    c = cmd - cmd[0]
+    return np.vstack([np.zeros((SETTLE, c.shape[1])), c])
+
+
+def run(m, gains, cmd):
+    return hg.Loop(gains, params=m.params).run(cmd)
+
+
+def step_overshoot(m, gains, j, step):
+    """Overshoot (fraction) and settled error of joint j's step of `step` units, the rest at rest, with
+    the feedback gains alone (the feed-forward terms act outside the loop: a step's derivative would
+    only kick it)."""
+    n = 600
+    cmd = np.zeros((n, m.n))
+    cmd[100:, j] = step
+    fb_only = [dict(g, FF0=0.0, FF1=0.0, FF2=0.0, FF3=0.0) for g in gains]
+    r = hg.Loop(fb_only, params=m.params).run(cmd)
+    if not r.ok:
+        return np.inf, np.inf
+    fb = (np.vstack([np.zeros((1, m.n)), cmd[:-1]]) - r.ferror_mm)[:, j]
+    return max(0.0, fb[100:].max() / step - 1.0), abs(fb[-50:] - step).max()
+
+
+def evaluate(m, gains, cmd):
+    """(peak |f-error| per joint, peak |output| per joint, ok) over the trajectory."""
+    r = run(m, gains, cmd)
+    return r.peak_ferror_mm, r.peak_output_v, r.ok
+
+
+def search(m, cmd, a):
+    """Per joint, P, FF1, FF2 by differential evolution on the peak f-error, refusing candidates whose
+    step overshoots more than --max-overshoot or whose output saturates (MAX_OUTPUT)."""
+    from scipy.optimize import differential_evolution
+    best = []
+    for j in range(m.n):
+        ff1 = m.ff1_model(j)
+        ff1_hi = 2.0 * ff1 if ff1 else 1.0
+        p0 = m.joints[j].get("P", 1.0)
+        bounds = [(np.log10(max(1.0, p0 / 10)), np.log10(max(10.0, p0 * 50))), (0.0, ff1_hi), (0.0, 0.01)]
+        step = 200.0 / abs(m.joints[j]["INPUT_SCALE"])    # 200 counts: a count is 0.5 % of it
+        maxout = m.joints[j].get("MAX_OUTPUT", 0.0)
+
+        def gains_of(x, j=j):
+            o = [{} for _ in range(m.n)]
+            o[j] = {"P": 10 ** x[0], "FF1": x[1], "FF2": x[2], "I": 0.0, "D": 0.0}
+            return m.gains(o)
+
+        def cost(x, j=j):
+            g = gains_of(x)
+            pk, out, ok = evaluate(m, g, cmd)
+            if not ok or not np.isfinite(pk[j]):
+                return 1e9
+            ov, settled = step_overshoot(m, g, j, step)
+            c = pk[j]
+            if ov > a.max_overshoot:
+                c *= 1 + 100 * (ov - a.max_overshoot)
+            if maxout > 0 and out[j] >= 0.999 * maxout:
+                c *= 10
+            return c
+        res = differential_evolution(cost, bounds, maxiter=a.maxiter, popsize=a.popsize, seed=a.seed + j,
+                                     tol=1e-3, polish=False, x0=[np.log10(max(1.0, p0)), ff1 or 0.0, 0.0])
+        g = gains_of(res.x)[j]
+        log("joint %d: P %.4g FF1 %.6g FF2 %.3g: peak |f-error| %.6g %s (%d runs)"
+            % (j, g["P"], g["FF1"], g["FF2"], res.fun, m.unit_of(j), res.nfev))
+        best.append({k: g[k] for k in ("P", "I", "D", "FF1", "FF2")})
+    return best
+
+
+def ini_text(m, gains, pred, stock, source):
+    lines = ["# hexaglide tune (serial plant, model %s) for %s, trajectory %s" % (m.model, m.ini, source),
+             "# units: the INI's (%s; INPUT_SCALE counts per %s, OUTPUT_SCALE volts per output unit), as its HAL "
+             "file scales the board" % (m.unit, m.unit)]
+    for j in range(m.n):
+        lines.append("[JOINT_%d]" % j)
+        for k in OUT_KEYS:
+            if k in gains[j]:
+                lines.append("%-8s = %.6g" % (k, gains[j][k]))
+    for j in range(m.n):
+        fe = m.joints[j].get("FERROR")
+        lines.append("# joint %d: peak |f-error| %.6g %s (the INI's gains: %.6g %s%s)"
+                     % (j, pred[j], m.unit_of(j), stock[j], m.unit_of(j),
+                        "; FERROR %g" % fe if fe is not None else ""))
+    lines.append(SKIPPED)
+    return "\n".join(lines) + "\n"
+
+
+def read_gain_file(path, n):
+    """[JOINT_N] gain keys of a file (tune's output or an INI)."""
+    cp = read_ini_file(path, "gains")
+    out = []
+    for j in range(n):
+        sec = "JOINT_%d" % j
+        if not cp.has_section(sec):
+            raise BadInput("%s: no [%s] section (the model has joints 0..%d)" % (path, sec, n - 1))
+        g = {}
+        for k, v in cp.items(sec):
+            if k in hg.GAIN_KEYS:
+                try:
+                    g[k] = float(v)
+                except ValueError:
+                    raise BadInput("%s [%s] %s = %r is not a number" % (path, sec, k, v))
+                if not np.isfinite(g[k]):
+                    raise BadInput("%s [%s] %s is not finite" % (path, sec, k))
+        out.append(g)
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="hexaglide tune --plant serial", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--plant", default="serial")
+    ap.add_argument("--model", help="the axes (default: the INI's [TRAJ]COORDINATES)")
+    ap.add_argument("--ini", required=True, help="the config: [JOINT_N] gains and scales, [SERIAL] the machine")
+    ap.add_argument("--trajectory", help="joint.N.motor-pos-cmd samples (CSV); default a generated move")
+    ap.add_argument("--evaluate", action="store_true", help="predict the INI's (or --gains') gains only")
+    ap.add_argument("--gains", metavar="FILE", help="gains to evaluate ([JOINT_N] sections)")
+    ap.add_argument("--max-overshoot", type=float, default=0.15)
+    ap.add_argument("--maxiter", type=int, default=12)
+    ap.add_argument("--popsize", type=int, default=6)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--output", help="also write the suggestion to this file")
+    a, rest = ap.parse_known_args(argv)
+    try:
+        if rest:
+            raise BadInput("%s: not an option of the serial plant's tune (hexaglide tune --plant serial "
+                           "takes --ini --model --trajectory --evaluate --gains --max-overshoot --maxiter "
+                           "--popsize --seed --output)" % " ".join(rest))
+        if a.plant != "serial":
+            raise BadInput("--plant %s: this is the serial plant's tuner" % a.plant)
+        if not (0 <= a.max_overshoot < 1):
+            raise BadInput("--max-overshoot %g: a fraction in [0, 1)" % a.max_overshoot)
+        m = Machine(a.ini, a.model)
+        cmd = load_trajectory(a.trajectory, m.n) if a.trajectory else generated_move(m)
+        source = a.trajectory or "generated (each joint out and back)"
+        cmd = with_settle(cmd)
+        stock_g = m.gains()
+        if a.gains:
+            stock_g = m.gains(read_gain_file(a.gains, m.n))
+    except BadInput as ex:
+        log(ex)
+        return 2
+    stock, _, ok = evaluate(m, stock_g, cmd)
+    if not ok:
+        log("the given gains are unstable or fault the board on this trajectory (peak |f-error| %s)" % stock)
+        if a.evaluate:
+            return 1
+    for j in range(m.n):
+        log("joint %d, the given gains: peak |f-error| %.6g %s" % (j, stock[j], m.unit_of(j)))
+    if a.evaluate:
+        sys.stdout.write(ini_text(m, [{k: g[k] for k in OUT_KEYS if k in g} for g in stock_g], stock, stock,
+                                  source))
+        return 0
+    best = search(m, cmd, a)
+    gains = m.gains(best)
+    pred, _, ok = evaluate(m, gains, cmd)
+    if not ok:
+        log("no stable gains found")
+        return 1
+    text = ini_text(m, [{k: g[k] for k in OUT_KEYS if k in g} for g in gains], pred, stock, source)
+    sys.stdout.write(text)
+    if a.output:
+        with open(a.output, "w") as f:
+            f.write(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
