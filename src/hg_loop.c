@@ -146,7 +146,7 @@ static void trace_store(const hg_loop_trace *tr, const hg_loop_sample *s, long i
 int hg_loop_run_traced(hg_loop *L, const double *cmd_mm, long n, long from, const hg_loop_trace *tr,
                        hg_loop_summary *sum)
 {
-    hg_loop_sample s;
+    hg_loop_sample s = {0};   /* zeroed: fields past the joints stay defined */
     double sq[HG_LOOP_JOINTS] = {0};
     long i, counted = 0;
     int k, rc = 0, J = L->joints;

@@ -63,6 +63,20 @@ def pid_keys(g):
     return {k: v for k, v in g.items() if k in hg.GAIN_KEYS or k in ("INPUT_SCALE", "OUTPUT_SCALE", "OUTPUT_OFFSET")}
 
 
+def program_rows(running, cmd):
+    """Rows (start, end) of the program in a sampled run: from the last rest
+    before its first move to the last row halui.program.is-running is set.
+    is-running can rise a few periods after the commands start moving (halui
+    lags motion on a loaded machine), so the start is found from the commands:
+    back from the rise while any joint's command changes. None when it never ran."""
+    if not running.any():
+        return None
+    s = int(np.argmax(running))
+    while s > 0 and np.any(cmd[s] != cmd[s - 1]):
+        s -= 1
+    return s, len(running) - int(np.argmax(running[::-1]))
+
+
 # ------------------------------------------------------------------ trajectories
 def load_trajectory(path):
     """Joint commands (n, 6) in mm from a recorded run.
@@ -130,11 +144,9 @@ def load_trajectory(path):
                 raise BadInput("%s line %d: samples missing after t = %.3f s (a gap in the recording); "
                                "record again" % (path, rows[gap[0] + 1][0], data[gap[0], header.index("t_s")]))
         if "halui.program.is-running" in header and len(data):
-            run = data[:, header.index("halui.program.is-running")] > 0.5
-            if run.any():
-                i0 = max(0, int(np.argmax(run)) - LEAD_IN)
-                i1 = len(run) - int(np.argmax(run[::-1]))
-                cmd = cmd[i0:i1]
+            span = program_rows(data[:, header.index("halui.program.is-running")] > 0.5, cmd)
+            if span:
+                cmd = cmd[max(0, span[0] - LEAD_IN):span[1]]
     else:
         widths = {len(v) for _, v in rows}
         if len(widths) > 1:

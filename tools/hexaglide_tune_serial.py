@@ -167,10 +167,10 @@ def load_trajectory(path, n):
                 raise BadInput("%s: column %s missing (the serial plant's model has joints 0..%d)" % (path, name, n - 1))
             cols.append(header.index(name))
         if "halui.program.is-running" in header:      # the program, with its lead-in and tail kept
-            run = a[:, header.index("halui.program.is-running")] > 0.5
-            if run.any():
-                i0, i1 = np.argmax(run), len(run) - np.argmax(run[::-1])
-                a = a[max(0, i0 - 300):min(len(a), i1 + 300)]
+            import hexaglide_tune as tune
+            span = tune.program_rows(a[:, header.index("halui.program.is-running")] > 0.5, a[:, cols])
+            if span:
+                a = a[max(0, span[0] - tune.LEAD_IN):min(len(a), span[1] + tune.LEAD_IN)]
         cmd = a[:, cols]
     else:
         if a.shape[1] != n:

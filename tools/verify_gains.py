@@ -31,6 +31,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, ".."))
 sys.path.insert(0, HERE)
 import hexaglide as hg  # noqa: E402
+import hexaglide_tune as tune  # noqa: E402
 
 PIN = {"P": "Pgain", "I": "Igain", "D": "Dgain", "FF0": "FF0", "FF1": "FF1", "FF2": "FF2", "FF3": "FF3",
        "BIAS": "bias", "DEADBAND": "deadband", "MAX_OUTPUT": "maxoutput", "MAX_ERROR_I": "maxerrorI"}
@@ -58,9 +59,12 @@ def measured(csv):
     and the peak tool-path error (mm; the board's tool-error, None when not sampled)."""
     names = open(csv).readline().strip().split(",")
     d = np.loadtxt(csv, delimiter=",", skiprows=1, ndmin=2)
-    run = d[:, names.index("halui.program.is-running")] > 0.5
-    if not run.any():
+    cmd = d[:, [names.index("joint.%d.motor-pos-cmd" % j) for j in range(6)]]
+    span = tune.program_rows(d[:, names.index("halui.program.is-running")] > 0.5, cmd)
+    if span is None:
         raise RuntimeError("%s: the program never ran" % csv)
+    run = np.zeros(len(d), bool)
+    run[span[0]:span[1]] = True
     fe = np.array([np.abs(d[run, names.index("joint.%d.f-error" % j)]).max() for j in range(6)])
     v = np.array([np.abs(d[run, names.index("pid.%d.output" % j)]).max() for j in range(6)])
     tool = None
@@ -93,7 +97,6 @@ def main():
     except RuntimeError as ex:
         print("verify_gains: %s" % ex, file=sys.stderr)
         return 2
-    import hexaglide_tune as tune
     # as in the LinuxCNC run: the INI's pid settings, the file's gains set over them
     ini = [tune.pid_keys(g) for g in hg.read_ini(a.ini)[0]]
     gains = [dict(i, **g) for i, g in zip(ini, gains)]
