@@ -40,7 +40,9 @@ MIN_SAMPLES = 500
 SLOW = 1.0          # v_stribeck: slower periods are not the sliding fit's (stick, or about to) ...
 SLOW_NO_BREAKAWAY = 3.0   # ... and slower than this when the breakaway is not excited (the Stribeck
                           # excess, exp(-9) of it at 3 v_stribeck, is then not in the fit)
-KNOWN = ("kt", "lead", "ratio", "counts_per_rev", "j_rotor", "g", "v_stribeck")
+KNOWN = ("kt", "lead", "ratio", "counts_per_rev", "j_rotor", "g", "v_stribeck",
+         "amp_mode", "kp_vel", "ki_vel", "v_rated")     # the amplifier's settings: the substeps' current
+MC_FITS = 20        # fits at most while M settles (period_mean_current); the stock config takes 8
 MIN_BREAKAWAY = 300  # sliding periods with exp(-(v/v_s)^2) > 0.05 that make the breakaway identifiable
 
 
@@ -91,7 +93,8 @@ def read_record(path):
     header = lines[hdr_no - 1].decode().rstrip("\r").split(",")
     n = sum(1 for h in header if h.startswith("out.current-"))
     need = ["in.period-ns", "in.model", "out.amps-on", "out.fault"] + ["out.count-%02d" % k for k in range(n)] + \
-        ["out.current-%d" % k for k in range(n)]
+        ["out.current-%d" % k for k in range(n)] + ["in.dac-v-%02d" % k for k in range(n)] + \
+        ["in.substeps", "in.integrator"]
     for name in need:
         if name not in header:
             raise BadInput("%s: line %d (the header): no column '%s': not a serial plant's board record" %
@@ -130,8 +133,48 @@ def read_record(path):
     rec.ok = (a[:, 2] > 0.5) & (a[:, 3] < 0.5)
     rec.counts = a[:, 4:4 + n]
     rec.current = a[:, 4 + n:4 + 2 * n]
+    rec.volts = np.clip(a[:, 4 + 2 * n:4 + 3 * n], -10.0, 10.0)     # the drives' +-10 V command range
+    if np.ptp(a[:, -2]) > 0 or np.ptp(a[:, -1]) > 0:
+        raise BadInput("%s: the substeps or the integrator change within the record" % path)
+    rec.substeps = substeps_run(rec, told, int(a[0, -2]), int(a[0, -1]), int(a[0, 0]))
     rec.rotary = [("inertia_%d" % k) in rec.names for k in range(n)]
     return rec
+
+
+def substeps_run(rec, told, substeps, integrator, period_ns):
+    """The plant steps per servo period the board ran: the record's substeps, raised by the
+    board's stability check for its parameters (src/hg_board.c), found by one period of it."""
+    pp = hg.PlantParams("serial")
+    pp.variant, pp.names = rec.variant, rec.names
+    hg._plant_defaults(pp.plant, pp.variant, C.byref(pp.v))
+    for i, v in told.items():
+        if i < len(rec.names):
+            pp.v[i] = v
+    b = hg.Board(None, pp, substeps=max(1, substeps), integrator=integrator, period_ns=period_ns, plant="serial")
+    return int(b.step([0.0] * rec.n).substeps_run)
+
+
+def period_mean_current(rec, k, kn, v, m_fit, c_fit):
+    """The drive's current averaged over each servo period, from the one it ends with (the record's).
+    In velocity mode with s > 1 substeps of h = dt / s the amplifier's loop,
+    i = kp (v_ref - v) + ki integral, runs every substep while the DAC's v_ref holds for the period:
+    the speed error e relaxes by q = 1 - h (kp kt' + c) / M a substep, so with the period's speed
+    change dv (= a dt) the mean exceeds the end by kp dv [(1 - q^s) / (s (1 - q)) - q^(s-1)] / (1 - q^s)
+    ((s - 1) / (2 s) of kp dv for a loose loop), less ki's growth within the period,
+    ki (v_ref - v) h (s - 1) / 2. M and c are the fit's (iterated); torque mode and s = 1: the end."""
+    i_end = rec.current[:, k]
+    s = rec.substeps
+    get = lambda name: kn[name + "_%d" % k]
+    if s <= 1 or get("amp_mode") != 1.0:
+        return i_end
+    h = rec.dt / s
+    force_per_amp = get("kt") * (get("ratio") if rec.rotary[k] else 2 * np.pi / get("lead"))
+    q = 1.0 - h * (get("kp_vel") * force_per_amp + c_fit) / m_fit
+    phi = (s - 1) / (2.0 * s) if abs(1 - q) < 1e-9 else ((1 - q ** s) / (s * (1 - q)) - q ** (s - 1)) / (1 - q ** s)
+    dv = np.append(0.0, np.diff(v))                       # period n: from row n-1 to row n
+    v_mid = np.append(v[0], 0.5 * (v[1:] + v[:-1]))
+    v_ref = rec.volts[:, k] * get("v_rated") / 10.0
+    return i_end + get("kp_vel") * dv * phi - get("ki_vel") * (v_ref - v_mid) * h * (s - 1) / 2
 
 
 def known(rec, sets):
@@ -153,9 +196,10 @@ def known(rec, sets):
     return kn
 
 
-def axis_rows(rec, k, kn, slow_vs=SLOW):
+def axis_rows(rec, k, kn, slow_vs=SLOW, mc=(None, 0.0)):
     """Rows (X, y, used mask, info) of axis k's force balance from one record, periods slower than
-    slow_vs v_stribeck (and the filter's response time around them) left out."""
+    slow_vs v_stribeck (and the filter's response time around them) left out; mc: the fit's (M, c)
+    for the period-mean current (None: the loose-loop limit)."""
     from scipy.signal import butter, filtfilt
     rot = rec.rotary[k]
     get = lambda name: kn[name + "_%d" % k]
@@ -171,10 +215,10 @@ def axis_rows(rec, k, kn, slow_vs=SLOW):
     dt = rec.dt
     b, a = butter(ORDER, CUTOFF_HZ * 2 * dt)
     xf = filtfilt(b, a, x)
-    i_end = rec.current[:, k]
-    i_eff = np.append(0.5 * (i_end[:-1] + i_end[1:]), i_end[-1])   # the current over steps n and n+1, which
-    f = filtfilt(b, a, force_per_amp * i_eff)                        # the central differences at n span
     v = np.gradient(xf, dt)
+    i_per = period_mean_current(rec, k, kn, v, mc[0] or np.inf, mc[1])
+    i_eff = np.append(0.5 * (i_per[:-1] + i_per[1:]), i_per[-1])   # the current over steps n and n+1, which
+    f = filtfilt(b, a, force_per_amp * i_eff)                        # the central differences at n span
     acc = np.gradient(v, dt)
     vs = get("v_stribeck")
     sg = np.sign(v)
@@ -201,25 +245,35 @@ def axis_rows(rec, k, kn, slow_vs=SLOW):
 def fit_axis(recs, k, kns):
     excited = sum(axis_rows(rec, k, kn)[3]["excited"] for rec, kn in zip(recs, kns))
     slow_vs = SLOW if excited >= MIN_BREAKAWAY else SLOW_NO_BREAKAWAY
-    X, y, info = [], [], None
-    for rec, kn in zip(recs, kns):
-        Xi, yi, use, inf = axis_rows(rec, k, kn, slow_vs)
-        X.append(Xi[use])
-        y.append(yi[use])
-        if info is None:
-            info = inf
-        else:
-            info["excited"] += inf["excited"]
-    X, y = np.vstack(X), np.concatenate(y)
-    names = ["M", "c_visc", "f_coulomb", "f_breakaway"] + (["net_weight"] if info["grav"] else [])
-    keep = [i for i, nm in enumerate(names) if nm != "f_breakaway" or info["excited"] >= MIN_BREAKAWAY]
-    if len(y) < MIN_SAMPLES:
-        raise BadInput("axis %d: %d usable periods (amplifier on, sliding faster than %g v_stribeck); "
-                       "identify needs %d: a longer or faster excitation" % (k, len(y), slow_vs, MIN_SAMPLES))
-    Xk = X[:, keep]
-    scale = np.sqrt((Xk ** 2).sum(0))
-    theta, *_ = np.linalg.lstsq(Xk / scale, y, rcond=None)
-    theta /= scale
+    # the period-mean current depends on M and c when the substeps split the period (period_mean_current):
+    # fitted again with the last fit's M and c until M settles; one fit otherwise
+    iterate = any(r.substeps > 1 and kn["amp_mode_%d" % k] == 1.0 for r, kn in zip(recs, kns))
+    mc, m_prev = (None, 0.0), None
+    for fits in range(1, (MC_FITS if iterate else 1) + 1):
+        X, y, info = [], [], None
+        for rec, kn in zip(recs, kns):
+            Xi, yi, use, inf = axis_rows(rec, k, kn, slow_vs, mc)
+            X.append(Xi[use])
+            y.append(yi[use])
+            if info is None:
+                info = inf
+            else:
+                info["excited"] += inf["excited"]
+        X, y = np.vstack(X), np.concatenate(y)
+        names = ["M", "c_visc", "f_coulomb", "f_breakaway"] + (["net_weight"] if info["grav"] else [])
+        keep = [i for i, nm in enumerate(names) if nm != "f_breakaway" or info["excited"] >= MIN_BREAKAWAY]
+        if len(y) < MIN_SAMPLES:
+            raise BadInput("axis %d: %d usable periods (amplifier on, sliding faster than %g v_stribeck); "
+                           "identify needs %d: a longer or faster excitation" % (k, len(y), slow_vs, MIN_SAMPLES))
+        Xk = X[:, keep]
+        scale = np.sqrt((Xk ** 2).sum(0))
+        theta, *_ = np.linalg.lstsq(Xk / scale, y, rcond=None)
+        theta /= scale
+        if not (theta[0] > 0):
+            break                                   # no mass to iterate with: reported as fitted
+        if m_prev is not None and abs(theta[0] - m_prev) <= 1e-9 * theta[0]:
+            break
+        m_prev, mc = theta[0], (theta[0], theta[1])
     r = y - Xk @ theta
     import hexaglide_identify as hid
     tau = hid.autocorr_time(r, maxlag=2000)
@@ -228,7 +282,7 @@ def fit_axis(recs, k, kns):
     sig = np.sqrt(np.diag(cov))
     est = {names[i]: (theta[j], sig[j]) for j, i in enumerate(keep)}
     u, sv, vt = np.linalg.svd(Xk / scale, full_matrices=False)
-    info.update(rows=len(y), tau=tau, slow_vs=slow_vs, excited=excited, rms=np.sqrt(s2), cond=sv[0] / sv[-1], dropped=[names[i] for i in range(len(names)) if i not in keep])
+    info.update(substeps=max(r.substeps for r in recs) if iterate else 1, fits=fits, rows=len(y), tau=tau, slow_vs=slow_vs, excited=excited, rms=np.sqrt(s2), cond=sv[0] / sv[-1], dropped=[names[i] for i in range(len(names)) if i not in keep])
     return est, info
 
 
@@ -277,6 +331,10 @@ def main(argv):
                    % (k, info["rows"], info["rms"], "N m" if rot else "N", info["tau"], info["cond"],
                       kn["kt_%d" % k], ("ratio %g" % kn["ratio_%d" % k]) if rot else ("lead %g m" % kn["lead_%d" % k]),
                       kn["counts_per_rev_%d" % k], kn["j_rotor_%d" % k], kn["v_stribeck_%d" % k]))
+        if info["substeps"] > 1:
+            out.append("# axis %d: velocity mode, %d substeps a period: the period's mean current modelled from its "
+                       "last (M and c from %d fits); the model's residual, up to about 1 %% of M (docs/serial.md), "
+                       "is not in the sigmas" % (k, info["substeps"], info["fits"]))
         M, sM = est["M"]
         out.append("M_%d = %.6g ± %.2g %s   # reflected total: the load and the rotor, %s + j_rotor %s"
                    % (k, M, sM, unit(rot, "M"), "inertia" if rot else "mass",
