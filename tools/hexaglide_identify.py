@@ -1586,7 +1586,12 @@ def known_params(runs, sets):
             p[name] = v
         except KeyError:
             pass
-    return params_with(sets, p)
+    p = params_with(sets, p)
+    if p["amp_mode"] != 0.0:
+        raise BadInput("%s: amp_mode %g (velocity-mode amplifiers): identify for the Hexaglide fits the "
+                       "torque-mode force ka kt 2 pi / lead V of the DAC volts; record with amp-mode 0 "
+                       "(docs/model.md)" % (runs[0].path, p["amp_mode"]))
+    return p
 
 
 def main(argv=None):
