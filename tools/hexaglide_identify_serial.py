@@ -133,7 +133,7 @@ def read_record(path):
     rec.ok = (a[:, 2] > 0.5) & (a[:, 3] < 0.5)
     rec.counts = a[:, 4:4 + n]
     rec.current = a[:, 4 + n:4 + 2 * n]
-    rec.volts = np.clip(a[:, 4 + 2 * n:4 + 3 * n], -10.0, 10.0)     # the drives' +-10 V command range
+    rec.volts = hid.dac_output(a[:, 4 + 2 * n:4 + 3 * n])     # what the board's DAC puts out
     if np.ptp(a[:, -2]) > 0 or np.ptp(a[:, -1]) > 0:
         raise BadInput("%s: the substeps or the integrator change within the record" % path)
     rec.substeps = substeps_run(rec, told, int(a[0, -2]), int(a[0, -1]), int(a[0, 0]))
