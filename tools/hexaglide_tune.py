@@ -443,6 +443,7 @@ def costs(xs, prob, notch=None):
         cands.append((gains, cfg, len(jobs), len(tj), sj))
         jobs.extend(tj + [sj])
     res = hg.batch(jobs, prob.get("threads", 1))
+    prob["periods_run"] = prob.get("periods_run", 0) + sum(r.periods for r in res)
     out = []
     for gains, _cfg, i0, nt, sj in cands:
         runs = res[i0:i0 + nt]
@@ -636,7 +637,7 @@ def search(a, prob, notch=None):
     bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)]
     gen = [0]
     best = {}
-    t0 = time.time()
+    t0, p0 = time.time(), prob.get("periods_run", 0)
 
     def cost(x):
         return costs([x], prob, notch)[0]
@@ -657,9 +658,9 @@ def search(a, prob, notch=None):
                                  seed=a.seed, polish=False, tol=1e-3, updating="deferred",
                                  workers=batch_map, callback=progress, init="sobol")
     took = time.time() - t0
-    log("sweep%s: %d candidates in %.1f s, %d thread%s (hg.batch; %.1f per second)"
+    log("sweep%s: %d candidates in %.1f s, %d thread%s (hg.batch; %.1f per second), %d servo periods run"
         % (" with the notch" if notch else "", res.nfev, took, prob["threads"],
-           "s" if prob["threads"] > 1 else "", res.nfev / max(took, 1e-9)))
+           "s" if prob["threads"] > 1 else "", res.nfev / max(took, 1e-9), prob.get("periods_run", 0) - p0))
     return gains_from_x(res.x, prob), float(res.fun)
 
 
