@@ -41,7 +41,8 @@ SLOW = 1.0          # v_stribeck: slower periods are not the sliding fit's (stic
 SLOW_NO_BREAKAWAY = 3.0   # ... and slower than this when the breakaway is not excited (the Stribeck
                           # excess, exp(-9) of it at 3 v_stribeck, is then not in the fit)
 KNOWN = ("kt", "lead", "ratio", "counts_per_rev", "j_rotor", "g", "v_stribeck",
-         "amp_mode", "kp_vel", "ki_vel", "v_rated")     # the amplifier's settings: the substeps' current
+         "amp_mode", "kp_vel", "ki_vel", "v_rated",     # the amplifier's settings: the substeps' current
+         "k_axial")                                      # the board's train: rigid (0) or not, ditto
 MC_FITS = 20        # fits at most while M settles (period_mean_current); the stock config takes 8
 MIN_BREAKAWAY = 300  # sliding periods with exp(-(v/v_s)^2) > 0.05 that make the breakaway identifiable
 
@@ -161,7 +162,9 @@ def period_mean_current(rec, k, kn, v, m_fit, c_fit):
     the speed error e relaxes by q = 1 - h (kp kt' + c) / M a substep, so with the period's speed
     change dv (= a dt) the mean exceeds the end by kp dv [(1 - q^s) / (s (1 - q)) - q^(s-1)] / (1 - q^s)
     ((s - 1) / (2 s) of kp dv for a loose loop), less ki's growth within the period,
-    ki (v_ref - v) h (s - 1) / 2. M and c are the fit's (iterated); torque mode and s = 1: the end."""
+    ki (v_ref - v) h (s - 1) / 2. The mass that relaxes is the rotor's (reflected, c 0) behind a
+    flexible train, whose spring hardly moves within a substep (k h^2 / m_rotor ~ 0.05 on the stock
+    config), else the fit's M and c (iterated). Torque mode and s = 1: the end."""
     i_end = rec.current[:, k]
     s = rec.substeps
     get = lambda name: kn[name + "_%d" % k]
@@ -169,6 +172,8 @@ def period_mean_current(rec, k, kn, v, m_fit, c_fit):
         return i_end
     h = rec.dt / s
     force_per_amp = get("kt") * (get("ratio") if rec.rotary[k] else 2 * np.pi / get("lead"))
+    if get("k_axial") > 0:
+        m_fit, c_fit = get("j_rotor") * (force_per_amp / get("kt")) ** 2, 0.0
     q = 1.0 - h * (get("kp_vel") * force_per_amp + c_fit) / m_fit
     phi = (s - 1) / (2.0 * s) if abs(1 - q) < 1e-9 else ((1 - q ** s) / (s * (1 - q)) - q ** (s - 1)) / (1 - q ** s)
     dv = np.append(0.0, np.diff(v))                       # period n: from row n-1 to row n
@@ -247,7 +252,8 @@ def fit_axis(recs, k, kns):
     slow_vs = SLOW if excited >= MIN_BREAKAWAY else SLOW_NO_BREAKAWAY
     # the period-mean current depends on M and c when the substeps split the period (period_mean_current):
     # fitted again with the last fit's M and c until M settles; one fit otherwise
-    iterate = any(r.substeps > 1 and kn["amp_mode_%d" % k] == 1.0 for r, kn in zip(recs, kns))
+    modelled = [r.substeps > 1 and kn["amp_mode_%d" % k] == 1.0 for r, kn in zip(recs, kns)]
+    iterate = any(m and kn["k_axial_%d" % k] == 0 for m, kn in zip(modelled, kns))
     mc, m_prev = (None, 0.0), None
     for fits in range(1, (MC_FITS if iterate else 1) + 1):
         X, y, info = [], [], None
@@ -282,7 +288,8 @@ def fit_axis(recs, k, kns):
     sig = np.sqrt(np.diag(cov))
     est = {names[i]: (theta[j], sig[j]) for j, i in enumerate(keep)}
     u, sv, vt = np.linalg.svd(Xk / scale, full_matrices=False)
-    info.update(substeps=max(r.substeps for r in recs) if iterate else 1, fits=fits, rows=len(y), tau=tau, slow_vs=slow_vs, excited=excited, rms=np.sqrt(s2), cond=sv[0] / sv[-1], dropped=[names[i] for i in range(len(names)) if i not in keep])
+    info.update(substeps=max(r.substeps for r in recs) if any(modelled) else 1, fits=fits,
+                flexible=kns[0]["k_axial_%d" % k] > 0, rows=len(y), tau=tau, slow_vs=slow_vs, excited=excited, rms=np.sqrt(s2), cond=sv[0] / sv[-1], dropped=[names[i] for i in range(len(names)) if i not in keep])
     return est, info
 
 
@@ -333,8 +340,9 @@ def main(argv):
                       kn["counts_per_rev_%d" % k], kn["j_rotor_%d" % k], kn["v_stribeck_%d" % k]))
         if info["substeps"] > 1:
             out.append("# axis %d: velocity mode, %d substeps a period: the period's mean current modelled from its "
-                       "last (M and c from %d fits); the model's residual, up to about 1 %% of M (docs/serial.md), "
-                       "is not in the sigmas" % (k, info["substeps"], info["fits"]))
+                       "last (%s); the model's residual, up to about 1 %% of M (docs/serial.md), is not in the sigmas"
+                       % (k, info["substeps"], "the rotor relaxing behind the flexible train" if info["flexible"]
+                          else "M and c from %d fits" % info["fits"]))
         M, sM = est["M"]
         out.append("M_%d = %.6g ± %.2g %s   # reflected total: the load and the rotor, %s + j_rotor %s"
                    % (k, M, sM, unit(rot, "M"), "inertia" if rot else "mass",
