@@ -43,6 +43,7 @@ SLOW_NO_BREAKAWAY = 3.0   # ... and slower than this when the breakaway is not e
 KNOWN = ("kt", "lead", "ratio", "counts_per_rev", "j_rotor", "g", "v_stribeck",
          "amp_mode", "kp_vel", "ki_vel", "v_rated",     # the amplifier's settings: the substeps' current
          "k_axial")                                      # the board's train: rigid (0) or not, ditto
+DEFAULTED = ("amp_mode", "kp_vel", "ki_vel", "v_rated", "k_axial")   # of KNOWN: the plant's default if not told
 MC_FITS = 20        # fits at most while M settles (period_mean_current); the stock config takes 8
 MIN_BREAKAWAY = 300  # sliding periods with exp(-(v/v_s)^2) > 0.05 that make the breakaway identifiable
 
@@ -142,15 +143,21 @@ def read_record(path):
     return rec
 
 
-def substeps_run(rec, told, substeps, integrator, period_ns):
-    """The plant steps per servo period the board ran: the record's substeps, raised by the
-    board's stability check for its parameters (src/hg_board.c), found by one period of it."""
+def record_params(rec, told):
+    """The serial plant's parameters of the record's model: its defaults, then the told entries."""
     pp = hg.PlantParams("serial")
     pp.variant, pp.names = rec.variant, rec.names
     hg._plant_defaults(pp.plant, pp.variant, C.byref(pp.v))
     for i, v in told.items():
         if i < len(rec.names):
             pp.v[i] = v
+    return pp
+
+
+def substeps_run(rec, told, substeps, integrator, period_ns):
+    """The plant steps per servo period the board ran: the record's substeps, raised by the
+    board's stability check for its parameters (src/hg_board.c), found by one period of it."""
+    pp = record_params(rec, told)
     b = hg.Board(None, pp, substeps=max(1, substeps), integrator=integrator, period_ns=period_ns, plant="serial")
     return int(b.step([0.0] * rec.n).substeps_run)
 
@@ -183,8 +190,10 @@ def period_mean_current(rec, k, kn, v, m_fit, c_fit):
 
 
 def known(rec, sets):
-    """The known parameters per axis: the record's events, then --set (spec names, SI)."""
-    kn = {}
+    """The known parameters per axis: the record's events, then --set (spec names, SI); the
+    amplifier's settings and the train's stiffness not told are the plant's defaults."""
+    pp = record_params(rec, {})
+    kn = {name: pp[name] for name in rec.names if name.rsplit("_", 1)[0] in DEFAULTED}
     for name, v in rec.told.items():
         base = name.rsplit("_", 1)[0]
         if base in KNOWN:
