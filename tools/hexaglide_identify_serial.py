@@ -44,6 +44,7 @@ KNOWN = ("kt", "lead", "ratio", "counts_per_rev", "j_rotor", "g", "v_stribeck",
          "amp_mode", "kp_vel", "ki_vel", "v_rated",     # the amplifier's settings: the substeps' current
          "k_axial")                                      # the board's train: rigid (0) or not, ditto
 DEFAULTED = ("amp_mode", "kp_vel", "ki_vel", "v_rated", "k_axial")   # of KNOWN: the plant's default if not told
+DAC_VOLTS_MAX = 10.0   # the drives' command range, +-10 V (src/hg_analog.h HG_DAC_VOLTS_MAX)
 MC_FITS = 20        # fits at most while M settles (period_mean_current); the stock config takes 8
 MIN_BREAKAWAY = 300  # sliding periods with exp(-(v/v_s)^2) > 0.05 that make the breakaway identifiable
 
@@ -162,7 +163,7 @@ def substeps_run(rec, told, substeps, integrator, period_ns):
     return int(b.step([0.0] * rec.n).substeps_run)
 
 
-def period_mean_current(rec, k, kn, v, m_fit, c_fit):
+def period_mean_current(rec, k, kn, v, force_per_amp, j_refl, m_fit, c_fit):
     """The drive's current averaged over each servo period, from the one it ends with (the record's).
     In velocity mode with s > 1 substeps of h = dt / s the amplifier's loop,
     i = kp (v_ref - v) + ki integral, runs every substep while the DAC's v_ref holds for the period:
@@ -171,21 +172,21 @@ def period_mean_current(rec, k, kn, v, m_fit, c_fit):
     ((s - 1) / (2 s) of kp dv for a loose loop), less ki's growth within the period,
     ki (v_ref - v) h (s - 1) / 2. The mass that relaxes is the rotor's (reflected, c 0) behind a
     flexible train, whose spring hardly moves within a substep (k h^2 / m_rotor ~ 0.05 on the stock
-    config), else the fit's M and c (iterated). Torque mode and s = 1: the end."""
+    config), else the fit's M and c (iterated). Torque mode and s = 1: the end. force_per_amp
+    and j_refl: axis_rows' kt' and reflected rotor."""
     i_end = rec.current[:, k]
     s = rec.substeps
     get = lambda name: kn[name + "_%d" % k]
     if s <= 1 or get("amp_mode") != 1.0:
         return i_end
     h = rec.dt / s
-    force_per_amp = get("kt") * (get("ratio") if rec.rotary[k] else 2 * np.pi / get("lead"))
     if get("k_axial") > 0:
-        m_fit, c_fit = get("j_rotor") * (force_per_amp / get("kt")) ** 2, 0.0
+        m_fit, c_fit = j_refl, 0.0
     q = 1.0 - h * (get("kp_vel") * force_per_amp + c_fit) / m_fit
     phi = (s - 1) / (2.0 * s) if abs(1 - q) < 1e-9 else ((1 - q ** s) / (s * (1 - q)) - q ** (s - 1)) / (1 - q ** s)
     dv = np.append(0.0, np.diff(v))                       # period n: from row n-1 to row n
     v_mid = np.append(v[0], 0.5 * (v[1:] + v[:-1]))
-    v_ref = rec.volts[:, k] * get("v_rated") / 10.0
+    v_ref = rec.volts[:, k] * get("v_rated") / DAC_VOLTS_MAX        # src/hg_drive.c's speed command
     return i_end + get("kp_vel") * dv * phi - get("ki_vel") * (v_ref - v_mid) * h * (s - 1) / 2
 
 
@@ -230,7 +231,7 @@ def axis_rows(rec, k, kn, slow_vs=SLOW, mc=(None, 0.0)):
     b, a = butter(ORDER, CUTOFF_HZ * 2 * dt)
     xf = filtfilt(b, a, x)
     v = np.gradient(xf, dt)
-    i_per = period_mean_current(rec, k, kn, v, mc[0] or np.inf, mc[1])
+    i_per = period_mean_current(rec, k, kn, v, force_per_amp, j_refl, mc[0] or np.inf, mc[1])
     i_eff = np.append(0.5 * (i_per[:-1] + i_per[1:]), i_per[-1])   # the current over steps n and n+1, which
     f = filtfilt(b, a, force_per_amp * i_eff)                        # the central differences at n span
     acc = np.gradient(v, dt)
