@@ -1,7 +1,9 @@
 /* bench_batch.c - offline closed-loop throughput: servo periods per second
  * of hg_batch_run with 1 thread and with every core (and 2), the default
  * (flexible) drive train and the rigid one (k_axial 0), on a batch of
- * independent runs as tune makes (16 candidates x 2 s of joint commands).
+ * independent runs as tune's search makes (16 candidates x 2 s of joint
+ * commands, the tool-path error skipped: skip_tool_error), and the flexible
+ * train with the tool-path error (flexible_tool: replay's what-ifs, soak).
  * Thread counts interleave within one run, repeated 5 times; medians and
  * the ratio of the medians (a shared machine moves both alike).
  *   build/bench/bench_batch [REPEATS]
@@ -15,6 +17,7 @@
 #define N 2000
 #define JOBS 16
 #define REPS_MAX 21
+#define TRAINS 3   /* flexible (as tune's search: no tool error), flexible with it, rigid */
 
 static double cmd[N * 6];
 
@@ -31,10 +34,11 @@ int main(int argc, char **argv)
 {
     static hg_loop_config cfg[JOBS];
     hg_board_params bp[2];
+    static const int params_of[TRAINS] = {0, 0, 1}, skip_of[TRAINS] = {1, 0, 1};
     hg_batch_job jobs[JOBS];
     int reps = argc > 1 ? atoi(argv[1]) : 5, cores = hg_batch_cores(), nt, t, r, i, k, train;
     int counts[3] = {1, 2, cores};
-    const char *name[2] = {"flexible", "rigid"};
+    const char *name[TRAINS] = {"flexible", "flexible_tool", "rigid"};
     if (reps < 1 || reps > REPS_MAX)
         reps = 5;
     nt = cores > 2 ? 3 : 2;
@@ -57,10 +61,10 @@ int main(int argc, char **argv)
         }
     }
     printf("hg_batch_run: %d runs of %d periods, %d core(s) online, %d repeats interleaved\n", JOBS, N, cores, reps);
-    for (train = 0; train < 2; train++) {
+    for (train = 0; train < TRAINS; train++) {
         double us[3][REPS_MAX], med[3], p99;
         for (i = 0; i < JOBS; i++)
-            jobs[i] = (hg_batch_job){&cfg[i], &bp[train], cmd, N, 0, {0, 0, 0}};
+            jobs[i] = (hg_batch_job){&cfg[i], &bp[params_of[train]], cmd, N, 0, {0, 0, 0}, skip_of[train]};
         time_batch(jobs, 1);           /* warm up */
         for (r = 0; r < reps; r++)
             for (t = 0; t < nt; t++)

@@ -46,6 +46,7 @@ static void run_job(hg_loop *L, const hg_batch_job *j, hg_batch_result *r)
         r->sum.tripped_at = -1;
         return;
     }
+    L->board.skip_tool_error = j->skip_tool_error;
     r->rc = hg_loop_run_traced(L, j->cmd_mm, j->n, j->from, &j->trace, &r->sum);
 }
 

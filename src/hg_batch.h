@@ -21,6 +21,9 @@ typedef struct {
     long n;                            /* periods */
     long from;                         /* the summary counts periods from here on */
     hg_loop_trace trace;               /* per-period traces, n x joints each (0: not kept) */
+    int skip_tool_error;               /* 1: the run skips the tool-path error (the plant's forward
+                                          solve; a search that reads only f-errors): the summary's
+                                          peak_tool_error_mm is HG_TOOL_ERROR_SKIPPED, the rest the same bits */
 } hg_batch_job;
 
 /* One run's outcome. */

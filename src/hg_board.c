@@ -520,7 +520,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     out->amps_on = amps_on && !b->fault;
 
     pl->sense(&b->m, &b->d, &b->sense);
-    b->tool_error = tool_error(b, in->pos_cmd);
+    b->tool_error = b->skip_tool_error ? HG_TOOL_ERROR_SKIPPED : tool_error(b, in->pos_cmd);
     encoders(b, in, out);
     for (k = 0; k < b->sense.channels; k++)
         b->switches[k] = hg_switches_stuck(b->sense.switches[k], b->switches[k], in->stuck[k]) | in->tripped[k];

@@ -146,7 +146,8 @@ typedef struct {
     double force[HG_CHANNELS_MAX];    /* joint-N.force (N or N m) */
     double extra[HG_PLANT_EXTRA_MAX]; /* the plant's own outputs (SI; its output table) */
     double tool_error;                /* tool-error: the tool's distance from where pos_cmd puts it
-                                         (m), -1 when the plant finds no such place */
+                                         (m), -1 when the plant finds no such place,
+                                         HG_TOOL_ERROR_SKIPPED when the board skips it */
     double sim_time_s;                /* sim-time */
     unsigned steps;                   /* steps: servo periods integrated since load/reset */
     int fault;                        /* fault */
@@ -208,7 +209,12 @@ typedef struct {
     int order_bad_run;                /* consecutive steps without a fresh dac-write (ADDF_ORDER) */
     int order_reported;               /* ADDF_ORDER already reported since load or reset */
     double tool_error;                /* the tool-path error after the last step (m, -1: none) */
+    int skip_tool_error;              /* set by a caller that never reads tool_error (an offline
+                                         search): no forward solve, tool_error HG_TOOL_ERROR_SKIPPED */
 } hg_board;
+
+/* The tool-path error of a board that was told to skip it (hg_board.skip_tool_error). */
+#define HG_TOOL_ERROR_SKIPPED (-2.0)
 
 /* The plant of a board (the registry's entry). */
 const hg_plant *hg_board_plant(const hg_board *b);

@@ -103,7 +103,9 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
     }
     rc = plant_step(L, dac, period_ns);
     if (out) {
-        out->tool_error_mm = L->out.tool_error < 0.0 ? -1.0 : L->out.tool_error * HG_MM_PER_M;
+        out->tool_error_mm = L->out.tool_error == HG_TOOL_ERROR_SKIPPED ? HG_TOOL_ERROR_SKIPPED
+                             : L->out.tool_error < 0.0                ? -1.0
+                                                                      : L->out.tool_error * HG_MM_PER_M;
         for (k = 0; k < L->joints; k++)
             out->load_mm[k] = L->out.pos[k] * user_per_si(L, k);
     }

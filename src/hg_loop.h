@@ -59,7 +59,8 @@ typedef struct {
     double load_mm[HG_LOOP_JOINTS];    /* the load's (carriage's) position after the step: the
                                           tool's side of the drive train */
     double tool_error_mm;              /* the board's tool-error: the tool against this period's
-                                          commands after its step (-1: the plant found no pose) */
+                                          commands after its step (-1: the plant found no pose;
+                                          HG_TOOL_ERROR_SKIPPED: the board skipped it) */
 } hg_loop_sample;
 
 /* Summary of a run. */
@@ -67,7 +68,8 @@ typedef struct {
     double peak_ferror_mm[HG_LOOP_JOINTS]; /* max |f-error| */
     double peak_output_v[HG_LOOP_JOINTS];  /* max |DAC value| (the pid output, through biquad.N) */
     double rms_ferror_mm[HG_LOOP_JOINTS];
-    double peak_tool_error_mm;         /* max tool-error (-1 if the plant found no pose in some period) */
+    double peak_tool_error_mm;         /* max tool-error (-1 if the plant found no pose in some period,
+                                          HG_TOOL_ERROR_SKIPPED if the board skipped it) */
     long periods;                      /* periods run */
     long tripped_at;                   /* first period with |f-error| > ferror_limit_mm, or -1 */
 } hg_loop_summary;

@@ -686,7 +686,7 @@ class _Trace(C.Structure):
 
 class _BatchJob(C.Structure):
     _fields_ = [("cfg", C.POINTER(LoopConfig)), ("params", C.POINTER(BoardParams)), ("cmd_mm", _P),
-                ("n", C.c_long), ("from_", C.c_long), ("trace", _Trace)]
+                ("n", C.c_long), ("from_", C.c_long), ("trace", _Trace), ("skip_tool_error", C.c_int)]
 
 
 class _BatchResult(C.Structure):
@@ -704,13 +704,16 @@ class Job:
     """One closed-loop run for batch(): from HOME at rest, the commands cmd (n, 6) through the
     loop of cfg (loop_config) and board parameters board_params (Params.board_params);
     summary over rows >= start; keep: the f-error and pid-output traces, load: the load's
-    (carriage's) positions. Jobs may share cfg, board_params and cmd."""
+    (carriage's) positions; tool_error False: the board skips the tool-path error (the
+    Hexaglide's forward solve, a fifth of a flexible period): the summary's
+    peak_tool_error_mm is then -2 (src/hg_board.h's HG_TOOL_ERROR_SKIPPED), every other
+    result the same bits. Jobs may share cfg, board_params and cmd."""
 
-    def __init__(self, cfg, board_params, cmd, start=0, keep=False, load=False, joints=JOINTS):
+    def __init__(self, cfg, board_params, cmd, start=0, keep=False, load=False, joints=JOINTS, tool_error=True):
         """joints: the plant's channels (cfg's plant: PlantParams.channels), the columns of cmd."""
         self.cfg, self.board_params, self.cmd = cfg, board_params, _commands(cmd, joints)
         self.joints = joints
-        self.start, self.keep, self.load = start, keep, load
+        self.start, self.keep, self.load, self.tool_error = start, keep, load, tool_error
 
 
 def cores():
@@ -734,6 +737,7 @@ def batch(jobs, threads=0):
         cj[i].params = C.pointer(j.board_params)
         cj[i].cmd_mm = j.cmd.ctypes.data_as(_P)
         cj[i].n, cj[i].from_ = n, j.start
+        cj[i].skip_tool_error = 0 if j.tool_error else 1
         cj[i].trace = _Trace(*[a.ctypes.data_as(_P) if a is not None else None for a in (fe, out, load)])
     res = (_BatchResult * max(1, len(jobs)))()
     rc = _batch_run(cj, len(jobs), int(threads), res)

@@ -350,15 +350,16 @@ def board_params(prob):
     return prob["board_params"]
 
 
-def trajectory_jobs(cfg, prob, settles, keep=False):
-    """The batch jobs of trajectory_runs: the trajectory after each settle and approach."""
+def trajectory_jobs(cfg, prob, settles, keep=False, tool_error=True):
+    """The batch jobs of trajectory_runs: the trajectory after each settle and approach
+    (tool_error False: without the tool-path error, as the search needs only f-errors)."""
     jobs = []
     for i, settle in enumerate(settles):
         key = (settle, i)
         if key not in prob.setdefault("seqs", {}):
             prob["seqs"][key] = lead_in(prob["cmd"], settle, approach_of(i))
         seq, s = prob["seqs"][key]
-        jobs.append(hg.Job(cfg, board_params(prob), seq, start=s, keep=keep))
+        jobs.append(hg.Job(cfg, board_params(prob), seq, start=s, keep=keep, tool_error=tool_error))
     return jobs
 
 
@@ -376,14 +377,14 @@ def trajectory_runs(gains, prob, settles, keep=False, notch=None):
     return res
 
 
-def step_job(cfg, prob, joint=0, step_mm=0.05, n=600):
+def step_job(cfg, prob, joint=0, step_mm=0.05, n=600, tool_error=True):
     """The batch job of step_response: SETTLE periods at HOME, then a command step."""
     key = ("step", joint, step_mm, n)
     if key not in prob.setdefault("seqs", {}):
         cmd = np.zeros((SETTLE + n, 6))
         cmd[SETTLE:, joint] = step_mm
         prob["seqs"][key] = cmd
-    return hg.Job(cfg, board_params(prob), prob["seqs"][key], keep=True)
+    return hg.Job(cfg, board_params(prob), prob["seqs"][key], keep=True, tool_error=tool_error)
 
 
 def step_feedback(job, r, joint=0):
@@ -438,8 +439,8 @@ def costs(xs, prob, notch=None):
     for x in xs:
         gains = gains_from_x(x, prob)
         cfg = loop_cfg(gains, prob, notch)
-        tj = trajectory_jobs(cfg, prob, prob["search_settles"])
-        sj = step_job(cfg, prob)
+        tj = trajectory_jobs(cfg, prob, prob["search_settles"], tool_error=False)
+        sj = step_job(cfg, prob, tool_error=False)
         cands.append((gains, cfg, len(jobs), len(tj), sj))
         jobs.extend(tj + [sj])
     res = hg.batch(jobs, prob.get("threads", 1))

@@ -97,7 +97,7 @@ def plant_frf(start, params=None, threads=0):
         g[j]["FF0"] = FF0_PER_MM
         cmd = np.zeros((n, 6))
         cmd[SETTLE:, j] = np.tile(x, 2)
-        jobs.append(hg.Job(hg.loop_config(g), bp, cmd, keep=True))
+        jobs.append(hg.Job(hg.loop_config(g), bp, cmd, keep=True, tool_error=False))   # f-errors only
     res = hg.batch(jobs, threads)
     k0 = SETTLE + WINDOW
     Y = np.zeros((len(bins), 6, 6), complex)

@@ -2,8 +2,9 @@
  * and traces equal what hg_loop_init + hg_loop_run give on their own, bit
  * for bit, with 1, 2 and 5 threads (rigid and flexible trains, three gain
  * sets, a notch on two joints, a trip, a job whose config is refused);
- * the refused arguments; and the notch in the loop is biquad.N between
- * pid.N.output and the DAC (its DAC values are a biquad fed the pid outputs). */
+ * skipping the tool-path error changes nothing else; the refused
+ * arguments; and the notch in the loop is biquad.N between pid.N.output
+ * and the DAC (its DAC values are a biquad fed the pid outputs). */
 #include <string.h>
 #include "hg_batch.h"
 #include "hg_errors.h"
@@ -55,7 +56,7 @@ int main(void)
             cfg[i].pid[k].maxoutput = 10.0;
         }
         cfg[i].ferror_limit_mm = 2.0;
-        jobs[i] = (hg_batch_job){&cfg[i], i % 2 ? &rigid : &flex, cmd, N, 100, {fe[i], out[i], 0}};
+        jobs[i] = (hg_batch_job){&cfg[i], i % 2 ? &rigid : &flex, cmd, N, 100, {fe[i], out[i], 0}, 0};
     }
     hg_biquad_notch(&cfg[3].biquad[0], 352.75, 0.7);
     hg_biquad_notch(&cfg[3].biquad[2], 300, 2.0);
@@ -108,6 +109,26 @@ int main(void)
         hg_batch_run(&j, 1, 1, res);
         CHECK(fabs(load[6 * (N / 2)] - cmd[6 * (N / 2)]) < 0.05, "load trace near the command mid-move (%.4f vs %.4f mm)",
               load[6 * (N / 2)], cmd[6 * (N / 2)]);
+    }
+    /* skipping the tool-path error changes nothing else: the same summary
+     * but its peak, the same traces (rigid and flexible trains) */
+    for (i = 0; i < 2; i++) {
+        hg_batch_job j = jobs[i];
+        hg_batch_result with, without;
+        static double fe2[N * 6], out2[N * 6];
+        hg_batch_run(&j, 1, 1, &with);
+        j.skip_tool_error = 1;
+        j.trace = (hg_loop_trace){fe2, out2, 0};
+        hg_batch_run(&j, 1, 1, &without);
+        CHECK(without.sum.peak_tool_error_mm == HG_TOOL_ERROR_SKIPPED && with.sum.peak_tool_error_mm > 0.0,
+              "%s train: skip_tool_error gives peak tool error %g (computed: %.6f mm)", i ? "rigid" : "flexible",
+              without.sum.peak_tool_error_mm, with.sum.peak_tool_error_mm);
+        without.sum.peak_tool_error_mm = with.sum.peak_tool_error_mm;
+        CHECK(memcmp(&with, &without, sizeof with) == 0 &&
+                  memcmp(fe2, fe[i], sizeof(double) * 6 * with.sum.periods) == 0 &&
+                  memcmp(out2, out[i], sizeof(double) * 6 * with.sum.periods) == 0,
+              "%s train: without the tool error every other summary field and trace is the same bits",
+              i ? "rigid" : "flexible");
     }
     CHECK(hg_batch_run(jobs, -1, 2, res) == HG_ERR_BAD_PARAM && hg_batch_run(0, 3, 2, res) == HG_ERR_BAD_PARAM &&
           hg_batch_run(jobs, 0, 2, 0) == 0, "njobs < 0 or no jobs array refused; an empty batch is 0");
