@@ -221,6 +221,44 @@ double hg_bar_length_error(const hg_geometry *g, const double z[6], const double
     return worst;
 }
 
+/* One Newton iteration's phi and d(phi)/d(pose) at pose c: what
+ * hg_constraints and hg_constraint_jacobian give, bit for bit (the same
+ * operations in the same order), from one sin/cos and rotation instead of
+ * two and the frame f made once per solve. */
+static void newton_terms(const hg_geometry *g, const hg_frame *f, const double z[6], const double c[6],
+                         double phi[6], double jac[36])
+{
+    double R[9], w[6][3], sc[6], axis[3][3];
+    int k, m, r;
+    hg_head_trig(c, sc);
+    hg_rotation_sc(sc, R);
+    axis[0][0] = R[0]; axis[0][1] = R[3]; axis[0][2] = R[6];          /* as hg_constraint_jacobian */
+    axis[1][0] = -sc[4]; axis[1][1] = sc[5]; axis[1][2] = 0;
+    axis[2][0] = 0; axis[2][1] = 0; axis[2][2] = 1;
+    for (k = 0; k < HG_NBARS; k++) {
+        const double *p = f->head[k], *b = f->guide[k];
+        double a[3], d[3], wxd[3], dx, dy, dz;
+        for (r = 0; r < 3; r++)
+            w[k][r] = R[3 * r] * p[0] + R[3 * r + 1] * p[1] + R[3 * r + 2] * p[2];
+        for (r = 0; r < 3; r++)        /* hg_joint_points_rot's head joint */
+            a[r] = c[r] + w[k][r];
+        dx = b[0] - a[0];
+        dy = b[1] - a[1];
+        dz = (f->h + z[k]) - a[2];
+        phi[k] = dx * dx + dy * dy + dz * dz - g->l_m * g->l_m;
+        d[0] = b[0] - c[0] - w[k][0];
+        d[1] = b[1] - c[1] - w[k][1];
+        d[2] = f->h + z[k] - c[2] - w[k][2];
+        wxd[0] = w[k][1] * d[2] - w[k][2] * d[1];
+        wxd[1] = w[k][2] * d[0] - w[k][0] * d[2];
+        wxd[2] = w[k][0] * d[1] - w[k][1] * d[0];
+        for (m = 0; m < 3; m++)
+            jac[6 * k + m] = -2.0 * d[m];
+        for (m = 0; m < 3; m++)
+            jac[6 * k + 3 + m] = -2.0 * (axis[m][0] * wxd[0] + axis[m][1] * wxd[1] + axis[m][2] * wxd[2]);
+    }
+}
+
 /* 1 when every carriage joint is above its head joint (the machine's branch). */
 static int on_machine_branch(const hg_geometry *g, const double z[6], const double pose[6])
 {
@@ -237,6 +275,7 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
                           const hg_fk_options *opt, hg_fk_report *report)
 {
     hg_fk_options o;
+    hg_frame f;
     double c[6], phi[6], jac[36], residual;
     int piv[6], it, k, rc = HG_ERR_NO_CONVERGENCE;
     if (opt)
@@ -258,10 +297,10 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
         return HG_ERR_UNREACHABLE;
     for (k = 0; k < 6; k++)
         c[k] = pose[k];
+    hg_frame_of(g, &f);
     for (it = 1; it <= o.max_iterations; it++) {
         double step = 0.0;
-        hg_constraints(g, z, c, phi);
-        hg_constraint_jacobian(g, z, c, jac, 0);
+        newton_terms(g, &f, z, c, phi, jac);
         if (hg_lu_factor(6, jac, piv)) {
             rc = HG_ERR_SINGULAR_JACOBIAN;
             break;

@@ -2,8 +2,10 @@
 #include "hg_math.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
+#include "hg_unroll.h"
 
-int hg_lu_factor(int n, double *a, int *piv)
+/* hg_lu_factor's body; inlined with n known where the caller's is fixed. */
+static inline __attribute__((always_inline)) int lu_factor(int n, double *a, int *piv)
 {
     int i, j, k;
     double amax = 0.0;
@@ -19,6 +21,7 @@ int hg_lu_factor(int n, double *a, int *piv)
         return HG_ERR_SINGULAR_JACOBIAN;
     for (i = 0; i < n; i++)
         piv[i] = i;
+    HG_UNROLL
     for (k = 0; k < n; k++) {
         int p = k;
         double best = fabs(a[k * n + k]);
@@ -47,6 +50,12 @@ int hg_lu_factor(int n, double *a, int *piv)
         }
     }
     return 0;
+}
+
+int hg_lu_factor(int n, double *a, int *piv)
+{
+    /* the 6x6 (forward kinematics, the stick sets) with constant bounds: the same operations */
+    return n == 6 ? lu_factor(6, a, piv) : lu_factor(n, a, piv);
 }
 
 void hg_lu_solve(int n, const double *lu, const int *piv, int nrhs, double *b)

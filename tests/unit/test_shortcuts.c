@@ -9,6 +9,11 @@
  *    bars' KKT factors, a T with an inf);
  *  - hg_drive_step with its memo of exp(-dt / tau) (kept over calls of
  *    changing step lengths and channels) and without;
+ *  - hg_lu_factor's 6x6 path (constant bounds, unrolled) against the
+ *    generic loop, copied here;
+ *  - hg_forward_kinematics's Newton terms (one sin/cos, rotation and frame
+ *    for phi and its Jacobian) against hg_constraints +
+ *    hg_constraint_jacobian, the iterations it replaces;
  * (the guard's clearance bound: test_guard; golden states: test_golden). */
 #include <string.h>
 #include "hg_test.h"
@@ -17,6 +22,8 @@
 #include "hg_linalg.h"
 #include "hg_kinematics.h"
 #include "hg_drive.h"
+#include "hg_errors.h"
+#include "hg_params.h"
 
 /* 1 when the n doubles are bit for bit equal. */
 static int same_bits(const double *a, const double *b, int n)
@@ -221,11 +228,134 @@ static void test_drive_memo(void)
           "bits without it on %d of 20000 random calls of 1..8 channels", same);
 }
 
+/* hg_lu_factor as it was before its 6x6 path (the generic loop). */
+static int lu_reference(int n, double *a, int *piv)
+{
+    int i, j, k;
+    double amax = 0.0;
+    for (i = 0; i < n * n; i++) {
+        if (!isfinite(a[i]))
+            return HG_ERR_SINGULAR_JACOBIAN;
+        if (fabs(a[i]) > amax)
+            amax = fabs(a[i]);
+    }
+    if (amax == 0.0)
+        return HG_ERR_SINGULAR_JACOBIAN;
+    for (i = 0; i < n; i++)
+        piv[i] = i;
+    for (k = 0; k < n; k++) {
+        int p = k;
+        double best = fabs(a[k * n + k]);
+        for (i = k + 1; i < n; i++)
+            if (fabs(a[i * n + k]) > best) {
+                best = fabs(a[i * n + k]);
+                p = i;
+            }
+        if (best <= 1e-13 * amax)
+            return HG_ERR_SINGULAR_JACOBIAN;
+        if (p != k) {
+            int t = piv[k];
+            piv[k] = piv[p];
+            piv[p] = t;
+            for (j = 0; j < n; j++) {
+                double s = a[k * n + j];
+                a[k * n + j] = a[p * n + j];
+                a[p * n + j] = s;
+            }
+        }
+        for (i = k + 1; i < n; i++) {
+            double f = a[i * n + k] / a[k * n + k];
+            a[i * n + k] = f;
+            for (j = k + 1; j < n; j++)
+                a[i * n + j] -= f * a[k * n + j];
+        }
+    }
+    return 0;
+}
+
+static void test_lu6(void)
+{
+    int t, i, same = 1, singular = 0;
+    for (t = 0; t < 4000; t++) {
+        double a[36], b[36];
+        int pa[6], pb[6], ra, rb;
+        for (i = 0; i < 36; i++)
+            a[i] = hg_test_uniform(-1, 1) * (i % 5 == 0 ? 1e3 : 1.0);
+        if (t % 50 == 1)                       /* a repeated row: singular */
+            for (i = 0; i < 6; i++)
+                a[6 + i] = a[i];
+        if (t % 97 == 2)
+            a[17] = INFINITY;
+        memcpy(b, a, sizeof a);
+        ra = hg_lu_factor(6, a, pa);
+        rb = lu_reference(6, b, pb);
+        singular += rb != 0;
+        same &= ra == rb && (ra != 0 || (same_bits(a, b, 36) && memcmp(pa, pb, sizeof pa) == 0));
+    }
+    CHECK(same && singular >= 80, "hg_lu_factor 6x6 = the generic loop bit for bit on 4000 matrices (%d refused alike)",
+          singular);
+}
+
+/* hg_forward_kinematics's Newton iteration as it was: hg_constraints and
+ * hg_constraint_jacobian at each iterate; the iterations run, or -1. */
+static int fk_reference(const hg_geometry *g, const double z[6], double c[6], int max_it)
+{
+    int it, k, piv[6];
+    for (it = 1; it <= max_it; it++) {
+        double phi[6], jac[36], step = 0.0;
+        hg_constraints(g, z, c, phi);
+        hg_constraint_jacobian(g, z, c, jac, 0);
+        if (lu_reference(6, jac, piv))
+            return -1;
+        hg_lu_solve(6, jac, piv, 1, phi);
+        for (k = 0; k < 6; k++) {
+            double sk = fabs(phi[k]) * (k < 3 ? 1.0 : g->l_m);
+            c[k] -= phi[k];
+            if (!(sk <= step))
+                step = sk;
+        }
+        if (step <= 1e-12)
+            return it;
+    }
+    return -1;
+}
+
+static void test_fk_terms(void)
+{
+    hg_params p;
+    hg_fk_options o;
+    int t, k, tried = 0, same = 1, its = 0;
+    hg_params_default(&p);
+    hg_fk_options_default(&o);
+    o.skip_guard = 1;
+    for (t = 0; t < 1500; t++) {
+        double target[6], z[6], c[6], pose[6];
+        hg_fk_report rep;
+        int rc, it;
+        for (k = 0; k < 6; k++)
+            target[k] = hg_test_uniform(-1, 1) * (k < 3 ? 0.1 : 0.25);
+        if (hg_inverse_kinematics(&p.geo, target, z) != HG_OK)
+            continue;
+        for (k = 0; k < 6; k++)        /* started up to 5 mm / 1 degree away, as the tool error's */
+            c[k] = pose[k] = target[k] + hg_test_uniform(-1, 1) * (k < 3 ? 5e-3 : 0.0175);
+        rc = hg_forward_kinematics(&p.geo, z, pose, &o, &rep);
+        it = fk_reference(&p.geo, z, c, o.max_iterations);
+        tried++;
+        its += it;
+        same &= rc == HG_OK && it == rep.iterations && same_bits(pose, c, 6);
+    }
+    CHECK(tried > 500 && same, "hg_forward_kinematics = the Newton iteration on hg_constraints and "
+          "hg_constraint_jacobian bit for bit, iterations alike, on %d poses (%.2f iterations each)",
+          tried, its / (double)(tried ? tried : 1));
+}
+
 int main(void)
 {
     test_rotation();
     test_apply6();
     test_response_matrix();
     test_drive_memo();
+    test_lu6();
+    test_fk_terms();
     return hg_test_exit();
 }
