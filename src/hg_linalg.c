@@ -45,6 +45,7 @@ static inline __attribute__((always_inline)) int lu_factor(int n, double *a, int
         for (i = k + 1; i < n; i++) {
             double f = a[i * n + k] / a[k * n + k];
             a[i * n + k] = f;
+            HG_UNROLL
             for (j = k + 1; j < n; j++)
                 a[i * n + j] -= f * a[k * n + j];
         }
@@ -58,7 +59,9 @@ int hg_lu_factor(int n, double *a, int *piv)
     return n == 6 ? lu_factor(6, a, piv) : lu_factor(n, a, piv);
 }
 
-void hg_lu_solve(int n, const double *lu, const int *piv, int nrhs, double *b)
+/* hg_lu_solve's body; inlined with n known where the caller's is fixed. */
+static inline __attribute__((always_inline)) void lu_solve(int n, const double *lu, const int *piv, int nrhs,
+                                                           double *b)
 {
     double x[HG_LINALG_MAX_N];
     int i, j, r;
@@ -76,4 +79,12 @@ void hg_lu_solve(int n, const double *lu, const int *piv, int nrhs, double *b)
         for (i = 0; i < n; i++)
             b[i * nrhs + r] = x[i];
     }
+}
+
+void hg_lu_solve(int n, const double *lu, const int *piv, int nrhs, double *b)
+{
+    if (n == 6)                       /* as hg_lu_factor: the same operations, constant bounds */
+        lu_solve(6, lu, piv, nrhs, b);
+    else
+        lu_solve(n, lu, piv, nrhs, b);
 }

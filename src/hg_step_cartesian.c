@@ -173,22 +173,29 @@ void hg_cartesian_hold(const hg_model *m, hg_data *d, const double z0[6], unsign
         memcpy(d->work.sc1_key, q1 + 9, sizeof d->work.sc1_key);
         d->work.sc1_valid = 1;
         hg_gen_reduced_constraints(m->k, q1, sc, phi, pz, pc);
-        for (i = 0; i < n; i++) {       /* Y = Mh^-1 J^T, G = J Y with J = Phi_c's held rows */
-            double y[6];
+        for (i = 0; i < 6; i++)         /* Y = Mh^-1 J^T, G = J Y with J = Phi_c's held rows */
+            HG_UNROLL
             for (j = 0; j < 6; j++)
-                y[j] = pc[6 * idx[i] + j];
-            hg_spd6_apply(s->ldl, s->inv_d, y);
-            for (j = 0; j < 6; j++)
-                Y[6 * j + i] = y[j];
-            worst = fmax(worst, fabs(phi[idx[i]]));
-        }
+                Y[6 * j + i] = i < n ? pc[6 * idx[i] + j] : 0.0;   /* (columns past n: 0, unused) */
         for (i = 0; i < n; i++)
-            for (j = 0; j < n; j++) {
+            worst = fmax(worst, fabs(phi[idx[i]]));
+        hg_spd6_apply6(s->ldl, s->inv_d, Y);   /* each column hg_spd6_apply's bits */
+        for (i = 0; i < n; i++) {
+            const double *row = pc + 6 * idx[i];
+            for (j = 0; j + 1 < n; j += 2) {  /* two columns at a time, each summed over k in order */
+                hg_v2 v = hg_v2_dup(0.0);
+                HG_UNROLL
+                for (k = 0; k < 6; k++)
+                    v += hg_v2_dup(row[k]) * hg_v2_load(Y + 6 * k + j);
+                hg_v2_store(G + n * i + j, v);
+            }
+            for (; j < n; j++) {
                 double v = 0.0;
                 for (k = 0; k < 6; k++)
-                    v += pc[6 * idx[i] + k] * Y[6 * k + j];
+                    v += row[k] * Y[6 * k + j];
                 G[n * i + j] = v;
             }
+        }
         if (hg_lu_factor(n, G, piv))
             return;                   /* dependent constraints: leave it to the stabilization */
         if (it == HOLD_NEWTON_ITER || worst == 0.0)

@@ -431,39 +431,78 @@ def margin_penalty(m):
     return c
 
 
-def costs(xs, prob, notch=None):
-    """What the search minimizes, for every candidate x of xs in one batch (prob["threads"]
-    threads, no Python per period): worst peak |f-error| over joints and runs (mm), plus
-    penalties for voltage above the limit, step overshoot and the margins on the plant."""
-    cands, jobs = [], []
+def run_cost(runs, prob):
+    """The trajectory runs' share of a candidate's cost: worst peak |f-error| over joints and
+    runs plus a fifth of the worst RMS (mm), plus 1 mm per volt above the limit; None when a
+    run tripped. Every term is a maximum over the runs: a subset of them bounds it from below."""
+    if not all(r.ok for r in runs):
+        return None
+    peak = max(r.peak_ferror_mm.max() for r in runs)
+    rms = max(r.rms_ferror_mm.max() for r in runs)
+    volts = max(r.peak_output_v.max() for r in runs)
+    return peak + 0.2 * rms + 1.0 * max(0.0, volts - prob["vmax"])   # volts over: a hard limit in effect
+
+
+def costs(xs, prob, notch=None, beat=None):
+    """What the search minimizes, for every candidate x of xs in batches (prob["threads"]
+    threads, no Python per period): run_cost over the trajectory runs, plus penalties for
+    step overshoot and the margins on the plant; 1 - 1e-9 per period run when a run trips.
+    beat[i] (optional): the cost candidate i must not exceed to be kept (the population member
+    it competes with). Every candidate's step and first run go first; one whose cost is
+    already above beat[i] from them runs no further and gets that lower bound instead of its
+    cost: it loses either way, so the search's choices, and its answer, are the full costs'."""
+    settles = prob["search_settles"]
+    cands = []
     for x in xs:
         gains = gains_from_x(x, prob)
         cfg = loop_cfg(gains, prob, notch)
-        tj = trajectory_jobs(cfg, prob, prob["search_settles"], tool_error=False)
-        sj = step_job(cfg, prob, tool_error=False)
-        cands.append((gains, cfg, len(jobs), len(tj), sj))
-        jobs.extend(tj + [sj])
-    res = hg.batch(jobs, prob.get("threads", 1))
+        cands.append((gains, step_job(cfg, prob, tool_error=False),
+                      trajectory_jobs(cfg, prob, settles, tool_error=False)))
+    early = beat is not None and len(settles) > 1
+    first = [[sj] + tj[:1] if early else [sj] + tj for _g, sj, tj in cands]
+    res = hg.batch([j for js in first for j in js], prob.get("threads", 1))
+    done = [res[sum(map(len, first[:i])):][:len(first[i])] for i in range(len(cands))]
+    margin = [None] * len(cands)
+    out, more = [None] * len(cands), []
+    for i, (g, sj, tj) in enumerate(cands):
+        if not early:
+            out[i] = penalized(g, done[i][0], sj, done[i][1:], prob, notch)
+            continue
+        # a trip in a later run costs 1 - 1e-9 per period, at least 1 - 1e-9 x every period
+        floor = 1.0 - 1e-9 * sum(j.cmd.shape[0] for j in tj)
+        lb = min(floor, penalized(g, done[i][0], sj, done[i][1:], prob, notch, 0.0))
+        if not lb > beat[i]:           # the margins (>= 0) only when the rest does not decide
+            margin[i] = margin_penalty(margins_of(g, prob, notch))
+            lb = min(floor, penalized(g, done[i][0], sj, done[i][1:], prob, notch, margin[i]))
+        if lb > beat[i]:
+            out[i] = lb
+        else:
+            more.append(i)
+    if early:
+        prob["stopped_early"] = prob.get("stopped_early", 0) + len(cands) - len(more)
+        rest = hg.batch([j for i in more for j in cands[i][2][1:]], prob.get("threads", 1)) if more else []
+        res = res + rest
+        for n, i in enumerate(more):
+            g, sj, tj = cands[i]
+            runs = done[i][1:] + rest[n * (len(tj) - 1):(n + 1) * (len(tj) - 1)]
+            out[i] = penalized(g, done[i][0], sj, runs, prob, notch, margin[i])
     prob["periods_run"] = prob.get("periods_run", 0) + sum(r.periods for r in res)
-    out = []
-    for gains, _cfg, i0, nt, sj in cands:
-        runs = res[i0:i0 + nt]
-        if not all(r.ok for r in runs):
-            out.append(1.0 + np.sum([r.periods for r in runs]) * -1e-9)
-            continue
-        peak = max(r.peak_ferror_mm.max() for r in runs)
-        rms = max(r.rms_ferror_mm.max() for r in runs)
-        volts = max(r.peak_output_v.max() for r in runs)
-        c = peak + 0.2 * rms
-        c += 1.0 * max(0.0, volts - prob["vmax"])      # 1 mm per volt over: a hard limit in effect
-        over, settled = step_metrics(step_feedback(sj, res[i0 + nt]))
-        if not settled:
-            out.append(0.5 + c)
-            continue
-        c += 1.0 * max(0.0, over - prob["max_overshoot"])  # 0.01 mm per % over: hard in effect
-        c += margin_penalty(margins_of(gains, prob, notch))
-        out.append(c)
     return out
+
+
+def penalized(gains, step, sj, runs, prob, notch, margin=None):
+    """costs' cost of one candidate from its step run and trajectory runs, with the margin
+    penalty `margin` (None: computed here); with fewer runs than the search's or margin 0, a
+    lower bound of its cost (every term of run_cost is a maximum over the runs)."""
+    c = run_cost(runs, prob)
+    if c is None:
+        return 1.0 + np.sum([r.periods for r in runs]) * -1e-9
+    over, settled = step_metrics(step_feedback(sj, step))
+    if not settled:
+        return 0.5 + c
+    c += 1.0 * max(0.0, over - prob["max_overshoot"])  # 0.01 mm per % over: hard in effect
+    c += margin_penalty(margins_of(gains, prob, notch)) if margin is None else margin
+    return c
 
 
 # ------------------------------------------------------------------ output
@@ -634,18 +673,32 @@ def search(a, prob, notch=None):
     threads; the best six gain dicts and their cost."""
     x0 = np.array([0.0, 0.0, 0.0, 1.0, 1.0])
     log("model start%s: cost %.5f" % (" with the notch" if notch else "", costs([x0], prob, notch)[0]))
-    from scipy.optimize import differential_evolution
+    # scipy's differential_evolution is this solver's solve(); holding the solver lets each
+    # generation's trials see the energies of the members they compete with (costs' beat)
+    from scipy.optimize._differentialevolution import DifferentialEvolutionSolver
     bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)]
     gen = [0]
     best = {}
-    t0, p0 = time.time(), prob.get("periods_run", 0)
+    solver = [None]
+    t0, p0, s0 = time.time(), prob.get("periods_run", 0), prob.get("stopped_early", 0)
 
     def cost(x):
         return costs([x], prob, notch)[0]
 
+    def beat(n):
+        """The energies trial 0..n-1 compete with: with updating="deferred" and no constraints,
+        trial i is member i's and replaces it only if its cost is <= member i's. None for the
+        first population (no energies yet), with --no-stop-early, or if that does not hold."""
+        s = solver[0]
+        e = getattr(s, "population_energies", None)
+        if a.no_stop_early or e is None or n > len(e) or not np.all(np.isfinite(e)) or \
+                not np.all(getattr(s, "feasible", False)):
+            return None
+        return list(e[:n])
+
     def batch_map(_func, xs):
         xs = list(xs)
-        cs = costs(xs, prob, notch)
+        cs = costs(xs, prob, notch, beat(len(xs)))
         for x, c in zip(xs, cs):
             if not best or c < best["c"]:
                 best.update(c=c, x=np.array(x))
@@ -655,13 +708,17 @@ def search(a, prob, notch=None):
         gen[0] += 1
         log("generation %d: best cost %.5f (%.0f s)" % (gen[0], best.get("c", np.nan), time.time() - t0))
 
-    res = differential_evolution(cost, bounds, x0=x0, maxiter=a.maxiter, popsize=a.popsize,
-                                 seed=a.seed, polish=False, tol=1e-3, updating="deferred",
-                                 workers=batch_map, callback=progress, init="sobol")
+    with DifferentialEvolutionSolver(cost, bounds, x0=x0, maxiter=a.maxiter, popsize=a.popsize,
+                                     seed=a.seed, polish=False, tol=1e-3, updating="deferred",
+                                     workers=batch_map, callback=progress, init="sobol") as sv:
+        solver[0] = sv
+        res = sv.solve()
     took = time.time() - t0
-    log("sweep%s: %d candidates in %.1f s, %d thread%s (hg.batch; %.1f per second), %d servo periods run"
+    log("sweep%s: %d candidates in %.1f s, %d thread%s (hg.batch; %.1f per second), %d servo periods run, "
+        "%d candidates stopped after their first run"
         % (" with the notch" if notch else "", res.nfev, took, prob["threads"],
-           "s" if prob["threads"] > 1 else "", res.nfev / max(took, 1e-9), prob.get("periods_run", 0) - p0))
+           "s" if prob["threads"] > 1 else "", res.nfev / max(took, 1e-9), prob.get("periods_run", 0) - p0,
+           prob.get("stopped_early", 0) - s0))
     return gains_from_x(res.x, prob), float(res.fun)
 
 
@@ -712,6 +769,9 @@ def main(argv=None):
     ap.add_argument("--jobs", type=int, default=0,
                     help="threads the closed-loop runs share (hg_batch; default 0: every core); the answer "
                     "is the same for any number")
+    ap.add_argument("--no-stop-early", action="store_true",
+                    help="run every candidate's every trajectory run, also one whose first run already "
+                    "costs more than the member it competes with (the same answer, slower: a check)")
     ap.add_argument("--param", action="append", default=[], metavar="NAME=V",
                     help="a model parameter of the machine tuned on (SI, docs/model.md), e.g. k_axial=0 "
                     "for rigid drive trains; default the board's defaults (flexible trains)")
