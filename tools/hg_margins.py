@@ -135,19 +135,18 @@ def loci(gains, freqs, P, notch=None):
     """(nf, 6): the eigenvalues of L(f) = diag(C N) P(f), each column one locus (tracked by
     nearest neighbour from one frequency to the next)."""
     cn = pid_response(gains, freqs) * notch_responses(notch, freqs)
+    evs = np.linalg.eigvals(cn[:, :, None] * P)      # every frequency's at once
     lam = np.zeros((len(freqs), 6), complex)
-    prev = None
-    for i in range(len(freqs)):
-        ev = np.linalg.eigvals(cn[i][:, None] * P[i])
-        if prev is not None:
-            order, left = [], list(range(6))
-            for p in prev:
-                k = min(left, key=lambda q: abs(np.log(ev[q] / p)))
-                order.append(k)
-                left.remove(k)
-            ev = ev[order]
-        lam[i] = ev
-        prev = ev
+    lam[0] = evs[0]
+    for i in range(1, len(freqs)):
+        ev = evs[i]
+        dist = np.abs(np.log(ev[None, :] / lam[i - 1][:, None])).tolist()  # [p][q]: |log(ev_q / prev_p)|
+        order, left = [], list(range(6))
+        for p in range(6):                 # each previous eigenvalue in turn takes its nearest left
+            k = min(left, key=dist[p].__getitem__)
+            order.append(k)
+            left.remove(k)
+        lam[i] = ev[order]
     return lam
 
 
