@@ -21,6 +21,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "hg_dynamics.h"
+#include "hg_plant_hexaglide.h"
 #include "hg_stability.h"
 #include "bench_timing.h"
 

@@ -1,6 +1,8 @@
 /* profile_step.c - the workloads bench/profile_step.sh runs under
  * callgrind, with the default model (reduced-cartesian, Heun, sliding and
- * static friction, bus-limited windings, the guard) under bench_dynamics'
+ * static friction, bus-limited windings, the guard) and rigid drive trains
+ * (k_axial 0: the machine of commit d20d9e5, which --baseline profiles,
+ * and one step per period) under bench_dynamics'
  * servo motion (a P controller on 20 mm, 0.5 Hz sines, phases 60 degrees
  * apart) at 1 ms: `step`, hg_step alone as bench_dynamics times it;
  * `board`, the virtual board (hg_board_step, the code LinuxCNC runs every
@@ -15,6 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "hg_board.h"
+#include "hg_dynamics.h"
+#include "hg_plant_hexaglide.h"
 
 #define WARMUP 2000
 #define PI 3.14159265358979323846
@@ -53,6 +57,7 @@ static int run_step(long n)
     hg_params p;
     long s, stuck = 0;
     hg_params_default(&p);
+    p.k_axial_n_per_m = 0.0;
     if (hg_model_init(&m, &p, HG_MODEL_REDUCED_CARTESIAN, 0, 0) || hg_data_reset(&m, &d))
         return 1;
     for (s = 0; s < WARMUP + n; s++) {
@@ -76,14 +81,22 @@ static int run_board(long n)
     static hg_board b;
     static hg_board_inputs in;
     static hg_board_outputs out;
+    hg_board_params bp;
+    const hg_plant *pl = hg_plant_at(0);
+    const hg_model *m;
+    const hg_data *d;
     long s, stuck = 0;
-    if (hg_board_init(&b, HG_MODEL_REDUCED_CARTESIAN, 0) != 0)
+    hg_board_params_default(0, HG_MODEL_REDUCED_CARTESIAN, &bp);
+    bp.plant.v[hg_plant_param_find(pl, HG_MODEL_REDUCED_CARTESIAN, "k_axial")] = 0.0;
+    if (hg_board_init(&b, 0, HG_MODEL_REDUCED_CARTESIAN, &bp) != 0)
         return 1;
+    m = hg_hexaglide_model(&b.m);
+    d = hg_hexaglide_data(&b.d);
     hg_board_inputs_default(&b, &in);
     in.dout_values = 1u << 7;          /* the E-STOP loop (out-07) closed: amplifiers on */
     for (s = 0; s < WARMUP + n; s++) {
         int k;
-        servo(&b.m, b.d.t_s, b.d.z_m, in.dac_v);
+        servo(m, d->t_s, d->z_m, in.dac_v);
         for (k = 6; k < HG_BOARD_DACS; k++)
             in.dac_v[k] = 0.0;
         in.dac_written = 1;
@@ -95,10 +108,10 @@ static int run_board(long n)
             fprintf(stderr, "profile_step: the board faulted (code %d) at period %ld\n", out.fault_code, s);
             return 1;
         }
-        stuck += s >= WARMUP && b.d.stuck != 0;
+        stuck += s >= WARMUP && d->stuck != 0;
     }
     printf("profile_step board: %ld profiled periods after %d warm-up, %ld with a stuck carriage, "
-           "z0 %.6f m\n", n, WARMUP, stuck, b.d.z_m[0]);
+           "z0 %.6f m\n", n, WARMUP, stuck, d->z_m[0]);
     return 0;
 }
 
