@@ -7,8 +7,9 @@ function's cost split by its chain of callers) and uncompressed names
 it, and prints instructions per servo period by stage: each function's own
 instructions go to the stage of the outermost stage function on its chain
 of callers below hg_step (drive, smooth forces, accelerations, friction,
-stabilization, guard), the rest of hg_step to "step: other", and what runs
-outside hg_step to "board". Within a stage, to the innermost matching
+stabilization, guard), the rest of hg_step to "step: other", the plant's
+tool-path error (tool_error) to its own stage, and what else runs outside
+hg_step to "board". Within a stage, to the innermost matching
 part. Usage: profile_stages.py CALLGRIND_OUT PERIODS
 """
 import re
@@ -81,6 +82,8 @@ def self_costs(path):
 def classify(chain):
     names = [re.sub(r"\.(part|constprop|isra)\.\d+$", "", n) for n in chain]
     if "hg_step" not in names:
+        if "tool_error" in names:          # the plant's forward solve of motion's commands
+            return "tool-path error (forward kinematics of pos-cmd)", ""
         return "board (DAC, encoders, switches, ADC, latches)", ""
     below = names[:names.index("hg_step")]
     stage = None

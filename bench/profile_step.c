@@ -7,7 +7,8 @@
  * apart) at 1 ms: `step`, hg_step alone as bench_dynamics times it;
  * `board`, the virtual board (hg_board_step, the code LinuxCNC runs every
  * servo period: the DAC's 13 bits, the step, encoders, switches, ADC) with
- * the amplifiers on. WARMUP periods, then PERIODS profiled ones, each
+ * the amplifiers on and the references as motion's joint commands (the
+ * tool-path error's). WARMUP periods, then PERIODS profiled ones, each
  * through profiled_step or profiled_board (callgrind
  * --toggle-collect=profiled_* counts only those). Prints the periods and
  * how many of them ended with a carriage stuck.
@@ -18,21 +19,29 @@
 #include <string.h>
 #include "hg_board.h"
 #include "hg_dynamics.h"
+#if __has_include("hg_plant_hexaglide.h")  /* today's tree: the board runs a plant */
 #include "hg_plant_hexaglide.h"
+#define PLANT_INTERFACE 1
+#else                                       /* d20d9e5's (--baseline): the board is the Hexaglide */
+#define PLANT_INTERFACE 0
+#endif
 
 #define WARMUP 2000
 #define PI 3.14159265358979323846
 
-/* DAC volts of the servo motion at time t for carriage heights z. */
-static void servo(const hg_model *m, double t, const double z[6], double v[6])
+/* DAC volts of the servo motion at time t for carriage heights z, and its
+ * references (m) into ref unless 0. */
+static void servo(const hg_model *m, double t, const double z[6], double v[6], double *ref)
 {
     const hg_params *p = &m->p;
     double hold = p->g_mps2 * (p->m_head_kg + 6 * (p->m_bar_kg + p->m_carriage_kg)) / 6 /
                   m->force_per_volt_n;
     int k;
     for (k = 0; k < 6; k++) {
-        double ref = 0.02 * sin(2 * PI * 0.5 * t + k * PI / 3);
-        v[k] = fmax(-10.0, fmin(10.0, hold + 300.0 * (ref - z[k])));
+        double r = 0.02 * sin(2 * PI * 0.5 * t + k * PI / 3);
+        v[k] = fmax(-10.0, fmin(10.0, hold + 300.0 * (r - z[k])));
+        if (ref)
+            ref[k] = r;
     }
 }
 
@@ -57,13 +66,15 @@ static int run_step(long n)
     hg_params p;
     long s, stuck = 0;
     hg_params_default(&p);
+#if PLANT_INTERFACE
     p.k_axial_n_per_m = 0.0;
+#endif
     if (hg_model_init(&m, &p, HG_MODEL_REDUCED_CARTESIAN, 0, 0) || hg_data_reset(&m, &d))
         return 1;
     for (s = 0; s < WARMUP + n; s++) {
         double v[6];
         int rc;
-        servo(&m, d.t_s, d.z_m, v);
+        servo(&m, d.t_s, d.z_m, v, 0);
         if ((rc = s < WARMUP ? hg_step(&m, &d, v, 1e-3) : profiled_step(&m, &d, v)) != 0) {
             fprintf(stderr, "profile_step: hg_step failed (code %d) at step %ld\n", rc, s);
             return 1;
@@ -81,22 +92,32 @@ static int run_board(long n)
     static hg_board b;
     static hg_board_inputs in;
     static hg_board_outputs out;
-    hg_board_params bp;
-    const hg_plant *pl = hg_plant_at(0);
     const hg_model *m;
     const hg_data *d;
     long s, stuck = 0;
+#if PLANT_INTERFACE
+    hg_board_params bp;
     hg_board_params_default(0, HG_MODEL_REDUCED_CARTESIAN, &bp);
-    bp.plant.v[hg_plant_param_find(pl, HG_MODEL_REDUCED_CARTESIAN, "k_axial")] = 0.0;
+    bp.plant.v[hg_plant_param_find(hg_plant_at(0), HG_MODEL_REDUCED_CARTESIAN, "k_axial")] = 0.0;
     if (hg_board_init(&b, 0, HG_MODEL_REDUCED_CARTESIAN, &bp) != 0)
         return 1;
     m = hg_hexaglide_model(&b.m);
     d = hg_hexaglide_data(&b.d);
+#else
+    if (hg_board_init(&b, HG_MODEL_REDUCED_CARTESIAN, 0) != 0)
+        return 1;
+    m = &b.m;
+    d = &b.d;
+#endif
     hg_board_inputs_default(&b, &in);
     in.dout_values = 1u << 7;          /* the E-STOP loop (out-07) closed: amplifiers on */
     for (s = 0; s < WARMUP + n; s++) {
         int k;
-        servo(m, d->t_s, d->z_m, in.dac_v);
+#if PLANT_INTERFACE
+        servo(m, d->t_s, d->z_m, in.dac_v, in.pos_cmd);   /* motion's commands: the tool-path error's */
+#else
+        servo(m, d->t_s, d->z_m, in.dac_v, 0);
+#endif
         for (k = 6; k < HG_BOARD_DACS; k++)
             in.dac_v[k] = 0.0;
         in.dac_written = 1;

@@ -151,6 +151,30 @@ int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const dou
     return 0;
 }
 
+/* Y's first n columns = Mh^-1 (rows idx[0..n) of pc)^T: six at a time
+ * (hg_spd6_apply6, columns past n 0 and unused) when most are held, else
+ * one by one; each column hg_spd6_apply's bits either way. */
+static void hold_response(const hg_mass_snapshot *s, const double pc[36], const int idx[6], int n, double Y[36])
+{
+    int i, j;
+    if (n > 3) {
+        for (i = 0; i < 6; i++)
+            HG_UNROLL
+            for (j = 0; j < 6; j++)
+                Y[6 * j + i] = i < n ? pc[6 * idx[i] + j] : 0.0;
+        hg_spd6_apply6(s->ldl, s->inv_d, Y);
+        return;
+    }
+    for (i = 0; i < n; i++) {
+        double y[6];
+        for (j = 0; j < 6; j++)
+            y[j] = pc[6 * idx[i] + j];
+        hg_spd6_apply(s->ldl, s->inv_d, y);
+        for (j = 0; j < 6; j++)
+            Y[6 * j + i] = y[j];
+    }
+}
+
 void hg_cartesian_hold(const hg_model *m, hg_data *d, const double z0[6], unsigned held,
                        double *q1, double *qd1)
 {
@@ -173,13 +197,9 @@ void hg_cartesian_hold(const hg_model *m, hg_data *d, const double z0[6], unsign
         memcpy(d->work.sc1_key, q1 + 9, sizeof d->work.sc1_key);
         d->work.sc1_valid = 1;
         hg_gen_reduced_constraints(m->k, q1, sc, phi, pz, pc);
-        for (i = 0; i < 6; i++)         /* Y = Mh^-1 J^T, G = J Y with J = Phi_c's held rows */
-            HG_UNROLL
-            for (j = 0; j < 6; j++)
-                Y[6 * j + i] = i < n ? pc[6 * idx[i] + j] : 0.0;   /* (columns past n: 0, unused) */
+        hold_response(s, pc, idx, n, Y);   /* Y = Mh^-1 J^T, G = J Y with J = Phi_c's held rows */
         for (i = 0; i < n; i++)
             worst = fmax(worst, fabs(phi[idx[i]]));
-        hg_spd6_apply6(s->ldl, s->inv_d, Y);   /* each column hg_spd6_apply's bits */
         for (i = 0; i < n; i++) {
             const double *row = pc + 6 * idx[i];
             for (j = 0; j + 1 < n; j += 2) {  /* two columns at a time, each summed over k in order */
