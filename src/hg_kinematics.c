@@ -143,34 +143,47 @@ void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6
     }
 }
 
+/* The axes the Euler angles turn about, in the world: d(R r)/d(A,B,C) = axis_m x (R r). */
+static void rotation_axes(const double R[9], const double sc[6], double axis[3][3])
+{
+    axis[0][0] = R[0]; axis[0][1] = R[3]; axis[0][2] = R[6];          /* Rz Ry e_x */
+    axis[1][0] = -sc[4]; axis[1][1] = sc[5]; axis[1][2] = 0;          /* Rz e_y */
+    axis[2][0] = 0; axis[2][1] = 0; axis[2][2] = 1;                   /* e_z */
+}
+
+/* One bar's row of d(phi)/d(pose) from its head offset w = R r and d = B - A:
+ * dPhi/dP = -2 d ; dPhi/dangle_m = -2 d . (axis_m x w) = -2 axis_m . (w x d). */
+static void jacobian_row(const double axis[3][3], const double w[3], const double d[3], double row[6])
+{
+    double wxd[3];
+    int m;
+    wxd[0] = w[1] * d[2] - w[2] * d[1];
+    wxd[1] = w[2] * d[0] - w[0] * d[2];
+    wxd[2] = w[0] * d[1] - w[1] * d[0];
+    for (m = 0; m < 3; m++)
+        row[m] = -2.0 * d[m];
+    for (m = 0; m < 3; m++)
+        row[3 + m] = -2.0 * (axis[m][0] * wxd[0] + axis[m][1] * wxd[1] + axis[m][2] * wxd[2]);
+}
+
 void hg_constraint_jacobian(const hg_geometry *g, const double z[6], const double pose[6],
                             double jac_pose[36], double dphi_dz[6])
 {
     const double h = hg_home_height(g);
     double R[9], w[6][3], sc[6];
-    double axis[3][3]; /* d(R r)/d(A,B,C) = axis_m x (R r) */
-    int k, m;
+    double axis[3][3];
+    int k;
     hg_head_trig(pose, sc);
     hg_rotation_sc(sc, R);
     head_offsets(g, R, w);
-    axis[0][0] = R[0]; axis[0][1] = R[3]; axis[0][2] = R[6];          /* Rz Ry e_x */
-    axis[1][0] = -sc[4]; axis[1][1] = sc[5]; axis[1][2] = 0;          /* Rz e_y */
-    axis[2][0] = 0; axis[2][1] = 0; axis[2][2] = 1;                   /* e_z */
+    rotation_axes(R, sc, axis);
     for (k = 0; k < HG_NBARS; k++) {
-        double d[3], wxd[3], b[3];
+        double d[3], b[3];
         hg_guide_point(g, k, b);
         d[0] = b[0] - pose[0] - w[k][0];
         d[1] = b[1] - pose[1] - w[k][1];
         d[2] = h + z[k] - pose[2] - w[k][2];
-        /* dPhi/dP = -2 d ; dPhi/dangle_m = -2 d . (axis_m x w) = -2 axis_m . (w x d) */
-        wxd[0] = w[k][1] * d[2] - w[k][2] * d[1];
-        wxd[1] = w[k][2] * d[0] - w[k][0] * d[2];
-        wxd[2] = w[k][0] * d[1] - w[k][1] * d[0];
-        for (m = 0; m < 3; m++)
-            jac_pose[6 * k + m] = -2.0 * d[m];
-        for (m = 0; m < 3; m++)
-            jac_pose[6 * k + 3 + m] = -2.0 * (axis[m][0] * wxd[0] + axis[m][1] * wxd[1] +
-                                              axis[m][2] * wxd[2]);
+        jacobian_row(axis, w[k], d, jac_pose + 6 * k);
         if (dphi_dz)
             dphi_dz[k] = 2.0 * d[2];
     }
@@ -229,15 +242,13 @@ static void newton_terms(const hg_geometry *g, const hg_frame *f, const double z
                          double phi[6], double jac[36])
 {
     double R[9], w[6][3], sc[6], axis[3][3];
-    int k, m, r;
+    int k, r;
     hg_head_trig(c, sc);
     hg_rotation_sc(sc, R);
-    axis[0][0] = R[0]; axis[0][1] = R[3]; axis[0][2] = R[6];          /* as hg_constraint_jacobian */
-    axis[1][0] = -sc[4]; axis[1][1] = sc[5]; axis[1][2] = 0;
-    axis[2][0] = 0; axis[2][1] = 0; axis[2][2] = 1;
+    rotation_axes(R, sc, axis);
     for (k = 0; k < HG_NBARS; k++) {
         const double *p = f->head[k], *b = f->guide[k];
-        double a[3], d[3], wxd[3], dx, dy, dz;
+        double a[3], d[3], dx, dy, dz;
         for (r = 0; r < 3; r++)
             w[k][r] = R[3 * r] * p[0] + R[3 * r + 1] * p[1] + R[3 * r + 2] * p[2];
         for (r = 0; r < 3; r++)        /* hg_joint_points_rot's head joint */
@@ -249,13 +260,7 @@ static void newton_terms(const hg_geometry *g, const hg_frame *f, const double z
         d[0] = b[0] - c[0] - w[k][0];
         d[1] = b[1] - c[1] - w[k][1];
         d[2] = f->h + z[k] - c[2] - w[k][2];
-        wxd[0] = w[k][1] * d[2] - w[k][2] * d[1];
-        wxd[1] = w[k][2] * d[0] - w[k][0] * d[2];
-        wxd[2] = w[k][0] * d[1] - w[k][1] * d[0];
-        for (m = 0; m < 3; m++)
-            jac[6 * k + m] = -2.0 * d[m];
-        for (m = 0; m < 3; m++)
-            jac[6 * k + 3 + m] = -2.0 * (axis[m][0] * wxd[0] + axis[m][1] * wxd[1] + axis[m][2] * wxd[2]);
+        jacobian_row(axis, w[k], d, jac + 6 * k);
     }
 }
 
