@@ -85,15 +85,22 @@ void hg_rotation(double a, double b, double c, double R[9])
     hg_rotation_sc(sc, R);
 }
 
+/* out = R p. */
+static inline void rotate(const double R[9], const double p[3], double out[3])
+{
+    int r;
+    for (r = 0; r < 3; r++)
+        out[r] = R[3 * r] * p[0] + R[3 * r + 1] * p[1] + R[3 * r + 2] * p[2];
+}
+
 /* World offsets w[k] = R r_k of the head joints from Op. */
 static void head_offsets(const hg_geometry *g, const double R[9], double w[6][3])
 {
-    int k, r;
+    int k;
     for (k = 0; k < HG_NBARS; k++) {
         double p[3];
         hg_head_point(g, k, p);
-        for (r = 0; r < 3; r++)
-            w[k][r] = R[3 * r] * p[0] + R[3 * r + 1] * p[1] + R[3 * r + 2] * p[2];
+        rotate(R, p, w[k]);
     }
 }
 
@@ -126,9 +133,16 @@ void hg_joint_points_rot(const hg_frame *f, const double R[9], const double z[6]
         B[k][0] = f->guide[k][0];
         B[k][1] = f->guide[k][1];
         B[k][2] = f->h + z[k];
-        for (r = 0; r < 3; r++)        /* Op + R r_k, as head_offsets */
+        for (r = 0; r < 3; r++)        /* Op + R r_k, rotate() in place (the guard's hot path) */
             A[k][r] = pose[r] + (R[3 * r] * p[0] + R[3 * r + 1] * p[1] + R[3 * r + 2] * p[2]);
     }
+}
+
+/* A bar's constraint |B - A|^2 - l^2. */
+static inline double bar_phi(const double B[3], const double A[3], double l)
+{
+    double dx = B[0] - A[0], dy = B[1] - A[1], dz = B[2] - A[2];
+    return dx * dx + dy * dy + dz * dz - l * l;
 }
 
 void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6],
@@ -137,10 +151,8 @@ void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6
     double B[6][3], A[6][3];
     int k;
     hg_joint_points(g, z, pose, B, A);
-    for (k = 0; k < HG_NBARS; k++) {
-        double dx = B[k][0] - A[k][0], dy = B[k][1] - A[k][1], dz = B[k][2] - A[k][2];
-        phi[k] = dx * dx + dy * dy + dz * dz - g->l_m * g->l_m;
-    }
+    for (k = 0; k < HG_NBARS; k++)
+        phi[k] = bar_phi(B[k], A[k], g->l_m);
 }
 
 /* The axes the Euler angles turn about, in the world: d(R r)/d(A,B,C) = axis_m x (R r). */
@@ -241,26 +253,23 @@ double hg_bar_length_error(const hg_geometry *g, const double z[6], const double
 static void newton_terms(const hg_geometry *g, const hg_frame *f, const double z[6], const double c[6],
                          double phi[6], double jac[36])
 {
-    double R[9], w[6][3], sc[6], axis[3][3];
+    double R[9], sc[6], axis[3][3];
     int k, r;
     hg_head_trig(c, sc);
     hg_rotation_sc(sc, R);
     rotation_axes(R, sc, axis);
     for (k = 0; k < HG_NBARS; k++) {
-        const double *p = f->head[k], *b = f->guide[k];
-        double a[3], d[3], dx, dy, dz;
+        const double *b = f->guide[k];
+        const double B[3] = {b[0], b[1], f->h + z[k]};   /* hg_joint_points_rot's joints */
+        double w[3], a[3], d[3];
+        rotate(R, f->head[k], w);
         for (r = 0; r < 3; r++)
-            w[k][r] = R[3 * r] * p[0] + R[3 * r + 1] * p[1] + R[3 * r + 2] * p[2];
-        for (r = 0; r < 3; r++)        /* hg_joint_points_rot's head joint */
-            a[r] = c[r] + w[k][r];
-        dx = b[0] - a[0];
-        dy = b[1] - a[1];
-        dz = (f->h + z[k]) - a[2];
-        phi[k] = dx * dx + dy * dy + dz * dz - g->l_m * g->l_m;
-        d[0] = b[0] - c[0] - w[k][0];
-        d[1] = b[1] - c[1] - w[k][1];
-        d[2] = f->h + z[k] - c[2] - w[k][2];
-        jacobian_row(axis, w[k], d, jac + 6 * k);
+            a[r] = c[r] + w[r];
+        phi[k] = bar_phi(B, a, g->l_m);
+        d[0] = b[0] - c[0] - w[0];     /* hg_constraint_jacobian's d */
+        d[1] = b[1] - c[1] - w[1];
+        d[2] = f->h + z[k] - c[2] - w[2];
+        jacobian_row(axis, w, d, jac + 6 * k);
     }
 }
 

@@ -16,6 +16,7 @@
 #include "hg_gen_reduced.h"
 
 #define HOLD_NEWTON_ITER 3   /* Newton steps that put the held carriages back (each squares the error) */
+#define HOLD_SIX_AT_ONCE 4   /* held carriages from which one six-column mass solve costs less than one per column */
 
 /* One Newton step z -= phi / Phi_z at the predicted state, then
  * z' = A c' = -Phi_z^-1 (Phi_c c'). Phi is exactly quadratic in z_k
@@ -152,12 +153,12 @@ int hg_cartesian_accel(const hg_model *m, hg_data *d, const double *q, const dou
 }
 
 /* Y's first n columns = Mh^-1 (rows idx[0..n) of pc)^T: six at a time
- * (hg_spd6_apply6, columns past n 0 and unused) when most are held, else
+ * (hg_spd6_apply6, columns past n 0 and unused) from HOLD_SIX_AT_ONCE held, else
  * one by one; each column hg_spd6_apply's bits either way. */
 static void hold_response(const hg_mass_snapshot *s, const double pc[36], const int idx[6], int n, double Y[36])
 {
     int i, j;
-    if (n > 3) {
+    if (n >= HOLD_SIX_AT_ONCE) {
         for (i = 0; i < 6; i++)
             HG_UNROLL
             for (j = 0; j < 6; j++)

@@ -461,7 +461,10 @@ def costs(xs, prob, notch=None, beat=None):
     early = beat is not None and len(settles) > 1
     first = [[sj] + tj[:1] if early else [sj] + tj for _g, sj, tj in cands]
     res = hg.batch([j for js in first for j in js], prob.get("threads", 1))
-    done = [res[sum(map(len, first[:i])):][:len(first[i])] for i in range(len(cands))]
+    done, at = [], 0
+    for js in first:                   # each candidate's share of res: step, then its runs
+        done.append(res[at:at + len(js)])
+        at += len(js)
     margin = [None] * len(cands)
     out, more = [None] * len(cands), []
     for i, (g, sj, tj) in enumerate(cands):
