@@ -22,15 +22,31 @@ typedef struct {
 /* 1 when the train is rigid (k_axial = 0). */
 int hg_drivetrain_rigid(const hg_drivetrain_channel *c);
 
+/* The train's potential energy (J) at deflection d: k (|d| - backlash/2)^2 / 2 in contact. */
+double hg_drivetrain_energy(const hg_drivetrain_channel *c, double d);
+
+/* The spring's compression beyond the free play (0 inside it). */
+static inline double hg_drivetrain_engaged(const hg_drivetrain_channel *c, double d)
+{
+    double half = 0.5 * c->backlash;
+    return d > half ? d - half : d < -half ? d + half : 0.0;
+}
+
 /* The force (N) the train puts on the load, toward the motor's side
  * positive, at deflection d = motor - load (m) and its rate dd (m/s):
  * k (d -+ backlash/2) + c dd while the flanks touch (|d| > backlash/2),
  * 0 in the free play; with backlash the flanks only push (the damper
  * cannot pull them apart: the force stops at 0). (The motor gets the
- * opposite.) */
-double hg_drivetrain_force(const hg_drivetrain_channel *c, double d, double dd);
-
-/* The train's potential energy (J) at deflection d: k (|d| - backlash/2)^2 / 2 in contact. */
-double hg_drivetrain_energy(const hg_drivetrain_channel *c, double d);
+ * opposite.) Inline: every stage of every substep calls it six times. */
+static inline double hg_drivetrain_force(const hg_drivetrain_channel *c, double d, double dd)
+{
+    double e = hg_drivetrain_engaged(c, d), f;
+    if (e == 0.0)
+        return 0.0;
+    f = c->k_axial * e + c->c_axial * dd;
+    if (c->backlash > 0.0)             /* flanks in contact push, never pull: the damper stops at 0 */
+        return e > 0.0 ? (f > 0.0 ? f : 0.0) : (f < 0.0 ? f : 0.0);
+    return f;
+}
 
 #endif

@@ -295,9 +295,12 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
         drive_n[k] = d->work.fric_est_n[k];
     }
     hg_carriage_forces(m, d->z_m, d->zd_mps, drive_n, fz);
-    if (m->flexible)                   /* the trains' force at the step's start */
-        for (k = 0; k < 6; k++)
-            fz[k] += hg_drivetrain_force(&m->train[k], d->zr_m[k] - d->z_m[k], d->zrd_mps[k] - d->zd_mps[k]);
+    if (m->flexible)                   /* the trains' force at the step's start (the rotors' stage 0 too) */
+        for (k = 0; k < 6; k++) {
+            d->work.train_n[k] = hg_drivetrain_force(&m->train[k], d->zr_m[k] - d->z_m[k],
+                                                     d->zrd_mps[k] - d->zd_mps[k]);
+            fz[k] += d->work.train_n[k];
+        }
     switch (d->broken_bars & HG_BARS_ALL ? HG_MODEL_COUNT : m->kind) {
     case HG_MODEL_COUNT:               /* a bar broken: any kind */
         rc = step_broken(m, d, drive_n, fz, dt_s, q1, qd1, qdd, &res);

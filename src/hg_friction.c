@@ -183,13 +183,13 @@ solve(const int n, const hg_friction_channel *c, const double *W, const double *
         vrev[k] = 0.0;
     }
     for (it = 0; it < HG_FRICTION_MAX_ITER; it++) {
-        int worst = -1, changed = 0, pass;
+        int worst = -1, changed = 0, pass, moved = 1;
         double excess = 0.0;
         /* the sliding force over the step follows the speed from v0 to its
          * end value: a few passes of the Stribeck mean (it varies by at most
          * f_static - f_coulomb) */
         for (pass = 0; pass < SLIDE_PASSES; pass++) {
-            int moved = 0;
+            moved = 0;
             rc = set_impulses(n, W, vstar, stuck, &f, sigma, slide, o->impulse);
             if (rc)
                 return rc;
@@ -206,9 +206,11 @@ solve(const int n, const hg_friction_channel *c, const double *W, const double *
             if (!moved)
                 break;                     /* a fixed point: further passes change nothing */
         }
-        rc = set_impulses(n, W, vstar, stuck, &f, sigma, slide, o->impulse);
-        if (rc)
-            return rc;
+        if (moved) {                       /* else o->impulse is already this set's and slide's */
+            rc = set_impulses(n, W, vstar, stuck, &f, sigma, slide, o->impulse);
+            if (rc)
+                return rc;
+        }
         for (k = 0; k < n; k++)          /* a stuck axis the load breaks away */
             if ((stuck >> k) & 1u && fabs(o->impulse[k]) - ps[k] > excess) {
                 excess = fabs(o->impulse[k]) - ps[k];

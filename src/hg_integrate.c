@@ -37,6 +37,12 @@ improved_euler(const int n, const double *restrict q0, const double *restrict qd
     }
 }
 
+/* A rotor's acceleration under its motor and the train's force f (N) on the carriage. */
+static inline double rotor_acc(const hg_model *m, const hg_data *ctx, int k, double f)
+{
+    return (ctx->work.motor_n[k] - f) / m->rotor_mass_kg;
+}
+
 /* Flexible trains: each rotor's acceleration at its stage state and the
  * carriages' (z, z') of the stage, the train's force added to the
  * carriages' forces fz: (motor - train) / m_rotor. */
@@ -47,7 +53,7 @@ static void rotor_accel(const hg_model *m, const hg_data *ctx, const double *z, 
     for (k = 0; k < 6; k++) {
         double f = hg_drivetrain_force(&m->train[k], w->rs[k] - z[k], w->rv[k] - zd[k]);
         fz[k] += f;
-        w->ra[k] = (ctx->work.motor_n[k] - f) / m->rotor_mass_kg;
+        w->ra[k] = rotor_acc(m, ctx, k, f);
     }
 }
 
@@ -62,15 +68,16 @@ static int stage_accel(const hg_model *m, const hg_dae *f, hg_data *ctx, stage_w
     return f->accel(m, ctx, w->qs, w->vs, w->fz, w->a);
 }
 
-/* The rotors at the step's start (stage 0): their acceleration, with fz0
- * that already holds the trains' force (hg_step). */
-static void rotor_start(const hg_model *m, const hg_data *ctx, const double *q0, const double *qd0,
-                        stage_ws *w)
+/* The rotors at the step's start (stage 0): their acceleration from the
+ * trains' force hg_step put into fz0 (ctx->work.train_n, at the rotors'
+ * and carriages' start: q0, qd0 are the carriages' z, z'). */
+static void rotor_start(const hg_model *m, const hg_data *ctx, stage_ws *w)
 {
-    double unused[6] = {0, 0, 0, 0, 0, 0};
+    int k;
     memcpy(w->rs, ctx->zr_m, sizeof w->rs);
     memcpy(w->rv, ctx->zrd_mps, sizeof w->rv);
-    rotor_accel(m, ctx, q0, qd0, w, unused);
+    for (k = 0; k < 6; k++)
+        w->ra[k] = rotor_acc(m, ctx, k, ctx->work.train_n[k]);
 }
 
 void hg_mass_save_reduced(hg_mass_snapshot *s, const double ldl[36], const double inv_d[6],
@@ -283,7 +290,7 @@ runge_kutta(const int n, int ns, const double *c, const double *b, const hg_mode
                 w->sv[i] = 0.0;
             }
             if (m->flexible) {
-                rotor_start(m, ctx, q0, qd0, w);
+                rotor_start(m, ctx, w);
                 for (i = 0; i < 6; i++)
                     w->rsq[i] = w->rsv[i] = 0.0;
             }
@@ -352,7 +359,7 @@ int hg_integrate(const hg_model *m, hg_integrator scheme, const hg_dae *f, hg_da
         else
             improved_euler(n, q0, qd0, qdd, dt, q1, qd1);
         if (m->flexible) {             /* the rotors the same way */
-            rotor_start(m, ctx, q0, qd0, w);
+            rotor_start(m, ctx, w);
             improved_euler(6, ctx->zr_m, ctx->zrd_mps, w->ra, dt, ctx->work.rotor1_m, ctx->work.rotor1_mps);
         }
     } else {

@@ -8,16 +8,16 @@
 static inline __attribute__((always_inline)) int lu_factor(int n, double *a, int *piv)
 {
     int i, j, k;
-    double amax = 0.0;
+    double amax = 0.0, nonfinite = 0.0;
     if (n < 1 || n > HG_LINALG_MAX_N)
         return HG_ERR_SINGULAR_JACOBIAN;
-    for (i = 0; i < n * n; i++) {
-        if (!isfinite(a[i]))
-            return HG_ERR_SINGULAR_JACOBIAN;
-        if (fabs(a[i]) > amax)
-            amax = fabs(a[i]);
+    HG_UNROLL
+    for (i = 0; i < n * n; i++) {     /* without a branch per entry */
+        double v = fabs(a[i]);
+        nonfinite += v - v;           /* NaN once an entry is Inf or NaN, else exactly 0 */
+        amax = v > amax ? v : amax;
     }
-    if (amax == 0.0)
+    if (!(nonfinite == 0.0) || amax == 0.0)
         return HG_ERR_SINGULAR_JACOBIAN;
     for (i = 0; i < n; i++)
         piv[i] = i;
@@ -66,16 +66,22 @@ static inline __attribute__((always_inline)) void lu_solve(int n, const double *
     double x[HG_LINALG_MAX_N];
     int i, j, r;
     for (r = 0; r < nrhs; r++) { /* one column at a time: only column r is read and written */
+        HG_UNROLL
         for (i = 0; i < n; i++)
             x[i] = b[piv[i] * nrhs + r];
+        HG_UNROLL
         for (i = 1; i < n; i++)
+            HG_UNROLL
             for (j = 0; j < i; j++)
                 x[i] -= lu[i * n + j] * x[j];
+        HG_UNROLL
         for (i = n - 1; i >= 0; i--) {
+            HG_UNROLL
             for (j = i + 1; j < n; j++)
                 x[i] -= lu[i * n + j] * x[j];
             x[i] /= lu[i * n + i];
         }
+        HG_UNROLL
         for (i = 0; i < n; i++)
             b[i * nrhs + r] = x[i];
     }

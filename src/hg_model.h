@@ -92,6 +92,7 @@ typedef struct {
     double fric_impulse[6];      /* friction impulses of the step (N s), committed by hg_step */
     unsigned fric_stuck;         /* carriages stuck at the step's end */
     double motor_n[6];           /* flexible trains: the motors' force over the step (held) */
+    double train_n[6];           /* ... the trains' force at the step's start (hg_step: in fz0) */
     double rotor1_m[6], rotor1_mps[6]; /* ... the rotors at the step's end, committed by hg_step */
     /* caches that outlive the call: each holds a self-contained fact (valid
      * in any copy of the hg_data, whatever its state), emptied by hg_data_reset */

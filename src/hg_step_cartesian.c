@@ -199,8 +199,10 @@ void hg_cartesian_hold(const hg_model *m, hg_data *d, const double z0[6], unsign
         d->work.sc1_valid = 1;
         hg_gen_reduced_constraints(m->k, q1, sc, phi, pz, pc);
         hold_response(s, pc, idx, n, Y);   /* Y = Mh^-1 J^T, G = J Y with J = Phi_c's held rows */
-        for (i = 0; i < n; i++)
-            worst = fmax(worst, fabs(phi[idx[i]]));
+        for (i = 0; i < n; i++) {      /* libm's fmax(worst, |phi|), without its call */
+            double v = fabs(phi[idx[i]]);
+            worst = v > worst ? v : worst;
+        }
         for (i = 0; i < n; i++) {
             const double *row = pc + 6 * idx[i];
             for (j = 0; j + 1 < n; j += 2) {  /* two columns at a time, each summed over k in order */

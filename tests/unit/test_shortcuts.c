@@ -9,8 +9,9 @@
  *    bars' KKT factors, a T with an inf);
  *  - hg_drive_step with its memo of exp(-dt / tau) (kept over calls of
  *    changing step lengths and channels) and without;
- *  - hg_lu_factor's 6x6 path (constant bounds, unrolled) against the
- *    generic loop, copied here;
+ *  - hg_lu_factor and hg_lu_solve (constant bounds for 6x6, unrolled
+ *    loops, a scan without a branch per entry) against their generic
+ *    loops, copied here;
  *  - hg_forward_kinematics's Newton terms (one sin/cos, rotation and frame
  *    for phi and its Jacobian) against hg_constraints +
  *    hg_constraint_jacobian, the iterations it replaces;
@@ -273,27 +274,66 @@ static int lu_reference(int n, double *a, int *piv)
     return 0;
 }
 
+/* hg_lu_solve as it was before its unrolled loops. */
+static void lu_solve_reference(int n, const double *lu, const int *piv, int nrhs, double *b)
+{
+    double x[HG_LINALG_MAX_N];
+    int i, j, r;
+    for (r = 0; r < nrhs; r++) {
+        for (i = 0; i < n; i++)
+            x[i] = b[piv[i] * nrhs + r];
+        for (i = 1; i < n; i++)
+            for (j = 0; j < i; j++)
+                x[i] -= lu[i * n + j] * x[j];
+        for (i = n - 1; i >= 0; i--) {
+            for (j = i + 1; j < n; j++)
+                x[i] -= lu[i * n + j] * x[j];
+            x[i] /= lu[i * n + i];
+        }
+        for (i = 0; i < n; i++)
+            b[i * nrhs + r] = x[i];
+    }
+}
+
+/* hg_lu_factor and hg_lu_solve against the loops above, n = 6 (constant
+ * bounds) and other sizes, with singular, zero, Inf and NaN matrices. */
 static void test_lu6(void)
 {
-    int t, i, same = 1, singular = 0;
+    static const int sizes[] = {6, 6, 6, 1, 4, 9, 13};
+    int t, i, same = 1, singular = 0, solved = 0;
     for (t = 0; t < 4000; t++) {
-        double a[36], b[36];
-        int pa[6], pb[6], ra, rb;
-        for (i = 0; i < 36; i++)
+        const int n = sizes[t % 7], nrhs = 1 + t % 3;
+        double a[HG_LINALG_MAX_N * HG_LINALG_MAX_N], b[HG_LINALG_MAX_N * HG_LINALG_MAX_N];
+        double x[3 * HG_LINALG_MAX_N], y[3 * HG_LINALG_MAX_N];
+        int pa[HG_LINALG_MAX_N], pb[HG_LINALG_MAX_N], ra, rb;
+        for (i = 0; i < n * n; i++)
             a[i] = hg_test_uniform(-1, 1) * (i % 5 == 0 ? 1e3 : 1.0);
-        if (t % 50 == 1)                       /* a repeated row: singular */
-            for (i = 0; i < 6; i++)
-                a[6 + i] = a[i];
+        if (t % 50 == 1 && n > 1)              /* a repeated row: singular */
+            for (i = 0; i < n; i++)
+                a[n + i] = a[i];
         if (t % 97 == 2)
-            a[17] = INFINITY;
+            a[n * n - 1] = t % 2 ? INFINITY : -INFINITY;
+        if (t % 89 == 3)
+            a[n * n / 2] = NAN;
+        if (t % 211 == 4)
+            memset(a, 0, sizeof a);
         memcpy(b, a, sizeof a);
-        ra = hg_lu_factor(6, a, pa);
-        rb = lu_reference(6, b, pb);
+        ra = hg_lu_factor(n, a, pa);
+        rb = lu_reference(n, b, pb);
         singular += rb != 0;
-        same &= ra == rb && (ra != 0 || (same_bits(a, b, 36) && memcmp(pa, pb, sizeof pa) == 0));
+        same &= ra == rb && (ra != 0 || (same_bits(a, b, n * n) && memcmp(pa, pb, n * sizeof(int)) == 0));
+        if (ra != 0 || rb != 0)
+            continue;
+        for (i = 0; i < n * nrhs; i++)
+            x[i] = y[i] = hg_test_uniform(-1, 1);
+        hg_lu_solve(n, a, pa, nrhs, x);
+        lu_solve_reference(n, b, pb, nrhs, y);
+        same &= same_bits(x, y, n * nrhs);
+        solved++;
     }
-    CHECK(same && singular >= 80, "hg_lu_factor 6x6 = the generic loop bit for bit on 4000 matrices (%d refused alike)",
-          singular);
+    CHECK(same && singular >= 80 && solved > 3000,
+          "hg_lu_factor and hg_lu_solve = the generic loops bit for bit on 4000 matrices of 1..13 "
+          "(%d refused alike: singular, zero, Inf, NaN; %d solves of 1..3 columns)", singular, solved);
 }
 
 /* hg_forward_kinematics's Newton iteration as it was: hg_constraints and
