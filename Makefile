@@ -117,7 +117,7 @@ bench: all
 	@bench/run_bench.sh
 
 # each bench/bench_*.c is one program; bench_mujoco* also links MuJoCo
-$(BUILD)/bench/%: bench/%.c bench/bench_timing.h $(CORE_OBJS)
+$(BUILD)/bench/%: bench/%.c bench/bench_timing.h bench/bench_loop.h $(CORE_OBJS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_HOST) -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST) $(if $(findstring mujoco,$*),-lmujoco)
 # ... and includes the MuJoCo model generator
@@ -140,7 +140,7 @@ $(BUILD)/bench/bench_baseline: bench/bench_baseline.c bench/engine_shim.c bench/
 profile: host
 	@tools/install-deps.sh bench
 	@bench/profile_step.sh $(PROFILE_ARGS)
-$(BUILD)/bench/profile_step: bench/profile_step.c $(CORE_OBJS)
+$(BUILD)/bench/profile_step $(BUILD)/bench/profile_loop: $(BUILD)/bench/%: bench/%.c bench/bench_loop.h $(CORE_OBJS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_HOST) -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST)
 

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include "hg_batch.h"
 #include "bench_timing.h"
+#include "bench_loop.h"
 
 #define N 2000
 #define JOBS 16
@@ -36,30 +37,18 @@ int main(int argc, char **argv)
     hg_board_params bp[2];
     static const int params_of[TRAINS] = {0, 0, 1}, skip_of[TRAINS] = {1, 0, 1};
     hg_batch_job jobs[JOBS];
-    int reps = argc > 1 ? atoi(argv[1]) : 5, cores = hg_batch_cores(), nt, t, r, i, k, train;
+    int reps = argc > 1 ? atoi(argv[1]) : 5, cores = hg_batch_cores(), nt, t, r, i, train;
     int counts[3] = {1, 2, cores};
     const char *name[TRAINS] = {"flexible", "flexible_tool", "rigid"};
     if (reps < 1 || reps > REPS_MAX)
         reps = 5;
     nt = cores > 2 ? 3 : 2;
-    for (i = 0; i < N; i++)
-        for (k = 0; k < 6; k++)
-            cmd[6 * i + k] = (10.0 + 2 * k) * (1 - cos(2 * 3.14159265358979323846 * i / N));
+    bench_loop_move(cmd, N, 0);
     for (train = 0; train < 2; train++)           /* the Hexaglide's defaults, 1 substep asked, Heun */
         hg_board_params_default(0, hg_plant_at(0)->default_variant, &bp[train]);
     bp[1].plant.v[hg_plant_param_find(hg_plant_at(0), hg_plant_at(0)->default_variant, "k_axial")] = 0.0;
-    for (i = 0; i < JOBS; i++) {
-        hg_loop_config_default(&cfg[i]);
-        for (k = 0; k < 6; k++) {
-            cfg[i].pid[k].pgain = 15.0 + i;
-            cfg[i].pid[k].igain = 40.0 + 5 * i;
-            cfg[i].pid[k].dgain = 0.026;
-            cfg[i].pid[k].ff1 = 0.026;
-            cfg[i].pid[k].ff2 = 0.00036;
-            cfg[i].pid[k].bias = 0.26;
-            cfg[i].pid[k].maxoutput = 10.0;
-        }
-    }
+    for (i = 0; i < JOBS; i++)
+        bench_loop_gains(&cfg[i], i);
     printf("hg_batch_run: %d runs of %d periods, %d core(s) online, %d repeats interleaved\n", JOBS, N, cores, reps);
     for (train = 0; train < TRAINS; train++) {
         double us[3][REPS_MAX], med[3], p99;

@@ -5,7 +5,8 @@
 # the servo motion and the whole board step, by stage
 # (bench/profile_stages.py). --baseline profiles commit d20d9e5's code
 # instead (bench/baseline.sh builds it from git into build/baseline).
-# PERIODS profiled steps (default 10000) after 2000 warm-up ones.
+# PERIODS profiled steps (default 10000) after 2000 warm-up ones; then
+# (today only) the offline closed loop per period (bench/profile_loop.c).
 # Needs valgrind (make profile installs it).
 cd "$(dirname "$0")/.." || exit 1
 tree=today; bin=build/bench/profile_step
@@ -29,4 +30,15 @@ for mode in step board; do
     valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect=$root --separate-callers=12 \
         --compress-strings=no --compress-pos=no "$bin" $mode "$n" 2>/dev/null || exit 1
     /usr/bin/python3 bench/profile_stages.py "$out" "$n" | sed "s/^BENCH profile_board_step/BENCH profile_${tree}_$mode/"
+done
+[ $tree = today ] || exit 0
+# the offline closed loop (hg_loop in hg_batch_run: pids and board), per period (bench/profile_loop.c)
+make -s build/bench/profile_loop || exit 1
+for w in "flexible 2000 0" "flexible_tool 2000 0" "rigid 2000 0" "flexible 2000 1500"; do
+    set -- $w
+    out=build/bench/callgrind.loop.$1.$3
+    echo "== today: loop $1, 2 runs of $2 periods after $3 at rest (callgrind --toggle-collect=hg_loop_run_traced)"
+    valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect=hg_loop_run_traced \
+        build/bench/profile_loop "$1" "$2" "$3" 2>/dev/null || exit 1
+    awk -v w="$1_$3" -v n=$((2 * ($2 + $3))) '/^summary:/ { printf "BENCH profile_loop_%s instr_per_period=%d\n", w, $2 / n }' "$out"
 done

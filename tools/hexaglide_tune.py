@@ -434,9 +434,12 @@ def margin_penalty(m):
 def run_cost(runs, prob):
     """The trajectory runs' share of a candidate's cost: worst peak |f-error| over joints and
     runs plus a fifth of the worst RMS (mm), plus 1 mm per volt above the limit; None when a
-    run tripped. Every term is a maximum over the runs: a subset of them bounds it from below."""
+    run tripped; 0 for no run (a lower bound: every term is a maximum over the runs, >= 0, so
+    a subset of them bounds it from below)."""
     if not all(r.ok for r in runs):
         return None
+    if not runs:
+        return 0.0
     peak = max(r.peak_ferror_mm.max() for r in runs)
     rms = max(r.rms_ferror_mm.max() for r in runs)
     volts = max(r.peak_output_v.max() for r in runs)
@@ -448,9 +451,11 @@ def costs(xs, prob, notch=None, beat=None):
     threads, no Python per period): run_cost over the trajectory runs, plus penalties for
     step overshoot and the margins on the plant; 1 - 1e-9 per period run when a run trips.
     beat[i] (optional): the cost candidate i must not exceed to be kept (the population member
-    it competes with). Every candidate's step and first run go first; one whose cost is
-    already above beat[i] from them runs no further and gets that lower bound instead of its
-    cost: it loses either way, so the search's choices, and its answer, are the full costs'."""
+    it competes with). Then the candidates run in stages, every candidate's step run first,
+    then its first trajectory run, then the rest: one whose cost is already above beat[i]
+    after a stage (the step's settling and overshoot and the margins, then the first run's
+    errors too) runs no further and gets that lower bound instead of its cost: it loses
+    either way, so the search's choices, and its answer, are the full costs'."""
     settles = prob["search_settles"]
     cands = []
     for x in xs:
@@ -458,39 +463,48 @@ def costs(xs, prob, notch=None, beat=None):
         cfg = loop_cfg(gains, prob, notch)
         cands.append((gains, step_job(cfg, prob, tool_error=False),
                       trajectory_jobs(cfg, prob, settles, tool_error=False)))
-    early = beat is not None and len(settles) > 1
-    first = [[sj] + tj[:1] if early else [sj] + tj for _g, sj, tj in cands]
-    res = hg.batch([j for js in first for j in js], prob.get("threads", 1))
-    done, at = [], 0
-    for js in first:                   # each candidate's share of res: step, then its runs
-        done.append(res[at:at + len(js)])
-        at += len(js)
-    margin = [None] * len(cands)
-    out, more = [None] * len(cands), []
-    for i, (g, sj, tj) in enumerate(cands):
-        if not early:
-            out[i] = penalized(g, done[i][0], sj, done[i][1:], prob, notch)
-            continue
-        # a trip in a later run costs 1 - 1e-9 per period, at least 1 - 1e-9 x every period
-        floor = 1.0 - 1e-9 * sum(j.cmd.shape[0] for j in tj)
-        lb = min(floor, penalized(g, done[i][0], sj, done[i][1:], prob, notch, 0.0))
-        if not lb > beat[i]:           # the margins (>= 0) only when the rest does not decide
-            margin[i] = margin_penalty(margins_of(g, prob, notch))
-            lb = min(floor, penalized(g, done[i][0], sj, done[i][1:], prob, notch, margin[i]))
-        if lb > beat[i]:
-            out[i] = lb
-        else:
-            more.append(i)
-    if early:
-        prob["stopped_early"] = prob.get("stopped_early", 0) + len(cands) - len(more)
-        rest = hg.batch([j for i in more for j in cands[i][2][1:]], prob.get("threads", 1)) if more else []
-        res = res + rest
-        for n, i in enumerate(more):
-            g, sj, tj = cands[i]
-            runs = done[i][1:] + rest[n * (len(tj) - 1):(n + 1) * (len(tj) - 1)]
-            out[i] = penalized(g, done[i][0], sj, runs, prob, notch, margin[i])
-    prob["periods_run"] = prob.get("periods_run", 0) + sum(r.periods for r in res)
+    jobs = [[sj] + tj for _g, sj, tj in cands]
+    stages = [slice(None)] if beat is None else [slice(0, 1), slice(1, 2), slice(2, None)]
+    done = [[] for _ in cands]                 # each candidate's results: step, then its runs
+    margin, out, live, ran = [None] * len(cands), [None] * len(cands), list(range(len(cands))), 0
+    for n, part in enumerate(stages):
+        todo = [(i, j) for i in live for j in jobs[i][part]]
+        res = hg.batch([j for _i, j in todo], prob.get("threads", 1)) if todo else []
+        for (i, _j), r in zip(todo, res):
+            done[i].append(r)
+        ran += sum(r.periods for r in res)
+        if n + 1 == len(stages):
+            break
+        keep = []
+        for i in live:
+            lb = lower_bound(cands[i], done[i], prob, notch, margin, i, beat[i]) \
+                if len(done[i]) < len(jobs[i]) else None
+            if lb is not None and lb > beat[i]:
+                out[i] = lb
+                prob.setdefault("stopped_at", [0, 0])[n] += 1
+            else:
+                keep.append(i)
+        live = keep
+    for i in live:
+        g, sj, _tj = cands[i]
+        out[i] = penalized(g, done[i][0], sj, done[i][1:], prob, notch, margin[i])
+    prob["periods_run"] = prob.get("periods_run", 0) + ran
     return out
+
+
+def lower_bound(cand, done, prob, notch, margin, i, beat):
+    """A lower bound of candidate cand's cost from its results so far (done: the step run,
+    then some of its trajectory runs): penalized's with the runs so far, at most the cost of a
+    trip in a later run (1 - 1e-9 x every period); the margins (>= 0; margin[i], computed
+    once and kept) only when the rest does not already exceed beat."""
+    g, sj, tj = cand
+    floor = 1.0 - 1e-9 * sum(j.cmd.shape[0] for j in tj)
+    lb = min(floor, penalized(g, done[0], sj, done[1:], prob, notch, 0.0))
+    if lb > beat:
+        return lb
+    if margin[i] is None:
+        margin[i] = margin_penalty(margins_of(g, prob, notch))
+    return min(floor, penalized(g, done[0], sj, done[1:], prob, notch, margin[i]))
 
 
 def penalized(gains, step, sj, runs, prob, notch, margin=None):
@@ -683,7 +697,7 @@ def search(a, prob, notch=None):
     gen = [0]
     best = {}
     solver = [None]
-    t0, p0, s0 = time.time(), prob.get("periods_run", 0), prob.get("stopped_early", 0)
+    t0, p0, s0 = time.time(), prob.get("periods_run", 0), list(prob.get("stopped_at", [0, 0]))
 
     def cost(x):
         return costs([x], prob, notch)[0]
@@ -717,11 +731,12 @@ def search(a, prob, notch=None):
         solver[0] = sv
         res = sv.solve()
     took = time.time() - t0
+    stopped = [a - b for a, b in zip(prob.get("stopped_at", [0, 0]), s0)]
     log("sweep%s: %d candidates in %.1f s, %d thread%s (hg.batch; %.1f per second), %d servo periods run, "
-        "%d candidates stopped after their first run"
+        "%d candidates stopped early (%d after their step run, %d after their first run)"
         % (" with the notch" if notch else "", res.nfev, took, prob["threads"],
            "s" if prob["threads"] > 1 else "", res.nfev / max(took, 1e-9), prob.get("periods_run", 0) - p0,
-           prob.get("stopped_early", 0) - s0))
+           sum(stopped), stopped[0], stopped[1]))
     return gains_from_x(res.x, prob), float(res.fun)
 
 
