@@ -452,10 +452,10 @@ def costs(xs, prob, notch=None, beat=None):
     step overshoot and the margins on the plant; 1 - 1e-9 per period run when a run trips.
     beat[i] (optional): the cost candidate i must not exceed to be kept (the population member
     it competes with). Then the candidates run in stages, every candidate's step run first,
-    then its first trajectory run, then the rest: one whose cost is already above beat[i]
-    after a stage (the step's settling and overshoot and the margins, then the first run's
-    errors too) runs no further and gets that lower bound instead of its cost: it loses
-    either way, so the search's choices, and its answer, are the full costs'."""
+    then its trajectory runs one at a time: one whose cost is already above beat[i] after a
+    stage (the step's settling and overshoot and the margins, then the runs' errors too)
+    runs no further and gets that lower bound instead of its cost: it loses either way, so
+    the search's choices, and its answer, are the full costs'."""
     settles = prob["search_settles"]
     cands = []
     for x in xs:
@@ -464,7 +464,7 @@ def costs(xs, prob, notch=None, beat=None):
         cands.append((gains, step_job(cfg, prob, tool_error=False),
                       trajectory_jobs(cfg, prob, settles, tool_error=False)))
     jobs = [[sj] + tj for _g, sj, tj in cands]
-    stages = [slice(None)] if beat is None else [slice(0, 1), slice(1, 2), slice(2, None)]
+    stages = [slice(None)] if beat is None else [slice(k, k + 1) for k in range(1 + len(settles))]
     done = [[] for _ in cands]                 # each candidate's results: step, then its runs
     margin, out, live, ran = [None] * len(cands), [None] * len(cands), list(range(len(cands))), 0
     for n, part in enumerate(stages):
@@ -481,7 +481,9 @@ def costs(xs, prob, notch=None, beat=None):
                 if len(done[i]) < len(jobs[i]) else None
             if lb is not None and lb > beat[i]:
                 out[i] = lb
-                prob.setdefault("stopped_at", [0, 0])[n] += 1
+                at = prob.setdefault("stopped_at", [])
+                at.extend([0] * (n + 1 - len(at)))
+                at[n] += 1
             else:
                 keep.append(i)
         live = keep
@@ -697,7 +699,7 @@ def search(a, prob, notch=None):
     gen = [0]
     best = {}
     solver = [None]
-    t0, p0, s0 = time.time(), prob.get("periods_run", 0), list(prob.get("stopped_at", [0, 0]))
+    t0, p0, s0 = time.time(), prob.get("periods_run", 0), list(prob.get("stopped_at", []))
 
     def cost(x):
         return costs([x], prob, notch)[0]
@@ -731,12 +733,15 @@ def search(a, prob, notch=None):
         solver[0] = sv
         res = sv.solve()
     took = time.time() - t0
-    stopped = [a - b for a, b in zip(prob.get("stopped_at", [0, 0]), s0)]
+    at = prob.get("stopped_at", [])
+    stopped = [c - (s0[k] if k < len(s0) else 0) for k, c in enumerate(at)]
+    where = ", ".join("%d after %s" % (c, "their step run" if k == 0 else "trajectory run %d" % k)
+                      for k, c in enumerate(stopped))
     log("sweep%s: %d candidates in %.1f s, %d thread%s (hg.batch; %.1f per second), %d servo periods run, "
-        "%d candidates stopped early (%d after their step run, %d after their first run)"
+        "%d candidates stopped early%s"
         % (" with the notch" if notch else "", res.nfev, took, prob["threads"],
            "s" if prob["threads"] > 1 else "", res.nfev / max(took, 1e-9), prob.get("periods_run", 0) - p0,
-           sum(stopped), stopped[0], stopped[1]))
+           sum(stopped), " (%s)" % where if where else ""))
     return gains_from_x(res.x, prob), float(res.fun)
 
 
