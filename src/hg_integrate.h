@@ -47,7 +47,9 @@ typedef struct {
 /* Advance (q0, qd0) by dt with `scheme`: drive_n the forces held over
  * the step (N: the drives', hg_drive.h, plus the friction expected,
  * ctx->work.fric_est_n: the last step's), fz0 the smooth carriage forces at the start
- * (hg_carriage_forces of q0, qd0, drive_n), later stages compute their
+ * (hg_carriage_forces of q0, qd0, drive_n; flexible trains: plus the
+ * trains' force, also in ctx->work.train_n, with the motors' in
+ * ctx->work.motor_n, as hg_step sets them), later stages compute their
  * own. Friction (when the parameters have it) writes its impulses and the
  * stuck carriages to ctx->work.fric_*; carriages stuck in ctx->stuck that
  * stay stuck keep their heights exactly, those that stop within the step

@@ -475,15 +475,12 @@ def costs(xs, prob, notch=None, beat=None):
         ran += sum(r.periods for r in res)
         if n + 1 == len(stages):
             break
-        keep = []
+        keep = []                              # (a stage before the last: runs are left)
         for i in live:
-            lb = lower_bound(cands[i], done[i], prob, notch, margin, i, beat[i]) \
-                if len(done[i]) < len(jobs[i]) else None
-            if lb is not None and lb > beat[i]:
+            lb = lower_bound(cands[i], done[i], prob, notch, margin, i, beat[i])
+            if lb > beat[i]:
                 out[i] = lb
-                at = prob.setdefault("stopped_at", [])
-                at.extend([0] * (n + 1 - len(at)))
-                at[n] += 1
+                prob.setdefault("stopped_at", [0] * len(settles))[n] += 1
             else:
                 keep.append(i)
         live = keep
