@@ -27,6 +27,7 @@
 #include "hg_errors.h"
 #include "hg_kinematics.h"
 #include "hg_params.h"
+#include "hg_text.h"
 #include "hg_units.h"
 
 MODULE_LICENSE("GPL");
@@ -49,6 +50,10 @@ typedef struct {
     int geometry_reported_bad;                     /* message already printed */
     hal_float_t checked[HG_PARAMS_MAX];            /* the geometry last checked (as geo) ... */
     int checked_rc, checked_valid;                 /* ... its result; 0: check again */
+    hg_fk_options fk_in_force;                     /* the last valid fk-max-iterations, fk-tolerance */
+    int fk_refused_iterations;                     /* the pins' values last refused (reported once) */
+    double fk_refused_tolerance_mm;
+    int fk_failing;                                /* the last forward call failed (reported once a run) */
 } hexaglidekins_hal;
 
 static hexaglidekins_hal *hd; /* the module's one instance, in HAL shared memory */
@@ -91,6 +96,36 @@ static int current_geometry(hg_geometry *g)
     return rc;
 }
 
+/* The forward solver's settings from the pins: the last valid ones when
+ * the pins hold an invalid pair, which is reported once per pair. */
+static void fk_options(hg_fk_options *opt)
+{
+    const char *field = "", *why = "";
+    const int iterations = *hd->fk_max_iterations;
+    const double tolerance_mm = *hd->fk_tolerance_mm;
+    hg_fk_options o = hd->fk_in_force;
+    o.max_iterations = iterations;
+    o.tolerance_m = tolerance_mm / HG_MM_PER_M;
+    if (hg_fk_options_check(&o, &field, &why) == 0) {
+        hd->fk_in_force = o;
+    } else if (iterations != hd->fk_refused_iterations ||
+               memcmp(&tolerance_mm, &hd->fk_refused_tolerance_mm, sizeof tolerance_mm) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise, NaN equals itself
+        char max_mm[HG_TEXT_VALUE_LEN], kept_mm[HG_TEXT_VALUE_LEN];
+        hd->fk_refused_iterations = iterations;
+        hd->fk_refused_tolerance_mm = tolerance_mm;
+        hg_text_value(max_mm, HG_FK_TOLERANCE_MAX_M * HG_MM_PER_M);
+        hg_text_value(kept_mm, hd->fk_in_force.tolerance_m * HG_MM_PER_M);
+        if (strcmp(field, "max_iterations") == 0)
+            rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: pin hexaglidekins.fk-max-iterations %s; keeping %d\n",
+                            why, hd->fk_in_force.max_iterations);
+        else
+            rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: pin hexaglidekins.fk-tolerance must be positive and "
+                            "at most %s mm (a coarser Newton step would leave the pose off by more than an encoder "
+                            "count); keeping %s mm\n", max_mm, kept_mm);
+    }
+    *opt = hd->fk_in_force;
+}
+
 /* EmcPose (mm, deg) -> core pose (m, rad). */
 static void pose_from_emc(const EmcPose *pos, double pose[6])
 {
@@ -122,9 +157,7 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     pose_from_emc(pos, pose);
     for (k = 0; k < 6; k++)
         z[k] = joints[k] / HG_MM_PER_M;
-    hg_fk_options_default(&opt);
-    opt.max_iterations = *hd->fk_max_iterations;
-    opt.tolerance_m = *hd->fk_tolerance_mm / HG_MM_PER_M;
+    fk_options(&opt);
     rc = current_geometry(&g);
     if (rc == 0)
         rc = hg_forward_kinematics(&g, z, pose, &opt, &rep);
@@ -134,8 +167,17 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     *hd->fk_fault = (rc != 0);
     if (rc) {
         *hd->fk_fail_count += 1;
+        if (!hd->fk_failing)         /* the first of a run of failures: motion keeps the last pose */
+            rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: forward kinematics failed (code %d: %s); the "
+                            "position shown stays at the last solved pose until it succeeds "
+                            "(hexaglidekins.fk-error, fk-fail-count)\n", rc, hg_strerror(rc));
+        hd->fk_failing = 1;
         return rc;
     }
+    if (hd->fk_failing)
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: forward kinematics solves again (after %u failed calls "
+                        "in all)\n", (unsigned)*hd->fk_fail_count);
+    hd->fk_failing = 0;
     pose_to_emc(pose, pos);
     return 0;
 }
@@ -193,6 +235,10 @@ static int export_hal(void)
         return r;
     *hd->fk_max_iterations = o.max_iterations;
     *hd->fk_tolerance_mm = o.tolerance_m * HG_MM_PER_M;
+    hd->fk_in_force = o;
+    hd->fk_refused_iterations = o.max_iterations;
+    hd->fk_refused_tolerance_mm = o.tolerance_m * HG_MM_PER_M;
+    hd->fk_failing = 0;
     *hd->fk_iterations = 0;
     *hd->fk_residual_mm = 0.0;
     *hd->fk_error = 0;

@@ -220,6 +220,8 @@ static void apply_params(hg_board *b, const hg_board_params *want, hg_board_outp
             refuse(b, out, HG_ERR_STIFF);
             out->stiff_param = param;
             out->stiff_dt_max_s = dt_max;
+            out->stiff_value = want->plant.v[param];
+            out->stiff_integrator = (int)want->integrator;
             return;
         }
     }
@@ -329,17 +331,29 @@ static void encoders(hg_board *b, const hg_board_inputs *in, hg_board_outputs *o
 }
 
 /* adc-read: publish the group converted at the last read, convert the other. */
-static void adc(hg_board *b, const hg_board_inputs *in)
+static void adc(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
 {
     int i, done = b->adc_state == 1 ? 0 : 4, next = b->adc_state == 1 ? 4 : 0;
     if (!in->adc_read)
         return;
     if (b->adc_state != 0)
-        for (i = done; i < done + 4; i++)
+        for (i = done; i < done + 4; i++) {
+            const unsigned bit = 1u << i;
+            const double v = b->adc_sample_v[i] * in->adc_gain[i] - in->adc_offset[i];
             b->adc_value[i] = hg_adc_value(b->adc_sample_v[i], in->adc_gain[i], in->adc_offset[i]);
+            if (isfinite(v) && !(b->adc_sample_bad & bit)) {
+                b->adc_nan &= ~bit;
+            } else if (!(b->adc_nan & bit)) {
+                b->adc_nan |= bit;
+                out->adc_nan_new |= bit;
+                out->events |= HG_EV_ADC_NAN;
+            }
+        }
     for (i = next; i < next + 4; i++) {
         double amps = i < b->sense.channels && !b->fault ? b->sense.current_a[i] : 0.0;
-        b->adc_sample_v[i] = hg_adc_sample(amps * in->adc_volts_per_amp);
+        double x = amps * in->adc_volts_per_amp;
+        b->adc_sample_v[i] = isfinite(x) ? hg_adc_sample(x) : 0.0;
+        b->adc_sample_bad = isfinite(x) ? b->adc_sample_bad & ~(1u << i) : b->adc_sample_bad | 1u << i;
     }
     b->adc_state = b->adc_state == 1 ? 2 : 1;
 }
@@ -389,6 +403,8 @@ static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outpu
     if (out->stiff_param < 0 || !(out->events & HG_EV_PARAM_REFUSED)) {
         out->stiff_param = b->substeps_run > b->substeps || b->fault_code == HG_ERR_STIFF ? b->stiff_param : -1;
         out->stiff_dt_max_s = out->stiff_param >= 0 ? b->stiff_dt_max_s : 0.0;
+        out->stiff_value = out->stiff_param >= 0 ? b->in_force.plant.v[out->stiff_param] : 0.0;
+        out->stiff_integrator = b->integrator;
     }
 }
 
@@ -524,7 +540,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     encoders(b, in, out);
     for (k = 0; k < b->sense.channels; k++)
         b->switches[k] = hg_switches_stuck(b->sense.switches[k], b->switches[k], in->stuck[k]) | in->tripped[k];
-    adc(b, in);
+    adc(b, in, out);
     publish(b, in, out, volts);
 }
 
@@ -539,11 +555,11 @@ void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out,
         return;
     hg_text_add(buf, n, hal ? e->hal_name : e->name);
     hg_text_add(buf, n, " = ");
-    hg_text_add_value(buf, n, b->in_force.plant.v[out->stiff_param] * (hal ? e->hal_scale : 1.0));
+    hg_text_add_value(buf, n, out->stiff_value * (hal ? e->hal_scale : 1.0));
     hg_text_add(buf, n, " ");
     hg_text_add(buf, n, hal ? e->hal_unit : e->unit);
     hg_text_add(buf, n, ": ");
-    hg_text_add(buf, n, hg_integrator_name((hg_integrator)b->integrator));
+    hg_text_add(buf, n, hg_integrator_name((hg_integrator)out->stiff_integrator));
     if (out->stiff_dt_max_s > 0.0) {
         hg_text_add(buf, n, " is stable with it in steps of at most ");
         if (out->stiff_dt_max_s >= 1e-3) {   /* ms to the ns, else us to the ps */

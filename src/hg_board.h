@@ -105,8 +105,10 @@ enum {
     HG_EV_WATCHDOG_KICKED = 1u << 10, /* watchdog_reset input consumed (glue clears the pin) */
     HG_EV_SUBSTEPS_AUTO = 1u << 11,   /* substeps_run changed: more substeps than asked for, because
                                          stiff_param at the period needs steps of stiff_dt_max_s */
-    HG_EV_ADDF_ORDER = 1u << 12       /* two periods in a row without a fresh dac-write before the
+    HG_EV_ADDF_ORDER = 1u << 12,      /* two periods in a row without a fresh dac-write before the
                                          step (no dac_written, or dac_stale): once per load or reset */
+    HG_EV_ADC_NAN = 1u << 13          /* adc_nan_new: bit ch = channel ch's conversion (current x
+                                         adc_volts_per_amp, x gain - offset) became Inf or NaN (reads 0) */
 };
 
 /* Why the fault latched (hg_board_outputs.fault_cause). */
@@ -173,6 +175,9 @@ typedef struct {
     int stiff_param;                  /* SUBSTEPS_AUTO, FAULT_STIFF or PARAM_REFUSED with param_rc
                                          HG_ERR_STIFF: table index of the limiting parameter, else -1 */
     double stiff_dt_max_s;            /* ... and the longest step it allows with the scheme */
+    double stiff_value;               /* ... the limiting parameter's value (SI) in the set it names */
+    int stiff_integrator;             /* ... and that set's integrator (refused or in force) */
+    unsigned adc_nan_new;             /* ADC_NAN */
 } hg_board_outputs;
 
 /* The board: plant, model, state, sensors and latches (no pointers). */
@@ -201,6 +206,8 @@ typedef struct {
     double adc_value[HG_BOARD_ADCS];  /* published */
     int adc_state;                    /* 0 power-up, 1/2: which group of 4 converts next */
     unsigned dac_nan;                 /* bit ch: channel ch's product is NaN */
+    unsigned adc_nan;                 /* bit ch: channel ch's conversion is Inf or NaN (reads 0) */
+    unsigned adc_sample_bad;          /* bit ch: its sample's current x adc_volts_per_amp was not finite */
     int prev_reset;
     int fault, fault_code;
     hg_plant_report fault_report;     /* what a failed step struck */
@@ -258,8 +265,9 @@ int hg_board_params_check(const hg_board *b, const hg_board_params *p, hg_bitset
                           const char *why[HG_BOARD_WHY_LEN]);
 
 /* What made the board run more substeps than asked, or refuse a
- * parameter set or fault as too stiff (out's stiff_param, stiff_dt_max_s,
- * substeps_run, the period), as one sentence naming the parameter by its
+ * parameter set or fault as too stiff (out's stiff_param, stiff_value,
+ * stiff_integrator, stiff_dt_max_s: of the refused set when the event is
+ * PARAM_REFUSED, else of the set in force), as one sentence naming the parameter by its
  * HAL name (hal 1, value in HAL units) or spec name (hal 0). Empty when
  * nothing limits. */
 #define HG_BOARD_TEXT_LEN 240

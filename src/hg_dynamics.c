@@ -12,6 +12,7 @@
 #include "hg_step_cartesian.h"
 #include "hg_step_broken.h"
 #include "hg_forces.h"
+#include "hg_stop.h"
 #include "hg_drive.h"
 #include "hg_friction.h"
 #include "hg_linalg.h"
@@ -269,6 +270,21 @@ static int step_broken(const hg_model *m, hg_data *d, const double drive_n[6], c
     return 0;
 }
 
+/* HG_ERR_THROUGH_STOP, with *r, when a carriage of z is deeper than
+ * HG_THROUGH_STOP_M beyond a hard stop (a crash: the stop's spring does
+ * not represent it), else 0. */
+static int through_stop(const hg_params *p, const double z[6], hg_guard_report *r)
+{
+    int k;
+    for (k = 0; k < 6; k++)
+        if (z[k] < p->stop_min_m - HG_THROUGH_STOP_M || z[k] > p->stop_max_m + HG_THROUGH_STOP_M) {
+            r->kind = HG_GUARD_THROUGH_STOP, r->bar = k, r->other = -1, r->value = z[k];
+            r->limit = z[k] < p->stop_min_m ? p->stop_min_m : p->stop_max_m;
+            return HG_ERR_THROUGH_STOP;
+        }
+    return 0;
+}
+
 int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
 {
     double q0[HG_NQ_MAX], qd0[HG_NQ_MAX], q1[HG_NQ_MAX], qd1[HG_NQ_MAX], qdd[HG_NQ_MAX];
@@ -353,6 +369,8 @@ int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
         rc = hg_guard_check_sc(&m->guard, q1, q1 + n - 6, trig ? d->work.sc1 : sc, d->broken_bars,
                                &d->work.guard, &d->guard);
     }
+    if (rc == 0)
+        rc = through_stop(&m->p, q1, &d->guard);
     if (rc) {
         d->last_error = rc;
         return rc;

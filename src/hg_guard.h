@@ -34,7 +34,9 @@ typedef enum {
     HG_GUARD_CARRIAGE_JOINT = 1,  /* bar `bar` beyond cone_carriage in its carriage joint */
     HG_GUARD_HEAD_JOINT = 2,      /* bar `bar` beyond cone_head in its head joint */
     HG_GUARD_BARS = 3,            /* bars `bar` and `other` closer than d_bar */
-    HG_GUARD_REGION = 4           /* broken machine outside the modelled region (hg_dynamics.h) */
+    HG_GUARD_REGION = 4,          /* broken machine outside the modelled region (hg_dynamics.h) */
+    HG_GUARD_THROUGH_STOP = 5     /* carriage `bar` at `value`, through its hard stop at `limit` (the step's
+                                     check, hg_dynamics.c: the stops are parameters, not geometry) */
 } hg_guard_kind;
 
 typedef struct {

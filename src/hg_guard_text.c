@@ -80,6 +80,17 @@ void hg_guard_describe(const hg_guard_report *r, int hal, char buf[HG_GUARD_TEXT
         hg_text_add(buf, n, r->other >= 3 ? " deg" : " mm");
         hg_text_add(buf, n, " a machine with a broken bar is modelled to (it would strike the frame)");
         break;
+    case HG_GUARD_THROUGH_STOP:
+        hg_text_add(buf, n, "carriage ");
+        add_index(buf, r->bar);
+        hg_text_add(buf, n, " at ");
+        add_num(buf, r->value, HG_MM_PER_M);
+        hg_text_add(buf, n, " mm went through its hard stop at ");
+        add_num(buf, r->limit, HG_MM_PER_M);
+        hg_text_add(buf, n, " mm (");
+        hg_text_add(buf, n, param_name(r->value < r->limit ? "stop_min" : "stop_max", hal));
+        hg_text_add(buf, n, ")");
+        break;
     default:
         break;
     }

@@ -21,13 +21,26 @@ static int within_reach(const hg_geometry *g, int n, const double *x)
 
 /* Newton steps larger than this (m or rad) mean the iteration ran away */
 #define HG_FK_MAX_STEP 1.0
-#define HG_FK_ITERATION_CAP 100
-
 void hg_fk_options_default(hg_fk_options *o)
 {
     o->max_iterations = 30;
     o->tolerance_m = 1e-12;
     o->skip_guard = 0;
+}
+
+int hg_fk_options_check(const hg_fk_options *o, const char **field, const char **why)
+{
+    const char *f = 0, *w = 0;
+    if (!(o->max_iterations >= 1 && o->max_iterations <= HG_FK_ITERATION_CAP))
+        f = "max_iterations", w = "must be a whole number from 1 to 100";
+    else if (!(o->tolerance_m > 0.0 && o->tolerance_m <= HG_FK_TOLERANCE_MAX_M))
+        f = "tolerance", w = "must be positive and at most 1e-6 m: a coarser Newton step would leave the pose "
+                             "off by more than an encoder count";
+    if (field)
+        *field = f;
+    if (why)
+        *why = w;
+    return f ? HG_ERR_BAD_PARAM : HG_OK;
 }
 
 void hg_tool_tip(const double pose[6], double tool_d_m, double tip[3])
@@ -296,15 +309,13 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
         o = *opt;
     else
         hg_fk_options_default(&o);
-    if (o.max_iterations < 1)
-        o.max_iterations = 1;
-    if (o.max_iterations > HG_FK_ITERATION_CAP)
-        o.max_iterations = HG_FK_ITERATION_CAP;
     if (report) {
         report->iterations = 0;
         report->residual_m = 0.0;
         report->guard.kind = HG_GUARD_NONE;
     }
+    if (hg_fk_options_check(&o, 0, 0))
+        return HG_ERR_BAD_PARAM;      /* nothing clamped: the caller names the setting (hg_fk_options_check) */
     if (!hg_all_finite(6, z) || !hg_all_finite(6, pose) || !isfinite(o.tolerance_m))
         return HG_ERR_NONFINITE_INPUT;
     if (!within_reach(g, 6, z))

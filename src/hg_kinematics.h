@@ -55,6 +55,14 @@ typedef struct {
 /* Default FK options: 30 iterations, 1e-12 m, guarded. */
 void hg_fk_options_default(hg_fk_options *o);
 
+#define HG_FK_ITERATION_CAP 100    /* max_iterations at most this */
+#define HG_FK_TOLERANCE_MAX_M 1e-6 /* tolerance_m at most this: a coarser Newton step would leave the
+                                      pose off by more than the machine's 1 um encoder count */
+
+/* 0 when o can be used, else HG_ERR_BAD_PARAM with *field ("max_iterations"
+ * or "tolerance", either pointer may be 0) and *why (static strings). */
+int hg_fk_options_check(const hg_fk_options *o, const char **field, const char **why);
+
 /* Base point of guide k at height 0: Rz(alpha_i)(lb, s_j e, 0). */
 void hg_guide_point(const hg_geometry *g, int k, double out[3]);
 

@@ -189,11 +189,13 @@ static void geometry_rules(const hg_geometry *g, hg_check *r)
         hg_check_refuse(r, "lp", "must be positive and smaller than lb");
     if (!hg_check_failed(r, "l") && !hg_check_failed(r, "lb") && !hg_check_failed(r, "lp") && !(g->l_m > g->lb_m - g->lp_m))
         hg_check_refuse(r, "l", "bars too short to reach the head: need l > lb - lp");
-    if (!(isfinite(g->cone_carriage_rad) && g->cone_carriage_rad > 0 &&
+    /* at HOME every bar is at 0 in both joints, but an angle's rounding there is about 1e-8 rad:
+     * a cone of a degree at least (a joint that turns less could not move the head) */
+    if (!(isfinite(g->cone_carriage_rad) && g->cone_carriage_rad >= HG_CONE_MIN_RAD &&
           g->cone_carriage_rad < HG_PI / 2))
-        hg_check_refuse(r, "cone_carriage", "must lie between 0 and 90 deg");
-    if (!(isfinite(g->cone_head_rad) && g->cone_head_rad > 0 && g->cone_head_rad < HG_PI / 2))
-        hg_check_refuse(r, "cone_head", "must lie between 0 and 90 deg");
+        hg_check_refuse(r, "cone_carriage", "must lie between 1 and 90 deg");
+    if (!(isfinite(g->cone_head_rad) && g->cone_head_rad >= HG_CONE_MIN_RAD && g->cone_head_rad < HG_PI / 2))
+        hg_check_refuse(r, "cone_head", "must lie between 1 and 90 deg");
     if (!(isfinite(g->d_bar_m) && g->d_bar_m > 0))
         hg_check_refuse(r, "d_bar", "must be a positive finite length");
     if (hg_check_any(r))
@@ -271,11 +273,14 @@ static void params_rules(const hg_params *p, hg_check *r)
         if (!(isfinite(v) && v >= 0))
             hg_check_refuse(r, nonneg[i], "must be finite and >= 0");
     }
+    if (!hg_check_failed(r, "counts_per_rev") && !(p->counts_per_rev == floor(p->counts_per_rev)))
+        hg_check_refuse(r, "counts_per_rev", "must be a whole number of counts");
     /* a lumped bar needs m_end > 0 and m_mid >= 0: m_bar l^2 / 4 <= i_bar < m_bar l^2 / 2 */
     if (!hg_check_failed(r, "i_bar") && !hg_check_failed(r, "m_bar") && !hg_check_failed(r, "l") &&
         !(p->i_bar_kgm2 >= p->m_bar_kg * p->geo.l_m * p->geo.l_m / 4 &&
           p->i_bar_kgm2 < p->m_bar_kg * p->geo.l_m * p->geo.l_m / 2))
-        hg_check_refuse(r, "i_bar", "must lie in [m_bar l^2/4, m_bar l^2/2) for a bar with its COM at mid-length");
+        hg_check_refuse(r, "i_bar", "must lie in [m_bar l^2/4, m_bar l^2/2) for a bar with its COM at mid-length "
+                           "(a new l or m_bar needs an i_bar in that range too)");
     if (!hg_check_failed(r, "limit_min") && !(isfinite(p->stop_min_m) && p->stop_min_m < p->limit_min_m))
         hg_check_refuse(r, "stop_min", "must be finite and below limit_min");
     if (!(isfinite(p->limit_min_m) && p->limit_min_m < 0))
@@ -306,6 +311,10 @@ static void params_rules(const hg_params *p, hg_check *r)
     if (!hg_check_failed(r, "backlash") && !hg_check_failed(r, "stop_min") && !hg_check_failed(r, "stop_max") &&
         !(p->backlash_m < p->stop_max_m - p->stop_min_m))
         hg_check_refuse(r, "backlash", "must be shorter than the stroke between the hard stops");
+    if (!hg_check_failed(r, "k_axial") && !hg_check_failed(r, "j_rotor") && p->k_axial_n_per_m > 0.0 &&
+        !(p->j_rotor_kgm2 >= HG_PARAM_MIN_POSITIVE))
+        hg_check_refuse(r, "j_rotor", "must be positive behind a flexible train (k_axial > 0): the rotor is a body "
+                                      "of its own");
 }
 
 int hg_params_check(const hg_params *p, const char **bad_field, const char **why)

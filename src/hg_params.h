@@ -65,6 +65,7 @@ typedef struct {
 #define HG_PARAM_MAX_ABS 1e9
 /* ... and any must-be-positive field below this one (1/x would overflow). */
 #define HG_PARAM_MIN_POSITIVE 1e-9
+#define HG_CONE_MIN_RAD 0.017453292519943295 /* 1 deg: the least cone_carriage, cone_head */
 
 /* Upper bound of the table's length. */
 #define HG_PARAMS_MAX 48

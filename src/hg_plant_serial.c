@@ -592,7 +592,7 @@ static int build(hg_plant_model *pm, const hg_plant_params *v, int variant, int 
         m->limit_max[k] = get(variant, v, k, HG_SF_LIMIT_MAX);
         m->home[k] = get(variant, v, k, HG_SF_HOME_SWITCH);
         m->cpr[k] = get(variant, v, k, HG_SF_COUNTS_PER_REV);
-        m->through[k] = rotary_axis(variant, k) ? HG_SERIAL_THROUGH_STOP_RAD : HG_SERIAL_THROUGH_STOP_M;
+        m->through[k] = rotary_axis(variant, k) ? HG_SERIAL_THROUGH_STOP_RAD : HG_THROUGH_STOP_M;
     }
     return HG_OK;
 }

@@ -20,11 +20,8 @@
 
 extern const hg_plant hg_plant_serial;
 
-/* A hard stop is a spring: a load this far beyond it (m, or rad for a
- * rotary axis) has gone through what the model represents, and the step
- * fails with HG_ERR_THROUGH_STOP (a chosen bound, far beyond the
- * millimetre or less a stop yields under any drive's force). */
-#define HG_SERIAL_THROUGH_STOP_M 0.005
+/* A rotary axis this far beyond its hard stop (rad) has gone through it
+ * (a linear one: HG_THROUGH_STOP_M, hg_stop.h). */
 #define HG_SERIAL_THROUGH_STOP_RAD 0.0872664625997164788 /* 5 deg */
 
 /* The axes' fields, in the order of each axis's block of the table (a

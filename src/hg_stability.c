@@ -18,6 +18,7 @@ typedef struct {
     double tau;          /* winding: L / R (s) */
     double kp, ki;       /* velocity loop (A s/m, A/m) */
     const char *param;   /* what limits it */
+    const char *param_c; /* what names the bound when the damping c alone cannot be integrated */
 } test_system;
 
 /* Acceleration of the test system. */
@@ -68,7 +69,27 @@ static int positive(double x, double s)
     return x > 64.0 * DBL_EPSILON * s;
 }
 
-/* 1 when every eigenvalue of the step's map G lies inside the unit circle.
+/* x is 0 to rounding: neither positive nor negative beyond it. */
+static int neutral(double x, double s)
+{
+    return !positive(x, s) && !positive(-x, s);
+}
+
+/* 1 when both eigenvalues 1 + u of a 2x2 map G = I + D lie inside the unit
+ * circle, D's trace t and determinant d (ts, ds: the magnitudes they were
+ * summed from): Jury's conditions on p(z) = z^2 + a1 z + a0. */
+static int inside2(double t, double ts, double d, double ds)
+{
+    return positive(d, ds) &&                      /* p(1) = d */
+           positive(4.0 + 2.0 * t + d, 4.0) &&     /* p(-1) */
+           positive(-(t + d), ts + ds) &&          /* det G = 1 + t + d < 1 */
+           positive(2.0 + t + d, 2.0);             /* det G > -1 */
+}
+
+/* 1 when every eigenvalue of the step's map G lies inside the unit circle,
+ * or one is exactly 1 (a state the step leaves as it is, as the position
+ * without a spring: a velocity loop without integral gain, or a damping
+ * too weak to change a speed's last bit) and the others inside.
  * Without a spring the position is neutral (eigenvalue 1, it only
  * accumulates), so the map is taken on (v, w); with one on (x, v, w); the
  * velocity loop ties its integral to x, so its map is on (x, v). Jury's
@@ -92,10 +113,9 @@ static int stable(const test_system *s, hg_integrator scheme, double dt)
         double t = D[0][0] + D[1][1], ts = fabs(D[0][0]) + fabs(D[1][1]);
         double d = D[0][0] * D[1][1] - D[0][1] * D[1][0];
         double ds = fabs(D[0][0] * D[1][1]) + fabs(D[0][1] * D[1][0]);
-        return positive(d, ds) &&                      /* p(1) = d */
-               positive(4.0 + 2.0 * t + d, 4.0) &&     /* p(-1) */
-               positive(-(t + d), ts + ds) &&          /* det G = 1 + t + d < 1 */
-               positive(2.0 + t + d, 2.0);             /* det G > -1 */
+        if (neutral(d, ds))            /* an eigenvalue 1 + 0: the other, 1 + t, inside */
+            return positive(-t, ts) && positive(2.0 + t, 2.0);
+        return inside2(t, ts, d, ds);
     } else {                           /* p(z) = z^3 + a2 z^2 + a1 z + a0 */
         double t = D[0][0] + D[1][1] + D[2][2], ts = fabs(D[0][0]) + fabs(D[1][1]) + fabs(D[2][2]);
         double p01 = D[0][0] * D[1][1] - D[0][1] * D[1][0], p02 = D[0][0] * D[2][2] - D[0][2] * D[2][0];
@@ -113,6 +133,8 @@ static int stable(const test_system *s, hg_integrator scheme, double dt)
         double lhs = fabs(g * (2.0 + g));
         double rhs = fabs(2.0 * t + t * t + 2.0 * m + t * m + 3.0 * d + t * d);
         double rs = 2.0 * ts + ts * ts + 2.0 * ms + ts * ms + 3.0 * ds + ts * ds;
+        if (neutral(d, ds))            /* an eigenvalue 1 + 0: the others, 1 + the roots of u^2 - t u + m */
+            return inside2(t, ts, m, ms);
         return positive(-d, ds) &&                                  /* p(1) = -d */
                positive(8.0 + 4.0 * t + 2.0 * m + d, 8.0) &&        /* -p(-1) */
                positive(-g, gs) && positive(2.0 + g, 2.0) &&        /* |det G| < 1 */
@@ -133,7 +155,8 @@ static int test_systems(const hg_stability_axis *a, test_system s[HG_STAB_AXIS_S
     const int flexible = a->k_axial > 0.0;
     const double carriage = flexible ? a->m_load : a->m_rigid;
     const test_system base = {carriage, 0.0, a->c_visc, 0, fpa, fpa / a->r_winding,
-                              a->l_winding / a->r_winding, a->kp_vel, a->ki_vel, a->name[HG_STAB_C_VISC]};
+                              a->l_winding / a->r_winding, a->kp_vel, a->ki_vel, a->name[HG_STAB_C_VISC],
+                              a->name[HG_STAB_C_VISC]};
     test_system stop, drive = base;
     int n = 0;
     if (flexible)                                           /* the drive turns the rotor alone */
@@ -144,7 +167,8 @@ static int test_systems(const hg_stability_axis *a, test_system s[HG_STAB_AXIS_S
     }
     s[n] = base;                                            /* in a hard stop (and on its train) */
     s[n].k = a->k_stop + (flexible ? a->k_axial : 0.0), s[n].c += a->c_stop;
-    s[n].param = a->name[s[n].c > 0.0 ? HG_STAB_K_STOP : HG_STAB_C_STOP], n++;
+    s[n].param = a->name[s[n].c > 0.0 ? HG_STAB_K_STOP : HG_STAB_C_STOP];
+    s[n].param_c = a->name[a->c_stop > 0.0 ? HG_STAB_C_STOP : HG_STAB_C_VISC], n++;
     stop = flexible ? drive : s[n - 1];                     /* a rotor's drive does not meet the stop */
     s[n] = drive;                                           /* back-EMF of a drive at its bus voltage */
     s[n].drive = 1, s[n].param = a->name[HG_STAB_R_WINDING], n++;
@@ -165,9 +189,21 @@ static int test_systems(const hg_stability_axis *a, test_system s[HG_STAB_AXIS_S
         s[n].m = 1.0 / (1.0 / rotor + 1.0 / carriage);
         s[n].k = a->k_axial;
         s[n].c = a->c_axial;
-        s[n].param = a->name[s[n].c > 0.0 ? HG_STAB_K_AXIAL : HG_STAB_C_AXIAL], n++;
+        s[n].param = a->name[s[n].c > 0.0 ? HG_STAB_K_AXIAL : HG_STAB_C_AXIAL];
+        s[n].param_c = a->name[HG_STAB_C_AXIAL], n++;
     }
     return n;
+}
+
+/* 1 when system s has a spring and a damping, and the damping alone
+ * cannot be integrated at dt: then the damping, not the spring, names the
+ * bound. */
+static int damping_limits(const test_system *s, hg_integrator scheme, double dt)
+{
+    test_system c_only = *s;
+    c_only.k = 0.0;
+    c_only.drive = 0;
+    return s->k > 0.0 && s->c > 0.0 && !stable(&c_only, scheme, dt);
 }
 
 /* 1 when every test system of the n axes is stable at dt. */
@@ -226,7 +262,7 @@ int hg_stability_check_axes(const hg_stability_axis *ax, int n_axes, hg_integrat
         for (i = 0, m = test_systems(&ax[a], s); i < m; i++, n++) {
             h[n] = stable(&s[i], scheme, period_s / last) ? DBL_MAX
                                                          : longest_step(&s[i], scheme, period_s / substeps_min);
-            name[n] = s[i].param;
+            name[n] = damping_limits(&s[i], scheme, period_s / last) ? s[i].param_c : s[i].param;
             if (h[n] < DBL_MAX && (limiting < 0 || h[n] < h[limiting]))
                 limiting = n;
         }

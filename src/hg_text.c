@@ -19,6 +19,34 @@ static char *put_uint(char *p, unsigned long long u, int min_digits)
     return p;
 }
 
+/* v > 0 finite as "1.23457e-9" (6 significant digits) at p, NUL-terminated. */
+static void put_scientific(char *p, double v)
+{
+    unsigned long long ip, frac;
+    int e = 0;
+    while (v >= 10.0 && e < 400)      /* at most 308 and 324 steps */
+        v /= 10.0, e++;
+    while (v < 1.0 && e > -400)
+        v *= 10.0, e--;
+    ip = (unsigned long long)floor(v);
+    frac = (unsigned long long)floor((v - (double)ip) * 1e5 + 0.5);
+    if (frac >= 100000ull)
+        ip++, frac -= 100000ull;
+    if (ip >= 10ull)                  /* 9.999996 rounded up to 10 */
+        ip = 1, e++;
+    p = put_uint(p, ip, 1);
+    if (frac) {
+        *p++ = '.';
+        p = put_uint(p, frac, 5);
+        while (p[-1] == '0')
+            p--;
+    }
+    *p++ = 'e';
+    *p++ = e < 0 ? '-' : '+';
+    p = put_uint(p, (unsigned long long)(e < 0 ? -e : e), 1);
+    *p = '\0';
+}
+
 void hg_text_value(char buf[HG_TEXT_VALUE_LEN], double v)
 {
     char *p = buf;
@@ -32,11 +60,12 @@ void hg_text_value(char buf[HG_TEXT_VALUE_LEN], double v)
         *p++ = '-';
         v = -v;
     }
-    if (v > 1e15) {                   /* inf or beyond 6 decimals' reach */
-        if (v > 1.7976931348623157e308)
-            memcpy(p, "inf", 4);
-        else
-            memcpy(p, "huge", 5);
+    if (v > 1.7976931348623157e308) {
+        memcpy(p, "inf", 4);
+        return;
+    }
+    if (v > 1e15 || (v > 0 && v < 1e-4)) { /* beyond 6 decimals' reach: 6 significant digits */
+        put_scientific(p, v);
         return;
     }
     a = floor(v);

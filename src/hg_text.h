@@ -4,7 +4,8 @@
 #ifndef HG_TEXT_H
 #define HG_TEXT_H
 
-/* v as text: "-12.5", up to 6 decimals, "nan", "inf", "huge" (|v| > 1e15). */
+/* v as text: "-12.5", up to 6 decimals; below 1e-4 and above 1e15 in
+ * magnitude 6 significant digits, "1.5e-9", "1e+300"; "nan", "inf". */
 #define HG_TEXT_VALUE_LEN 32
 void hg_text_value(char buf[HG_TEXT_VALUE_LEN], double v);
 

@@ -240,7 +240,8 @@ static void report(board_t *b, long period)
     if (o->events & HG_EV_PARAM_REFUSED)
         report_refusal(b, period);
     if (o->events & HG_EV_GEOMETRY_RESTART)
-        rtapi_print_msg(RTAPI_MSG_INFO, MODNAME ": board %d: new geometry, machine restarted at HOME\n", id);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: new geometry in force: the machine restarted at "
+                        "HOME at rest, and the encoders moved with it (a notice, not a fault)\n", id);
     if (o->events & HG_EV_RESET_REFUSED)
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: reset refused: " XP ".%d.joint-%d.%s "
                         "is TRUE; set it FALSE, then reset again\n", id, id, o->reset_refused_channel,
@@ -258,6 +259,11 @@ static void report(board_t *b, long period)
         if ((o->dac_nan_new >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: dac-%02d: (value - offset) * gain is NaN; "
                             "output 0 V until it is a number again\n", id, k);
+    for (k = 0; k < HG_BOARD_ADCS; k++)
+        if ((o->adc_nan_new >> k) & 1u)
+            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: adc-%02d: (current x " XP ".%d.adc-volts-per-amp) "
+                            "x gain - offset is not a finite number; adc-%02d-value reads 0 until it is\n",
+                            id, k, id, k);
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         if ((o->enc_scale_bad >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: enc-%02d-scale must be a finite non-zero "
@@ -280,20 +286,31 @@ static void report(board_t *b, long period)
         char what[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&b->b, o, period, 1, what);
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s: the step cannot integrate the parameters at "
-                        "this period even with %u substeps (code %d); drives off; set a softer value or "
-                        "another integrator, then " XP ".%d.reset\n", id, what, HG_SUBSTEPS_MAX,
-                        o->fault_code, id);
+                        "this period even with %u substeps (code %d); drives off; set %s, then " XP ".%d.reset\n",
+                        id, what, HG_SUBSTEPS_MAX, o->fault_code,
+                        o->stiff_dt_max_s > 0.0 ? "a softer value or another integrator"
+                                                : "the mode damping or another integrator", id);
     } else if (o->events & HG_EV_FAULT_LATCHED) {
+        static const char tail[] = "; drives off, state frozen; set " XP ".00.reset to restart at HOME";
+        const char *cause = o->fault_cause == HG_FAULT_PERIOD ? "bad thread period"
+                            : o->fault_cause == HG_FAULT_HOME ? "reset at HOME failed"
+                            : o->fault_report.kind ? "the machine struck a mechanical limit" : "dynamics step failed";
         char what[HG_PLANT_TEXT_LEN];
         pl->describe(&o->fault_report, 1, what);
-        /* what struck says more than the code's text, and LinuxCNC's error
-         * channel keeps only the first 255 characters: then the code alone */
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s (code %d): %s; drives off, state frozen; "
-                        "set " XP ".%d.reset to restart at HOME\n", id,
-                        o->fault_cause == HG_FAULT_PERIOD ? "bad thread period"
-                        : o->fault_cause == HG_FAULT_HOME ? "reset at HOME failed"
-                        : o->fault_report.kind ? "the machine struck a mechanical limit" : "dynamics step failed",
-                        o->fault_code, what[0] ? what : hg_strerror(o->fault_code), id);
+        /* what struck says more than the code's text, but LinuxCNC's error
+         * channel keeps only the first 255 characters of a message: a long
+         * one is said in two (the length with two-digit board numbers and a
+         * three-digit code) */
+        if (strlen(MODNAME ": board 00:  (code -00): ") + strlen(cause) + strlen(what) + sizeof tail > 255) {
+            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s (code %d): %s\n", id, cause, o->fault_code,
+                            what);
+            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: drives off, state frozen; set " XP ".%d.reset to "
+                            "restart at HOME\n", id, id);
+        } else {
+            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s (code %d): %s; drives off, state frozen; "
+                            "set " XP ".%d.reset to restart at HOME\n", id, cause,
+                            o->fault_code, what[0] ? what : hg_strerror(o->fault_code), id);
+        }
     }
 }
 

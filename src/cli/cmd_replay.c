@@ -657,6 +657,27 @@ static int prescan(const char *file, const char *buf, size_t len, int *plant, in
     return 0;
 }
 
+/* Say why the what-if board faulted where the recorded one did not; 1
+ * when the changed parameters cannot be integrated at all (the what-if
+ * stops: nothing after it would mean anything), 0 for a fault the changed
+ * machine runs into (a prediction: it goes on, drives off, as the board does). */
+static int whatif_fault(const hg_board *wb, const hg_board_outputs *o, long n, long period_ns)
+{
+    char what[HG_PLANT_TEXT_LEN > HG_BOARD_TEXT_LEN ? HG_PLANT_TEXT_LEN : HG_BOARD_TEXT_LEN];
+    if (o->fault_cause == HG_FAULT_STIFF) {
+        hg_board_describe_stiffness(wb, o, period_ns, 0, what);
+        fprintf(stderr, "hexaglide replay: sample %ld: the changed board cannot integrate its parameters: %s: %s "
+                "even with %u substeps; change --set, --integrator or --substeps\n", n, what,
+                hg_strerror(o->fault_code), HG_SUBSTEPS_MAX);
+        return 1;
+    }
+    hg_board_plant(wb)->describe(&o->fault_report, 0, what);
+    fprintf(stderr, "hexaglide replay: sample %ld: the changed machine faulted (code %d): %s; its drives are off "
+            "from here on (the recorded one's were not)\n", n, o->fault_code,
+            what[0] ? what : hg_strerror(o->fault_code));
+    return 0;
+}
+
 /* 1 if the variant is one of plant's, else 0 after a message naming the record and its line. */
 static int variant_known(const char *file, long line, int plant, int variant)
 {
@@ -977,6 +998,11 @@ int cmd_replay(int argc, char **argv)
             status = 1;
             break;
         }
+        if (whatif && (out_w.events & HG_EV_FAULT_LATCHED) && !out_x.fault &&
+            whatif_fault(closed ? &L.board : &b, &out_w, n, period)) {
+            status = 1;
+            break;
+        }
         if (whatif) {
             ctx.in = &in_w;
             ctx.out = &out_w;
@@ -1064,6 +1090,12 @@ int cmd_replay(int argc, char **argv)
                 stx.first_mismatch);
     if (has_cmd && first_enabled >= 0)
         joint_report(js, nj, whatif, win_from, last_enabled, o.from < 0);
+    else if (has_cmd && o.from >= stx.samples)
+        fprintf(stderr, "hexaglide replay: note: --from %ld is past the record's last sample (%ld): no f-error "
+                "statistics; give a --from below %ld\n", o.from, stx.samples - 1, stx.samples);
+    else if (has_cmd)
+        fprintf(stderr, "hexaglide replay: note: no joint's amplifier was enabled%s: no f-error statistics\n",
+                o.from >= 0 ? " from --from on" : " in the window");
     if (closed && o.spread > 1 && hold_at < 0)
         fprintf(stderr, "hexaglide replay: note: --spread: no idle after an index latch (homing) in %s: "
                 "the %ld loops ran the same periods\n", o.file, o.spread);

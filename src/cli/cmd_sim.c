@@ -265,6 +265,13 @@ int cmd_sim(int argc, char **argv)
         free(b);
         return 2;
     }
+    for (k = 0; k < b->sense.channels; k++)
+        if (!(fabs(volts[k]) <= HG_DAC_VOLTS_MAX)) {  /* the DAC would clamp it: say so instead */
+            fprintf(stderr, "hexaglide sim: --volts: %s = %g V is outside the DAC's range of -%g to %g V\n",
+                    volt_names[k], volts[k], HG_DAC_VOLTS_MAX, HG_DAC_VOLTS_MAX);
+            free(b);
+            return 2;
+        }
     if (cli_out_open("sim", csv_path, &csv)) {
         free(b);
         return 1;
@@ -295,8 +302,10 @@ int cmd_sim(int argc, char **argv)
         if (out.fault && out.fault_cause == HG_FAULT_STIFF) {
             char why[HG_BOARD_TEXT_LEN];
             hg_board_describe_stiffness(b, &out, period_ns, 0, why);
-            fprintf(stderr, "hexaglide sim: %s: %s even with %u substeps; give a softer value, another "
-                            "--integrator or a shorter --dt\n", why, hg_strerror(out.fault_code), HG_SUBSTEPS_MAX);
+            fprintf(stderr, "hexaglide sim: %s: %s even with %u substeps; give %s\n", why,
+                    hg_strerror(out.fault_code), HG_SUBSTEPS_MAX,
+                    out.stiff_dt_max_s > 0.0 ? "a softer value, another --integrator or a shorter --dt"
+                                             : "the mode damping or another --integrator (no step is short enough)");
             rc = out.fault_code;
             break;
         }

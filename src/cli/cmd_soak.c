@@ -186,7 +186,7 @@ int cmd_soak(int argc, char **argv)
     cli_args a;
     char default_ini[4096], *sets[argc > 0 ? argc : 1];
     const char *ini = 0, *v;
-    double hours = 8.0, dt = 0, seed_d = 1, t0, wall, e0k, e0p, ek, ep, net, mismatch;
+    double hours = 8.0, dt = 0, seed_d = 1, dt_given = 0, t0, wall, e0k, e0p, ek, ep, net, mismatch;
     double work_j = 0, friction_j = 0, drift = 0, ferr_max = 0, ferr_counts = 0, cmd_prev[6] = {0}, cmd_prev2[6] = {0};
     double tool_max = 0;               /* the tool-path error after the ramp-in (mm; -1: a period without a pose) */
     int kind = HG_MODEL_REDUCED_CARTESIAN, k, o, nset = 0, rc = 0, faults = 0, trips = 0, ferr_joint = 0;
@@ -206,7 +206,7 @@ int cmd_soak(int argc, char **argv)
             return 2;
         }
         if ((o == OPT_HOURS && cli_parse_double(v, "--hours", &hours)) ||
-            (o == OPT_DT && cli_parse_double(v, "--dt", &dt)) ||
+            (o == OPT_DT && (dt_given = 1, cli_parse_double(v, "--dt", &dt))) ||
             (o == OPT_SEED && cli_parse_double(v, "--seed", &seed_d)))
             return 2;
         if (o == OPT_MODEL && (kind = hg_model_from_name(v)) < 0) {
@@ -223,8 +223,12 @@ int cmd_soak(int argc, char **argv)
         if (o == OPT_SET)
             sets[nset++] = (char *)v;
     }
-    if (!(hours > 0 && hours <= 1000) || !(dt == 0 || (dt > 0 && dt <= HG_DT_MAX_S))) {
+    if (!(hours > 0 && hours <= 1000) || !((!dt_given && dt == 0) || (dt > 0 && dt <= HG_DT_MAX_S))) {
         fprintf(stderr, "hexaglide soak: need 0 < --hours <= 1000 and 0 < --dt <= %g s\n", HG_DT_MAX_S);
+        return 2;
+    }
+    if (!(seed_d >= 0 && seed_d <= 9007199254740992.0 && seed_d == floor(seed_d))) {
+        fprintf(stderr, "hexaglide soak: --seed must be a whole number from 0 to 2^53 (9007199254740992)\n");
         return 2;
     }
     if (!ini) {
@@ -259,11 +263,16 @@ int cmd_soak(int argc, char **argv)
         free(L);
         return 2;
     }
-    trajectory_init(&tr, (unsigned long long)fabs(seed_d) * 7919 + 1);
+    trajectory_init(&tr, (unsigned long long)seed_d * 7919 + 1);
     hm = hg_hexaglide_model(&L->board.m);
     hd = hg_hexaglide_data(&L->board.d);
     hg_energy(hm, hd, &e0k, &e0p);
     n = (long)(hours * 3600.0 / dt + 0.5);
+    if (n < 1) {
+        fprintf(stderr, "hexaglide soak: --hours %g is shorter than one servo period (%g s)\n", hours, dt);
+        free(L);
+        return 2;
+    }
     t0 = now_s();
     rc = 0;
     for (s = 0; s < n; s++) {
@@ -352,8 +361,12 @@ int cmd_soak(int argc, char **argv)
         printf("soak: (the flexible trains ran %u steps a period and the balance holds the forces of a "
                "period's last: a --dt of one step a period gives the balance its meaning)\n",
                L->out.substeps_run);
-    printf("soak: max following error after the %.1f s ramp-in: %.4f mm = %.2f counts (joint %d, through the "
-           "encoder)\n", SOAK_SETTLED_S, ferr_max, ferr_counts, ferr_joint);
+    if (s * dt > SOAK_SETTLED_S)
+        printf("soak: max following error after the %.1f s ramp-in: %.4f mm = %.2f counts (joint %d, through the "
+               "encoder)\n", SOAK_SETTLED_S, ferr_max, ferr_counts, ferr_joint);
+    else
+        printf("soak: max following error after the %.1f s ramp-in: none measured (the run ended at %.3f s, "
+               "before it)\n", SOAK_SETTLED_S, s * dt);
     if (tool_max >= 0)
         printf("soak: max tool-path error after the ramp-in: %.4f mm (the tool tip against where the commanded "
                "joints put it)\n", tool_max);

@@ -27,7 +27,7 @@ static int known_code(int rc)
 /* forward also refuses an answer outside the joints' ranges or with bars touching */
 static int known_forward_code(int rc)
 {
-    return known_code(rc) || rc == HG_ERR_JOINT_RANGE || rc == HG_ERR_BAR_CLEARANCE;
+    return known_code(rc) || rc == HG_ERR_JOINT_RANGE || rc == HG_ERR_BAR_CLEARANCE || rc == HG_ERR_BAD_PARAM;
 }
 
 /* largest |phi| / (2 l): bar-length error in metres to first order */
@@ -79,6 +79,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     rc = hg_forward_kinematics(&p.geo, z, guess, &o, &rep);
     if (!known_forward_code(rc))
         fail("forward returned an unknown code");
+    if ((rc == HG_ERR_BAD_PARAM) != (hg_fk_options_check(&o, 0, 0) != 0))
+        fail("forward refused settings the check accepts, or used settings it refuses");
     if (rep.iterations < 0 || rep.iterations > 100)
         fail("forward iterations out of bounds");
     if (rc == HG_OK) {

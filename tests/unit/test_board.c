@@ -483,6 +483,16 @@ static void test_check_all_and_format(void)
     CHECK(strcmp(buf, "-inf") == 0, "format -inf: '%s'", buf);
     hg_text_value(buf, 0.0731);
     CHECK(strcmp(buf, "0.0731") == 0, "format 0.0731: '%s'", buf);
+    hg_text_value(buf, 1e-300);
+    CHECK(strcmp(buf, "1e-300") == 0, "format 1e-300 (not 0): '%s'", buf);
+    hg_text_value(buf, -1.5e-9);
+    CHECK(strcmp(buf, "-1.5e-9") == 0, "format -1.5e-9: '%s'", buf);
+    hg_text_value(buf, 1e300);
+    CHECK(strcmp(buf, "1e+300") == 0, "format 1e300: '%s'", buf);
+    hg_text_value(buf, 9.9999999e20);
+    CHECK(strcmp(buf, "1e+21") == 0, "format 9.9999999e20 rounds to 1e+21: '%s'", buf);
+    hg_text_value(buf, 4.9406564584124654e-324);
+    CHECK(strcmp(buf, "4.94066e-324") == 0, "format the smallest denormal: '%s'", buf);
 }
 
 /* Count of steps in n with the ADDF_ORDER event. */
@@ -567,6 +577,64 @@ static void test_tool_error(void)
     CHECK(out.tool_error == -1.0, "a NaN command: tool-error -1 (%g)", out.tool_error);
 }
 
+/* A hard stop moved beneath a carriage: the carriage is then deeper in the
+ * stop than its spring represents (HG_THROUGH_STOP_M), and the next period
+ * faults naming the carriage and the stop, instead of the spring flinging
+ * the carriage back. */
+static void test_stop_beneath(void)
+{
+    int k, i;
+    char what[HG_PLANT_TEXT_LEN];
+    fresh();
+    in.dout_values = 1u << 7;
+    for (i = 0; i < 4000 && out.pos[0] < 0.02; i++) {   /* all six up together, under 20 mm */
+        for (k = 0; k < 6; k++)
+            in.dac_v[k] = 1.5;
+        run(1);
+    }
+    for (k = 0; k < 6; k++)
+        in.dac_v[k] = 0.0;
+    run(300);
+    CHECK(!out.fault && out.pos[0] > 0.015, "the carriages driven up and held at %.1f mm", out.pos[0] * 1e3);
+    *hg_test_pv(&in.params, "limit_max") = 0.004;
+    *hg_test_pv(&in.params, "stop_max") = 0.005;    /* over 5 mm beneath every carriage */
+    *hg_test_pv(&in.params, "home_switch") = 0.002;
+    run(1);
+    hg_board_plant(&b)->describe(&out.fault_report, 0, what);
+    CHECK(out.fault && out.fault_code == HG_ERR_THROUGH_STOP && out.fault_report.kind == HG_GUARD_THROUGH_STOP &&
+              out.fault_report.limit == 0.005 && strstr(what, "stop_max"),
+          "stop_max moved to 5 mm beneath carriages at %.1f mm: fault %d, \"%s\"", out.pos[0] * 1e3, out.fault_code,
+          what);
+}
+
+/* An ADC conversion that is not a number (a NaN gain, an infinite
+ * adc_volts_per_amp) reads 0 and says so once, until it is a number again. */
+static void test_adc_nan(void)
+{
+    int events = 0, k;
+    fresh();
+    in.dout_values = 1u << 7;
+    in.adc_read = 1;
+    for (k = 0; k < 6; k++)
+        in.dac_v[k] = 1.0;
+    in.adc_gain[0] = NAN;
+    for (k = 0; k < 6; k++) {
+        run(1);
+        events += (out.events & HG_EV_ADC_NAN) && out.adc_nan_new == 1u;
+    }
+    CHECK(events == 1 && out.adc[0] == 0.0 && isfinite(out.adc[1]) && out.adc[1] != 0.0,
+          "adc-00 gain NaN: one event (%d), adc-00 reads 0, adc-01 %g", events, out.adc[1]);
+    in.adc_gain[0] = 1.0;
+    run(4);
+    in.adc_volts_per_amp = INFINITY;
+    for (k = 0, events = 0; k < 6; k++) {
+        run(1);
+        events += (out.events & HG_EV_ADC_NAN) && (out.adc_nan_new & 0x3fu) != 0;
+    }
+    CHECK(events >= 1 && out.adc[0] == 0.0 && out.adc[1] == 0.0,
+          "adc-volts-per-amp Inf with current flowing: reported (%d periods), the channels read 0", events);
+}
+
 int main(void)
 {
     test_estop_loop();
@@ -582,5 +650,7 @@ int main(void)
     test_check_all_and_format();
     test_addf_order();
     test_tool_error();
+    test_stop_beneath();
+    test_adc_nan();
     return hg_test_exit();
 }

@@ -181,10 +181,67 @@ static void test_short_periods_and_naming(void)
     }
 }
 
+/* A state the step leaves as it is (eigenvalue exactly 1) is neutral, not
+ * unstable: a velocity loop without integral gain, a damping too weak to
+ * change a speed's last bit. Just above zero the answer is the same as at
+ * zero. A spring's damping that cannot be integrated alone names the
+ * bound, and a refused set is described by its own values. */
+static void test_neutral_and_damping_names(void)
+{
+    static hg_board b;
+    hg_board_inputs in;
+    hg_board_outputs out;
+    hg_stability st, st0;
+    hg_params p;
+    char why[HG_BOARD_TEXT_LEN];
+    int rc, rc0;
+    hg_test_rigid_defaults(&p);
+    p.amp_mode = 1.0;
+    p.ki_vel_a_per_m = 0.0;
+    rc0 = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, HG_SUBSTEPS_MAX, &st0);
+    p.ki_vel_a_per_m = 1e-300;
+    rc = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
+    CHECK(rc0 == 0 && rc == 0 && st0.substeps == st.substeps,
+          "velocity mode, ki_vel 0 (a P-only loop) integrates as ki_vel 1e-300: rc %d / %d, %u / %u substeps",
+          rc0, rc, st0.substeps, st.substeps);
+    hg_test_rigid_defaults(&p);
+    p.c_visc_ns_per_m = 0.0;
+    rc0 = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, HG_SUBSTEPS_MAX, &st0);
+    p.c_visc_ns_per_m = 1e-300;
+    rc = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, HG_SUBSTEPS_MAX, &st);
+    CHECK(rc0 == 0 && rc == 0 && st0.substeps == st.substeps, "c_visc 1e-300 integrates as c_visc 0: rc %d / %d",
+          rc0, rc);
+    /* c_stop 1e6 on the rigid carriage: c dt / m = 1e6 * 1e-3 / (m_carriage + rotor), far above
+     * the 2 any explicit scheme allows for a damping alone; the spring k_stop is the default */
+    hg_test_rigid_defaults(&p);
+    p.c_stop_ns_per_m = 1e6;
+    rc = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, 1, &st);
+    CHECK(rc == HG_ERR_STIFF && st.param && strcmp(st.param, "c_stop") == 0,
+          "c_stop 1e6 at 1 ms, one step: refused, naming %s (c_stop)", st.param ? st.param : "nothing");
+    hg_params_default(&p);
+    p.c_axial_ns_per_m = 1e8;
+    rc = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, 1, &st);
+    CHECK(rc == HG_ERR_STIFF && st.param && strcmp(st.param, "c_axial") == 0,
+          "flexible train, c_axial 1e8 at 1 ms, one step: refused, naming %s (c_axial)", st.param ? st.param : "nothing");
+    /* the refused set's value and integrator, not the set in force's */
+    hg_board_init(&b, 0, HG_MODEL_REDUCED_CARTESIAN, 0);
+    hg_board_inputs_default(&b, &in);
+    hg_board_step(&b, &in, &out, 1000000L);
+    *hg_test_pv(&in.params, "c_visc") = *hg_test_pv(&in.params, "c_stop") = 0.0;
+    in.params.integrator = HG_INTEGRATOR_IMPROVED_EULER;
+    hg_board_step(&b, &in, &out, 1000000L);
+    hg_board_describe_stiffness(&b, &out, 1000000L, 0, why);
+    CHECK((out.events & HG_EV_PARAM_REFUSED) && out.param_rc == HG_ERR_STIFF && out.stiff_value == 0.0 &&
+              out.stiff_integrator == HG_INTEGRATOR_IMPROVED_EULER && strstr(why, "c_stop = 0 ") &&
+              strstr(why, "improved-euler") && out.params.integrator == HG_INTEGRATOR_DEFAULT,
+          "refused set described by its own values: \"%s\"", why);
+}
+
 int main(void)
 {
     test_short_periods_and_naming();
     test_bounds();
     test_refused_and_board();
+    test_neutral_and_damping_names();
     return hg_test_exit();
 }
