@@ -225,8 +225,9 @@ static void report_refusal(board_t *b, long period)
         else
             hg_text_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->ins.params.substeps
                                                                 : b->ins.params.integrator);
+        const int unit = i < n && strcmp(t[i].hal_unit, "1") != 0; /* a dimensionless one has none */
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s: %s\n", b->id, b->id,
-                        hg_board_param_hal_name(&b->b, i), v, i < n ? " " : "", i < n ? t[i].hal_unit : "",
+                        hg_board_param_hal_name(&b->b, i), v, unit ? " " : "", unit ? t[i].hal_unit : "",
                         b->why[i] ? b->why[i] : "");
     }
 }
