@@ -663,7 +663,7 @@ static int prescan(const char *file, const char *buf, size_t len, int *plant, in
  * machine runs into (a prediction: it goes on, drives off, as the board does). */
 static int whatif_fault(const hg_board *wb, const hg_board_outputs *o, long n, long period_ns)
 {
-    char what[HG_PLANT_TEXT_LEN > HG_BOARD_TEXT_LEN ? HG_PLANT_TEXT_LEN : HG_BOARD_TEXT_LEN];
+    char what[HG_PLANT_TEXT_LEN + HG_BOARD_TEXT_LEN]; /* room for either text */
     if (o->fault_cause == HG_FAULT_STIFF) {
         hg_board_describe_stiffness(wb, o, period_ns, 0, what);
         fprintf(stderr, "hexaglide replay: sample %ld: the changed board cannot integrate its parameters: %s: %s "
