@@ -95,7 +95,10 @@ typedef struct {
 /* Classes of a parameter change (hg_plant.change). */
 enum {
     HG_PLANT_CHANGE_RESTART = 1u << 0, /* the machine's shape changed: restart at HOME */
-    HG_PLANT_CHANGE_RESCALE = 1u << 1  /* the encoders' turns per unit of travel changed */
+    HG_PLANT_CHANGE_RESCALE = 1u << 1, /* the encoders' turns per unit of travel changed */
+    HG_PLANT_CHANGE_ROUNDING = 1u << 2 /* with RESTART: the shape moved by rounding only (every field
+                                          within 4 ulps, a value shown in mm typed back: 68.254 / 1000
+                                          is 1 ulp off 0.068254); the state the machine is in stays valid */
 };
 
 /* Everything the board needs of a plant. The model variant (the

@@ -4,6 +4,7 @@
  * mechanical limits (hg_guard.h) and what its sensors read: six channels,
  * the motor encoders on the ball screws (turns = z / lead), the limit and
  * home switches on the carriages, the head pose and the bars. */
+#include <float.h>
 #include "hg_math.h"
 #include "hg_string.h"
 #include "hg_plant_hexaglide.h"
@@ -177,6 +178,13 @@ static int reset(const hg_plant_model *m, hg_plant_data *d)
 /* The machine's shape (l, lb, e, lp: where HOME is) restarts it; the
  * joints' ranges and the bar diameter are limits, not shape. A new lead
  * or counts-per-rev rescales the encoders. */
+/* 1 when x and y differ by at most 4 ulps of the larger. */
+static int within_rounding(double x, double y)
+{
+    const double ax = fabs(x), ay = fabs(y);
+    return fabs(x - y) <= 4.0 * DBL_EPSILON * (ax > ay ? ax : ay);
+}
+
 static unsigned change(int variant, const hg_plant_params *a, const hg_plant_params *b)
 {
     hg_params p, q;
@@ -186,6 +194,10 @@ static unsigned change(int variant, const hg_plant_params *a, const hg_plant_par
     params_from(b, &q);
     if (p.geo.l_m != q.geo.l_m || p.geo.lb_m != q.geo.lb_m || p.geo.e_m != q.geo.e_m || p.geo.lp_m != q.geo.lp_m)
         c |= HG_PLANT_CHANGE_RESTART;
+    if ((c & HG_PLANT_CHANGE_RESTART) && within_rounding(p.geo.l_m, q.geo.l_m) &&
+        within_rounding(p.geo.lb_m, q.geo.lb_m) && within_rounding(p.geo.e_m, q.geo.e_m) &&
+        within_rounding(p.geo.lp_m, q.geo.lp_m))
+        c |= HG_PLANT_CHANGE_ROUNDING;
     if (p.lead_m != q.lead_m || p.counts_per_rev != q.counts_per_rev)
         c |= HG_PLANT_CHANGE_RESCALE;
     return c;

@@ -635,6 +635,40 @@ static void test_adc_nan(void)
           "adc-volts-per-amp Inf with current flowing: reported (%d periods), the channels read 0", events);
 }
 
+/* A geometry change by rounding only (a value shown in mm typed back:
+ * 68.254 / 1000 is 1 ulp off the 0.068254 m in force) keeps the running
+ * machine where it is; one before the first period is the power-up set,
+ * no restart event; a real one restarts at HOME and says so. */
+static void test_geometry_rounding(void)
+{
+    unsigned ev;
+    double before;
+    int k;
+    fresh();
+    *hg_test_pv(&in.params, "e") = 70.0 / 1000.0;
+    ev = run(1);
+    CHECK((ev & HG_EV_PARAM_APPLIED) && !(ev & HG_EV_GEOMETRY_RESTART),
+          "e 70 mm before the first period: applied, no restart event (the power-up set)");
+    fresh();
+    in.dout_values = 1u << 7;
+    for (k = 0; k < 6; k++)
+        in.dac_v[k] = 1.5;
+    run(200);
+    before = out.pos[0];
+    CHECK(68.254 / 1000.0 != *hg_test_pv(&out.params, "e") && before > 1e-3,
+          "(68.254 / 1000 is not the default 0.068254 bit for bit; the carriages moved to %.3f mm)", before * 1e3);
+    *hg_test_pv(&in.params, "e") = 68.254 / 1000.0;
+    ev = run(1);
+    CHECK((ev & HG_EV_PARAM_APPLIED) && !(ev & HG_EV_GEOMETRY_RESTART) && out.pos[0] > before &&
+              *hg_test_pv(&out.params, "e") == 68.254 / 1000.0 && !out.fault,
+          "e 68.254 mm typed back while running: applied without a restart, the carriages go on (%.3f mm)",
+          out.pos[0] * 1e3);
+    *hg_test_pv(&in.params, "e") = 68.3 / 1000.0;
+    ev = run(1);
+    CHECK((ev & HG_EV_GEOMETRY_RESTART) && fabs(out.pos[0]) < 1e-4,
+          "e 68.3 mm while running: a new shape, restarted at HOME (%.4f mm)", out.pos[0] * 1e3);
+}
+
 int main(void)
 {
     test_estop_loop();
@@ -652,5 +686,6 @@ int main(void)
     test_tool_error();
     test_stop_beneath();
     test_adc_nan();
+    test_geometry_rounding();
     return hg_test_exit();
 }
