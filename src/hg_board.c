@@ -315,7 +315,7 @@ static void encoders(hg_board *b, const hg_board_inputs *in, hg_board_outputs *o
             hg_encoder_zero(e);
         if (memcmp(&s, &b->enc_scale_in[ch], sizeof s) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise, a NaN scale equals itself
             b->enc_scale_in[ch] = s;
-            if (!isfinite(s) || (s < 1e-20 && s > -1e-20)) {
+            if (!isfinite(s) || (s < HG_ENC_SCALE_MIN && s > -HG_ENC_SCALE_MIN)) {
                 out->enc_scale_bad |= 1u << ch;
                 b->param_error = 1;
                 s = 1.0;              /* as hal_motenc */

@@ -28,6 +28,8 @@
 
 #define HG_SUBSTEPS_MAX 64u           /* substeps param: 1..HG_SUBSTEPS_MAX */
 #define HG_PERIOD_MAX_NS 10000000L    /* the longest period integrated (10 ms) */
+#define HG_ENC_SCALE_MIN 1e-20        /* the smallest |enc-CC-scale| taken; a smaller or non-finite one
+                                         reads 1.0 (as hal_motenc) and sets enc_scale_bad */
 
 /* Bits of the refused-field set (hg_board_outputs.refused): bit i is entry
  * i of the plant's parameter table (i < HG_PLANT_PARAMS_MAX), plus these two. */

@@ -23,6 +23,7 @@ const char *hg_strerror(int code)
     case HG_ERR_STIFF: return "the parameters are too stiff for the integration step at this period";
     case HG_ERR_THROUGH_STOP: return "an axis went through its hard stop (the machine has crashed)";
     case HG_ERR_NO_MEMORY: return "out of memory for the batch of closed-loop runs";
+    case HG_ERR_OUT_OF_RANGE: return "input beyond the range the computation takes (above 1e9 in magnitude)";
     default: return "unknown error";
     }
 }

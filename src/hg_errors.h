@@ -24,7 +24,9 @@ enum hg_error {
     HG_ERR_STIFF = -16,            /* parameters too stiff for the step at this period, even with the most substeps */
     HG_ERR_THROUGH_STOP = -17,     /* an axis went through its hard stop (beyond what the stop's spring represents) */
     HG_ERR_NO_MEMORY = -18,        /* host only: memory for a batch of runs could not be had */
-    HG_ERR_LAST = HG_ERR_NO_MEMORY /* the most negative code: keep it the last */
+    HG_ERR_OUT_OF_RANGE = -19,     /* a finite input beyond the range the computation takes (a servo
+                                      command above HG_PID_MAX_ABS in magnitude: it would overflow) */
+    HG_ERR_LAST = HG_ERR_OUT_OF_RANGE /* the most negative code: keep it the last */
 };
 
 /* A short English description of an hg_error code (static string). */

@@ -244,6 +244,25 @@ int hg_inverse_kinematics(const hg_geometry *g, const double pose[6], double z[6
     return HG_OK;
 }
 
+int hg_inverse_kinematics_guarded(const hg_geometry *g, const double pose[6], double z[6],
+                                  hg_guard_report *report)
+{
+    double out[6];
+    int k, rc;
+    if (report) {
+        report->kind = HG_GUARD_NONE;
+        report->bar = report->other = -1;
+        report->value = report->limit = 0.0;
+    }
+    rc = hg_inverse_kinematics(g, pose, out);
+    if (rc == HG_OK)                   /* joints exist; can the machine take the pose? */
+        rc = hg_guard_check(g, out, pose, 0, report);
+    if (rc == HG_OK)
+        for (k = 0; k < 6; k++)
+            z[k] = out[k];
+    return rc;
+}
+
 double hg_bar_length_error(const hg_geometry *g, const double z[6], const double pose[6])
 {
     double phi[6], worst = 0.0;

@@ -113,6 +113,15 @@ void hg_constraint_jacobian(const hg_geometry *g, const double z[6], const doubl
  * |X|, |Y|, |Z| beyond HG_MAX_ABS_POSITION_BARS l) (joints untouched on failure). */
 int hg_inverse_kinematics(const hg_geometry *g, const double pose[6], double z[6]);
 
+/* The joints of a pose the machine can take: hg_inverse_kinematics, then
+ * hg_guard_check of the answer (the bars' joint ranges and clearance; what
+ * `hexaglide ik` and the Python binding's ik report). 0, or the inverse's
+ * codes, or HG_ERR_JOINT_RANGE / HG_ERR_BAR_CLEARANCE with *report (may
+ * be 0; kind HG_GUARD_NONE when the inverse failed) naming the bar(s),
+ * value and limit. z untouched on failure. */
+int hg_inverse_kinematics_guarded(const hg_geometry *g, const double pose[6], double z[6],
+                                  hg_guard_report *report);
+
 /* Forward kinematics by Newton-Raphson on the six bar equations with the
  * analytic Jacobian, starting from pose (the guess) and overwriting it with
  * the answer on success only. An answer the machine cannot take is

@@ -19,22 +19,95 @@ void hg_loop_config_default(hg_loop_config *c)
     c->variant = hg_plant_at(0)->default_variant;
 }
 
+/* Record the failed field in *r (may be 0); returns code. */
+static int refuse(hg_loop_check_report *r, int code, int joint, const char *component, const char *field,
+                  const char *ini_key, const char *why, double value)
+{
+    if (r) {
+        r->joint = joint;
+        r->component = component;
+        r->field = field;
+        r->ini_key = ini_key;
+        r->why = why;
+        r->value = value;
+    }
+    return code;
+}
+
+/* The rules of an enabled biquad.N (hg_loop_config_check). */
+static int biquad_check(const hg_biquad *b, int k, long period_ns, hg_loop_check_report *r)
+{
+    static const char *const coeff[5] = {"n0", "n1", "n2", "d1", "d2"};
+    const double v[5] = {b->n0, b->n1, b->n2, b->d1, b->d2};
+    double re, im;
+    int i;
+    if (!b->enable)
+        return HG_OK;                  /* out = in, whatever its settings */
+    if (b->type == HG_BIQUAD_DIRECT) {
+        for (i = 0; i < 5; i++)
+            if (!isfinite(v[i]))
+                return refuse(r, HG_ERR_BAD_PARAM, k, "biquad", coeff[i], 0, "must be finite", v[i]);
+        return HG_OK;
+    }
+    if (b->type != HG_BIQUAD_LOW_PASS && b->type != HG_BIQUAD_NOTCH)
+        return refuse(r, HG_ERR_BAD_PARAM, k, "biquad", "type", 0, "must be 0 (direct), 1 (low pass) or 2 (notch)",
+                      (double)b->type);
+    if (!(isfinite(b->f0) && b->f0 > 0.0))
+        return refuse(r, HG_ERR_BAD_PARAM, k, "biquad", "f0", 0, "must be finite and > 0 (Hz)", b->f0);
+    if (!(b->Q >= 0.5 && b->Q <= 2.0))
+        return refuse(r, HG_ERR_BAD_PARAM, k, "biquad", "Q", 0, "must lie in [0.5, 2]: biquad.comp refuses "
+                      "another (valid 0), and LinuxCNC would pass pid.N.output unfiltered", b->Q);
+    if (!hg_biquad_response(b, period_ns, 0.0, &re, &im))
+        return refuse(r, HG_ERR_BAD_PARAM, k, "biquad", "f0", 0, "must be at most half the servo rate: "
+                      "biquad.comp refuses more (valid 0), and LinuxCNC would pass pid.N.output unfiltered", b->f0);
+    return HG_OK;
+}
+
+int hg_loop_config_check(const hg_loop_config *c, hg_loop_check_report *r)
+{
+    const hg_pid_setting *bad;
+    const char *why;
+    int k, joints;
+    if (c->period_ns <= 0 || c->period_ns > HG_PERIOD_MAX_NS)
+        return refuse(r, HG_ERR_BAD_DT, -1, "loop", "period_ns", 0, "must lie in (0, 10000000] ns (at most 10 ms)",
+                      (double)c->period_ns);
+    joints = hg_plant_channels_at(c->plant, c->variant);
+    if (joints <= 0 || joints > HG_LOOP_JOINTS)
+        return refuse(r, HG_ERR_BAD_PARAM, -1, "loop", "plant", 0, "must name a plant and model variant of the "
+                      "registry (hg_plant.h)", (double)c->plant);
+    if (!(isfinite(c->ferror_limit_mm) && c->ferror_limit_mm >= 0.0))
+        return refuse(r, HG_ERR_BAD_PARAM, -1, "loop", "ferror_limit_mm", 0, "must be finite and >= 0 (0: no trip)",
+                      c->ferror_limit_mm);
+    for (k = 0; k < joints; k++) {
+        if (hg_pid_gains_check(&c->pid[k], &bad, &why))
+            return refuse(r, HG_ERR_BAD_PARAM, k, "pid", bad->pin, bad->ini_key, why,
+                          hg_pid_setting_value(&c->pid[k], bad));
+        if (!(isfinite(c->input_scale[k]) && fabs(c->input_scale[k]) >= HG_ENC_SCALE_MIN))
+            return refuse(r, HG_ERR_BAD_PARAM, k, "loop", "input_scale", "INPUT_SCALE",
+                          "must be finite and at least 1e-20 in magnitude (counts per unit; the board's encoder "
+                          "would read a smaller scale as 1)", c->input_scale[k]);
+        if (!isfinite(c->output_scale[k]))
+            return refuse(r, HG_ERR_BAD_PARAM, k, "loop", "output_scale", "OUTPUT_SCALE", "must be finite",
+                          c->output_scale[k]);
+        if (!isfinite(c->output_offset[k]))
+            return refuse(r, HG_ERR_BAD_PARAM, k, "loop", "output_offset", "OUTPUT_OFFSET", "must be finite",
+                          c->output_offset[k]);
+        if (biquad_check(&c->biquad[k], k, c->period_ns, r))
+            return HG_ERR_BAD_PARAM;
+    }
+    return HG_OK;
+}
+
 int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p)
 {
-    const hg_plant *pl = hg_plant_at(c->plant);
-    int k, rc;
-    if (c->period_ns <= 0 || c->period_ns > HG_PERIOD_MAX_NS)
-        return HG_ERR_BAD_DT;
-    if (!pl || !hg_plant_nparams_at(c->plant, c->variant))
-        return HG_ERR_BAD_PARAM;
+    int k, rc = hg_loop_config_check(c, 0);
+    if (rc)
+        return rc;
     L->cfg = *c;
     rc = hg_board_init(&L->board, c->plant, c->variant, p);
     if (rc)
         return rc;
     L->joints = L->board.sense.channels;
-    for (k = 0; k < L->joints; k++)
-        if (!isfinite(c->input_scale[k]) || c->input_scale[k] == 0.0)
-            return HG_ERR_BAD_PARAM;
     hg_board_inputs_default(&L->board, &L->in);
     L->in.dout_values |= 1u << 7;      /* iocontrol's user-enable-out closes the E-STOP loop (out-07) */
     L->in.dac_written = 1;
@@ -83,9 +156,11 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
 {
     double fb[HG_LOOP_JOINTS], dac[HG_LOOP_JOINTS] = {0};
     int k, rc;
-    for (k = 0; k < L->joints; k++)
-        if (!isfinite(cmd_mm[k]))
-            return HG_ERR_NONFINITE_INPUT;
+    for (k = 0; k < L->joints; k++) {
+        rc = hg_pid_input_check(cmd_mm[k]);
+        if (rc)
+            return rc;
+    }
     for (k = 0; k < L->joints; k++) {
         fb[k] = plant_position_mm(L, k);
         if (out) {
@@ -201,6 +276,8 @@ unsigned long hg_loop_sizeof(int which)
     case 10: return sizeof(hg_board_outputs);
     case 11: return sizeof(hg_pid_state);
     case 13: return sizeof(hg_biquad);
+    case 14: return sizeof(hg_loop_check_report);
+    case 15: return sizeof(hg_pid_setting);
     default: return 0;
     }
 }

@@ -87,15 +87,45 @@ typedef struct {
  * its default model (reduced-cartesian), no trip limit. */
 void hg_loop_config_default(hg_loop_config *c);
 
+/* What hg_loop_config_check refused: the first field that fails its rule. */
+typedef struct {
+    int joint;                 /* the joint (channel) the field belongs to, or -1 (the loop's own) */
+    const char *component;     /* "pid" (pid.N's pins), "biquad" (biquad.N's), "loop" (the config's own) */
+    const char *field;         /* its name there: the pid pin ("Pgain", "maxoutput"), biquad's "f0",
+                                  "Q" or "n0".."d2", or input_scale, output_scale, output_offset,
+                                  ferror_limit_mm, period_ns, plant */
+    const char *ini_key;       /* its key in a config's [JOINT_N] ("P", "MAX_OUTPUT", "INPUT_SCALE"), or 0 */
+    const char *why;           /* what it must be */
+    double value;              /* its value */
+} hg_loop_check_report;
+
+/* Check c against the rules of the loop, for the joints its plant uses
+ * (hg_plant_channels_at): a known plant and model variant; period_ns in
+ * (0, HG_PERIOD_MAX_NS]; ferror_limit_mm finite and >= 0; per joint every
+ * pid setting (hg_pid_gains_check: gains finite and at most HG_PID_MAX_ABS
+ * in magnitude, limits finite and >= 0), INPUT_SCALE finite and at least
+ * HG_ENC_SCALE_MIN in magnitude (the board's encoder refuses less),
+ * OUTPUT_SCALE and OUTPUT_OFFSET finite, and an enabled biquad.N's settings
+ * finite and, for a low pass or notch, accepted by biquad.comp at this
+ * period (valid; else LinuxCNC would pass the output unfiltered). 0, or
+ * HG_ERR_BAD_DT (period_ns) or HG_ERR_BAD_PARAM, with *r (may be 0) naming
+ * the first field that fails. With such a config every pid output is
+ * finite for commands hg_pid_input_check takes. */
+int hg_loop_config_check(const hg_loop_config *c, hg_loop_check_report *r);
+
 /* Machine at HOME at rest, counters at 0, amplifiers on (E-STOP loop closed),
  * PIDs reset, motion's command 0. p: the board's parameter block (model
  * parameters, substeps, integrator; 0: the spec's defaults as on HAL load).
- * 0, or a negative code (bad parameters or period: HG_ERR_BAD_PARAM / BAD_DT). */
+ * 0, or a negative code (hg_loop_config_check's: HG_ERR_BAD_PARAM / BAD_DT;
+ * the board's for its parameters). */
 int hg_loop_init(hg_loop *L, const hg_loop_config *c, const hg_board_params *p);
 
 /* One servo period with motion's joint commands cmd_mm[L->joints]; out may be 0.
  * 0, or the board's fault code (latched: the board stays faulted),
- * or HG_ERR_NONFINITE_INPUT for a non-finite command (nothing run). */
+ * or for a command hg_pid_input_check refuses (nothing run)
+ * HG_ERR_NONFINITE_INPUT (NaN, inf) or HG_ERR_OUT_OF_RANGE (above
+ * HG_PID_MAX_ABS in magnitude: pid.c's command derivatives would overflow
+ * to inf and then NaN before any f-error limit could trip). */
 int hg_loop_step(hg_loop *L, const double *cmd_mm, hg_loop_sample *out);
 
 /* One servo period as LinuxCNC ran it, for a replay of a recorded run:
@@ -114,7 +144,8 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
 /* Run n periods of commands cmd_mm[n][J] (row-major, J = L->joints);
  * per-period f-errors and outputs into ferror_mm[n][J] / output_v[n][J]
  * when not 0; summary over the periods from `from` on. Stops early at a
- * trip (see ferror_limit_mm). 0 or the first step's negative code. */
+ * trip (see ferror_limit_mm). 0 or the first step's negative code (a
+ * refused command: sum->periods is its row, the rows before it ran). */
 int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
                 double *output_v, hg_loop_summary *sum);
 
@@ -126,7 +157,8 @@ int hg_loop_run_traced(hg_loop *L, const double *cmd_mm, long n, long from, cons
 unsigned long hg_loop_sizeof(int which);   /* 0 hg_loop, 1 config, 2 summary, 3 pid gains,
                                              7 hg_board_params, 8 hg_board,
                                              9 hg_board_inputs, 10 hg_board_outputs,
-                                             11 hg_pid_state, 13 hg_biquad; else 0 (the Hexaglide's own
+                                             11 hg_pid_state, 13 hg_biquad,
+                                             14 hg_loop_check_report, 15 hg_pid_setting; else 0 (the Hexaglide's own
                                              types: hg_hexaglide_sizeof) */
 
 #endif

@@ -1,5 +1,100 @@
 /* hg_pid.c - LinuxCNC's pid component (pid.c calc_pid), expression by expression. */
+#include <stddef.h>
+#include "hg_errors.h"
+#include "hg_math.h"
+#include "hg_string.h"
 #include "hg_pid.h"
+
+/* pid.N's settings in hg_pid_gains' order: pin names as pid.c's, INI keys as
+ * configs/hexaglide.ini's [JOINT_N] (the hal file setp's pid.N from them). */
+static const hg_pid_setting settings[] = {
+    {"Pgain", "P", offsetof(hg_pid_gains, pgain), HG_PID_GAIN},
+    {"Igain", "I", offsetof(hg_pid_gains, igain), HG_PID_GAIN},
+    {"Dgain", "D", offsetof(hg_pid_gains, dgain), HG_PID_GAIN},
+    {"bias", "BIAS", offsetof(hg_pid_gains, bias), HG_PID_GAIN},
+    {"FF0", "FF0", offsetof(hg_pid_gains, ff0), HG_PID_GAIN},
+    {"FF1", "FF1", offsetof(hg_pid_gains, ff1), HG_PID_GAIN},
+    {"FF2", "FF2", offsetof(hg_pid_gains, ff2), HG_PID_GAIN},
+    {"FF3", "FF3", offsetof(hg_pid_gains, ff3), HG_PID_GAIN},
+    {"deadband", "DEADBAND", offsetof(hg_pid_gains, deadband), HG_PID_LIMIT},
+    {"maxerror", 0, offsetof(hg_pid_gains, maxerror), HG_PID_LIMIT},
+    {"maxerrorI", "MAX_ERROR_I", offsetof(hg_pid_gains, maxerror_i), HG_PID_LIMIT},
+    {"maxerrorD", 0, offsetof(hg_pid_gains, maxerror_d), HG_PID_LIMIT},
+    {"maxcmdD", 0, offsetof(hg_pid_gains, maxcmd_d), HG_PID_LIMIT},
+    {"maxcmdDD", 0, offsetof(hg_pid_gains, maxcmd_dd), HG_PID_LIMIT},
+    {"maxcmdDDD", 0, offsetof(hg_pid_gains, maxcmd_ddd), HG_PID_LIMIT},
+    {"maxoutput", "MAX_OUTPUT", offsetof(hg_pid_gains, maxoutput), HG_PID_LIMIT},
+    {"error-previous-target", 0, offsetof(hg_pid_gains, error_previous_target), HG_PID_FLAG},
+};
+
+const hg_pid_setting *hg_pid_setting_at(int i)
+{
+    return i >= 0 && i < (int)(sizeof settings / sizeof settings[0]) ? &settings[i] : 0;
+}
+
+double hg_pid_setting_value(const hg_pid_gains *g, const hg_pid_setting *s)
+{
+    const char *at = (const char *)g + s->offset;
+    double v;
+    int flag;
+    if (s->kind == HG_PID_FLAG) {
+        memcpy(&flag, at, sizeof flag);
+        return flag ? 1.0 : 0.0;
+    }
+    memcpy(&v, at, sizeof v);
+    return v;
+}
+
+int hg_pid_gains_check(const hg_pid_gains *g, const hg_pid_setting **bad, const char **why)
+{
+    const hg_pid_setting *s;
+    int i;
+    for (i = 0; (s = hg_pid_setting_at(i)) != 0; i++) {
+        double v = hg_pid_setting_value(g, s);
+        const char *w = 0;
+        if (s->kind == HG_PID_GAIN && !(fabs(v) <= HG_PID_MAX_ABS))
+            w = "must be finite and at most 1e9 in magnitude (beyond it pid.c's products overflow)";
+        else if (s->kind == HG_PID_LIMIT && !(isfinite(v) && v >= 0.0))
+            w = "must be finite and >= 0 (0: no limit)";
+        if (w) {
+            if (bad)
+                *bad = s;
+            if (why)
+                *why = w;
+            return HG_ERR_BAD_PARAM;
+        }
+    }
+    return HG_OK;
+}
+
+int hg_pid_input_check(double x)
+{
+    if (!isfinite(x))
+        return HG_ERR_NONFINITE_INPUT;
+    return fabs(x) <= HG_PID_MAX_ABS ? HG_OK : HG_ERR_OUT_OF_RANGE;
+}
+
+long hg_pid_inputs_check(const double *v, long n, int *rc)
+{
+    long i0, i;
+    for (i0 = 0; i0 < n; i0 += 256) {  /* a block without a branch per value, then the one refused */
+        long end = n - i0 < 256 ? n : i0 + 256;
+        int bad = 0;
+        for (i = i0; i < end; i++)
+            bad |= !(fabs(v[i]) <= HG_PID_MAX_ABS);   /* NaN too */
+        for (i = i0; bad && i < end; i++) {
+            int r = hg_pid_input_check(v[i]);
+            if (r) {
+                if (rc)
+                    *rc = r;
+                return i;
+            }
+        }
+    }
+    if (rc)
+        *rc = HG_OK;
+    return -1;
+}
 
 void hg_pid_defaults(hg_pid_gains *g)
 {

@@ -83,6 +83,11 @@ int hg_plant_nparams_at(int plant, int variant)
     return p && p->variant_name(variant, buf, (int)sizeof buf) == 0 ? p->nparams(variant) : 0;
 }
 
+int hg_plant_channels_at(int plant, int variant)
+{
+    return hg_plant_nparams_at(plant, variant) ? hg_plant_at(plant)->channels(variant) : 0;
+}
+
 int hg_plant_param_at(int plant, int variant, int i, hg_param_info *out)
 {
     const hg_plant *p = hg_plant_at(plant);

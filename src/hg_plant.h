@@ -200,9 +200,11 @@ int hg_plant_param_find(const hg_plant *p, int variant, const char *name);
 
 /* The same by registry index, for bindings that cannot follow the struct
  * (Python): the number of entries (0 for an unknown plant or variant),
+ * the channels it uses (0 for an unknown plant or variant),
  * entry i (0 or -1), the defaults (0 or -1), the name (0 if unknown) and
  * the variant called name (-1 if unknown); the INI section of its parameters (0 if unknown). */
 int hg_plant_nparams_at(int plant, int variant);
+int hg_plant_channels_at(int plant, int variant);
 int hg_plant_param_at(int plant, int variant, int i, hg_param_info *out);
 int hg_plant_defaults_at(int plant, int variant, hg_plant_params *v);
 const char *hg_plant_name_at(int plant);

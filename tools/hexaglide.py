@@ -41,9 +41,9 @@ _P = C.c_void_p
 class HexaglideError(RuntimeError):
     """A core function returned a negative code (src/hg_errors.h)."""
 
-    def __init__(self, what, code):
+    def __init__(self, what, code, detail=""):
         self.code = code
-        super().__init__("%s: %s (code %d)" % (what, strerror(code), code))
+        super().__init__("%s: %s (code %d)%s" % (what, strerror(code), code, ": " + detail if detail else ""))
 
 
 def _sig(name, res, *args):
@@ -59,6 +59,40 @@ _strerror = _sig("hg_strerror", C.c_char_p, C.c_int)
 def strerror(code):
     """Text of an error code."""
     return _strerror(code).decode()
+
+
+def _vector(name, values, n, finite=False, what=""):
+    """values as a float64 array of exactly n numbers, else TypeError (not numbers) or
+    ValueError naming the argument, the length expected and the length got; finite: also
+    ValueError naming the first entry that is NaN or infinite. what: the n values' meaning,
+    for the message ("X Y Z (mm) A B C (deg)")."""
+    try:
+        v = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError("%s must be %d numbers%s, got %r" % (name, n, " " + what if what else "", values))
+    if v.ndim != 1 or v.shape[0] != n:
+        got = "%d values" % v.shape[0] if v.ndim == 1 else "shape %s" % (v.shape,)
+        raise ValueError("%s needs %d values%s, got %s" % (name, n, " (%s)" % what if what else "", got))
+    if finite and not np.isfinite(v).all():
+        i = int(np.argmin(np.isfinite(v)))
+        raise ValueError("%s[%d] = %r is not finite" % (name, i, float(v[i])))
+    return v
+
+
+def _whole(name, value, unit=""):
+    """value as an int (a Python or numpy integer), else TypeError naming the argument."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError("%s must be a whole number%s (an int), got %r%s" % (
+            name, " of " + unit if unit else "", value,
+            ": give int(round(x))" if isinstance(value, (float, np.floating)) else ""))
+    return int(value)
+
+
+def _name(arg, value, choices):
+    """value as bytes of a name (str), else TypeError naming the argument and the choices."""
+    if not isinstance(value, str):
+        raise TypeError("%s must be a name (str), one of %s; got %r" % (arg, choices, value))
+    return value.encode()
 
 
 class PidGains(C.Structure):
@@ -94,6 +128,17 @@ class LoopSummary(C.Structure):
                 ("peak_tool_error_mm", C.c_double), ("periods", C.c_long), ("tripped_at", C.c_long)]
 
 
+class LoopCheckReport(C.Structure):
+    """hg_loop_check_report: the field hg_loop_config_check refused."""
+    _fields_ = [("joint", C.c_int), ("component", C.c_char_p), ("field", C.c_char_p), ("ini_key", C.c_char_p),
+                ("why", C.c_char_p), ("value", C.c_double)]
+
+
+class PidSetting(C.Structure):
+    """hg_pid_setting: one pid.N setting (pin name, INI key, offset in hg_pid_gains, rule)."""
+    _fields_ = [("pin", C.c_char_p), ("ini_key", C.c_char_p), ("offset", C.c_ulong), ("kind", C.c_int)]
+
+
 _board_sizeof = _sig("hg_loop_sizeof", C.c_ulong, C.c_int)
 _hexaglide_sizeof = _sig("hg_hexaglide_sizeof", C.c_ulong, C.c_int)
 
@@ -127,7 +172,8 @@ class Data(C.Structure):
     _fields_ = _DATA_STATE + [("work", C.c_double * max(0, (_sizeof(5) - C.sizeof(_DataState)) // 8))]
 
 
-for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data), (12, _DataState), (13, Biquad)):
+for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data), (12, _DataState), (13, Biquad),
+               (14, LoopCheckReport), (15, PidSetting)):
     if _sizeof(_i) != C.sizeof(_s):
         raise ImportError("%s: layout differs from the library's (%d vs %d bytes): rebuild both"
                           % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
@@ -205,15 +251,18 @@ _model_from_name = _sig("hg_model_from_name", C.c_int, C.c_char_p)
 _data_reset = _sig("hg_data_reset", C.c_int, _P, _P)
 _step = _sig("hg_step", C.c_int, _P, _P, _d6, C.c_double)
 _energy = _sig("hg_energy", None, _P, _P, C.POINTER(C.c_double), C.POINTER(C.c_double))
-_ik = _sig("hg_inverse_kinematics", C.c_int, _P, _d6, _d6)
+_ik = _sig("hg_inverse_kinematics_guarded", C.c_int, _P, _d6, _d6, _P)
 _fk = _sig("hg_forward_kinematics", C.c_int, _P, _d6, _d6, _P, _P)
 _guard_check = _sig("hg_guard_check", C.c_int, _P, _d6, _d6, C.c_uint, C.POINTER(GuardReport))
 _guard_describe = _sig("hg_guard_describe", None, C.POINTER(GuardReport), C.c_int, C.c_char_p)
 _loop_default = _sig("hg_loop_config_default", None, C.POINTER(LoopConfig))
 _loop_init = _sig("hg_loop_init", C.c_int, _P, C.POINTER(LoopConfig), _P)
 _loop_step = _sig("hg_loop_step", C.c_int, _P, _dc, _P)
+_loop_check = _sig("hg_loop_config_check", C.c_int, C.POINTER(LoopConfig), C.POINTER(LoopCheckReport))
+_plant_channels = _sig("hg_plant_channels_at", C.c_int, C.c_int, C.c_int)
 _dp = np.ctypeslib.ndpointer(dtype=np.float64, flags="C_CONTIGUOUS")
 _loop_run = _sig("hg_loop_run", C.c_int, _P, _dp, C.c_long, C.c_long, _P, _P, C.POINTER(LoopSummary))
+_pid_inputs_check = _sig("hg_pid_inputs_check", C.c_long, _dp, C.c_long, C.POINTER(C.c_int))
 _biquad_notch = _sig("hg_biquad_notch", None, C.POINTER(Biquad), C.c_double, C.c_double)
 _biquad_response = _sig("hg_biquad_response", C.c_int, C.POINTER(Biquad), C.c_long, C.c_double,
                         C.POINTER(C.c_double), C.POINTER(C.c_double))
@@ -333,23 +382,53 @@ class PlantParams:
 
 
 def _geometry(params):
-    return (params or Params()).buf  # hg_geometry is the first member of hg_params
+    """The hg_geometry of params (a Params; None: the defaults), else TypeError."""
+    if params is None:
+        params = Params()
+    if not isinstance(params, Params):
+        raise TypeError("params must be a hexaglide.Params (the Hexaglide's parameter set) or None, got %r"
+                        % (params,))
+    return params.buf  # hg_geometry is the first member of hg_params
+
+
+POSE = "X Y Z (mm) A B C (deg)"
+JOINTS_MM = "J0..J5 (mm)"
+
+
+def _pose_si(name, pose_user):
+    """A pose (mm, deg) of six numbers as the core's (m, rad)."""
+    v = _vector(name, pose_user, 6, what=POSE)
+    return _d6(*(v[:3] / 1000.0), *np.radians(v[3:]))
+
+
+def _joints_si(name, joints_mm):
+    """Six joint positions (mm) as the core's (m)."""
+    return _d6(*(_vector(name, joints_mm, 6, what=JOINTS_MM) / 1000.0))
+
+
+def _guard_text(rep):
+    text = C.create_string_buffer(200)
+    _guard_describe(C.byref(rep), 0, text)
+    return text.value.decode()
 
 
 def ik(pose_user, params=None):
-    """Joints (mm) of a pose (X Y Z mm, A B C deg)."""
-    pose = _d6(*[v / 1000.0 for v in pose_user[:3]], *[np.radians(v) for v in pose_user[3:]])
+    """Joints (mm) of a pose (X Y Z mm, A B C deg) the machine can take: the closed-form
+    inverse and the mechanical guard, as `hexaglide ik` (hg_inverse_kinematics_guarded).
+    HexaglideError (code and, for a guard, the bar, value and limit) otherwise."""
+    pose = _pose_si("pose", pose_user)
     z = _d6()
-    rc = _ik(_geometry(params), pose, z)
+    rep = GuardReport()
+    rc = _ik(_geometry(params), pose, z, C.byref(rep))
     if rc:
-        raise HexaglideError("ik", rc)
+        raise HexaglideError("ik", rc, _guard_text(rep))
     return np.array(z[:]) * 1000.0
 
 
 def fk(joints_mm, guess_user=(0, 0, 0, 0, 0, 0), params=None):
-    """Pose (mm, deg) of six joint positions (mm), Newton from guess."""
-    z = _d6(*[v / 1000.0 for v in joints_mm])
-    pose = _d6(*[v / 1000.0 for v in guess_user[:3]], *[np.radians(v) for v in guess_user[3:]])
+    """Pose (mm, deg) of six joint positions (mm), Newton from guess (a pose)."""
+    z = _joints_si("joints", joints_mm)
+    pose = _pose_si("guess", guess_user)
     rc = _fk(_geometry(params), z, pose, None, None)
     if rc:
         raise HexaglideError("fk", rc)
@@ -359,22 +438,21 @@ def fk(joints_mm, guess_user=(0, 0, 0, 0, 0, 0), params=None):
 def guard(joints_mm, pose_user, params=None):
     """The mechanical limits at a state (src/hg_guard.h): (0, "") inside
     them, else (code, sentence naming the bar(s), value and limit)."""
-    z = _d6(*[v / 1000.0 for v in joints_mm])
-    pose = _d6(*[v / 1000.0 for v in pose_user[:3]], *[np.radians(v) for v in pose_user[3:]])
+    z = _joints_si("joints", joints_mm)
+    pose = _pose_si("pose", pose_user)
     rep = GuardReport()
     rc = _guard_check(_geometry(params), z, pose, 0, C.byref(rep))
-    text = C.create_string_buffer(200)
-    _guard_describe(C.byref(rep), 0, text)
-    return rc, text.value.decode()
+    return rc, _guard_text(rep)
 
 
 class Model:
     """hg_model + hg_data: the machine's dynamics (SI units, src/hg_dynamics.h)."""
 
     def __init__(self, kind="reduced-cartesian", params=None):
-        k = _model_from_name(kind.encode())
+        k = _model_from_name(_name("kind", kind, MODELS))
         if k < 0:
             raise ValueError("unknown model %r; one of %s" % (kind, MODELS))
+        _geometry(params)                      # a Params or None, else TypeError
         self.params = params or Params()
         self.m = C.create_string_buffer(_sizeof(4))
         self.d = Data()
@@ -391,8 +469,14 @@ class Model:
             raise HexaglideError("reset", rc)
 
     def step(self, volts, dt_s):
-        """One integration step with six DAC volts; returns self.d."""
-        rc = _step(self.m, C.byref(self.d), _d6(*volts), dt_s)
+        """One integration step with six DAC volts (finite: hg_step would take NaN or inf
+        as 0 V, as the DAC does; Board.step reports that in out.dac_nan); returns self.d."""
+        try:
+            dt_s = float(dt_s)
+        except (TypeError, ValueError):
+            raise TypeError("dt_s must be a number (s), got %r" % (dt_s,))
+        rc = _step(self.m, C.byref(self.d), _d6(*_vector("volts", volts, JOINTS, finite=True, what="DAC volts")),
+                   dt_s)
         if rc:
             raise HexaglideError("step", rc)
         return self.d
@@ -426,17 +510,25 @@ class Board:
         """plant: the machine behind the board (plant_names()); for a plant other than the
         Hexaglide, kind is its model (the serial plant's axes, "XYZ"; None its default) and
         params a PlantParams of that plant and model (None: its defaults)."""
+        _name("plant", plant, plant_names())
+        substeps = _whole("substeps", substeps)
+        integrator = _whole("integrator", integrator)
+        period_ns = _whole("period_ns", period_ns, "ns")
         if plant == "hexaglide" and not isinstance(params, PlantParams):
             pi = 0
-            k = _plant_variant_named(0, kind.encode())
+            _geometry(params)                  # a Params or None, else TypeError
+            k = _plant_variant_named(0, _name("kind", kind, MODELS))
             if k < 0:
                 raise ValueError("unknown model %r; one of %s" % (kind, MODELS))
             self.params = params or Params()
         else:
+            if kind is not None:
+                _name("kind", kind, "the plant's models")
             self.params = params or PlantParams(plant, kind)
             if not isinstance(self.params, PlantParams) or plant_names()[self.params.plant] != plant:
                 raise ValueError("params of plant %s: give PlantParams(%r, model)" % (plant, plant))
             pi, k = self.params.plant, self.params.variant
+        self.plant, self.variant = pi, k
         self.buf = C.create_string_buffer(_sizeof(8))
         self.board_params = self.params.board_params(substeps, integrator)
         rc = _board_init(self.buf, pi, k, C.byref(self.board_params))
@@ -451,10 +543,17 @@ class Board:
         _board_peek(self.buf, C.byref(self.outputs))
         self.period_ns = period_ns
 
+    @property
+    def channels(self):
+        """The channels the plant uses (the Hexaglide's six, a serial machine's axes)."""
+        return self.outputs.channels
+
     def step(self, dac_volts=None):
-        """One servo period; dac_volts (up to 8) replaces inputs.dac_v. Returns self.outputs."""
+        """One servo period; dac_volts (one per channel: self.channels) replaces inputs.dac_v
+        of those channels (NaN gives 0 V and sets out.dac_nan, as the board's dac-nan pin).
+        Returns self.outputs."""
         if dac_volts is not None:
-            for i, v in enumerate(dac_volts):
+            for i, v in enumerate(_vector("dac_volts", dac_volts, self.channels, what="DAC volts, one per channel")):
                 self.inputs.dac_v[i] = v
         _board_step(self.buf, C.byref(self.inputs), C.byref(self.outputs), self.period_ns)
         return self.outputs
@@ -512,9 +611,50 @@ def read_ini(path=DEFAULT_INI, n_joints=JOINTS):
     return joints, axes
 
 
-GAIN_KEYS = {"P": "pgain", "I": "igain", "D": "dgain", "BIAS": "bias", "FF0": "ff0", "FF1": "ff1",
-             "FF2": "ff2", "FF3": "ff3", "DEADBAND": "deadband", "MAX_OUTPUT": "maxoutput",
-             "MAX_ERROR_I": "maxerror_i"}
+_pid_setting_at = _sig("hg_pid_setting_at", C.POINTER(PidSetting), C.c_int)
+_pid_gains_check = _sig("hg_pid_gains_check", C.c_int, C.POINTER(PidGains), C.POINTER(C.POINTER(PidSetting)),
+                        C.POINTER(C.c_char_p))
+
+
+def _pid_settings():
+    out, i = [], 0
+    while _pid_setting_at(i):
+        out.append(_pid_setting_at(i).contents)
+        i += 1
+    return out
+
+
+_PID_MEMBER = {getattr(PidGains, n).offset: n for n, _ in PidGains._fields_}
+# the pid settings a config's [JOINT_N] sets, INI key -> PidGains field (src/hg_pid.c's table)
+GAIN_KEYS = {e.ini_key.decode(): _PID_MEMBER[e.offset] for e in _pid_settings() if e.ini_key}
+SCALE_KEYS = {"INPUT_SCALE": "input_scale", "OUTPUT_SCALE": "output_scale", "OUTPUT_OFFSET": "output_offset"}
+LOOP_KEYS = set(GAIN_KEYS) | set(SCALE_KEYS)     # what a gains dict of Loop / loop_config sets
+# LinuxCNC's own [JOINT_N] keys (motion's limits and homing, src/emc/ini/inijoint.cc): taken in a
+# gains dict (read_ini's) and ignored, the loop does not model them; any other key is refused
+MOTION_JOINT_KEYS = {"TYPE", "HOME", "MIN_LIMIT", "MAX_LIMIT", "MAX_VELOCITY", "MAX_ACCELERATION", "MAX_JERK",
+                     "BACKLASH", "COMP_FILE", "COMP_FILE_TYPE", "FERROR", "MIN_FERROR", "HOME_OFFSET",
+                     "HOME_SEARCH_VEL", "HOME_LATCH_VEL", "HOME_FINAL_VEL", "HOME_USE_INDEX",
+                     "HOME_INDEX_NO_ENCODER_RESET", "HOME_IGNORE_LIMITS", "HOME_IS_SHARED",
+                     "HOME_ABSOLUTE_ENCODER", "HOME_SEQUENCE", "VOLATILE_HOME", "LOCKING_INDEXER_JOINT"}
+
+
+def _gain_dict(name, g):
+    """g (a dict of INI keys) checked: TypeError if not a dict, ValueError naming an unknown key
+    (neither the loop's nor one of LinuxCNC's motion keys) or a value that is not a number."""
+    if not isinstance(g, dict):
+        raise TypeError("%s must be a dict of INI keys (P, I, D, ...), got %r" % (name, g))
+    for k, v in g.items():
+        if k not in LOOP_KEYS and k not in MOTION_JOINT_KEYS:
+            raise ValueError("%s: unknown key %r: the loop takes %s (LinuxCNC's motion keys, FERROR, "
+                             "MAX_VELOCITY, HOME..., are ignored); filter another INI's keys of its own "
+                             "HAL file out, {k: v for k, v in g.items() if k in hg.LOOP_KEYS}"
+                             % (name, k, ", ".join(sorted(LOOP_KEYS))))
+        if k in LOOP_KEYS:
+            try:
+                float(v)
+            except (TypeError, ValueError):
+                raise ValueError("%s[%r] = %r is not a number" % (name, k, v))
+    return g
 
 
 def read_gains(path):
@@ -589,38 +729,78 @@ def plant_params_from_ini(path, plant="serial", model=None):
 
 def loop_config(gains=None, ferror_limit_mm=0.0, period_ns=1000000, model="reduced-cartesian", notch=None,
                 plant=None):
-    """hg_loop_config of six joints: gains a list of six dicts of INI keys (P, I, D, FF0, FF1,
-    FF2, FF3, BIAS, DEADBAND, MAX_OUTPUT, MAX_ERROR_I, INPUT_SCALE, OUTPUT_SCALE, OUTPUT_OFFSET;
-    keys not given keep pid.c's load-time values: Pgain 1, the rest 0; None: configs/hexaglide.ini's);
+    """hg_loop_config of the plant's joints: gains a list of one dict per joint (six for the
+    Hexaglide, plant.channels for another) of INI keys (LOOP_KEYS: P, I, D, FF0, FF1, FF2, FF3,
+    BIAS, DEADBAND, MAX_OUTPUT, MAX_ERROR_I, INPUT_SCALE, OUTPUT_SCALE, OUTPUT_OFFSET; LinuxCNC's
+    motion keys, MOTION_JOINT_KEYS, ignored; any other key ValueError); keys not given keep
+    pid.c's load-time values: Pgain 1, the rest 0; None: configs/hexaglide.ini's, the Hexaglide's);
     notch: per joint None or (f0 Hz, Q), a biquad.N notch between pid.N.output and the DAC;
     plant: a PlantParams of another plant (its plant and model; model is then ignored). The loop's
     units are the config's: INPUT_SCALE counts per unit, the commands in that unit (inches for an
-    inch config), as LinuxCNC's HAL file sets enc-NN-scale and dac-NN-gain."""
+    inch config), as LinuxCNC's HAL file sets enc-NN-scale and dac-NN-gain. The config is
+    checked (check_loop_config): ValueError naming the joint and the field that fails."""
     cfg = LoopConfig()
     _loop_default(C.byref(cfg))
-    cfg.ferror_limit_mm = ferror_limit_mm
-    cfg.period_ns = period_ns
+    try:
+        cfg.ferror_limit_mm = ferror_limit_mm
+    except TypeError:
+        raise TypeError("ferror_limit_mm must be a number (mm; 0: no trip), got %r" % (ferror_limit_mm,))
+    cfg.period_ns = _whole("period_ns", period_ns, "ns")
     if plant is None:
+        if model not in MODELS:
+            raise ValueError("unknown model %r; one of %s" % (model, MODELS))
         cfg.plant = 0
         cfg.variant = MODELS.index(model)
+    elif not isinstance(plant, PlantParams):
+        raise TypeError("plant must be a PlantParams or None, got %r" % (plant,))
     else:
         cfg.plant, cfg.variant = plant.plant, plant.variant
+    n = _plant_channels(cfg.plant, cfg.variant)
     if gains is None:
+        if cfg.plant != 0:
+            raise ValueError("gains: give one dict per channel (%d) for plant %s: the default is "
+                             "configs/hexaglide.ini's, the Hexaglide's" % (n, plant_names()[cfg.plant]))
         gains = read_ini()[0]
+    if isinstance(gains, dict) or not hasattr(gains, "__len__"):
+        raise TypeError("gains must be a list of %d dicts (one per joint), got %r" % (n, gains))
+    if len(gains) != n:
+        raise ValueError("gains needs %d dicts (one per joint of plant %s), got %d"
+                         % (n, plant_names()[cfg.plant], len(gains)))
     for j, g in enumerate(gains):
-        for key, v in g.items():
+        for key, v in _gain_dict("gains[%d]" % j, g).items():
             if key in GAIN_KEYS:
                 setattr(cfg.pid[j], GAIN_KEYS[key], float(v))
-        if "INPUT_SCALE" in g:
-            cfg.input_scale[j] = g["INPUT_SCALE"]
-        if "OUTPUT_SCALE" in g:
-            cfg.output_scale[j] = g["OUTPUT_SCALE"]
-        if "OUTPUT_OFFSET" in g:
-            cfg.output_offset[j] = g["OUTPUT_OFFSET"]
-    for j, nf in enumerate(notch or []):
-        if nf is not None:
-            _biquad_notch(C.byref(cfg.biquad[j]), float(nf[0]), float(nf[1]))
+            elif key in SCALE_KEYS:
+                getattr(cfg, SCALE_KEYS[key])[j] = float(v)
+    if notch is not None:
+        if len(notch) != n:
+            raise ValueError("notch needs %d entries (None or (f0 Hz, Q) per joint), got %d" % (n, len(notch)))
+        for j, nf in enumerate(notch):
+            if nf is not None:
+                f0, q = _vector("notch[%d]" % j, nf, 2, what="f0 Hz, Q")
+                _biquad_notch(C.byref(cfg.biquad[j]), float(f0), float(q))
+    check_loop_config(cfg)
     return cfg
+
+
+def check_loop_config(cfg):
+    """ValueError naming the joint and the field (its INI key, its pid.N pin) hg_loop_config_check
+    refuses in cfg (a LoopConfig), with what it must be."""
+    r = LoopCheckReport()
+    rc = _loop_check(C.byref(cfg), C.byref(r))
+    if not rc:
+        return
+    comp, field = r.component.decode(), r.field.decode()
+    if comp == "pid":
+        name = "pid.%d.%s" % (r.joint, field)
+    elif comp == "biquad":
+        name = "notch biquad.%d.%s" % (r.joint, field)
+    else:
+        name = field
+    if r.ini_key:
+        name = "%s (%s)" % (r.ini_key.decode(), name)
+    where = "joint %d: " % r.joint if r.joint >= 0 else ""
+    raise ValueError("loop config: %s%s = %r: %s" % (where, name, r.value, r.why.decode()))
 
 
 def notch_response(f0, q, freqs, period_ns=1000000):
@@ -638,17 +818,20 @@ def notch_response(f0, q, freqs, period_ns=1000000):
 
 
 class Loop:
-    """Six LinuxCNC pid loops (and biquad notches) around the virtual board (src/hg_loop.h),
-    mm and volts; gains and notch as loop_config takes them."""
+    """LinuxCNC pid loops (and biquad notches), one per channel of the plant (the Hexaglide's
+    six), around the virtual board (src/hg_loop.h), mm and volts; gains and notch as
+    loop_config takes them."""
 
     def __init__(self, gains=None, params=None, ferror_limit_mm=0.0, period_ns=1000000,
                  model="reduced-cartesian", substeps=1, integrator=DEFAULT_INTEGRATOR, notch=None):
         """params: Params of the Hexaglide, or PlantParams of any plant (its channels are the loops)."""
         plant = params if isinstance(params, PlantParams) else None
+        if plant is None:
+            _geometry(params)                  # a Params or None, else TypeError
         self.cfg = loop_config(gains, ferror_limit_mm, period_ns, model, notch, plant)
-        self.joints = plant.channels if plant else JOINTS
+        self.joints = _plant_channels(self.cfg.plant, self.cfg.variant)
         self.params = params or Params()
-        self.board_params = self.params.board_params(substeps, integrator)
+        self.board_params = self.params.board_params(_whole("substeps", substeps), _whole("integrator", integrator))
         self.buf = C.create_string_buffer(_sizeof(0))
         self.reset()
 
@@ -659,8 +842,11 @@ class Loop:
             raise HexaglideError("loop init", rc)
 
     def run(self, cmd_mm, start=0, keep=True):
-        """Run the commands (n, 6) from the current state; summary over rows >= start."""
+        """Run the commands (n, joints) from the current state; summary over rows >= start.
+        ValueError naming the row and joint of a command that is not finite or beyond 1e9
+        (hg_pid_input_check: pid.c's derivatives would overflow into NaN); nothing run then."""
         cmd = _commands(cmd_mm, self.joints)
+        start = _whole("start", start)
         n = cmd.shape[0]
         fe = np.zeros((n, self.joints)) if keep else None
         out = np.zeros((n, self.joints)) if keep else None
@@ -673,11 +859,27 @@ class Loop:
         return RunResult(fe, out, summ, rc, joints=self.joints)
 
 
+def _pid_inputs(name, values):
+    """values (a float64 array) checked by hg_pid_input_check: None, or the ValueError naming
+    the flat index of the first it refuses, the value and why."""
+    flat = np.ascontiguousarray(values, dtype=np.float64).reshape(-1)
+    rc = C.c_int()
+    i = _pid_inputs_check(flat, flat.size, C.byref(rc))
+    return None if i < 0 else (int(i), float(flat[i]), rc.value)
+
+
 def _commands(cmd_mm, joints=JOINTS):
-    """cmd_mm as a C-contiguous (n, joints) float64 array, else ValueError."""
+    """cmd_mm as a C-contiguous (n, joints) float64 array, else ValueError (the shape, or the
+    row and joint of a command the loop refuses: not finite, or beyond 1e9)."""
     cmd = np.ascontiguousarray(cmd_mm, dtype=np.float64)
     if cmd.ndim != 2 or cmd.shape[1] != joints:
         raise ValueError("commands must be an (n, %d) array, got %s" % (joints, cmd.shape))
+    bad = _pid_inputs("commands", cmd)
+    if bad:
+        i, v, rc = bad
+        raise ValueError("commands row %d, joint %d = %r: %s%s" % (
+            i // joints, i % joints, v, strerror(rc),
+            "" if rc == -1 else ": a pid's command derivatives would overflow to inf, then NaN"))
     return cmd
 
 
@@ -710,11 +912,21 @@ class Job:
     peak_tool_error_mm is then -2 (src/hg_board.h's HG_TOOL_ERROR_SKIPPED), every other
     result the same bits. Jobs may share cfg, board_params and cmd."""
 
-    def __init__(self, cfg, board_params, cmd, start=0, keep=False, load=False, joints=JOINTS, tool_error=True):
-        """joints: the plant's channels (cfg's plant: PlantParams.channels), the columns of cmd."""
-        self.cfg, self.board_params, self.cmd = cfg, board_params, _commands(cmd, joints)
-        self.joints = joints
-        self.start, self.keep, self.load, self.tool_error = start, keep, load, tool_error
+    def __init__(self, cfg, board_params, cmd, start=0, keep=False, load=False, joints=None, tool_error=True):
+        """joints: the plant's channels (cfg's plant: PlantParams.channels), the columns of cmd;
+        None: cfg's. cfg is checked as loop_config checks it (ValueError naming the field)."""
+        if not isinstance(cfg, LoopConfig):
+            raise TypeError("cfg must be a LoopConfig (hexaglide.loop_config), got %r" % (cfg,))
+        if not isinstance(board_params, BoardParams):
+            raise TypeError("board_params must be a BoardParams (Params.board_params, PlantParams.board_params), "
+                            "got %r" % (board_params,))
+        check_loop_config(cfg)
+        n = _plant_channels(cfg.plant, cfg.variant)
+        if joints is not None and _whole("joints", joints) != n:
+            raise ValueError("joints = %d, but cfg's plant %s has %d channels" % (joints, plant_names()[cfg.plant], n))
+        self.cfg, self.board_params, self.cmd = cfg, board_params, _commands(cmd, n)
+        self.joints = n
+        self.start, self.keep, self.load, self.tool_error = _whole("start", start), keep, load, tool_error
 
 
 def cores():
@@ -766,12 +978,18 @@ _pid_defaults = _sig("hg_pid_defaults", None, C.POINTER(PidGains))
 
 
 def pid_gains(gains):
-    """PidGains from INI keys (pid.c's defaults for the others)."""
+    """PidGains from INI keys (pid.c's defaults for the others); ValueError naming a key
+    hg_pid_gains_check refuses (or one unknown, as loop_config)."""
     g = PidGains()
     _pid_defaults(C.byref(g))
-    for key, v in gains.items():
+    for key, v in _gain_dict("gains", gains).items():
         if key in GAIN_KEYS:
             setattr(g, GAIN_KEYS[key], float(v))
+    bad, why = C.POINTER(PidSetting)(), C.c_char_p()
+    if _pid_gains_check(C.byref(g), C.byref(bad), C.byref(why)):
+        e = bad.contents
+        name = "%s (pid.%s)" % (e.ini_key.decode(), e.pin.decode()) if e.ini_key else "pid.%s" % e.pin.decode()
+        raise ValueError("gains: %s = %r: %s" % (name, getattr(g, _PID_MEMBER[e.offset]), why.value.decode()))
     return g
 
 
@@ -781,10 +999,22 @@ def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000, state=
     PidState fields; default the load-time state, all zero)."""
     g = pid_gains(gains)
     st = PidState()
+    names = [f for f, _ in PidState._fields_]
     for k, v in (state or {}).items():
+        if k not in names:
+            raise ValueError("state: %r is not a PidState field (%s)" % (k, ", ".join(names)))
         setattr(st, k, v)
+    period_ns = _whole("period_ns", period_ns, "ns")
+    command = np.asarray(command, dtype=np.float64)
+    if command.ndim != 1:
+        raise ValueError("command must be a vector (one value per period), got shape %s" % (command.shape,))
     n = len(command)
-    en = np.ones(n, dtype=int) if enable is None else np.asarray(enable, dtype=int)
+    feedback = _vector("feedback", feedback, n, what="one per command")
+    en = np.ones(n, dtype=int) if enable is None else np.asarray(_vector("enable", enable, n), dtype=int)
+    for name, a in (("command", command), ("feedback", feedback)):
+        bad = _pid_inputs(name, a)
+        if bad:
+            raise ValueError("%s[%d] = %r: %s" % (name, bad[0], bad[1], strerror(bad[2])))
     return np.array([_pid_calc(C.byref(g), C.byref(st), float(command[i]), float(feedback[i]), int(en[i]), 0,
                                period_ns) for i in range(n)])
 
@@ -816,8 +1046,13 @@ class Recorder:
 
     def __init__(self, path, board, source="tools/hexaglide.py Recorder"):
         """board: a Board of PlantParams (any plant's)."""
+        if not isinstance(board, Board):
+            raise TypeError("Recorder: board must be a hexaglide.Board, got %r" % (board,))
         if not isinstance(board.params, PlantParams):
-            raise ValueError("Recorder: give a Board of PlantParams")
+            raise ValueError("Recorder: the board must be built with PlantParams (the record's parameter "
+                             "events name entries of the plant's table): Board(kind, PlantParams(plant, kind), "
+                             "plant=plant), e.g. Board(\"reduced-cartesian\", PlantParams(\"hexaglide\", "
+                             "\"reduced-cartesian\")); this one has %s" % type(board.params).__name__)
         self.b, pi, var = board, board.params.plant, board.params.variant
         self.fields = C.create_string_buffer(_REC_FIELD_BYTES * 256)
         self.n = _rec_fields(self.fields, 256, pi, var, 2)

@@ -104,16 +104,14 @@ int cmd_ik(int argc, char **argv)
 {
     kins_cmd c;
     char *sets[argc > 0 ? argc : 1];
-    hg_guard_report guard = {0, -1, -1, 0, 0};
+    hg_guard_report guard;
     double pose[6], z[6];
     int rc, k, done;
     rc = kins_parse("ik", cli_usage_ik, ik_opts, pose_names, "X Y Z (mm) A B C (deg)", argc, argv, &c, sets, &done);
     if (rc || done)
         return rc;
     hg_pose_from_user(c.pos, pose);
-    rc = hg_inverse_kinematics(&c.p.geo, pose, z);
-    if (rc == 0)                      /* joints exist; can the machine take the pose? */
-        rc = hg_guard_check(&c.p.geo, z, pose, 0, &guard);
+    rc = hg_inverse_kinematics_guarded(&c.p.geo, pose, z, &guard);
     if (rc) {
         char what[HG_GUARD_TEXT_LEN];
         hg_guard_describe(&guard, 0, what);

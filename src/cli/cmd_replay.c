@@ -71,23 +71,8 @@ typedef struct {
     long peak_at[2], n;
 } joint_stats;
 
-/* pid.c's setting pins and where hg_pid_gains holds each (the footer's
- * pid.N.<name> lines, tools/hg_record.py PID_SETTINGS). */
-static const struct {
-    const char *name;
-    size_t offset;                    /* of a double, or of error_previous_target (int) */
-} pid_setting[] = {
-    {"Pgain", offsetof(hg_pid_gains, pgain)},       {"Igain", offsetof(hg_pid_gains, igain)},
-    {"Dgain", offsetof(hg_pid_gains, dgain)},       {"bias", offsetof(hg_pid_gains, bias)},
-    {"FF0", offsetof(hg_pid_gains, ff0)},           {"FF1", offsetof(hg_pid_gains, ff1)},
-    {"FF2", offsetof(hg_pid_gains, ff2)},           {"FF3", offsetof(hg_pid_gains, ff3)},
-    {"deadband", offsetof(hg_pid_gains, deadband)}, {"maxerror", offsetof(hg_pid_gains, maxerror)},
-    {"maxerrorI", offsetof(hg_pid_gains, maxerror_i)}, {"maxerrorD", offsetof(hg_pid_gains, maxerror_d)},
-    {"maxcmdD", offsetof(hg_pid_gains, maxcmd_d)},  {"maxcmdDD", offsetof(hg_pid_gains, maxcmd_dd)},
-    {"maxcmdDDD", offsetof(hg_pid_gains, maxcmd_ddd)}, {"maxoutput", offsetof(hg_pid_gains, maxoutput)},
-    {"error-previous-target", offsetof(hg_pid_gains, error_previous_target)},
-};
-#define PID_SETTINGS ((int)(sizeof pid_setting / sizeof pid_setting[0]))
+/* pid.c's setting pins (the footer's pid.N.<name> lines, tools/hg_record.py
+ * PID_SETTINGS) are hg_pid_setting_at's table. */
 
 const char cli_usage_replay[] =
     "usage: hexaglide replay FILE [--csv OUT] [--plot PNG] [--set name=value]...\n"
@@ -403,7 +388,9 @@ static int run_plot(const char *csv, const char *png, long from, long to)
 static int loop_config(const hg_record *r, const char *file, const int *col_cmd, int nj, hg_loop_config *c)
 {
     char key[96], val[96], *end;
-    int k, i;
+    int k, i, nset = 0;
+    while (hg_pid_setting_at(nset))
+        nset++;
     hg_loop_config_default(c);
     for (k = 0; k < nj; k++)
         if (col_cmd[k] < 0) {
@@ -420,12 +407,13 @@ static int loop_config(const hg_record *r, const char *file, const int *col_cmd,
         return 1;
     }
     for (k = 0; k < nj; k++)
-        for (i = 0; i < PID_SETTINGS + 2; i++) {
+        for (i = 0; i < nset + 2; i++) {
+            const hg_pid_setting *ps = hg_pid_setting_at(i);
             double v;
-            if (i < PID_SETTINGS)
-                snprintf(key, sizeof key, "pid.%d.%s", k, pid_setting[i].name);
+            if (ps)
+                snprintf(key, sizeof key, "pid.%d.%s", k, ps->pin);
             else
-                snprintf(key, sizeof key, "motenc.0.dac-%02d-%s", k, i == PID_SETTINGS ? "gain" : "offset");
+                snprintf(key, sizeof key, "motenc.0.dac-%02d-%s", k, i == nset ? "gain" : "offset");
             if (!hg_record_meta_get(r, key, val, sizeof val)) {
                 fprintf(stderr, "hexaglide replay: %s has no line '# %s VALUE' after its last row: the "
                         "recorder writes the pid settings there when LinuxCNC stops; a recording cut "
@@ -441,14 +429,14 @@ static int loop_config(const hg_record *r, const char *file, const int *col_cmd,
                         "--open-loop\n", file, key, val);
                 return 1;
             }
-            if (i == PID_SETTINGS)
+            if (i == nset)
                 c->output_scale[k] = v;
-            else if (i == PID_SETTINGS + 1)
+            else if (i == nset + 1)
                 c->output_offset[k] = v;
-            else if (pid_setting[i].offset == offsetof(hg_pid_gains, error_previous_target))
+            else if (ps->kind == HG_PID_FLAG)
                 c->pid[k].error_previous_target = v != 0.0;
             else
-                memcpy((char *)&c->pid[k] + pid_setting[i].offset, &v, sizeof v);
+                memcpy((char *)&c->pid[k] + ps->offset, &v, sizeof v);
         }
     return 0;
 }
@@ -717,6 +705,7 @@ int cmd_replay(int argc, char **argv)
     hg_board_rec_event *ev = 0;
     long nev = 0, next_ev = 0, line0;
     hg_loop_config lc;
+    hg_loop_check_report lrep;
     int set_idx[REPLAY_MAX_SETS];
     double set_val[REPLAY_MAX_SETS];
     replay_stats st = {0, 0, 0.0, 0.0, -1, 0}, stx = {0, 0, 0.0, 0.0, -1, 0};
@@ -906,6 +895,13 @@ int cmd_replay(int argc, char **argv)
             if (closed) {
                 lc.plant = plant;
                 lc.variant = kind;
+            }
+            if (!rc && closed && hg_loop_config_check(&lc, &lrep)) {
+                fprintf(stderr, "hexaglide replay: %s: the recorded %s.%d.%s = %.17g: %s; the closed-loop "
+                        "what-if refuses it (give --open-loop)\n", o.file, lrep.component, lrep.joint, lrep.field,
+                        lrep.value, lrep.why);
+                status = 1;
+                break;
             }
             if (!rc && closed)
                 rc = hg_loop_init(&L, &lc, &bp0);

@@ -178,6 +178,7 @@ static const cli_opt soak_opts[] = {
 int cmd_soak(int argc, char **argv)
 {
     hg_loop_config cfg;
+    hg_loop_check_report rep;
     hg_board_params bp;
     hg_loop *L;
     hg_loop_sample smp;
@@ -257,6 +258,17 @@ int cmd_soak(int argc, char **argv)
     }
     if (integrator >= 0)
         bp.integrator = (unsigned)integrator;
+    rc = hg_loop_config_check(&cfg, &rep);
+    if (rc) {
+        if (rep.ini_key && rep.joint >= 0)
+            fprintf(stderr, "hexaglide soak: %s: [JOINT_%d]%s = %.17g: %s\n", ini, rep.joint, rep.ini_key,
+                    rep.value, rep.why);
+        else
+            fprintf(stderr, "hexaglide soak: the loop's %s %s (joint %d) = %.17g: %s\n", rep.component, rep.field,
+                    rep.joint, rep.value, rep.why);
+        free(L);
+        return 2;
+    }
     rc = hg_loop_init(L, &cfg, &bp);
     if (rc) {
         fprintf(stderr, "hexaglide soak: cannot build the loop: %s (code %d)\n", hg_strerror(rc), rc);

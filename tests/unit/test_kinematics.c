@@ -413,6 +413,31 @@ static void test_geometry_mismatch(const hg_params *p)
     CHECK(said == 0, "no board connected (0) or a matching one: never reported (%d)", said);
 }
 
+/* hg_inverse_kinematics_guarded: the inverse's joints where the guard
+ * passes, its refusal (with the bar named) where a joint's cone is
+ * exceeded, the inverse's own codes otherwise; z untouched on failure. */
+static void test_ik_guarded(const hg_params *p)
+{
+    const double pose[6] = {0.01, -0.02, 0.03, 0.05, -0.03, 0.07};
+    const double spun[6] = {0, 0, 0, 0, 0, 3.14159265358979323846};   /* C = 180 deg */
+    const double far[6] = {5.0, 0, 0, 0, 0, 0};
+    double z0[6], z1[6], z2[6] = {7, 7, 7, 7, 7, 7};
+    hg_guard_report rep;
+    int rc0 = hg_inverse_kinematics(&p->geo, pose, z0), rc1 = hg_inverse_kinematics_guarded(&p->geo, pose, z1, &rep);
+    CHECK(rc0 == 0 && rc1 == 0 && memcmp(z0, z1, sizeof z0) == 0 && rep.kind == HG_GUARD_NONE,
+          "guarded ik of a pose inside the limits = the inverse's joints, bit for bit (%d %d)", rc0, rc1);
+    rc0 = hg_inverse_kinematics(&p->geo, spun, z0);
+    rc1 = hg_inverse_kinematics_guarded(&p->geo, spun, z2, &rep);
+    CHECK(rc0 == 0 && rc1 == HG_ERR_JOINT_RANGE && rep.kind == HG_GUARD_HEAD_JOINT && rep.bar >= 0 &&
+          rep.value > rep.limit && z2[0] == 7.0,
+          "C = 180 deg: the inverse has joints (%d), the guarded one refuses it with JOINT_RANGE (%d), bar %d at "
+          "%.1f deg in its head joint > %.1f deg, z untouched", rc0, rc1, rep.bar, rep.value * 57.29578,
+          rep.limit * 57.29578);
+    rc1 = hg_inverse_kinematics_guarded(&p->geo, far, z2, 0);
+    CHECK(rc1 == HG_ERR_UNREACHABLE && z2[0] == 7.0, "an unreachable pose: the inverse's code (%d), report 0 taken",
+          rc1);
+}
+
 int main(void)
 {
     hg_params p, wide;
@@ -432,5 +457,6 @@ int main(void)
     test_jacobian_fd(&p);
     test_refusals(&p);
     test_geometry_mismatch(&p);
+    test_ik_guarded(&p);
     return hg_test_exit();
 }

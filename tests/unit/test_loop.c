@@ -6,6 +6,7 @@
  * pid disabled through hg_loop_step_io drives 0 V (its carriage sinks). */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 #include "hg_errors.h"
 #include "hg_loop.h"
 #include "hg_scheme.h"
@@ -19,7 +20,7 @@ int main(void)
     hg_loop_sample s;
     hg_loop_summary sum;
     hg_params p;
-    double cmd[6] = {0}, w, hold, fpv, dac_step = 20.0 / 8191.0, *traj;
+    double cmd[6] = {0}, w, hold, fpv, dac_step = 20.0 / 8191.0, *traj, fe3[18], out3[18];
     hg_board_params bp;
     int k, i, rc;
     long n = 3000;
@@ -117,6 +118,83 @@ int main(void)
     c.ferror_limit_mm = 0;
     hg_loop_init(L, &c, 0);
     CHECK(hg_loop_step(L, cmd, &s) == HG_ERR_NONFINITE_INPUT, "NaN command refused");
+    {
+        hg_loop_config b = c;
+        hg_loop_check_report r;
+        long before;
+        b.ferror_limit_mm = 0;
+        b.pid[3].pgain = NAN;
+        rc = hg_loop_config_check(&b, &r);
+        CHECK(rc == HG_ERR_BAD_PARAM && r.joint == 3 && strcmp(r.component, "pid") == 0 &&
+              strcmp(r.field, "Pgain") == 0 && r.ini_key && strcmp(r.ini_key, "P") == 0 && isnan(r.value) &&
+              hg_loop_init(L, &b, 0) == HG_ERR_BAD_PARAM,
+              "config check: a NaN Pgain of joint 3 is refused, named (joint %d, %s %s, INI %s), init refuses it",
+              r.joint, r.component, r.field, r.ini_key ? r.ini_key : "-");
+        b = c;
+        b.ferror_limit_mm = 0;
+        b.pid[1].ff1 = 2e9;
+        rc = hg_loop_config_check(&b, &r);
+        CHECK(rc == HG_ERR_BAD_PARAM && r.joint == 1 && strcmp(r.field, "FF1") == 0,
+              "config check: FF1 2e9 (beyond HG_PID_MAX_ABS) refused (%d, %s)", rc, r.field);
+        b = c;
+        b.ferror_limit_mm = 0;
+        b.pid[5].maxoutput = -1;
+        rc = hg_loop_config_check(&b, &r);
+        CHECK(rc == HG_ERR_BAD_PARAM && r.joint == 5 && strcmp(r.field, "maxoutput") == 0,
+              "config check: a negative maxoutput refused (%s)", r.field);
+        b = c;
+        b.pid[2].dgain = -0.5;                   /* a negative gain is a gain (the loop above runs it) */
+        b.ferror_limit_mm = -1;
+        rc = hg_loop_config_check(&b, &r);
+        CHECK(rc == HG_ERR_BAD_PARAM && r.joint == -1 && strcmp(r.field, "ferror_limit_mm") == 0,
+              "config check: ferror_limit_mm -1 refused, named (%s), negative D taken", r.field);
+        b.ferror_limit_mm = NAN;
+        CHECK(hg_loop_config_check(&b, &r) == HG_ERR_BAD_PARAM && strcmp(r.field, "ferror_limit_mm") == 0,
+              "config check: ferror_limit_mm NaN refused");
+        b = c;
+        b.ferror_limit_mm = 0;
+        b.input_scale[4] = 1e-30;
+        CHECK(hg_loop_config_check(&b, &r) == HG_ERR_BAD_PARAM && r.joint == 4 &&
+              strcmp(r.ini_key, "INPUT_SCALE") == 0,
+              "config check: INPUT_SCALE 1e-30 refused (the board's encoder would read it as 1)");
+        b = c;
+        b.ferror_limit_mm = 0;
+        hg_biquad_notch(&b.biquad[0], 100.0, 3.0);
+        CHECK(hg_loop_config_check(&b, &r) == HG_ERR_BAD_PARAM && r.joint == 0 &&
+              strcmp(r.component, "biquad") == 0 && strcmp(r.field, "Q") == 0,
+              "config check: a notch biquad.comp refuses (Q 3) is refused, not run unfiltered");
+        hg_biquad_notch(&b.biquad[0], 100.0, 1.0);
+        CHECK(hg_loop_config_check(&b, &r) == 0, "config check: a notch of Q 1 at 100 Hz taken");
+
+        /* a command pid.c's derivatives would overflow (1e300 / (1 ms)^3 = inf, inf * FF3 0 = NaN) is
+         * refused, nothing run; one at the bound runs with finite outputs and trips */
+        b = c;
+        b.ferror_limit_mm = 2.0;
+        hg_loop_init(L, &b, 0);
+        for (k = 0; k < 6; k++)
+            cmd[k] = 0;
+        cmd[2] = 1e300;
+        before = L->periods;
+        CHECK(hg_loop_step(L, cmd, &s) == HG_ERR_OUT_OF_RANGE && L->periods == before,
+              "a 1e300 mm command refused (HG_ERR_OUT_OF_RANGE), nothing run");
+        for (k = 0; k < 6; k++) {
+            b.pid[k].pgain = b.pid[k].ff1 = b.pid[k].ff2 = b.pid[k].ff3 = HG_PID_MAX_ABS;
+            b.pid[k].maxoutput = 0;
+        }
+        hg_loop_init(L, &b, 0);
+        for (i = 0; i < 3 * 6; i++)
+            traj[i] = i >= 6 ? HG_PID_MAX_ABS : 0.0;
+        rc = hg_loop_run(L, traj, 3, 0, fe3, out3, &sum);
+        {
+            int finite = 1;
+            for (i = 0; i < 6 * sum.periods; i++)
+                finite &= isfinite(fe3[i]) && isfinite(out3[i]);
+            CHECK((rc != 0 || sum.tripped_at == 2) && finite && sum.periods >= 1,
+                  "a 1e9 mm step at period 1 with every gain at 1e9: finite f-errors and outputs (%ld periods), "
+                  "then the trip at period 2 (motion's f-error is the previous command's: %ld) or a fault (%d)",
+                  sum.periods, sum.tripped_at, rc);
+        }
+    }
     c.period_ns = 0;
     CHECK(hg_loop_init(L, &c, 0) == HG_ERR_BAD_DT, "period 0 refused");
     free(traj);

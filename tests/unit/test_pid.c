@@ -3,6 +3,8 @@
  * whose derivatives are known exactly. The sample-by-sample match with
  * LinuxCNC itself is tests/linuxcnc/test_pid_match. */
 #include <math.h>
+#include <string.h>
+#include "hg_errors.h"
 #include "hg_pid.h"
 #include "hg_test.h"
 
@@ -123,5 +125,34 @@ int main(void)
     /* ... and the rates keep their last values (5 mm in the first period) */
     CHECK(close_to(out, 5.0 + 5.0 / T_S, 1e-6), "index reset: P (command - feedback) + FF1 * last rate (%.9g V)", out);
     CHECK(close_to(s.error, 5.0, 1e-12), "index reset: error pin 5 mm");
+
+    /* why the offline loop bounds its commands: pid.c on a 1e300 mm step gives NaN (commandDDD
+     * 1e300 / (1 ms)^3 overflows to inf, times FF3 = 0); the checks name what they refuse */
+    hg_pid_defaults(&g);
+    hg_pid_reset(&s);
+    out = hg_pid_calc(&g, &s, 1e300, 0.0, 1, 0, T_NS);
+    CHECK(isnan(out) && isinf(s.cmd_ddd), "pid.c on a 1e300 mm command step: commandDDD inf, output NaN (%g)", out);
+    CHECK(hg_pid_input_check(1e300) == HG_ERR_OUT_OF_RANGE && hg_pid_input_check(NAN) == HG_ERR_NONFINITE_INPUT &&
+          hg_pid_input_check(-HG_PID_MAX_ABS) == 0, "hg_pid_input_check: 1e300 out of range, NaN non-finite, -1e9 taken");
+    {
+        const double v[4] = {0.0, 1.0, -INFINITY, 2e9};
+        const hg_pid_setting *bad = 0;
+        const char *why = 0;
+        int rc = 0;
+        long at = hg_pid_inputs_check(v, 4, &rc);
+        CHECK(at == 2 && rc == HG_ERR_NONFINITE_INPUT && hg_pid_inputs_check(v, 2, &rc) == -1 && rc == 0,
+              "hg_pid_inputs_check: the first refused is index 2 (-inf), none in the first two");
+        hg_pid_defaults(&g);
+        CHECK(hg_pid_gains_check(&g, &bad, &why) == 0, "the load-time gains pass the check");
+        g.deadband = -0.1;
+        CHECK(hg_pid_gains_check(&g, &bad, &why) == HG_ERR_BAD_PARAM && strcmp(bad->pin, "deadband") == 0 &&
+              strcmp(bad->ini_key, "DEADBAND") == 0 && hg_pid_setting_value(&g, bad) == -0.1,
+              "a negative deadband refused, named (pid.N.%s, INI %s): %s", bad->pin, bad->ini_key, why);
+        hg_pid_defaults(&g);
+        g.igain = -3.0;
+        g.ff3 = NAN;
+        CHECK(hg_pid_gains_check(&g, &bad, &why) == HG_ERR_BAD_PARAM && strcmp(bad->pin, "FF3") == 0,
+              "a negative Igain is a gain; a NaN FF3 is refused (%s)", bad->pin);
+    }
     return hg_test_exit();
 }
