@@ -235,11 +235,10 @@ static void apply_params(hg_board *b, const hg_board_params *want, hg_board_outp
     b->substeps = want->substeps;
     b->param_error = 0;
     out->events |= HG_EV_PARAM_APPLIED;
-    /* a new shape restarts at HOME; before the first period that is the power-up (no event), and
-     * once running a shape moved by rounding only keeps the machine where it is */
+    /* a new shape restarts at HOME; once running, a shape moved by rounding only keeps the machine
+     * where it is (before the first period the restart is the power-up's, as records made then have it) */
     if ((change & HG_PLANT_CHANGE_RESTART) && (b->steps == 0 || !(change & HG_PLANT_CHANGE_ROUNDING))) {
-        if (b->steps > 0)
-            out->events |= HG_EV_GEOMETRY_RESTART;
+        out->events |= HG_EV_GEOMETRY_RESTART;
         reinit_at_home(b, out);
         return;
     }

@@ -240,7 +240,7 @@ static void report(board_t *b, long period)
     int k, i, id = b->id;
     if (o->events & HG_EV_PARAM_REFUSED)
         report_refusal(b, period);
-    if (o->events & HG_EV_GEOMETRY_RESTART)
+    if ((o->events & HG_EV_GEOMETRY_RESTART) && o->steps > 1) /* not the power-up set's, in the first period */
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: new geometry in force: the machine restarted at "
                         "HOME at rest, and the encoders moved with it (a notice, not a fault)\n", id);
     if (o->events & HG_EV_RESET_REFUSED)

@@ -647,8 +647,9 @@ static void test_geometry_rounding(void)
     fresh();
     *hg_test_pv(&in.params, "e") = 70.0 / 1000.0;
     ev = run(1);
-    CHECK((ev & HG_EV_PARAM_APPLIED) && !(ev & HG_EV_GEOMETRY_RESTART),
-          "e 70 mm before the first period: applied, no restart event (the power-up set)");
+    CHECK((ev & HG_EV_PARAM_APPLIED) && (ev & HG_EV_GEOMETRY_RESTART) && out.steps == 1,
+          "e 70 mm before the first period: applied, restarted at HOME in the first period (steps %u: the "
+          "glue says nothing of the power-up set's)", out.steps);
     fresh();
     in.dout_values = 1u << 7;
     for (k = 0; k < 6; k++)
