@@ -23,6 +23,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hexaglide_identify as hid  # noqa: E402
+import hg_output  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 AXES = "XYZABC"
@@ -375,6 +376,16 @@ def main(argv=None):
                     help="the chirps' band, Hz (default %g %g: about the trains' axial mode)" % DITHER_BAND_HZ)
     a = ap.parse_args(argv)
     a.argv = argv
+    try:
+        for p in (a.output, a.dither):
+            if p:
+                hg_output.target(p)            # a missing directory now, not after the design
+        if a.output and a.dither and hg_output.same(a.output, a.dither):
+            raise hg_output.OutputError("--output %s and --dither %s name the same file; give two files"
+                                        % (a.output, a.dither))
+    except hg_output.OutputError as ex:
+        log(ex)
+        return 2
     if a.dither or a.trains:
         try:
             if not (0 < a.dither_volts <= DITHER_V_MAX and 0 < a.dither_band[0] < a.dither_band[1] < 500.0
@@ -437,4 +448,8 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except hg_output.OutputError as ex:
+        log(ex)
+        sys.exit(1)

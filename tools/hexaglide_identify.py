@@ -25,6 +25,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hexaglide_trainid as trainid  # noqa: E402
+import hg_output  # noqa: E402
 
 _reg_sizeof = hg._sig("hg_regressor_sizeof", C.c_ulong)
 _reg_init = hg._sig("hg_regressor_init", C.c_int, C.c_void_p, C.c_void_p, C.POINTER(C.c_char_p),
@@ -256,10 +257,7 @@ def fmt_coef(b):
     return "%.6g" % b
 
 
-def atomic_write(path, write):
-    """write(file) into a temporary beside path, then rename: never a half file."""
-    import hexaglide_tune
-    hexaglide_tune.atomic_write(path, write)
+atomic_write = hg_output.atomic_write   # (excite writes through it too)
 
 
 # ====================================================================== input
@@ -1661,7 +1659,9 @@ def main(argv=None):
                                "(hexaglide excite)" % (r.path, r.last_line, n, 1e3 * slow_speed(params, s),
                                                        s.stribeck_band, MIN_SAMPLES, MIN_SAMPLES * r.dt))
             eqs.append(e)
-    except (BadInput, ValueError) as ex:
+        if a.output:
+            hg_output.target(a.output)         # a missing directory now, not after the fit
+    except (BadInput, ValueError, hg_output.OutputError) as ex:
         log(ex)
         return 2
     except hg.HexaglideError as ex:
@@ -1717,4 +1717,8 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except hg_output.OutputError as ex:
+        log(ex)
+        sys.exit(1)

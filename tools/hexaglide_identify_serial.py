@@ -33,6 +33,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
+import hg_output  # noqa: E402
 
 CUTOFF_HZ = 25.0
 ORDER = 4
@@ -331,7 +332,9 @@ def main(argv):
                 if nm + "_%d" % k not in kns[0]:
                     raise BadInput("%s: no %s_%d in the record: --set %s_%d=VALUE (SI)" % (a.records[0], nm, k, nm, k))
         fits = [fit_axis(recs, k, kns) for k in range(n)]
-    except BadInput as ex:
+        if a.output:
+            hg_output.target(a.output)
+    except (BadInput, hg_output.OutputError) as ex:
         log(ex)
         return 2
     out = ["# hexaglide identify (serial plant): %s" % ", ".join("%s (%d periods)" % (r.path, len(r.ok)) for r in recs),
@@ -393,8 +396,7 @@ def main(argv):
         for name, v in spec.items():
             e = table[name]
             lines.append("%s = %.6g" % (e.ini_key.decode(), v * e.hal_scale))
-        with open(a.output, "w") as f:
-            f.write("\n".join(lines) + "\n")
+        hg_output.atomic_write(a.output, lambda f: f.write(("\n".join(lines) + "\n").encode()))
     return 0
 
 

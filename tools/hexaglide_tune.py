@@ -15,7 +15,6 @@ import ctypes as C
 import os
 import re
 import sys
-import tempfile
 import time
 
 try:
@@ -30,6 +29,7 @@ except ImportError as _ex:  # a message, not a traceback: which interpreter is n
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hg_margins as hgm  # noqa: E402
+import hg_output  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 PERIOD_S = 0.001
@@ -522,24 +522,7 @@ def penalized(gains, step, sj, runs, prob, notch, margin=None):
 
 
 # ------------------------------------------------------------------ output
-def atomic_write(path, write):
-    """write(file) into a temporary beside path, then rename: never a half file."""
-    d = os.path.dirname(os.path.abspath(path)) or "."
-    os.makedirs(d, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=d, prefix=".tmp-", suffix=os.path.splitext(path)[1])
-    try:
-        with os.fdopen(fd, "wb") as f:
-            write(f)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)            # mkstemp made it 0600
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-
-
+atomic_write = hg_output.atomic_write   # (identify and excite write through it too)
 
 
 def ini_text(gains, pred, source, notch=None, without=None):
@@ -591,8 +574,12 @@ def predict(gains, prob, settles, notch=None):
 
 def png_saver(outdir, paths):
     """save(fig, name): write matplotlib figure fig as outdir/name (PNG, via
-    atomic_write), close it and append its path to paths."""
+    atomic_write), close it and append its path to paths. outdir is made if missing."""
     import matplotlib.pyplot as plt
+    try:
+        os.makedirs(outdir, exist_ok=True)
+    except OSError as ex:
+        raise hg_output.OutputError("cannot write plots into %s: %s" % (outdir, ex.strerror or ex))
 
     def save(fig, name):
         p = os.path.join(outdir, name)
@@ -835,7 +822,9 @@ def main(argv=None):
                            % (" ".join(a.param), (bad_field.value or b"?").decode(), (bad_why.value or b"").decode()))
         if a.jobs < 0:
             raise BadInput("--jobs %d: a number of threads, 0 for every core" % a.jobs)
-    except BadInput as ex:
+        if a.output:
+            hg_output.target(a.output)         # a missing directory now, not after the search
+    except (BadInput, hg_output.OutputError) as ex:
         log(ex)
         return 2
     log("trajectory: %s, %d samples (%.1f s)" % (source, len(cmd), len(cmd) * PERIOD_S))
@@ -937,4 +926,8 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except hg_output.OutputError as ex:
+        log(ex)
+        sys.exit(1)

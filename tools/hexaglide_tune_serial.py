@@ -33,6 +33,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
+import hg_output  # noqa: E402
 
 PERIOD_S = 0.001
 MIN_SAMPLES = 200
@@ -338,7 +339,9 @@ def main(argv=None):
         stock_g = m.gains()
         if a.gains:
             stock_g = m.gains(read_gain_file(a.gains, m.n))
-    except BadInput as ex:
+        if a.output:
+            hg_output.target(a.output)         # a missing directory now, not after the search
+    except (BadInput, hg_output.OutputError) as ex:
         log(ex)
         return 2
     stock, _, ok = evaluate(m, stock_g, cmd)
@@ -361,10 +364,13 @@ def main(argv=None):
     text = ini_text(m, [{k: g[k] for k in OUT_KEYS if k in g} for g in gains], pred, stock, source)
     sys.stdout.write(text)
     if a.output:
-        with open(a.output, "w") as f:
-            f.write(text)
+        hg_output.atomic_write(a.output, lambda f: f.write(text.encode()))
     return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except hg_output.OutputError as ex:
+        log(ex)
+        sys.exit(1)

@@ -9,7 +9,8 @@ difference per joint (mm); when the record holds the joint commands, also
 the following error recorded and replayed (or predicted by the closed-loop
 what-if) of the joint whose predicted peak is largest, and the largest
 drive voltage of the six, over samples FROM..TO (replay's f-error window:
-after homing) when given. The PNG is written to a temporary file and renamed.
+after homing) when given. The PNG is written as tools/hg_output.py writes (a temporary
+file and a rename for a regular file).
 """
 import os
 import sys
@@ -18,6 +19,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import hg_output  # noqa: E402
 
 JOINTS = ["z11", "z12", "z21", "z22", "z31", "z32"]
 
@@ -70,13 +74,11 @@ def main():
         a.grid(True, alpha=0.3)
     axes[-1].set_xlabel("simulated time (s)")
     fig.tight_layout()
-    tmp = "%s.tmp%d.png" % (png, os.getpid())
     try:
-        fig.savefig(tmp, dpi=100)
-        os.replace(tmp, png)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+        hg_output.atomic_write(png, lambda f: fig.savefig(f, format="png", dpi=100))
+    except hg_output.OutputError as ex:
+        print("plot_replay.py: %s" % ex, file=sys.stderr)
+        return 1
     print("plot_replay.py: wrote %s" % png)
     return 0
 

@@ -196,19 +196,28 @@ int cli_find_python(const char *cmd, const char *modules, const char *why, char 
  * naming the file and, for the wrong kind of file, `what` to give. */
 int cli_read_file(const char *cmd, const char *path, const char *what, long long max, char **buf, size_t *len);
 
-/* An output file written through a temporary file and a rename (stdout
- * when the path is 0). */
+/* An output file (stdout when the path is 0). A path naming a symlink is
+ * its target's (the link stays); a regular file or a new one is written to
+ * a temporary beside it and renamed onto it when complete (never a half
+ * file); a FIFO, device or socket is written straight into; a directory or
+ * a missing directory is an error. Every write error is one (close). */
 typedef struct {
     FILE *f;
     const char *path;      /* 0: stdout */
-    char tmp[4096];        /* path.tmp-PID while writing */
+    char target[4096];     /* path, symlinks followed */
+    char tmp[4096];        /* target.tmp-PID while writing; "" when written straight */
 } cli_out;
 
-/* Open path's temporary file (or stdout); 0, or -1 after a message. */
+/* Open path's temporary file, the path itself (not a regular file) or
+ * stdout; 0, or -1 after a message. */
 int cli_out_open(const char *cmd, const char *path, cli_out *o);
 
-/* Close; keep: rename onto path, else remove. 0, or -1 after a message
- * (the write or the rename failed; nothing left behind). */
+/* Close; keep: rename onto the target, else remove. 0, or -1 after a
+ * message naming the path and the cause (a write, flush, sync or rename
+ * failed; no temporary left, a regular file as it was). */
 int cli_out_close(const char *cmd, cli_out *o, int keep);
+
+/* 1 if outputs a and b would write the same file (symlinks followed). */
+int cli_out_same(const char *a, const char *b);
 
 #endif

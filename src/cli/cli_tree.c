@@ -3,10 +3,12 @@
  * script needs (tune: numpy, scipy, matplotlib; replay --plot: numpy,
  * matplotlib). No interpreter path is built in: $HEXAGLIDE_PYTHON, else
  * every python3 on $PATH, each checked by importing the modules. And the
- * output files, written through a temporary file and a rename. */
+ * output files: a regular file (or a new one) through a temporary file and
+ * a rename, a symlink's target the same way, a FIFO or device straight. */
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -193,20 +195,110 @@ int cli_find_python(const char *cmd, const char *modules, const char *why, char 
     return -1;
 }
 
+/* Where writing path goes into t: symlinks followed, a dangling one's
+ * target too (the link stays a link). 0, or -1 with errno set. */
+static int out_target(const char *path, char *t, size_t len)
+{
+    char link[PATH_MAX], next[PATH_MAX];
+    struct stat sb;
+    int hops, keep;
+    ssize_t n;
+    errno = ENAMETOOLONG;
+    if (snprintf(t, len, "%s", path) >= (int)len)
+        return -1;
+    for (hops = 0; lstat(t, &sb) == 0 && S_ISLNK(sb.st_mode); hops++) {
+        const char *slash = strrchr(t, '/');
+        if (hops == 40) {
+            errno = ELOOP;
+            return -1;
+        }
+        if ((n = readlink(t, link, sizeof link - 1)) < 0)
+            return -1;
+        link[n] = '\0';
+        keep = link[0] != '/' && slash ? (int)(slash - t + 1) : 0;   /* a relative link: t's directory */
+        errno = ENAMETOOLONG;
+        if (snprintf(next, sizeof next, "%.*s%s", keep, t, link) >= (int)sizeof next ||
+            snprintf(t, len, "%s", next) >= (int)len)
+            return -1;
+    }
+    return 0;
+}
+
+/* The directory part of path ("." for none) into d. */
+static void dir_of(const char *path, char *d, size_t len)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        snprintf(d, len, ".");
+    else
+        snprintf(d, len, "%.*s", slash == path ? 1 : (int)(slash - path), path);
+}
+
+/* The file name of path (after its last '/'). */
+static const char *base_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    return slash ? slash + 1 : path;
+}
+
+int cli_out_same(const char *a, const char *b)
+{
+    char ta[PATH_MAX], tb[PATH_MAX], da[PATH_MAX], db[PATH_MAX];
+    struct stat sa, sb;
+    int ea, eb;
+    if (out_target(a, ta, sizeof ta) || out_target(b, tb, sizeof tb))
+        return 0;                      /* (opening it says why) */
+    ea = stat(ta, &sa) == 0;
+    eb = stat(tb, &sb) == 0;
+    if (ea || eb)
+        return ea && eb && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    dir_of(ta, da, sizeof da);         /* neither exists yet: the same name in the same directory */
+    dir_of(tb, db, sizeof db);
+    return strcmp(base_of(ta), base_of(tb)) == 0 && stat(da, &sa) == 0 && stat(db, &sb) == 0 &&
+           sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
 int cli_out_open(const char *cmd, const char *path, cli_out *o)
 {
+    struct stat sb;
+    int fd, direct;
     o->path = path;
     o->tmp[0] = '\0';
     o->f = stdout;
     if (!path)
         return 0;
-    if (snprintf(o->tmp, sizeof o->tmp, "%s.tmp-%ld", path, (long)getpid()) >= (int)sizeof o->tmp) {
-        fprintf(stderr, "hexaglide %s: %s: path too long\n", cmd, path);
+    if (out_target(path, o->target, sizeof o->target)) {
+        fprintf(stderr, "hexaglide %s: cannot write %s: %s\n", cmd, path, strerror(errno));
         return -1;
     }
-    o->f = fopen(o->tmp, "w");
-    if (!o->f) {
-        fprintf(stderr, "hexaglide %s: cannot write %s: %s\n", cmd, path, strerror(errno));
+    direct = stat(o->target, &sb) == 0 && !S_ISREG(sb.st_mode);
+    if (direct && S_ISDIR(sb.st_mode)) {
+        fprintf(stderr, "hexaglide %s: cannot write %s: it is a directory; give a file\n", cmd, path);
+        return -1;
+    }
+    if (direct) {                      /* a FIFO, a device: straight into it */
+        signal(SIGPIPE, SIG_IGN);      /* a reader that leaves is a write error, with a message */
+        fd = open(o->target, O_WRONLY | O_NOCTTY);
+    } else {                           /* a temporary beside the target, renamed onto it */
+        if (snprintf(o->tmp, sizeof o->tmp, "%s.tmp-%ld", o->target, (long)getpid()) >= (int)sizeof o->tmp) {
+            fprintf(stderr, "hexaglide %s: cannot write %s: path too long\n", cmd, path);
+            return -1;
+        }
+        fd = open(o->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+    }
+    if (fd < 0 || !(o->f = fdopen(fd, "w"))) {
+        char d[PATH_MAX];
+        int err = errno;
+        dir_of(o->target, d, sizeof d);
+        if (err == ENOENT && !direct && access(d, F_OK) != 0)
+            fprintf(stderr, "hexaglide %s: cannot write %s: no directory %s\n", cmd, path, d);
+        else
+            fprintf(stderr, "hexaglide %s: cannot write %s: %s\n", cmd, path, strerror(err));
+        if (fd >= 0) {
+            close(fd);
+            if (!direct)
+                unlink(o->tmp);
+        }
         return -1;
     }
     return 0;
@@ -214,24 +306,28 @@ int cli_out_open(const char *cmd, const char *path, cli_out *o)
 
 int cli_out_close(const char *cmd, cli_out *o, int keep)
 {
-    int bad;
-    if (!o->path)
-        return fflush(stdout) != 0 ? -1 : 0;
-    bad = ferror(o->f) != 0;
-    bad |= fclose(o->f) != 0;
-    if (bad || !keep) {
-        if (bad)
-            fprintf(stderr, "hexaglide %s: writing %s failed: %s (nothing written)\n", cmd, o->path,
-                    strerror(errno));
-        unlink(o->tmp);
-        return bad ? -1 : 0;
-    }
-    if (rename(o->tmp, o->path) != 0) {
-        fprintf(stderr, "hexaglide %s: cannot rename %s to %s: %s\n", cmd, o->tmp, o->path, strerror(errno));
-        unlink(o->tmp);
+    int err = 0, renamed = o->path && o->tmp[0];
+    errno = 0;
+    if (!o->path) {
+        if (fflush(stdout) == 0 && !ferror(stdout))
+            return 0;
+        fprintf(stderr, "hexaglide %s: writing stdout failed: %s\n", cmd, strerror(errno ? errno : EIO));
         return -1;
     }
-    return 0;
+    if (fflush(o->f) != 0 || ferror(o->f))
+        err = errno ? errno : EIO;
+    if (!err && renamed && keep && fsync(fileno(o->f)) != 0)
+        err = errno;
+    if (fclose(o->f) != 0 && !err)
+        err = errno;
+    if (!err && renamed && keep && rename(o->tmp, o->target) != 0)
+        err = errno;
+    if (renamed && (err || !keep))
+        unlink(o->tmp);
+    if (err)
+        fprintf(stderr, "hexaglide %s: writing %s failed: %s%s\n", cmd, o->path, strerror(err),
+                renamed ? " (nothing written)" : "");
+    return err ? -1 : 0;
 }
 
 int cli_read_file(const char *cmd, const char *path, const char *what, long long max, char **buf, size_t *len)

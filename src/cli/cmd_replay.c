@@ -738,6 +738,11 @@ int cmd_replay(int argc, char **argv)
     }
     if (o.plant && cli_plant("replay", o.plant) < 0)
         return 2;
+    if (o.csv && o.plot && cli_out_same(o.csv, o.plot)) {
+        fprintf(stderr, "hexaglide replay: --csv %s and --plot %s name the same file; give two files\n", o.csv,
+                o.plot);
+        return 2;
+    }
     if (cli_read_file("replay", o.file, "a record file (tools/hg_record.py); split larger recordings", REPLAY_MAX_BYTES, &buf, &len))
         return 1;
     rc = hg_record_open(&r, buf, len, &e);

@@ -220,6 +220,11 @@ int cmd_sim(int argc, char **argv)
             csv_path = v;
         }
     }
+    if (csv_path && record && cli_out_same(csv_path, record)) {
+        fprintf(stderr, "hexaglide sim: --csv %s and --record %s name the same file; give two files\n", csv_path,
+                record);
+        return 2;
+    }
     pl = hg_plant_at(plant);
     if ((variant = cli_variant("sim", plant, model)) < 0)
         return 2;

@@ -1,0 +1,68 @@
+"""hg_output.py - the output files of the Python tools (tune, identify, excite,
+plot_replay.py), by the rules of build/hexaglide's (src/cli/cli_tree.c):
+a path naming a symlink is its target's (the link stays a link); a regular
+file, or a new one, is written to a temporary beside it and renamed onto it
+when complete (never a half file); a FIFO or device that exists is written
+straight into; a directory, or a directory that does not exist, is an error.
+Every error is an OutputError naming the path and the cause.
+"""
+import os
+import tempfile
+
+
+class OutputError(Exception):
+    """An output that cannot be written: the message names the path and why."""
+
+
+def target(path):
+    """Where writing path goes: symlinks followed (a dangling one's target too).
+    OutputError for a directory or a missing directory."""
+    p = path
+    for _ in range(40):
+        if not os.path.islink(p):
+            break
+        p = os.path.join(os.path.dirname(p), os.readlink(p))   # an absolute link replaces it all
+    else:
+        raise OutputError("cannot write %s: too many levels of symbolic links" % path)
+    if os.path.isdir(p):
+        raise OutputError("cannot write %s: it is a directory; give a file" % path)
+    d = os.path.dirname(p) or "."
+    if not os.path.isdir(d):
+        raise OutputError("cannot write %s: no directory %s" % (path, d))
+    return p
+
+
+def same(a, b):
+    """True if outputs a and b would write the same file (symlinks followed)."""
+    ta, tb = os.path.abspath(target(a)), os.path.abspath(target(b))
+    if os.path.exists(ta) or os.path.exists(tb):
+        return os.path.exists(ta) and os.path.exists(tb) and os.path.samefile(ta, tb)
+    return (os.path.basename(ta) == os.path.basename(tb)
+            and os.path.samefile(os.path.dirname(ta), os.path.dirname(tb)))
+
+
+def atomic_write(path, write):
+    """write(file) into path (binary) by the rules above: a regular file through a
+    temporary and a rename, never half written; OutputError when anything fails."""
+    p = target(path)
+    tmp = None
+    try:
+        if os.path.exists(p) and not os.path.isfile(p):   # a FIFO, a device: straight into it
+            with open(p, "wb") as f:
+                write(f)
+            return
+        fd, tmp = tempfile.mkstemp(dir=os.path.dirname(p) or ".", prefix=".tmp-", suffix=os.path.splitext(p)[1])
+        with os.fdopen(fd, "wb") as f:
+            write(f)
+            f.flush()
+            os.fsync(f.fileno())
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)            # mkstemp made it 0600
+        os.replace(tmp, p)
+        tmp = None
+    except OSError as ex:
+        raise OutputError("writing %s failed: %s%s" % (path, ex.strerror or ex, " (nothing written)" if tmp else ""))
+    finally:
+        if tmp and os.path.exists(tmp):
+            os.unlink(tmp)
