@@ -5,17 +5,21 @@
  * reports what the plant reports through the logger callback.
  *
  * Communication step: the servo period `period` is the FMU's step; a
- * communication step of n whole periods (within 1e-6 of a period, for
- * importers that add up steps in floating point) runs n periods with the
- * inputs held; any other step is refused with fmi3Error.
+ * communication step of n whole periods runs n periods with the inputs
+ * held; any other step is refused with fmi3Error. An importer's time
+ * carries the rounding of its arithmetic: a time and a step's end are
+ * taken within the rounding an importer adding its steps in double makes
+ * (same_time: one rule for both).
  * Errors: a refused call returns fmi3Error after a message naming the
  * cause and the fix (category logStatusError), and changes nothing; a
  * fault of the machine is an output (fault, fault_code): the step that
  * latches it returns fmi3Warning with the core's message.
  * State: one malloc'd block without pointers per instance ([status]
- * [values] [plant]): fmi3GetFMUState copies it, fmi3SetFMUState copies it
- * back; serialized with a header (magic, token, size, checksum). No
- * file-scope mutable state: instances share nothing. */
+ * [values] [plant], fmu_state.h): fmi3GetFMUState copies it,
+ * fmi3SetFMUState copies it back; serialized with a header (magic and
+ * format, token, layout, size, checksum), and a deserialized block's
+ * content is checked before it is taken. No file-scope mutable state:
+ * instances share nothing. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -23,25 +27,31 @@
 #include <stdlib.h>
 #include <string.h>
 #include "fmi3Functions.h"
+#include "fmu_state.h"
 #include "fmu_vars.h"
 
-/* Modes of the FMI 3.0 co-simulation state machine this FMU has (bits). */
-enum { MODE_INSTANTIATED = 1, MODE_INIT = 2, MODE_STEP = 4, MODE_TERMINATED = 8 };
+enum {
+    MODE_INSTANTIATED = FMU_MODE_INSTANTIATED, MODE_INIT = FMU_MODE_INIT, MODE_STEP = FMU_MODE_STEP,
+    MODE_TERMINATED = FMU_MODE_TERMINATED
+};
 
 #define INSTANCE_MAGIC 0x484758464d55494eull   /* "HGXFMUIN" */
 #define STATE_MAGIC 0x484758464d555354ull      /* "HGXFMUST" */
-#define SERIAL_MAGIC "HGXFMU01"                /* first 8 bytes of a serialized state */
-#define STEP_TOLERANCE 1e-6                    /* of a period: what a step may miss n periods by */
+#define SERIAL_PREFIX "HGXFMU"                 /* a serialized state opens with it and the format's 2 digits */
 #define MAX_PERIODS_PER_STEP 1000000.0         /* longest communication step, in periods */
+/* The time rule (same_time): an importer's time x against the FMU's ref
+ * after n additions (t += h) may be off by half an ulp of |x| per
+ * addition (each sum rounds once) plus TIME_SLACK_ULPS ulps (the period's
+ * decimal in binary, t0 + k h, the FMU's own start + periods x period),
+ * at most TIME_SLACK_MAX of a period (never taking a time for the next
+ * period's). TIME_RESOLUTION: the FMU keeps its time where a double
+ * resolves 1e-6 of a period (time_limit). */
+#define TIME_SLACK_ULPS 256.0
+#define TIME_SLACK_MAX 0.25
+#define TIME_RESOLUTION 1e-6
 
-/* The instance's status: the part of the FMU state besides values and plant. */
-typedef struct {
-    int mode;
-    int built;                        /* the plant holds the board of the parameter values */
-    double start_time;                /* of fmi3EnterInitializationMode */
-    double periods;                   /* servo periods integrated since (a whole number) */
-    double period_s;                  /* the period the board integrates */
-} status_t;
+typedef fmu_status status_t;
+typedef fmu_serial_header serial_t;
 
 /* One FMU instance. */
 typedef struct {
@@ -62,14 +72,6 @@ typedef struct {
     size_t size;
     unsigned char data[];
 } saved_t;
-
-/* Serialized state header. */
-typedef struct {
-    char magic[8];
-    char token[FMU_TOKEN_LEN];
-    uint64_t size;
-    uint64_t checksum;
-} serial_t;
 
 /* x rounded up to a multiple of 16. */
 static size_t align16(size_t x)
@@ -143,6 +145,58 @@ static int allowed(instance_t *s, const char *fn, int modes, const char *when)
 static double now(instance_t *s)
 {
     return st(s)->start_time + st(s)->periods * st(s)->period_s;
+}
+
+/* The distance from |x| to the next double. */
+static double ulp_of(double x)
+{
+    x = fabs(x);
+    return isfinite(x) ? nextafter(x, INFINITY) - x : INFINITY;
+}
+
+/* How far an importer's time x may lie from the FMU's ref after n
+ * additions (the time rule above). */
+static double time_slack(double x, double ref, double n, double period)
+{
+    double slack = (0.5 * n + TIME_SLACK_ULPS) * ulp_of(fabs(x) > fabs(ref) ? x : ref);
+    return slack < TIME_SLACK_MAX * period ? slack : TIME_SLACK_MAX * period;
+}
+
+/* 1 if the importer's time x is the FMU's ref after n additions (the one rule of the time and a step's end). */
+static int same_time(double x, double ref, double n, double period)
+{
+    return fabs(x - ref) <= time_slack(x, ref, n, period);
+}
+
+/* The first power of two from which a double resolves time more coarsely
+ * than TIME_RESOLUTION x period: the FMU's time stays below it. */
+static double time_limit(double period)
+{
+    int e;
+    frexp(TIME_RESOLUTION * period, &e);   /* 2^(e-1) <= resolution < 2^e */
+    return ldexp(1.0, e + 52);             /* ulp(t) = 2^(e-1) for t in [2^(e+51), 2^(e+52)) */
+}
+
+/* The period parameter's value as the FMU's time step, or the default while it is refused. */
+static double period_param(instance_t *s)
+{
+    char why[200];
+    double p = vals(s)[fmu_var_vr(FMU_G_PERIOD, 0)];
+    return fmu_plant_period_why(p, why, sizeof why) ? fmu_plant_period_default_s() : floor(p * 1e9 + 0.5) / 1e9;
+}
+
+/* 0 if the FMU can keep time at start time t0 with the period, else -1 after a message. */
+static int time_fits(instance_t *s, const char *fn, double t0, double period)
+{
+    char a[32], b[32], c[32];
+    double limit = time_limit(period);
+    if (fabs(t0) < limit)
+        return 0;
+    say(s, FMU_SAY_ERROR, "%s: %s: startTime %s s refused: from |t| = %s s (2^%d) on a double resolves time only to "
+        "%.3g s, more than %g of the period %s s, so the FMU's time could not follow whole periods; start below "
+        "%s s or set a longer period", s->name, fn, fmu_num(a, t0), fmu_num(b, limit), (int)log2(limit),
+        ulp_of(limit), TIME_RESOLUTION, fmu_num(c, period), b);
+    return -1;
 }
 
 /* The plant's outputs into the values. */
@@ -367,8 +421,11 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
             s->name, startTime);
         return fmi3Error;
     }
+    if (time_fits(s, "fmi3EnterInitializationMode", startTime, period_param(s)))
+        return fmi3Error;
     st(s)->start_time = startTime;
     st(s)->periods = 0;
+    st(s)->steps = 0;
     vals(s)[fmu_var_vr(FMU_G_TIME, 0)] = startTime;
     st(s)->mode = MODE_INIT;
     return fmi3OK;
@@ -382,6 +439,8 @@ fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
         return fmi3Error;
     if (build(s, "fmi3ExitInitializationMode"))
         return fmi3Error;
+    if (time_fits(s, "fmi3ExitInitializationMode", st(s)->start_time, st(s)->period_s))
+        return fmi3Error;             /* the period set in Initialization Mode is too short for startTime */
     st(s)->mode = MODE_STEP;
     return fmi3OK;
 }
@@ -418,7 +477,8 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     instance_t *s = inst_of(instance);
     fmu_plant_inputs in;
     fmu_plant_outputs o;
-    double period, n, t, *v;
+    double period, n, t, end, end_fmu, *v;
+    char a[32], b[32], c[32];
     long left;
     int k, level = FMU_SAY_INFO, index[FMU_JOINTS] = {0};
     (void)noSetFMUStatePriorToCurrentPoint;
@@ -431,16 +491,44 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     period = st(s)->period_s;
     t = now(s);
     n = floor(communicationStepSize / period + 0.5);
-    if (!(fabs(currentCommunicationPoint - t) <= STEP_TOLERANCE * period)) {
-        say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: currentCommunicationPoint %.17g s is not the FMU's time %.17g s; "
-            "step on from where the last step ended (or restore an FMU state)", s->name, currentCommunicationPoint, t);
+    if (!same_time(currentCommunicationPoint, t, st(s)->steps, period)) {
+        say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: currentCommunicationPoint %.17g s is not the FMU's time %.17g s (off "
+            "by %.3g s, more than the %.3g s a time summed over %.0f steps in double may be off); step on from where "
+            "the last step ended (or restore an FMU state)", s->name, currentCommunicationPoint, t,
+            currentCommunicationPoint - t, time_slack(currentCommunicationPoint, t, st(s)->steps, period),
+            st(s)->steps);
         return fmi3Error;
     }
-    if (!(n >= 1 && n <= MAX_PERIODS_PER_STEP && fabs(communicationStepSize - n * period) <= STEP_TOLERANCE * period)) {
+    /* the step's end as the importer's next time t + h, against the FMU's after n periods: the same rule */
+    end = currentCommunicationPoint + communicationStepSize;
+    end_fmu = st(s)->start_time + (st(s)->periods + n) * period;
+    if (n >= 1 && n <= MAX_PERIODS_PER_STEP && !same_time(end, end_fmu, st(s)->steps + 1, period) &&
+        same_time(communicationStepSize, n * period, 1, period)) {
+        /* n periods to the step's own rounding, from a time within the rule: the importer's sums drifted */
+        say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: the step of %.17g s from %.17g s ends at %.17g s, %.3g s from the "
+            "FMU's time after %.0f period%s, %.17g s: more than the %.3g s that %.0f sums in double may round by; "
+            "the importer's time has drifted from the FMU's (keep it as startTime + k x step, not t += step)",
+            s->name, communicationStepSize, currentCommunicationPoint, end, end - end_fmu, n, n == 1 ? "" : "s",
+            end_fmu, time_slack(end, end_fmu, st(s)->steps + 1, period), st(s)->steps + 1);
+        return fmi3Error;
+    }
+    if (!(n >= 1 && n <= MAX_PERIODS_PER_STEP && same_time(end, end_fmu, st(s)->steps + 1, period))) {
+        char off[240] = "";
+        if (n >= 1 && n <= MAX_PERIODS_PER_STEP)
+            snprintf(off, sizeof off, " (from %.17g s it ends at %.17g s, %.3g s from the FMU's time after %.0f "
+                     "period%s, %.17g s: more than the %.3g s the rounding of a double allows)",
+                     currentCommunicationPoint, end, end - end_fmu, n, n == 1 ? "" : "s", end_fmu,
+                     time_slack(end, end_fmu, st(s)->steps + 1, period));
         say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: communication step %.17g s is not a whole number (1 to %.0f) of servo "
-            "periods of %.17g s: this FMU steps in whole periods; use a fixed communication step of %.9g s (the "
-            "parameter period) or a multiple of it", s->name, communicationStepSize, MAX_PERIODS_PER_STEP, period,
-            period);
+            "periods of %s s%s: this FMU steps in whole periods; use a fixed communication step of %s s (the "
+            "parameter period) or a multiple of it", s->name, communicationStepSize, MAX_PERIODS_PER_STEP,
+            fmu_num(a, period), off, fmu_num(b, period));
+        return fmi3Error;
+    }
+    if (!(fabs(end_fmu) < time_limit(period))) {
+        say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: the step would end at %.17g s: from |t| = %s s on a double resolves "
+            "time only to %.3g s, more than %g of the period %s s, so the FMU's time stops short of it", s->name,
+            end_fmu, fmu_num(a, time_limit(period)), ulp_of(time_limit(period)), TIME_RESOLUTION, fmu_num(c, period));
         return fmi3Error;
     }
     v = vals(s);
@@ -450,7 +538,7 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     in.reset = v[fmu_var_vr(FMU_G_RESET, 0)] != 0;
     in.amp_enable = v[fmu_var_vr(FMU_G_AMP_ENABLE, 0)] != 0;
     for (left = (long)n; left > 0; left--) {
-        int l = fmu_plant_step(plant(s), &in, &o, plant_say, s);
+        int l = fmu_plant_step(plant(s), &in, now(s), &o, plant_say, s);
         level = l > level ? l : level;
         st(s)->periods += 1;
         for (k = 0; k < FMU_JOINTS; k++)
@@ -458,6 +546,7 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     }
     for (k = 0; k < FMU_JOINTS; k++)
         o.index[k] = index[k];          /* a pulse in any period of the step */
+    st(s)->steps += 1;
     put_outputs(s, &o);
     *eventHandlingNeeded = fmi3False;
     *terminateSimulation = fmi3False;
@@ -532,6 +621,20 @@ static int refresh(instance_t *s, const char *fn, const fmi3ValueReference vr[],
     return 0;
 }
 
+/* 1 if variable vr takes x (fmu_var_refuse), else 0 after a message naming the rule and the value kept. */
+static int value_ok(instance_t *s, const char *fn, fmi3ValueReference vr, double x)
+{
+    char why[400], a[32], b[32];
+    fmu_var v;
+    fmu_var_get(vr, &v);
+    if (!fmu_var_refuse(&v, x, vals(s), why, sizeof why))
+        return 1;
+    say(s, FMU_SAY_ERROR, "%s: %s: parameter %s = %s%s%s refused: %s; it keeps %s%s%s", s->name, fn, v.name,
+        fmu_num(a, x), v.unit ? " " : "", v.unit ? v.unit : "", why, fmu_num(b, vals(s)[vr]), v.unit ? " " : "",
+        v.unit ? v.unit : "");
+    return 0;
+}
+
 /* Store a set value; a parameter makes the board be built again. */
 static void store(instance_t *s, fmi3ValueReference vr, double x)
 {
@@ -563,6 +666,9 @@ static void store(instance_t *s, fmi3ValueReference vr, double x)
         size_t i;                                                                                              \
         if (!s || !check_access(s, "fmi3Set" #T, vr, nvr, values, nValues, F, 1))                              \
             return fmi3Error;                                                                                  \
+        for (i = 0; i < nvr; i++)     /* every value checked before any is stored */                           \
+            if (!value_ok(s, "fmi3Set" #T, vr[i], (double)values[i]))                                          \
+                return fmi3Error;                                                                              \
         for (i = 0; i < nvr; i++)                                                                              \
             store(s, vr[i], (double)values[i]);                                                                \
         return fmi3OK;                                                                                         \
@@ -703,7 +809,24 @@ fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState FMUSta
     return fmi3OK;
 }
 
-/* Header (magic, token, size, checksum) + block. */
+/* The header of this instance's serialized states, checksum 0. */
+static void header_of(const instance_t *s, serial_t *h)
+{
+    char magic[9];
+    memset(h, 0, sizeof *h);
+    snprintf(magic, sizeof magic, "%s%02d", SERIAL_PREFIX, FMU_SERIAL_FORMAT);
+    memcpy(h->magic, magic, sizeof h->magic);
+    memcpy(h->token, s->token, sizeof h->token);
+    h->status_bytes = (uint32_t)sizeof(status_t);
+    h->nvars = s->nvars;
+    h->off_values = s->off_values;
+    h->off_plant = s->off_plant;
+    h->plant_bytes = fmu_plant_size();
+    h->plant_layout = fmu_plant_layout();
+    h->size = s->blob_size;
+}
+
+/* Header (magic and format, token, layout, size, checksum) + block. */
 fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState FMUState, fmi3Byte serializedState[],
                                  size_t size)
 {
@@ -718,14 +841,83 @@ fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState FMUState, f
             sizeof h + s->blob_size);
         return fmi3Error;
     }
-    memset(&h, 0, sizeof h);
-    memcpy(h.magic, SERIAL_MAGIC, sizeof h.magic);
-    memcpy(h.token, s->token, sizeof h.token);
-    h.size = s->blob_size;
+    header_of(s, &h);
     h.checksum = fmu_hash(p->data, s->blob_size);
     memcpy(serializedState, &h, sizeof h);
     memcpy(serializedState + sizeof h, p->data, s->blob_size);
     return fmi3OK;
+}
+
+/* 1 if x is a whole number in [0, 2^53]. */
+static int is_count(double x)
+{
+    return x >= 0 && x <= 9007199254740992.0 && x == floor(x);
+}
+
+/* What is wrong with the content of a block of unknown origin (status,
+ * values, plant) for instance s, into why; 0 when it can be a state of
+ * this FMU. The values must pass their rules (fmu_var_refuse), a built
+ * plant its check against the core's build of the values (fmu_plant_check). */
+static int block_wrong(const instance_t *s, const unsigned char *blob, char *why, size_t len)
+{
+    const status_t *t = (const status_t *)(const void *)blob;
+    const double *v = (const double *)(const void *)(blob + s->off_values);
+    const void *pl = blob + s->off_plant;
+    char rule[400];
+    double limit;
+    unsigned vr;
+    if (!(t->mode == MODE_INSTANTIATED || t->mode == MODE_INIT || t->mode == MODE_STEP ||
+          t->mode == MODE_TERMINATED) || (t->built != 0 && t->built != 1) ||
+        ((t->mode & (MODE_STEP | MODE_TERMINATED)) && !t->built)) {
+        snprintf(why, len, "in no mode of this FMU (mode %d, built %d)", t->mode, t->built);
+        return -1;
+    }
+    /* the period of a machine not built is the parameter's: the time checked against the longest */
+    limit = time_limit(t->built ? t->period_s : fmu_plant_period_max_s());
+    if (!(isfinite(t->period_s) && t->period_s >= fmu_plant_period_min_s() &&
+          t->period_s <= fmu_plant_period_max_s()) || !isfinite(t->start_time) || !(fabs(t->start_time) < limit) ||
+        !is_count(t->periods) || !is_count(t->steps) || t->steps > t->periods ||
+        (!(t->mode & (MODE_STEP | MODE_TERMINATED)) && (t->periods || t->steps)) ||
+        !(fabs(t->start_time + t->periods * t->period_s) < limit)) {
+        snprintf(why, len, "not at a time of this FMU (start %.17g s, %.17g periods of %.17g s, %.17g steps)",
+                 t->start_time, t->periods, t->period_s, t->steps);
+        return -1;
+    }
+    for (vr = 0; vr < s->nvars; vr++) {
+        fmu_var var;
+        double x = v[vr];
+        fmu_var_get(vr, &var);
+        if (fmu_var_refuse(&var, x, v, rule, sizeof rule)) {
+            snprintf(why, len, "of a parameter value the FMU refuses: %s = %.17g %s", var.name, x, rule);
+            return -1;
+        }
+        if ((var.type == FMU_BOOLEAN && x != 0 && x != 1) ||
+            (var.type == FMU_INT32 && !(x >= -2147483648.0 && x <= 2147483647.0 && x == floor(x))) ||
+            (var.causality == FMU_OUTPUT && !isfinite(x)) ||
+            (var.causality == FMU_INDEPENDENT && x != t->start_time + t->periods * t->period_s)) {
+            snprintf(why, len, "of a value no variable of its type holds: %s = %.17g", var.name, x);
+            return -1;
+        }
+    }
+    if (t->built) {
+        fmu_plant_setup setup;
+        char what[200];
+        setup.model = as_int(v[fmu_var_vr(FMU_G_MODEL, 0)]);
+        setup.integrator = as_int(v[fmu_var_vr(FMU_G_INTEGRATOR, 0)]);
+        setup.substeps = as_int(v[fmu_var_vr(FMU_G_SUBSTEPS, 0)]);
+        setup.period_s = v[fmu_var_vr(FMU_G_PERIOD, 0)];
+        setup.enc_scale = v[fmu_var_vr(FMU_G_ENC_SCALE, 0)];
+        setup.params = &v[fmu_var_vr(FMU_G_PARAM, 0)];
+        if (fmu_plant_check(pl, &setup, what, sizeof what)) {
+            snprintf(why, len, "not a machine of its parameters: %s", what);
+            return -1;
+        }
+        if (t->period_s != fmu_plant_period_s(pl)) {
+            snprintf(why, len, "at a time step (%.17g s) that is not its period's", t->period_s);
+            return -1;
+        }
+    }
+    return 0;
 }
 
 /* A state from serialized bytes of this build, checked. */
@@ -734,35 +926,59 @@ fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte seriali
 {
     instance_t *s = inst_of(instance);
     const char *why = 0;
-    serial_t h;
+    char content[600];
+    unsigned char *blob = 0;
+    serial_t h, mine;
     saved_t *p;
     if (!s)
         return fmi3Error;
     memset(&h, 0, sizeof h);
+    header_of(s, &mine);
     if (!serializedState || !FMUState)
         why = "serializedState or FMUState is NULL";
     else if (size < sizeof h)
         why = "too short to be a state of this FMU";
     if (!why) {
         memcpy(&h, serializedState, sizeof h);
-        if (memcmp(h.magic, SERIAL_MAGIC, sizeof h.magic) != 0)
+        if (memcmp(h.magic, SERIAL_PREFIX, strlen(SERIAL_PREFIX)) != 0)
             why = "not a serialized state of this FMU (no header)";
+        else if (memcmp(h.magic, mine.magic, sizeof h.magic) != 0)
+            why = "in another format (written by another version of the FMU): restore it with the FMU that saved it";
         else if (memcmp(h.token, s->token, sizeof h.token) != 0)
             why = "written by another build of the FMU (another instantiation token): restore it with the FMU "
                   "that saved it";
+        else if (h.status_bytes != mine.status_bytes || h.nvars != mine.nvars || h.off_values != mine.off_values ||
+                 h.off_plant != mine.off_plant || h.plant_bytes != mine.plant_bytes ||
+                 h.plant_layout != mine.plant_layout)
+            why = "of another layout (written by another build of the FMU's core): restore it with the FMU that "
+                  "saved it";
         else if (h.size != s->blob_size || size != sizeof h + s->blob_size)
             why = "of the wrong size for this FMU";
         else if (h.checksum != fmu_hash(serializedState + sizeof h, s->blob_size))
             why = "damaged (checksum)";
     }
+    if (!why) {                       /* the content, in an aligned copy */
+        blob = malloc(s->blob_size);
+        if (!blob)
+            why = "not checked: out of memory";
+        else {
+            memcpy(blob, serializedState + sizeof h, s->blob_size);
+            if (block_wrong(s, blob, content, sizeof content))
+                why = content;
+        }
+    }
     if (why) {
         say(s, FMU_SAY_ERROR, "%s: fmi3DeserializeFMUState: the serialized state is %s", s->name, why);
+        free(blob);
         return fmi3Error;
     }
     p = *FMUState ? saved_of(s, "fmi3DeserializeFMUState", *FMUState) : saved_new(s, "fmi3DeserializeFMUState");
-    if (!p)
+    if (!p) {
+        free(blob);
         return fmi3Error;
-    memcpy(p->data, serializedState + sizeof h, s->blob_size);
+    }
+    memcpy(p->data, blob, s->blob_size);
+    free(blob);
     *FMUState = p;
     return fmi3OK;
 }

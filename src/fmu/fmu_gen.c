@@ -129,17 +129,7 @@ static int add_display(unit_info *u, const char *d, double f)
 /* The shortest decimal text that reads back as v (at most 17 digits). */
 static const char *num(char buf[32], double v)
 {
-    int p;
-    if (v == floor(v) && fabs(v) < 1e15) {   /* 1000, not 1e+03 */
-        snprintf(buf, 32, "%.0f", v);
-        return buf;
-    }
-    for (p = 1; p <= 17; p++) {
-        snprintf(buf, 32, "%.*g", p, v);
-        if (strtod(buf, 0) == v)
-            break;
-    }
-    return buf;
+    return fmu_num(buf, v);
 }
 
 /* s with the XML attribute specials escaped. */
@@ -332,6 +322,26 @@ static int write_description(FILE *f)
     return 0;
 }
 
+/* A bound for the Markdown table: as the description writes it, 1e9 for 1000000000 and beyond. */
+static const char *md_num(char buf[32], fmu_type t, double v)
+{
+    int p, e;
+    char *x;
+    if (t != FMU_FLOAT64 || fabs(v) < 1e6)
+        return start_text(buf, t, v);
+    for (p = 1; p <= 17; p++) {
+        snprintf(buf, 32, "%.*e", p - 1, v);
+        if (strtod(buf, 0) == v)
+            break;
+    }
+    x = strchr(buf, 'e');
+    if (x) {
+        e = atoi(x + 1);
+        snprintf(x, (size_t)(32 - (x - buf)), "e%d", e);
+    }
+    return buf;
+}
+
 /* The variables as a Markdown table, a per-joint group in one row; 0 or -1. */
 static int write_markdown(FILE *f)
 {
@@ -342,10 +352,10 @@ static int write_markdown(FILE *f)
         free(start);
         return -1;
     }
-    fprintf(f, "| name | value reference | type | causality | unit (display unit) | start | description |\n");
-    fprintf(f, "|---|---|---|---|---|---|---|\n");
+    fprintf(f, "| name | value reference | type | causality | unit (display unit) | start | min .. max | description |\n");
+    fprintf(f, "|---|---|---|---|---|---|---|---|\n");
     for (vr = 0; vr < n; vr = end + 1) {
-        char range[32], sb[32], unit[64];
+        char range[32], sb[32], unit[64], bounds[80], lo[32], hi[32];
         const char *cut, *st = "";
         fmu_var v;
         fmu_var_get(vr, &v);
@@ -359,11 +369,15 @@ static int write_markdown(FILE *f)
             st = v.declared_type ? fmu_enum_item(v.declared_type, (int)start[vr]) : start_text(sb, v.type, start[vr]);
         snprintf(unit, sizeof unit, "%s%s%s%s", v.unit ? v.unit : "", v.display_unit ? " (" : "",
                  v.display_unit ? v.display_unit : "", v.display_unit ? ")" : "");
+        bounds[0] = 0;
+        if (v.has_range)
+            snprintf(bounds, sizeof bounds, "%s .. %s%s", md_num(lo, v.type, v.min), md_num(hi, v.type, v.max),
+                     v.group == FMU_G_PERIOD ? ", whole ns" : v.quantum == 1 ? ", whole" : "");
         if (cut)
             v.name[strlen(v.name) - 2] = 0;  /* "dac_0" -> "dac" */
-        fprintf(f, "| `%s%s` | %s | %s | %s | %s | %s | %.*s |\n", v.name, cut ? "_0` .. `_5" : "", range,
+        fprintf(f, "| `%s%s` | %s | %s | %s | %s | %s | %s | %.*s |\n", v.name, cut ? "_0` .. `_5" : "", range,
                 v.declared_type ? v.declared_type : type_element(v.type), causality_name(v.causality), unit, st,
-                cut ? (int)(cut - v.description) : (int)strlen(v.description), v.description);
+                bounds, cut ? (int)(cut - v.description) : (int)strlen(v.description), v.description);
     }
     free(start);
     return 0;

@@ -4,9 +4,12 @@
  * inputs (hg_board_inputs_default), the E-STOP loop closed by amp_enable,
  * the DAC volts of the period, one hg_board_step per servo period; and it
  * refuses a parameter set with the core's rule for each field, as the HAL
- * component motenc_hexaglide_dyns_virtual does. */
+ * component motenc_hexaglide_dyns_virtual does. It checks the bytes of a
+ * plant of unknown origin (a deserialized FMU state) against the core's
+ * own build of the same parameters. */
 #include <math.h>
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +18,9 @@
 #include "hg_errors.h"
 #include "hg_scheme.h"
 #include "hg_dynamics.h"          /* hg_model_names: the Hexaglide's parametrizations */
+#include "hg_params.h"            /* HG_PARAM_MAX_ABS, HG_PARAM_MIN_POSITIVE: the core's bounds */
+#include "hg_plant_hexaglide.h"   /* hg_hexaglide_data: the machine's state */
+#include "hg_units.h"             /* HG_PI */
 
 /* The servo period of configs/hexaglide.ini (SERVO_PERIOD) and of `hexaglide sim --dt`. */
 #define PERIOD_DEFAULT_NS 1000000L
@@ -28,6 +34,48 @@ typedef struct {
     long period_ns;
     int pose_extra[6];                /* index of each pose output in the plant's extra outputs, -1 none */
 } plant;
+
+/* The board first (fmu_plant.h: the tests that forge states rely on it). */
+typedef char board_first[offsetof(plant, b) == 0 ? 1 : -1];
+
+/* The single-field rules of the Hexaglide's parameters (src/hg_params.c:
+ * params_rules, geometry_rules): a rule on one value alone, whatever the
+ * others, as the inclusive bounds FMI can declare. Every parameter lies
+ * within +-HG_PARAM_MAX_ABS; RULE_POSITIVE is at least
+ * HG_PARAM_MIN_POSITIVE, RULE_MIN0 >= 0 (a strict > 0 too: its limit 0
+ * then passes fmi3Set and the core refuses it with the rules between
+ * fields, at fmi3ExitInitializationMode), RULE_MAX0 <= 0, RULE_CONE in
+ * [0, 90 deg], RULE_BINARY 0 or 1. These bounds are what fmi3Set refuses
+ * and modelDescription.xml declares; test_fmu_description checks each
+ * against the core's check (hexaglide sim --set just outside it). */
+enum { RULE_ANY, RULE_POSITIVE, RULE_MIN0, RULE_MAX0, RULE_CONE, RULE_BINARY };
+static const struct {
+    const char *name;
+    int rule;
+} single_rules[] = {
+    {"l", RULE_MIN0}, {"lb", RULE_MIN0}, {"e", RULE_MIN0}, {"lp", RULE_MIN0},
+    {"cone_carriage", RULE_CONE}, {"cone_head", RULE_CONE}, {"d_bar", RULE_MIN0},
+    {"g", RULE_POSITIVE}, {"m_head", RULE_POSITIVE}, {"i_head_xx", RULE_POSITIVE}, {"i_head_yy", RULE_POSITIVE},
+    {"i_head_zz", RULE_POSITIVE}, {"m_bar", RULE_POSITIVE}, {"i_bar", RULE_POSITIVE},
+    {"m_carriage", RULE_POSITIVE}, {"lead", RULE_POSITIVE}, {"ka", RULE_POSITIVE}, {"kt", RULE_POSITIVE},
+    {"i_max", RULE_POSITIVE}, {"k_stop", RULE_POSITIVE}, {"counts_per_rev", RULE_POSITIVE},
+    {"r_winding", RULE_POSITIVE}, {"l_winding", RULE_POSITIVE}, {"v_bus", RULE_POSITIVE},
+    {"v_rated", RULE_POSITIVE}, {"v_stribeck", RULE_POSITIVE},
+    {"tool_d", RULE_MIN0}, {"head_com", RULE_MIN0}, {"j_rotor", RULE_MIN0}, {"c_visc", RULE_MIN0},
+    {"f_coulomb", RULE_MIN0}, {"f_static", RULE_MIN0}, {"c_stop", RULE_MIN0}, {"kp_vel", RULE_MIN0},
+    {"ki_vel", RULE_MIN0}, {"k_axial", RULE_MIN0}, {"c_axial", RULE_MIN0}, {"backlash", RULE_MIN0},
+    {"limit_min", RULE_MAX0}, {"limit_max", RULE_MIN0}, {"amp_mode", RULE_BINARY},
+};
+
+/* The single-field rule of the parameter called name (RULE_ANY: the magnitude alone). */
+static int single_rule(const char *name)
+{
+    size_t i;
+    for (i = 0; i < sizeof single_rules / sizeof single_rules[0]; i++)
+        if (!strcmp(single_rules[i].name, name))
+            return single_rules[i].rule;
+    return RULE_ANY;
+}
 
 /* The plant of the FMU in the board's registry. */
 static const hg_plant *the_plant(void)
@@ -72,7 +120,38 @@ int fmu_plant_param(int i, fmu_param *p)
     p->display_unit = t.hal_unit;
     p->display_factor = t.hal_scale;
     p->start = d.v[i];
+    p->min = -HG_PARAM_MAX_ABS;
+    p->max = HG_PARAM_MAX_ABS;
+    p->quantum = 0;
+    switch (single_rule(t.name)) {
+    case RULE_POSITIVE: p->min = HG_PARAM_MIN_POSITIVE; break;
+    case RULE_MIN0: p->min = 0; break;
+    case RULE_MAX0: p->max = 0; break;
+    case RULE_CONE: p->min = 0; p->max = HG_PI / 2; break;
+    case RULE_BINARY: p->min = 0; p->max = 1; p->quantum = 1; break;
+    default: break;
+    }
     return 0;
+}
+
+const char *fmu_plant_param_why(int i, const double *params, double x)
+{
+    const hg_plant *pl = the_plant();
+    const int v = pl->default_variant;
+    const char *why[HG_PLANT_PARAMS_MAX];
+    hg_plant_params block;
+    hg_bitset bad;
+    int k, n = fmu_plant_param_count();
+    if (i < 0 || i >= n)
+        return 0;
+    memset(&block, 0, sizeof block);
+    memset(why, 0, sizeof why);
+    for (k = 0; k < n; k++)
+        block.v[k] = params[k];
+    block.v[i] = x;
+    hg_bitset_clear(&bad);
+    pl->check(v, &block, &bad, why);
+    return hg_bitset_has(&bad, i) ? (why[i] ? why[i] : "invalid") : 0;
 }
 
 int fmu_plant_model_count(void)
@@ -161,11 +240,35 @@ static void model_choices(char *buf, size_t len)
                       fmu_plant_model_name(i));
 }
 
-/* The period in whole ns (as `hexaglide sim --dt` rounds it), or -1 outside the board's range. */
+/* How far a period's ns may lie from a whole number: the rounding of the double (of ns <= 1e7). */
+#define PERIOD_NS_SLACK 1e-6
+
+/* The period in whole ns, or -1: not a whole number of ns, or outside the board's range. */
 static long period_ns_of(double period_s)
 {
-    double ns = period_s * 1e9;
-    return ns >= 1.0 && ns <= (double)HG_PERIOD_MAX_NS ? (long)(ns + 0.5) : -1;
+    double ns = period_s * 1e9, whole = floor(ns + 0.5);
+    return whole >= 1.0 && whole <= (double)HG_PERIOD_MAX_NS && fabs(ns - whole) <= PERIOD_NS_SLACK ? (long)whole
+                                                                                                      : -1;
+}
+
+int fmu_plant_period_why(double period_s, char *why, size_t len)
+{
+    double ns = period_s * 1e9, below = floor(ns), above = below + 1;
+    if (period_ns_of(period_s) > 0)
+        return 0;
+    if (!(ns >= 1.0 - PERIOD_NS_SLACK && ns <= (double)HG_PERIOD_MAX_NS + PERIOD_NS_SLACK))
+        snprintf(why, len, "must lie in [1e-9, %g] s (the board's servo period, whole nanoseconds)",
+                 (double)HG_PERIOD_MAX_NS * 1e-9);
+    else if (below < 1.0)
+        snprintf(why, len, "is not a whole number of nanoseconds (the board's servo period is); the nearest is "
+                 "%.9g s (%.0f ns)", above * 1e-9, above);
+    else if (above > (double)HG_PERIOD_MAX_NS)
+        snprintf(why, len, "is not a whole number of nanoseconds (the board's servo period is); the nearest is "
+                 "%.9g s (%.0f ns)", below / 1e9, below);
+    else
+        snprintf(why, len, "is not a whole number of nanoseconds (the board's servo period is); the nearest are "
+                 "%.9g s (%.0f ns) and %.9g s (%.0f ns)", below / 1e9, below, above / 1e9, above);
+    return -1;
 }
 
 /* hg_board_params of setup s (a value out of a field's range becomes one the core's check refuses). */
@@ -197,8 +300,8 @@ static void report_refused(const hg_board *b, const fmu_plant_setup *s, const hg
         if (i < n) {
             hg_param_info t;
             hg_plant_param(hg_board_plant(b), b->variant, i, &t);
-            sayf(say, env, FMU_SAY_ERROR, "parameter %s = %.9g %s refused: %s", t.name, bp->plant.v[i], t.unit,
-                 why[i] ? why[i] : "invalid");
+            sayf(say, env, FMU_SAY_ERROR, "parameter %s = %.9g%s%s refused: %s", t.name, bp->plant.v[i],
+                 strcmp(t.unit, "1") ? " " : "", strcmp(t.unit, "1") ? t.unit : "", why[i] ? why[i] : "invalid");
         } else {
             sayf(say, env, FMU_SAY_ERROR, "parameter %s = %lld refused: %s",
                  i == HG_BOARD_BIT_SUBSTEPS ? "substeps" : "integrator",
@@ -221,8 +324,9 @@ int fmu_plant_init(void *plant_bytes, const fmu_plant_setup *s, fmu_say_fn *say,
         bad = 1;
     }
     if (ns < 0) {
-        sayf(say, env, FMU_SAY_ERROR, "parameter period = %.9g s refused: must lie in [1e-9, %g] s (the board's "
-             "servo period, whole nanoseconds)", s->period_s, (double)HG_PERIOD_MAX_NS * 1e-9);
+        char why[200];
+        fmu_plant_period_why(s->period_s, why, sizeof why);
+        sayf(say, env, FMU_SAY_ERROR, "parameter period = %.17g s refused: %s", s->period_s, why);
         bad = 1;
     }
     /* the board's rule for an encoder scale (hg_board.c, encoders()), refused here instead of replaced by 1.0 */
@@ -263,7 +367,7 @@ int fmu_plant_init(void *plant_bytes, const fmu_plant_setup *s, fmu_say_fn *say,
 double fmu_plant_period_s(const void *plant_bytes)
 {
     const plant *p = plant_bytes;
-    return (double)p->period_ns * 1e-9;   /* what the board integrates (as hexaglide sim) */
+    return (double)p->period_ns / 1e9;    /* the board integrates period_ns itself (as hexaglide sim) */
 }
 
 /* The board's outputs as the FMU shows them. */
@@ -298,9 +402,10 @@ void fmu_plant_peek(const void *plant_bytes, fmu_plant_outputs *o)
     convert(p, &out, o);
 }
 
-/* The board's events of one step as messages; the gravest level. */
-static int report(const plant *p, const hg_board_outputs *out, fmu_say_fn *say, void *env)
+/* The board's events of one step (the period from the FMU's time t_s) as messages; the gravest level. */
+static int report(const plant *p, const hg_board_outputs *out, double t_s, fmu_say_fn *say, void *env)
 {
+    const double t_end = t_s + fmu_plant_period_s(p);
     char why[HG_BOARD_TEXT_LEN];
     int k, level = FMU_SAY_INFO;
     if (out->events & HG_EV_SUBSTEPS_AUTO) {
@@ -310,17 +415,16 @@ static int report(const plant *p, const hg_board_outputs *out, fmu_say_fn *say, 
     }
     if ((out->events & HG_EV_FAULT_LATCHED) && out->fault_cause == HG_FAULT_STIFF) {
         hg_board_describe_stiffness(&p->b, out, p->period_ns, 0, why);
-        sayf(say, env, FMU_SAY_WARNING, "the period from t = %.6f s to %.6f s (board time) failed: %s: %s even with "
-             "%u substeps; give a softer value, another integrator or a shorter period", out->sim_time_s,
-             out->sim_time_s + (double)p->period_ns * 1e-9, why, hg_strerror(out->fault_code), HG_SUBSTEPS_MAX);
+        sayf(say, env, FMU_SAY_WARNING, "the period from t = %.6f s to %.6f s failed: %s: %s even with "
+             "%u substeps; give a softer value, another integrator or a shorter period", t_s, t_end, why,
+             hg_strerror(out->fault_code), HG_SUBSTEPS_MAX);
         level = FMU_SAY_WARNING;
     } else if (out->events & HG_EV_FAULT_LATCHED) {
         char what[HG_PLANT_TEXT_LEN];
         hg_board_plant(&p->b)->describe(&out->fault_report, 0, what);
-        sayf(say, env, FMU_SAY_WARNING, "the period from t = %.6f s to %.6f s (board time) failed: %s (code %d)%s%s; "
-             "the board latches the fault (state frozen, drives off) until a rising edge of reset", out->sim_time_s,
-             out->sim_time_s + (double)p->period_ns * 1e-9, hg_strerror(out->fault_code), out->fault_code,
-             what[0] ? ": " : "", what);
+        sayf(say, env, FMU_SAY_WARNING, "the period from t = %.6f s to %.6f s failed: %s (code %d)%s%s; "
+             "the board latches the fault (state frozen, drives off) until a rising edge of reset", t_s, t_end,
+             hg_strerror(out->fault_code), out->fault_code, what[0] ? ": " : "", what);
         level = FMU_SAY_WARNING;
     }
     for (k = 0; k < FMU_JOINTS; k++)
@@ -333,7 +437,7 @@ static int report(const plant *p, const hg_board_outputs *out, fmu_say_fn *say, 
     return level;
 }
 
-int fmu_plant_step(void *plant_bytes, const fmu_plant_inputs *in, fmu_plant_outputs *o, fmu_say_fn *say,
+int fmu_plant_step(void *plant_bytes, const fmu_plant_inputs *in, double t_s, fmu_plant_outputs *o, fmu_say_fn *say,
                    void *env)
 {
     plant *p = plant_bytes;
@@ -346,5 +450,123 @@ int fmu_plant_step(void *plant_bytes, const fmu_plant_inputs *in, fmu_plant_outp
     p->in.dout_values = in->amp_enable ? 1u << p->in.estop_loop_out : 0u;   /* as hexaglide sim closes it */
     hg_board_step(&p->b, &p->in, &out, p->period_ns);
     convert(p, &out, o);
-    return report(p, &out, say, env);
+    return report(p, &out, t_s, say, env);
+}
+
+/* A sink for the messages of a build that only checks (fmu_plant_check). */
+static void quiet(void *env, int level, const char *text)
+{
+    (void)env, (void)level, (void)text;
+}
+
+/* 1 if x is 0 or 1. */
+static int is_bit(int x)
+{
+    return x == 0 || x == 1;
+}
+
+/* Bitwise equality of two objects (doubles included: a NaN equals itself). */
+#define SAME(a, b) (memcmp(&(a), &(b), sizeof(a)) == 0) // NOLINT(bugprone-suspicious-memory-comparison): bitwise on purpose
+
+/* What is wrong with plant p against ref, a fresh build of the same
+ * setup (enc_scale the FMU's encoder scale), or 0. */
+static const char *plant_wrong(const plant *p, const plant *ref, double enc_scale)
+{
+    const hg_board *b = &p->b, *r = &ref->b;
+    const hg_plant *pl;
+    const hg_data *d;
+    hg_plant_sense sense;
+    hg_board_inputs in;
+    int k, n;
+    /* what the build fixes: the plant and its variant first (everything else goes through them) */
+    if (b->plant != r->plant || b->variant != r->variant)
+        return "its board's plant or parametrization is not the parameters' (plant index, variant)";
+    if (!SAME(b->m, r->m))
+        return "its model is not the core's build of its parameters";
+    if (b->integrator != r->integrator || b->substeps != r->substeps || !SAME(b->in_force, r->in_force) ||
+        (!SAME(b->last_in, r->last_in) && !SAME(b->last_in, r->in_force)) || b->skip_tool_error != r->skip_tool_error)
+        return "its board's parameter block is not the parameters'";
+    if (p->period_ns != ref->period_ns || !SAME(p->pose_extra, ref->pose_extra))
+        return "its period or its outputs' layout is not the parameters'";
+    memcpy(&in, &p->in, sizeof in);    /* the inputs: the build's but for the four fmu_plant_step sets */
+    memcpy(in.dac_v, ref->in.dac_v, sizeof in.dac_v);
+    in.estop_button = ref->in.estop_button;
+    in.reset = ref->in.reset;
+    in.dout_values = ref->in.dout_values;
+    if (!SAME(in, ref->in) || !is_bit(p->in.estop_button) || !is_bit(p->in.reset) ||
+        (p->in.dout_values != 0 && p->in.dout_values != 1u << ref->in.estop_loop_out))
+        return "its board's inputs are none the FMU gives";
+    /* what the steps change: in range, and consistent with the machine's state */
+    pl = hg_board_plant(b);
+    n = pl->nparams(b->variant);
+    if (b->substeps_run < b->substeps || b->substeps_run > HG_SUBSTEPS_MAX ||
+        (b->stab_period_ns != 0 && b->stab_period_ns != p->period_ns) || b->stiff_param < -1 || b->stiff_param >= n)
+        return "its substeps are out of range";
+    d = hg_hexaglide_data(&b->d);
+    if (!isfinite(d->t_s) || d->t_s < 0 || d->broken_bars != 0)
+        return "its machine's time is not finite, or a bar is broken (the FMU breaks none)";
+    pl->sense(&b->m, &b->d, &sense);
+    if (!SAME(sense, b->sense))
+        return "its sensors do not show its machine's state";
+    for (k = 0; k < HG_BOARD_ENCODERS; k++) {
+        const hg_encoder *e = &b->enc[k];
+        int used = k < sense.channels;
+        double turns = used ? sense.turns[k] : 0.0, cpr = used ? sense.counts_per_rev[k] : 0.0;
+        if (e->raw_counts != hg_encoder_raw_counts(turns, cpr) || e->revolution != hg_encoder_revolution(turns) ||
+            !(e->offset_counts >= -(1LL << 53) && e->offset_counts <= 1LL << 53) || e->latch_armed ||
+            e->latch_hit || !is_bit(e->index_pulse) || (!used && (e->index_pulse || e->offset_counts)))
+            return "its encoders are not at its machine's motors";
+        if (!SAME(b->enc_scale[k], b->enc_scale_in[k]) ||
+            (b->enc_scale[k] != 1.0 && !SAME(b->enc_scale[k], enc_scale)))
+            return "its encoder scale is not the parameter enc_scale";
+        if (b->switches[k] != (used ? sense.switches[k] : 0u))
+            return "its switches are not where its machine is";
+    }
+    if (!SAME(b->wd, r->wd) && !(b->wd.control == 0 && is_bit(b->wd.expired) && isfinite(b->wd.remaining_s)))
+        return "its watchdog is in a state the FMU never sets";
+    if (b->adc_state != r->adc_state || !SAME(b->adc_sample_v, r->adc_sample_v) || !SAME(b->adc_value, r->adc_value))
+        return "its ADCs are in a state the FMU never sets";
+    if (b->dac_nan >> FMU_JOINTS || !is_bit(b->prev_reset) || !is_bit(b->fault) || (b->fault != 0) != (b->fault_code != 0) ||
+        !is_bit(b->param_error) || b->order_bad_run < 0 || b->order_bad_run > 2 || !is_bit(b->order_reported) ||
+        !isfinite(b->tool_error) || b->tool_error < -1.0)
+        return "its board's latches or counters are out of range";
+    return 0;
+}
+
+int fmu_plant_check(const void *plant_bytes, const fmu_plant_setup *s, char *why, size_t len)
+{
+    const plant *p = plant_bytes;
+    plant *ref = malloc(sizeof *ref);      /* a board is too big for a stack */
+    const char *wrong;
+    if (!ref)
+        wrong = "not checked: out of memory";
+    else if (fmu_plant_init(ref, s, quiet, 0))
+        wrong = "of parameters the core refuses";
+    else
+        wrong = plant_wrong(p, ref, s->enc_scale);
+    free(ref);
+    if (!wrong)
+        return 0;
+    snprintf(why, len, "%s", wrong);
+    return -1;
+}
+
+unsigned long long fmu_plant_layout(void)
+{
+    const unsigned long long sizes[] = {
+        sizeof(plant), offsetof(plant, in), offsetof(plant, period_ns), offsetof(plant, pose_extra),
+        sizeof(hg_board), offsetof(hg_board, variant), offsetof(hg_board, in_force), offsetof(hg_board, m),
+        offsetof(hg_board, d), offsetof(hg_board, d_saved), offsetof(hg_board, sense), offsetof(hg_board, enc),
+        offsetof(hg_board, wd), offsetof(hg_board, fault), offsetof(hg_board, steps), offsetof(hg_board, tool_error),
+        sizeof(hg_board_inputs), sizeof(hg_plant_model), sizeof(hg_plant_data), sizeof(hg_plant_sense),
+        the_plant()->model_bytes, the_plant()->data_bytes, the_plant()->state_bytes,
+    };
+    const unsigned char *c = (const unsigned char *)sizes;
+    unsigned long long h = 14695981039346656037ull;   /* FNV-1a 64 */
+    size_t i;
+    for (i = 0; i < sizeof sizes; i++) {
+        h ^= c[i];
+        h *= 1099511628211ull;
+    }
+    return h;
 }

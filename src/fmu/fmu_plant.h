@@ -8,8 +8,9 @@
  *
  * A plant is fmu_plant_size() bytes without pointers (the board core
  * keeps no pointers), so a byte copy is a complete snapshot of it (the
- * FMU state functions copy it). Units: SI and radians. No file-scope
- * mutable state: two plants never share anything. */
+ * FMU state functions copy it); it begins with the core's hg_board (the
+ * tests that forge states find the board's fields there). Units: SI and
+ * radians. No file-scope mutable state: two plants never share anything. */
 #ifndef FMU_PLANT_H
 #define FMU_PLANT_H
 
@@ -47,6 +48,9 @@ typedef struct {
     const char *display_unit;         /* the unit LinuxCNC shows it in ("mm"), or the SI unit */
     double display_factor;            /* display value = SI value * display_factor */
     double start;                     /* the default (SI) */
+    double min, max;                  /* the bounds of its rules on itself alone (inclusive, SI):
+                                         outside them the core refuses it whatever the others are */
+    double quantum;                   /* > 0: the core takes only whole multiples of it (amp_mode 0 or 1) */
 } fmu_param;
 
 /* What the FMU asks the core to build. */
@@ -76,6 +80,11 @@ size_t fmu_plant_size(void);
 int fmu_plant_param_count(void);
 int fmu_plant_param(int i, fmu_param *p);
 
+/* The core's reason for refusing value x of model parameter i with the
+ * others at params[] (fmu_plant_param_count() values), or 0 when it takes
+ * entry i so. */
+const char *fmu_plant_param_why(int i, const double *params, double x);
+
 /* Parametrizations and integrators: count, name of i (0 for another i), default. */
 int fmu_plant_model_count(void);
 const char *fmu_plant_model_name(int i);
@@ -95,21 +104,39 @@ double fmu_plant_period_default_s(void);
 double fmu_plant_period_min_s(void);
 double fmu_plant_period_max_s(void);
 
+/* The rule of a servo period: 0 for a whole number of nanoseconds in
+ * [min, max] (within 1e-6 ns: the rounding of the double), else -1 with
+ * the rule, naming the nearest whole-ns values, in why (len bytes). */
+int fmu_plant_period_why(double period_s, char *why, size_t len);
+
 /* Build the board of s at HOME at rest, as the HAL component refuses or
  * loads it: 0, or -1 after one FMU_SAY_ERROR message per refused value
  * (its name, value and the rule) through say. */
 int fmu_plant_init(void *plant, const fmu_plant_setup *s, fmu_say_fn *say, void *env);
 
-/* The servo period the board integrates (s, from whole ns). */
+/* The servo period the board integrates: its whole ns as the nearest
+ * double (ns / 1e9: the double an importer reads "0.001" as). */
 double fmu_plant_period_s(const void *plant);
+
+/* Check plant bytes of unknown origin (a deserialized FMU state): 0 when
+ * they can be a plant fmu_plant_init built of s and fmu_plant_step
+ * stepped (the model is the core's build of s bit for bit, indices and
+ * counters in range, the sensors what the plant shows of its state),
+ * else -1 with the first thing wrong in why (len bytes). */
+int fmu_plant_check(const void *plant, const fmu_plant_setup *s, char *why, size_t len);
+
+/* A hash of the plant's layout (sizes and offsets of the board's fields):
+ * the serialized FMU state's header carries it. */
+unsigned long long fmu_plant_layout(void);
 
 /* Outputs of the board as it stands, without stepping. */
 void fmu_plant_peek(const void *plant, fmu_plant_outputs *o);
 
-/* One servo period with inputs in: the outputs, and the core's events
- * through say (a latched fault, NaN volts: FMU_SAY_WARNING; more substeps
- * than asked: FMU_SAY_INFO). Returns the gravest level said. */
-int fmu_plant_step(void *plant, const fmu_plant_inputs *in, fmu_plant_outputs *o, fmu_say_fn *say,
+/* One servo period with inputs in, from the FMU's time t_s: the outputs,
+ * and the core's events through say (a latched fault, naming the period
+ * by the FMU's time, NaN volts: FMU_SAY_WARNING; more substeps than asked:
+ * FMU_SAY_INFO). Returns the gravest level said. */
+int fmu_plant_step(void *plant, const fmu_plant_inputs *in, double t_s, fmu_plant_outputs *o, fmu_say_fn *say,
                    void *env);
 
 #endif

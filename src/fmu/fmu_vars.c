@@ -1,4 +1,5 @@
 /* fmu_vars.c - the FMU's variable list (fmu_vars.h). */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -135,6 +136,10 @@ int fmu_var_get(unsigned vr, fmu_var *v)
         v->unit = strcmp(p.unit, "1") != 0 ? p.unit : 0;
         v->display_unit = v->unit && strcmp(p.display_unit, p.unit) != 0 ? p.display_unit : 0;
         v->display_factor = p.display_factor;
+        v->has_range = 1;
+        v->min = p.min;
+        v->max = p.max;
+        v->quantum = p.quantum;
         return 0;
     }
     if (gi->count == J) {
@@ -160,6 +165,56 @@ int fmu_var_get(unsigned vr, fmu_var *v)
         v->has_range = 1;
         v->min = fmu_plant_period_min_s();
         v->max = fmu_plant_period_max_s();
+        v->quantum = 1e-9;
+    }
+    return 0;
+}
+
+const char *fmu_num(char buf[32], double x)
+{
+    int p;
+    if (x == floor(x) && fabs(x) < 1e15) {   /* 1000, not 1e+03 */
+        snprintf(buf, 32, "%.0f", x);
+        return buf;
+    }
+    for (p = 1; p <= 17; p++) {
+        snprintf(buf, 32, "%.*g", p, x);
+        if (strtod(buf, 0) == x)
+            break;
+    }
+    return buf;
+}
+
+int fmu_var_refuse(const fmu_var *v, double x, const double *vals, char *why, size_t len)
+{
+    char lo[32], hi[32];
+    if (v->causality != FMU_PARAMETER)
+        return 0;                     /* inputs take any value (NaN volts give 0 V) */
+    if (x != x) {
+        snprintf(why, len, "is not a number");
+        return -1;
+    }
+    if (v->declared_type) {
+        int i, n = fmu_enum_count(v->declared_type), k = 0;
+        if (x >= 0 && x < n && x == floor(x))
+            return 0;
+        k = snprintf(why, len, "must be ");
+        for (i = 0; i < n && k >= 0 && (size_t)k < len; i++)
+            k += snprintf(why + k, len - (size_t)k, "%s%d (%s)", i ? (i + 1 < n ? ", " : " or ") : "", i,
+                          fmu_enum_item(v->declared_type, i));
+        return -1;
+    }
+    if (v->group == FMU_G_PERIOD)
+        return fmu_plant_period_why(x, why, len);
+    if (v->has_range && (x < v->min || x > v->max || (v->quantum > 0 && x / v->quantum != floor(x / v->quantum)))) {
+        const char *core = v->group == FMU_G_PARAM ? fmu_plant_param_why(v->k, &vals[fmu_var_vr(FMU_G_PARAM, 0)], x)
+                                                   : 0;
+        if (v->type == FMU_UINT32 || v->type == FMU_INT32)
+            snprintf(why, len, "must be an integer in %s..%s", fmu_num(lo, v->min), fmu_num(hi, v->max));
+        else
+            snprintf(why, len, "%s; its range is %s .. %s%s", core ? core : "out of its range", fmu_num(lo, v->min),
+                     fmu_num(hi, v->max), v->quantum == 1 ? ", whole numbers" : "");
+        return -1;
     }
     return 0;
 }

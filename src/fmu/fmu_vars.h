@@ -40,10 +40,24 @@ typedef struct {
     const char *unit;                 /* 0: none */
     const char *display_unit;         /* 0: none */
     double display_factor;
-    int has_range;                    /* min, max declared */
+    int has_range;                    /* min, max declared (fmi3Set refuses a value outside) */
     double min, max;
+    double quantum;                   /* > 0: fmi3Set takes only whole multiples of it (period: 1 ns) */
     const char *declared_type;        /* enumerations: "Model", "Integrator"; else 0 */
 } fmu_var;
+
+/* The rule of variable v for value x (fmi3Set, and a deserialized
+ * state's values): 0 when it takes x, else -1 with the rule in why (len
+ * bytes). Parameters: not NaN, an item of an enumeration, within min and
+ * max, a whole multiple of quantum (period: whole ns), each rule the
+ * core's words (a model parameter's: the core's check of x with the other
+ * parameters at vals[], the values by value reference). Inputs and
+ * outputs: any value. The rules between parameters are the core's, at
+ * fmi3ExitInitializationMode. */
+int fmu_var_refuse(const fmu_var *v, double x, const double *vals, char *why, size_t len);
+
+/* The shortest decimal text that reads back as x (at most 17 digits). */
+const char *fmu_num(char buf[32], double x);
 
 /* Number of variables (value references 0 .. count-1). */
 unsigned fmu_var_count(void);

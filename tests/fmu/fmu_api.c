@@ -1,11 +1,17 @@
 /* fmu_api.c - the FMU through its FMI 3.0 functions: state save and
  * restore (fmi3GetFMUState/SetFMUState, serialization) continue
- * bit-identically, two instances share nothing, a step of n periods is n
- * steps of one, fmi3Reset starts over, and every refused call returns
- * fmi3Error with a message and changes nothing. Run by tests/fmu/test_fmu_api. */
+ * bit-identically, forged serialized states are refused, two instances
+ * share nothing, a step of n periods is n steps of one, fmi3Reset starts
+ * over, an importer keeping its time as t += h stays in step, parameters
+ * outside their declared range are refused by fmi3Set, and every refused
+ * call returns fmi3Error with a message and changes nothing. Run by
+ * tests/fmu/test_fmu_api. */
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include "fmu_test.h"
+#include "fmu_state.h"
+#include "hg_board.h"             /* the board's fields, to forge states (a plant begins with its hg_board) */
 
 #define PERIOD 0.001
 #define MAX_OUT 256
@@ -320,16 +326,17 @@ static void test_refusals(void)
         refused(fmi3SetFloat32(s, &vr, 1, &f, 1), &b, e, "use fmi3SetFloat64", "fmi3SetFloat32 of a Float64");
     }
     check(fmi3GetFloat32(s, 0, 0, 0, 0) == fmi3OK, "an empty fmi3GetFloat32 is fine");
-    /* bad parameters: refused at fmi3ExitInitializationMode, the FMU stays in Initialization Mode */
-    set_f64(s, "c_visc", -1);
-    set_f64(s, "period", 0.02);
+    /* parameters that break rules between them: refused at fmi3ExitInitializationMode, which stays in
+       Initialization Mode */
+    set_f64(s, "f_static", 10);
+    set_f64(s, "i_bar", 0.1);
     fmi3EnterInitializationMode(s, 0, 0, 0.0, 0, 0);
     e = b.n[fmi3Error];
-    refused(fmi3ExitInitializationMode(s), &b, e, "refused", "c_visc = -1 and period = 0.02 s");
+    refused(fmi3ExitInitializationMode(s), &b, e, "refused", "f_static = 10 N below f_coulomb and i_bar = 0.1 kg m^2");
     check(b.n[fmi3Error] - e >= 3, "one message per refused parameter and one for the call (%d messages)",
           b.n[fmi3Error] - e);
-    set_f64(s, "c_visc", 5665.6);
-    set_f64(s, "period", PERIOD);
+    set_f64(s, "f_static", 50);
+    set_f64(s, "i_bar", 1.0435);
     check(fmi3ExitInitializationMode(s) == fmi3OK, "valid values set in Initialization Mode: fmi3ExitInitializationMode "
           "succeeds");
     vr = vr_of("m_head");
@@ -380,6 +387,344 @@ static void test_before_init(void)
     fmi3FreeInstance(s);
 }
 
+/* One step of h from t (its status). */
+static fmi3Status step_at(fmi3Instance s, double t, double h)
+{
+    fmi3Boolean ev, term, early;
+    double last;
+    return fmi3DoStep(s, t, h, fmi3True, &ev, &term, &early, &last);
+}
+
+/* An importer keeping its time as t += h, the usual master loop: n steps of one period from t0. The
+ * machine strikes first (+-10 V), so that the periods after are cheap (state frozen): the time is
+ * the same. The step refused first (-1: none); *drift the importer's time less the FMU's at the end. */
+static long drift_run(double t0, double period, long n, double *drift)
+{
+    logbook b = {0};
+    fmi3Instance s = instantiate("drift", &b);
+    double t = t0, v[6] = {10, -10, 10, -10, 10, -10};
+    long i;
+    b.quiet = 1;
+    if (!s)
+        return 0;
+    if (period != PERIOD)
+        set_f64(s, "period", period);
+    if (fmi3EnterInitializationMode(s, fmi3False, 0, t0, fmi3False, 0) != fmi3OK ||
+        fmi3ExitInitializationMode(s) != fmi3OK) {
+        printf("# %s\n", b.last);
+        fmi3FreeInstance(s);
+        return 0;
+    }
+    set_volts(s, v);
+    for (i = 0; i < n; i++) {
+        if (step_at(s, t, period) == fmi3Error) {
+            printf("# step %ld from %.17g s: %s\n", i, t, b.last);
+            break;
+        }
+        t += period;
+    }
+    *drift = t - get_f64(s, "time");
+    fmi3FreeInstance(s);
+    return i < n ? i : -1;
+}
+
+/* The time rule: an importer adding its steps in double stays in step (1 ms from 0 and from 1e4, 1e5,
+ * 1e6 s, 50 us); a step or a time off by more than rounding is refused at once; a start time at which
+ * a double cannot resolve 1e-6 of a period is refused, naming the bound. */
+static void test_time(void)
+{
+    static const struct {
+        double t0, period;
+        long n;
+    } runs[] = {{0, 1e-3, 400000}, {1e4, 1e-3, 20000}, {1e5, 1e-3, 20000}, {1e6, 1e-3, 20000}, {0, 5e-5, 400000}};
+    logbook b = {0};
+    fmi3Instance s;
+    double drift = 0, t;
+    size_t k;
+    int e;
+    for (k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+        long at = drift_run(runs[k].t0, runs[k].period, runs[k].n, &drift);
+        double t_end = runs[k].t0 + (double)runs[k].n * runs[k].period, ulp = nextafter(t_end, INFINITY) - t_end;
+        check(at < 0, "an importer with t += h: %ld steps of %g s from %g s all taken; its time ends %.3g s "
+              "(%.2g periods) off the FMU's, within the %.3g s that %ld sums may round by (half an ulp each, "
+              "+ 256 ulps)", runs[k].n, runs[k].period, runs[k].t0, drift, drift / runs[k].period,
+              (0.5 * (double)runs[k].n + 256) * ulp, runs[k].n);
+    }
+    b.quiet = 1;
+    s = started("sync", &b, 0);
+    if (!s) {
+        check(0, "time: instance");
+        return;
+    }
+    e = b.n[fmi3Error];
+    refused(step_at(s, 0, 0.0010000009), &b, e, "not a whole number", "a step of 1.0000009 ms (off by 9e-10 s) at "
+            "the first step");
+    check(step_at(s, 0, PERIOD) == fmi3OK && step_at(s, PERIOD, PERIOD) == fmi3OK, "steps of 1 ms from 0 run");
+    t = 2 * PERIOD;
+    e = b.n[fmi3Error];
+    refused(step_at(s, t + PERIOD, PERIOD), &b, e, "not the FMU's time", "a step from one period ahead");
+    e = b.n[fmi3Error];
+    refused(step_at(s, t + 1e-9, PERIOD), &b, e, "not the FMU's time", "a step from 1 ns ahead");
+    check(step_at(s, nextafter(nextafter(t, 1), 1), PERIOD) == fmi3OK, "a step from 2 ulps past the FMU's time runs "
+          "(the rounding of an importer's sum)");
+    fmi3FreeInstance(s);
+    /* start times: the bound of 1 ms is 2^23 s (ulp 9.3e-10 s below, 1.9e-9 s from it) */
+    s = instantiate("start", &b);
+    e = b.n[fmi3Error];
+    refused(fmi3EnterInitializationMode(s, 0, 0, 8388608.0, 0, 0), &b, e, "start below 8388608 s",
+            "startTime 2^23 s at 1 ms");
+    check(fmi3EnterInitializationMode(s, 0, 0, 8388607.0, 0, 0) == fmi3OK && fmi3ExitInitializationMode(s) == fmi3OK &&
+          step_at(s, 8388607.0, PERIOD) == fmi3OK && step_at(s, 8388607.0 + PERIOD, PERIOD) == fmi3OK,
+          "startTime 8388607 s at 1 ms: initialized and steps run");
+    e = b.n[fmi3Error];
+    refused(step_at(s, 8388607.0 + 2 * PERIOD, 998 * PERIOD), &b, e, "stops short", "a step ending at 2^23 s");
+    fmi3FreeInstance(s);
+    s = instantiate("start2", &b);
+    fmi3EnterInitializationMode(s, 0, 0, 1e4, 0, 0);
+    set_f64(s, "period", 1e-6);
+    e = b.n[fmi3Error];
+    refused(fmi3ExitInitializationMode(s), &b, e, "start below 8192 s", "startTime 1e4 s with a period of 1 us set "
+            "in Initialization Mode");
+    fmi3FreeInstance(s);
+}
+
+/* A period that is not whole nanoseconds is refused by fmi3Set, naming the nearest whole-ns values. */
+static void test_period(void)
+{
+    static const struct {
+        double p;
+        const char *near;
+    } bad[] = {{0.0010000004, "0.001 s (1000000 ns) and 0.001000001 s (1000001 ns)"},
+               {2.5e-9, "2e-09 s (2 ns) and 3e-09 s (3 ns)"},
+               {1.4e-9, "1e-09 s (1 ns) and 2e-09 s (2 ns)"},
+               {0.0099999999, "0.009999999 s (9999999 ns) and 0.01 s (10000000 ns)"}};
+    logbook b = {0};
+    fmi3Instance s = instantiate("period", &b);
+    size_t k;
+    double t = 0;
+    int i, e, ok = 1;
+    b.quiet = 1;
+    for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        e = b.n[fmi3Error];
+        refused(set_f64(s, "period", bad[k].p), &b, e, bad[k].near, "a period of a fraction of a nanosecond");
+    }
+    check(get_f64(s, "period") == PERIOD, "... and the period stays %g s", get_f64(s, "period"));
+    check(set_f64(s, "period", 1e-9) == fmi3OK && set_f64(s, "period", 0.01) == fmi3OK &&
+          set_f64(s, "period", 1.0000000000000002e-3) == fmi3OK, "1 ns, 10 ms and 1 ms + 1 ulp are whole ns: taken");
+    set_f64(s, "period", 0.00025);
+    fmi3EnterInitializationMode(s, 0, 0, 0, 0, 0);
+    fmi3ExitInitializationMode(s);
+    for (i = 0; i < 8; i++, t += 0.00025)
+        ok &= step_at(s, t, 0.00025) == fmi3OK;
+    check(ok && get_f64(s, "time") == t, "period 0.25 ms, 8 steps of it: the FMU's time %.17g s is the importer's",
+          get_f64(s, "time"));
+    fmi3FreeInstance(s);
+}
+
+/* fmi3Set refuses what the description declares out of range (min, max, enumeration items) and NaN,
+ * changes nothing; the rules between parameters stay at fmi3ExitInitializationMode. */
+static void test_ranges(void)
+{
+    logbook b = {0};
+    fmi3Instance s = instantiate("ranges", &b);
+    fmi3ValueReference vr[2];
+    fmi3UInt32 u;
+    fmi3Int64 n;
+    double x[2];
+    int e;
+    b.quiet = 1;
+    vr[0] = vr_of("substeps");
+    u = 0;
+    e = b.n[fmi3Error];
+    refused(fmi3SetUInt32(s, vr, 1, &u, 1), &b, e, "substeps = 0 refused: must be an integer in 1..64", "substeps 0");
+    u = 65;
+    e = b.n[fmi3Error];
+    refused(fmi3SetUInt32(s, vr, 1, &u, 1), &b, e, "1..64", "substeps 65");
+    u = 64;
+    check(fmi3SetUInt32(s, vr, 1, &u, 1) == fmi3OK, "substeps 64 (its max) taken");
+    vr[0] = vr_of("model");
+    n = 7;
+    e = b.n[fmi3Error];
+    refused(fmi3SetInt64(s, vr, 1, &n, 1), &b, e, "fused-cartesian", "model 7 (no item)");
+    vr[0] = vr_of("integrator");
+    n = -1;
+    e = b.n[fmi3Error];
+    refused(fmi3SetInt64(s, vr, 1, &n, 1), &b, e, "rk4", "integrator -1 (no item)");
+    e = b.n[fmi3Error];
+    refused(set_f64(s, "period", 0.02), &b, e, "servo period", "period 0.02 s (max 0.01)");
+    e = b.n[fmi3Error];
+    refused(set_f64(s, "period", 0), &b, e, "servo period", "period 0 (min 1e-9)");
+    e = b.n[fmi3Error];
+    refused(set_f64(s, "period", NAN), &b, e, "not a number", "period NaN");
+    e = b.n[fmi3Error];
+    refused(set_f64(s, "l", NAN), &b, e, "parameter l = nan m refused: is not a number", "l NaN");
+    e = b.n[fmi3Error];
+    refused(set_f64(s, "amp_mode", 0.5), &b, e, "parameter amp_mode = 0.5 refused: must be 0 (torque mode) or 1",
+            "amp_mode 0.5 (no unit printed)");
+    e = b.n[fmi3Error];
+    refused(set_f64(s, "c_visc", -1), &b, e, "c_visc = -1 N s/m refused: must be finite and >= 0", "c_visc -1 (min 0)");
+    e = b.n[fmi3Error];
+    refused(set_f64(s, "k_stop", INFINITY), &b, e, "below 1e9", "k_stop inf (max 1e9)");
+    e = b.n[fmi3Error];
+    refused(set_f64(s, "cone_head", 2), &b, e, "between 0 and 90 deg", "cone_head 2 rad (max pi/2)");
+    vr[0] = vr_of("m_head");
+    vr[1] = vr_of("m_bar");
+    x[0] = 9;
+    x[1] = 0;
+    e = b.n[fmi3Error];
+    refused(fmi3SetFloat64(s, vr, 2, x, 2), &b, e, "m_bar = 0 kg", "m_head 9 and m_bar 0 in one call");
+    check(get_f64(s, "m_head") == 6.697 && get_f64(s, "c_visc") == 5665.6 && get_f64(s, "amp_mode") == 0 &&
+          get_f64(s, "l") == 1, "... and nothing changed: m_head %g kg (the call's valid value not stored either)",
+          get_f64(s, "m_head"));
+    check(set_f64(s, "amp_mode", 1) == fmi3OK && set_f64(s, "c_visc", 0) == fmi3OK && set_f64(s, "dac_0", NAN) ==
+          fmi3OK, "amp_mode 1, c_visc 0 (its min) and an input dac_0 NaN (0 V) are taken");
+    set_f64(s, "amp_mode", 0);
+    set_f64(s, "c_visc", 5665.6);
+    check(set_f64(s, "l", 0) == fmi3OK && set_f64(s, "f_static", 10) == fmi3OK, "l 0 (its declared min; the core "
+          "wants l > 0) and f_static 10 N (below f_coulomb: a rule between two) pass fmi3Set");
+    fmi3EnterInitializationMode(s, 0, 0, 0, 0, 0);
+    e = b.n[fmi3Error];
+    refused(fmi3ExitInitializationMode(s), &b, e, "refused", "... and fmi3ExitInitializationMode refuses them with the "
+            "core's rules");
+    fmi3FreeInstance(s);
+}
+
+/* A serialized state: the instance stepped 50 periods, serialized into *bytes (returned size). */
+static size_t serialized(fmi3Instance s, fmi3Byte **bytes)
+{
+    fmi3FMUState st = 0;
+    size_t size = 0;
+    run(s, 0, 50, 5, 0);
+    fmi3GetFMUState(s, &st);
+    fmi3SerializedFMUStateSize(s, st, &size);
+    *bytes = malloc(size);
+    if (*bytes)
+        fmi3SerializeFMUState(s, st, *bytes, size);
+    fmi3FreeFMUState(s, &st);
+    return *bytes ? size : 0;
+}
+
+/* Write n bytes of x at offset off of the block, and the checksum again (a forger's state). */
+static void forge(fmi3Byte *bytes, size_t off, const void *x, size_t n)
+{
+    fmu_serial_header h;
+    memcpy(&h, bytes, sizeof h);
+    memcpy(bytes + sizeof h + off, x, n);
+    h.checksum = fmu_hash(bytes + sizeof h, (size_t)h.size);
+    memcpy(bytes, &h, sizeof h);
+}
+
+/* Forged serialized states (the checksum recomputed) are refused with a message, the handle and the
+ * instance unchanged and stepping on; a state whose input holds NaN volts is fine. */
+static void test_forged(void)
+{
+    enum { STATUS, VALUE, BOARD, HEADER };
+    static const int huge = 1000000;
+    static const unsigned many = 4000000000u;
+    static const long long llmax = 9223372036854775807LL;
+    static const double nan = NAN, minus1 = -1, seven = 7, one = 1;
+    static const int ninety_nine = 99, zero = 0;
+    static const char format01[2] = {'0', '1'};
+    const struct {
+        const char *what;
+        int where;
+        size_t off;
+        const void *x;
+        size_t n;
+        const char *key;
+    } cases[] = {
+        {"the board's plant index 1000000", BOARD, offsetof(hg_board, plant), &huge, sizeof huge, "plant index"},
+        {"the board's variant 1000000", BOARD, offsetof(hg_board, variant), &huge, sizeof huge, "parametrization"},
+        {"a NaN count of periods", STATUS, offsetof(fmu_status, periods), &nan, sizeof nan, "not at a time"},
+        {"more steps than periods", STATUS, offsetof(fmu_status, steps), &seven, 0, "not at a time"},
+        {"mode 99", STATUS, offsetof(fmu_status, mode), &ninety_nine, sizeof(int), "no mode"},
+        {"Step Mode with no machine built", STATUS, offsetof(fmu_status, built), &zero, sizeof zero, "no mode"},
+        {"the sensors' channels 1000000", BOARD, offsetof(hg_board, sense.channels), &huge, sizeof huge, "sensors"},
+        {"4e9 substeps run", BOARD, offsetof(hg_board, substeps_run), &many, sizeof many, "substeps"},
+        {"a byte of the model", BOARD, offsetof(hg_board, m) + 811, &ninety_nine, 1, "model"},
+        {"an encoder at revolution 2^63 - 1", BOARD, offsetof(hg_board, enc[0].revolution), &llmax, sizeof llmax,
+         "encoders"},
+        {"a fault latch of 99", BOARD, offsetof(hg_board, fault), &ninety_nine, sizeof(int), "latches"},
+        {"m_head = -1 (out of range)", VALUE, 0, &minus1, sizeof minus1, "m_head"},
+        {"m_head = 7 (not the machine's 6.697)", VALUE, 0, &seven, sizeof seven, "model"},
+        {"z_0 = NaN (an output)", VALUE, 1, &nan, sizeof nan, "z_0"},
+        {"format 01 in the header", HEADER, 6, format01, 2, "another format"},
+        {"another board layout in the header", HEADER, offsetof(fmu_serial_header, plant_layout), &one, 1,
+         "another layout"},
+    };
+    logbook b = {0}, b2 = {0};
+    fmi3Instance s = started("forger", &b, 0), s2 = instantiate("victim", &b2);
+    fmi3Byte *bytes = 0, *copy = 0;
+    fmi3FMUState keep = 0, handle;
+    fmu_serial_header h;
+    size_t size, k;
+    int e, survived = 1;
+    b2.quiet = 1;
+    size = s ? serialized(s, &bytes) : 0;
+    copy = size ? malloc(size) : 0;
+    if (!copy || !s2 || fmi3DeserializeFMUState(s2, bytes, size, &keep) != fmi3OK) {
+        check(0, "forged states: instances and a state");
+        free(copy), free(bytes), fmi3FreeInstance(s), fmi3FreeInstance(s2);
+        return;
+    }
+    memcpy(&h, bytes, sizeof h);
+    for (k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        size_t off = cases[k].off;
+        memcpy(copy, bytes, size);
+        if (cases[k].where == VALUE)
+            off = (size_t)h.off_values + sizeof(double) * vr_of(off ? "z_0" : "m_head");
+        else if (cases[k].where == BOARD)
+            off += (size_t)h.off_plant;
+        if (cases[k].where == HEADER) {
+            memcpy(copy + off, cases[k].x, cases[k].n);
+        } else if (cases[k].n == 0) {  /* steps: periods + 1 */
+            double periods;
+            memcpy(&periods, copy + sizeof h + offsetof(fmu_status, periods), sizeof periods);
+            periods += 1;
+            forge(copy, off, &periods, sizeof periods);
+        } else {
+            forge(copy, off, cases[k].x, cases[k].n);
+        }
+        handle = keep;
+        e = b2.n[fmi3Error];
+        check(fmi3DeserializeFMUState(s2, copy, size, &handle) == fmi3Error && b2.n[fmi3Error] > e &&
+              strstr(b2.last, cases[k].key) && handle == keep, "a forged state, %s, is refused: %s", cases[k].what,
+              b2.last);
+        survived &= fmi3SetFMUState(s2, keep) == fmi3OK && run(s2, 50, 2, 5, 0) == 0;
+    }
+    check(survived, "... and after each the instance takes the genuine state and steps on");
+    memcpy(copy, bytes, size);
+    forge(copy, (size_t)h.off_values + sizeof(double) * vr_of("dac_0"), &nan, sizeof nan);
+    check(fmi3DeserializeFMUState(s2, copy, size, &keep) == fmi3OK && fmi3SetFMUState(s2, keep) == fmi3OK &&
+          step_at(s2, get_f64(s2, "time"), PERIOD) != fmi3Error, "a state whose input dac_0 holds NaN (0 V) is taken "
+          "and steps (%s)", b2.last);
+    fmi3FreeFMUState(s2, &keep);
+    free(copy), free(bytes);
+    fmi3FreeInstance(s);
+    fmi3FreeInstance(s2);
+}
+
+/* A fault's message names the period by the FMU's time (startTime 5 s), not the board's clock. */
+static void test_fault_time(void)
+{
+    logbook b = {0};
+    fmi3Instance s = instantiate("fault", &b);
+    double v[6] = {10, -10, 10, -10, 10, -10}, t = 5.0;
+    char want[80];
+    long i;
+    b.quiet = 1;
+    fmi3EnterInitializationMode(s, 0, 0, 5.0, 0, 0);
+    fmi3ExitInitializationMode(s);
+    set_volts(s, v);
+    for (i = 0; i < 2000; i++, t = 5.0 + (double)i * PERIOD)
+        if (step_at(s, t, PERIOD) != fmi3OK)
+            break;
+    snprintf(want, sizeof want, "the period from t = %.6f s to %.6f s failed", t, t + PERIOD);
+    check(i < 2000 && strstr(b.last, want) && !strstr(b.last, "board time"), "with startTime 5 s the fault of the "
+          "step from %.6f s is reported at the FMU's time: %.90s", t, b.last);
+    fmi3FreeInstance(s);
+}
+
 int main(void)
 {
     test_state();
@@ -388,5 +733,10 @@ int main(void)
     test_reset();
     test_refusals();
     test_before_init();
+    test_time();
+    test_period();
+    test_ranges();
+    test_forged();
+    test_fault_time();
     return test_failures ? 1 : 0;
 }

@@ -1,7 +1,9 @@
 /* fmu_fuzz.c - random call sequences through the FMU's FMI 3.0 API:
  * random and hostile parameters and inputs (NaN, inf, huge, negative),
  * calls in the wrong order, wrong value references, types and counts,
- * random step sizes, state save/restore/serialize with damaged bytes.
+ * random step sizes, state save/restore/serialize with damaged bytes and
+ * forged ones (content changed, the checksum recomputed: what is taken
+ * is stepped at once).
  * Properties: no crash (ASan + UBSan build too), every call returns
  * fmi3OK, fmi3Warning or fmi3Error, every fmi3Error comes with a logged
  * error message, a Warning only from a step, no output or time is ever
@@ -10,6 +12,7 @@
 #include <math.h>
 #include <stdint.h>
 #include "fmu_test.h"
+#include "fmu_state.h"
 
 /* xorshift64*: the fuzzer's only randomness (seeded: a failure can be rerun). */
 static uint64_t next(uint64_t *s)
@@ -44,7 +47,7 @@ static double hostile(uint64_t *s, double x)
 
 /* Counters of the run. */
 typedef struct {
-    long calls, errors, warnings, silent_errors, nonfinite, bad_status, steps_ok;
+    long calls, errors, warnings, silent_errors, nonfinite, bad_status, steps_ok, forged, forged_taken;
 } tally;
 
 /* Account for one call's status: errors must have logged an error. */
@@ -202,6 +205,46 @@ static void one_call(fmi3Instance s, logbook *b, uint64_t *r, tally *t, fmi3FMUS
         account(t, rc, b, e, 0);
         if (next(r) % 3 == 0 && size)
             bytes[next(r) % size] ^= (fmi3Byte)(1u << (next(r) % 8));
+        else if (next(r) % 2 == 0 && size > sizeof(fmu_serial_header) + 8) {
+            /* forged: 1..8 bytes of the block (mostly status, values and the board's first fields) made
+               hostile, the checksum recomputed */
+            fmu_serial_header h;
+            size_t block = size - sizeof h, span = next(r) % 2 ? block : (block < 8192 ? block : 8192);
+            size_t at = sizeof h + (size_t)(next(r) % (span - 8)), n = 1 + (size_t)(next(r) % 8), k;
+            double x = hostile(r, 1.0);
+            memcpy(&h, bytes, sizeof h);
+            if (next(r) % 2)
+                memcpy(bytes + at, &x, n);
+            else
+                for (k = 0; k < n; k++)
+                    bytes[at + k] = (fmi3Byte)next(r);
+            h.checksum = fmu_hash(bytes + sizeof h, block);
+            memcpy(bytes, &h, sizeof h);
+            e = b->n[fmi3Error];
+            rc = fmi3DeserializeFMUState(s, bytes, size, saved);
+            free(bytes);
+            t->forged++;
+            if (rc == fmi3OK) {         /* taken: it must run like any state */
+                int i;
+                t->forged_taken++;
+                account(t, rc, b, e, 0);
+                e = b->n[fmi3Error];
+                rc = fmi3SetFMUState(s, *saved);
+                account(t, rc, b, e, 0);
+                for (i = 0; i < 3; i++) {
+                    double now = 0, last;
+                    fmi3ValueReference tvr = 0;
+                    fmi3GetFloat64(s, &tvr, 1, &now, 1);
+                    e = b->n[fmi3Error];
+                    rc = fmi3DoStep(s, now, *period, fmi3True, &ev, &term, &early, &last);
+                    account(t, rc, b, e, 1);
+                    check_outputs(s, t);
+                }
+                e = b->n[fmi3Error];
+                rc = fmi3OK;
+            }
+            break;
+        }
         e = b->n[fmi3Error];
         rc = fmi3DeserializeFMUState(s, bytes, next(r) % 5 ? size : size / 2, saved);
         free(bytes);
@@ -264,6 +307,8 @@ int main(int argc, char **argv)
     check(t.bad_status == 0, "only fmi3OK and fmi3Error returned (fmi3Warning by fmi3DoStep alone): %ld others",
           t.bad_status);
     check(t.nonfinite == 0, "no output or time NaN or infinite after any call (%ld seen)", t.nonfinite);
+    check(t.forged > 0, "forged serialized states (checksum recomputed): %ld, %ld of them taken (a change the "
+          "content check cannot tell from a machine's state) and stepped without a crash", t.forged, t.forged_taken);
     check(t.errors > t.calls / 20 && t.steps_ok > t.calls / 20,
           "the sequences reach both sides: refusals and accepted steps are each over 5%% of the calls");
     free(starts);
