@@ -45,7 +45,7 @@ typedef char board_first[offsetof(plant, b) == 0 ? 1 : -1];
  * HG_PARAM_MIN_POSITIVE, RULE_MIN0 >= 0 (a strict > 0 too: its limit 0
  * then passes fmi3Set and the core refuses it with the rules between
  * fields, at fmi3ExitInitializationMode), RULE_MAX0 <= 0, RULE_CONE in
- * [0, 90 deg], RULE_BINARY 0 or 1. These bounds are what fmi3Set refuses
+ * [1, 90 deg] (HG_CONE_MIN_RAD), RULE_BINARY 0 or 1. These bounds are what fmi3Set refuses
  * and modelDescription.xml declares; test_fmu_description checks each
  * against the core's check (hexaglide sim --set just outside it). */
 enum { RULE_ANY, RULE_POSITIVE, RULE_MIN0, RULE_MAX0, RULE_CONE, RULE_BINARY };
@@ -127,7 +127,7 @@ int fmu_plant_param(int i, fmu_param *p)
     case RULE_POSITIVE: p->min = HG_PARAM_MIN_POSITIVE; break;
     case RULE_MIN0: p->min = 0; break;
     case RULE_MAX0: p->max = 0; break;
-    case RULE_CONE: p->min = 0; p->max = HG_PI / 2; break;
+    case RULE_CONE: p->min = HG_CONE_MIN_RAD; p->max = HG_PI / 2; break;
     case RULE_BINARY: p->min = 0; p->max = 1; p->quantum = 1; break;
     default: break;
     }

@@ -566,7 +566,7 @@ static void test_ranges(void)
     e = b.n[fmi3Error];
     refused(set_f64(s, "k_stop", INFINITY), &b, e, "below 1e9", "k_stop inf (max 1e9)");
     e = b.n[fmi3Error];
-    refused(set_f64(s, "cone_head", 2), &b, e, "between 0 and 90 deg", "cone_head 2 rad (max pi/2)");
+    refused(set_f64(s, "cone_head", 2), &b, e, "between 1 and 90 deg", "cone_head 2 rad (max pi/2)");
     vr[0] = vr_of("m_head");
     vr[1] = vr_of("m_bar");
     x[0] = 9;
