@@ -23,6 +23,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hexaglide_identify as hid  # noqa: E402
+import hg_config  # noqa: E402
 import hg_output  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -154,11 +155,23 @@ def dither_hal(band=DITHER_BAND_HZ, amp_v=DITHER_V, sweep_s=DITHER_SWEEP_S):
     return "\n".join(lines) + "\n"
 
 
+def read_config(a):
+    """The config of --ini as build/hexaglide reads it (tools/hg_config.py, `hexaglide config`):
+    the prior machine (defaults, [HEXAGLIDE], then --set) and the limits; ValueError naming the
+    key, file and line of a refused value."""
+    try:
+        return hg_config.read(a.ini, getattr(a, "set", []), cmd="excite")
+    except hg_config.ConfigError as ex:
+        raise ValueError(str(ex))
+
+
 class Problem:
     """Limits of the config and the prior model, evaluated on a time grid."""
 
-    def __init__(self, a, params):
-        joints, axes = hg.read_ini(a.ini)
+    def __init__(self, a, params, cfg=None):
+        """cfg: read_config(a) (read here when not given); params: the prior machine."""
+        cfg = cfg or read_config(a)
+        joints, axes = cfg.joints, cfg.axes
         self.margin = a.margin
         self.lim = {}
         for ax in AXES:
@@ -341,39 +354,79 @@ def trains_gcode(a, axes):
     return "\n".join(lines)
 
 
+MAX_RUN_S = 3600.0               # --period x --periods: an hour of G-code at most
+# the options' ranges (docs/identification.md): (lowest, highest, lowest allowed?, what it is)
+RANGES = {
+    "--period": (0.0, 120.0, False, "s: the Fourier series' period"),
+    "--periods": (1, 100, True, "periods of the series run"),
+    "--harmonics": (2, 20, True, "harmonics per axis: each adds 12 coefficients to the optimisation"),
+    "--margin": (0.0, 1.0, False, "the fraction of every limit used"),
+    "--max-volts": (0.0, 10.0, False, "V: the prior model's peak drive volts, inside the DAC's +-10 V"),
+    "--segment": (0.01, 12.0, True, "s: one G1 segment; at most --period / 10"),
+    "--starts": (1, 100, True, "optimisation starts"),
+    "--maxiter": (1, 1000, True, "SLSQP iterations per start"),
+    "--grid": (20, 2000, True, "time points per period"),
+    "--seed": (0, 2 ** 32 - 1, True, "the random seed of the starts"),
+    "--seconds": (0.0, 3600.0, False, "s: the trains' program's run time"),
+    "--dither-volts": (0.0, DITHER_V_MAX, False, "V: the dither's amplitude"),
+}
+
+
+def check_options(a, names):
+    """ValueError naming the first option of names outside its range (RANGES)."""
+    for opt in names:
+        lo, hi, lo_in, what = RANGES[opt]
+        v = getattr(a, opt[2:].replace("-", "_"))
+        if not ((lo <= v if lo_in else lo < v) and v <= hi):
+            rng = "%d..%d" % (lo, hi) if isinstance(lo, int) else "%s%g, %g]" % ("[" if lo_in else "(", lo, hi)
+            raise ValueError("%s %s: must be in %s (%s)" % (opt, "%g" % v if isinstance(v, float) else v, rng, what))
+
+
 def main(argv=None):
     """hexaglide excite: design, check on 1 ms, write the G-code."""
     argv = sys.argv[1:] if argv is None else argv
     ap = argparse.ArgumentParser(prog="hexaglide excite", description=__doc__.split("\n\n")[0])
     ap.add_argument("--ini", default=os.path.join(ROOT, "configs", "hexaglide.ini"),
-                    help="config with the [AXIS_*] and [JOINT_N] limits (default configs/hexaglide.ini)")
+                    help="config with the [AXIS_*] and [JOINT_N] limits and the [HEXAGLIDE] geometry "
+                    "(default configs/hexaglide.ini)")
     ap.add_argument("--output", help="write the G-code here (default: stdout)")
-    ap.add_argument("--period", type=float, default=8.0, help="period of the series, s (default 8)")
-    ap.add_argument("--periods", type=int, default=3, help="periods run (default 3)")
-    ap.add_argument("--harmonics", type=int, default=5, help="harmonics per axis (default 5)")
+    r = RANGES
+    ap.add_argument("--period", type=float, default=8.0, help="period of the series, s, in (0, %g] (default 8)"
+                    % r["--period"][1])
+    ap.add_argument("--periods", type=int, default=3, help="periods run, %d..%d, at most %g s in all (default 3)"
+                    % (r["--periods"][0], r["--periods"][1], MAX_RUN_S))
+    ap.add_argument("--harmonics", type=int, default=5, help="harmonics per axis, %d..%d (default 5)"
+                    % r["--harmonics"][:2])
     ap.add_argument("--margin", type=float, default=0.8,
-                    help="fraction of every range, speed and acceleration limit used (default 0.8)")
+                    help="fraction of every range, speed and acceleration limit used, in (0, 1] (default 0.8)")
     ap.add_argument("--max-volts", type=float, default=4.0,
-                    help="peak drive volts the prior model may need (default 4 of the DAC's 10)")
+                    help="peak drive volts the prior model may need, in (0, 10] (default 4 of the DAC's 10)")
     ap.add_argument("--segment", type=float, default=0.2,
-                    help="G1 segment duration, s (default 0.2; speeds are held below 0.5 a_max x segment)")
-    ap.add_argument("--starts", type=int, default=4, help="optimisation starts (default 4)")
-    ap.add_argument("--maxiter", type=int, default=200, help="SLSQP iterations per start (default 200)")
-    ap.add_argument("--grid", type=int, default=160, help="time points per period in the optimisation")
-    ap.add_argument("--seed", type=int, default=1)
+                    help="G1 segment duration, s, in [%g, period/10] (default 0.2; speeds are held below "
+                    "0.5 a_max x segment)" % r["--segment"][0])
+    ap.add_argument("--starts", type=int, default=4, help="optimisation starts, %d..%d (default 4)"
+                    % r["--starts"][:2])
+    ap.add_argument("--maxiter", type=int, default=200, help="SLSQP iterations per start, %d..%d (default 200)"
+                    % r["--maxiter"][:2])
+    ap.add_argument("--grid", type=int, default=160, help="time points per period in the optimisation, %d..%d "
+                    "(default 160)" % r["--grid"][:2])
+    ap.add_argument("--seed", type=int, default=1, help="random seed of the starts, 0..2^32-1 (default 1)")
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                    help="prior parameter (spec name, SI unit as sim --list-params), e.g. m_head=8")
+                    help="prior parameter (spec name, SI unit as sim --list-params), e.g. m_head=8; after "
+                    "the config's [HEXAGLIDE]")
     ap.add_argument("--trains", action="store_true",
                     help="the drive trains' program instead: vertical strokes (with --dither's HAL snippet)")
     ap.add_argument("--stroke", type=float, default=TRAIN_STROKE_MM, help="--trains: stroke, mm (default %(default)s)")
-    ap.add_argument("--seconds", type=float, default=30.0, help="--trains: run time, s (default %(default)s)")
+    ap.add_argument("--seconds", type=float, default=30.0, help="--trains: run time, s, in (0, %g] (default "
+                    "%%(default)s)" % r["--seconds"][1])
     ap.add_argument("--dither", metavar="FILE",
                     help="write the trains' dither as a HAL snippet (stock siggen, scale, sum2 between pid.N.output "
                     "and the DACs) to FILE")
     ap.add_argument("--dither-volts", type=float, default=DITHER_V,
-                    help="the dither's amplitude, V (default %(default)s)")
+                    help="the dither's amplitude, V, in (0, %g] (default %%(default)s)" % DITHER_V_MAX)
     ap.add_argument("--dither-band", type=float, nargs=2, default=DITHER_BAND_HZ, metavar=("LO", "HI"),
-                    help="the chirps' band, Hz (default %g %g: about the trains' axial mode)" % DITHER_BAND_HZ)
+                    help="the chirps' band, Hz, 0 < LO < HI < 500 (default %g %g: about the trains' axial mode)"
+                    % DITHER_BAND_HZ)
     a = ap.parse_args(argv)
     a.argv = argv
     try:
@@ -388,11 +441,12 @@ def main(argv=None):
         return 2
     if a.dither or a.trains:
         try:
-            if not (0 < a.dither_volts <= DITHER_V_MAX and 0 < a.dither_band[0] < a.dither_band[1] < 500.0
-                    and a.seconds > 0):
-                raise ValueError("--dither-volts in (0, %g] V, 0 < --dither-band LO < HI < 500 Hz (half the 1 kHz "
-                                 "servo rate), --seconds > 0" % DITHER_V_MAX)
-            text = trains_gcode(a, hg.read_ini(a.ini)[1]) if a.trains else None
+            check_options(a, ("--seconds", "--margin", "--dither-volts") if a.trains else ("--dither-volts",))
+            lo, hi = a.dither_band
+            if not (0 < lo < hi < 500.0):
+                raise ValueError("--dither-band %g %g: need 0 < LO < HI < 500 Hz (below half the 1 kHz servo rate)"
+                                 % (lo, hi))
+            text = trains_gcode(a, read_config(a).axes) if a.trains else None
         except ValueError as ex:
             log(ex)
             return 2
@@ -407,12 +461,17 @@ def main(argv=None):
             sys.stdout.write(text)
         return 0
     try:
-        if not (a.period > 0 and a.periods >= 1 and a.harmonics >= 2 and 0 < a.margin <= 1
-                and a.max_volts > 0 and 0 < a.segment <= a.period / 10 and a.grid >= 20):
-            raise ValueError("--period > 0, --periods >= 1, --harmonics >= 2, 0 < --margin <= 1, "
-                             "--max-volts > 0, 0 < --segment <= period/10, --grid >= 20")
-        params = hid.params_with(a.set)
-        prob = Problem(a, params)
+        check_options(a, ("--period", "--periods", "--harmonics", "--margin", "--max-volts", "--segment",
+                          "--starts", "--maxiter", "--grid", "--seed"))
+        if a.period * a.periods > MAX_RUN_S:
+            raise ValueError("--period %g x --periods %d = %g s: the program may run at most %g s"
+                             % (a.period, a.periods, a.period * a.periods, MAX_RUN_S))
+        if a.segment > a.period / 10:
+            raise ValueError("--segment %g: must be at most --period / 10 = %g s (ten segments per period)"
+                             % (a.segment, a.period / 10))
+        hid.params_with(a.set)               # the names and numbers here; the values the C reader checks
+        cfg = read_config(a)                 # defaults, [HEXAGLIDE], --set: as sim and soak take them
+        prob = Problem(a, cfg.params, cfg)
     except ValueError as ex:
         log(ex)
         return 2

@@ -560,9 +560,13 @@ def read_run(path, ini):
         raise BadInput("%s: no such file" % path)
     with open(path, "rb") as f:
         first = f.read(len(REC_MAGICS[0]))
-    if first in REC_MAGICS:
-        return read_board_record(path)
-    return read_sampler(path, ini)
+    run = read_board_record(path) if first in REC_MAGICS else read_sampler(path, ini)
+    if run.volts is None or len(run.volts) == 0:
+        raise BadInput("%s: line %d: the %s has no samples (%s): record a run, one row per servo period"
+                       % (path, run.last_line, "record" if run.kind == "record" else "recording",
+                          "a header and no rows" if run.kind == "record" or run.last_line <= 1
+                          else "one row: a period's motion needs the next row too"))
+    return run
 
 
 # ====================================================================== equations
@@ -1471,7 +1475,10 @@ def validate(vrun, a, reg, params, s, est, pi0, base):
         out.append("# closed loop: not validated (%s has no joint.N.motor-pos-cmd; give --commands FILE)"
                    % vrun.path)
         return "\n".join(out) + "\n", data
-    gains = [tune.pid_keys(g) for g in tune.read_ini(a.ini)[0]]
+    try:                                   # the INI's loops as soak and tune read them (the C CLI's reader)
+        gains = [tune.pid_keys(g) for g in tune.read_ini(a.ini, cmd="identify")[0]]
+    except tune.BadInput as ex:
+        raise BadInput(str(ex))
     ident = params_of_spec(spec_of_pi(est.pi, params), params)
     pk, lo, hi, series = predict_ferror(cmd, gains, ident, tune.PREDICT_SETTLES)
     pk0, _, _, _ = predict_ferror(cmd, gains, params_of_spec(spec_of_pi(pi0, params), params), tune.PREDICT_SETTLES)

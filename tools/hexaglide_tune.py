@@ -28,6 +28,7 @@ except ImportError as _ex:  # a message, not a traceback: which interpreter is n
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
+import hg_config  # noqa: E402
 import hg_margins as hgm  # noqa: E402
 import hg_output  # noqa: E402
 
@@ -50,12 +51,21 @@ def log(*a):
 
 
 # ------------------------------------------------------------------ INI
-def read_ini(path):
-    """hg.read_ini with BadInput for what the user must fix."""
+def read_config(path, params=(), cmd="tune"):
+    """The config as build/hexaglide reads it (tools/hg_config.py, `hexaglide config --loop`: the
+    C CLI's INI reader, the servo loops as soak reads them): an hg_config.Config whose params are
+    the defaults, [HEXAGLIDE], then params ("name=value", SI: --param); BadInput naming the key,
+    file and line of what the user must fix."""
     try:
-        return hg.read_ini(path)
-    except ValueError as ex:
+        return hg_config.read(path, params, loop=True, cmd=cmd, set_option="--param")
+    except hg_config.ConfigError as ex:
         raise BadInput(str(ex))
+
+
+def read_ini(path, cmd="tune"):
+    """([JOINT_0..5] as {KEY: float}, {axis: {KEY: float}}) of read_config (the C CLI's reader)."""
+    cfg = read_config(path, cmd=cmd)
+    return cfg.joints, cfg.axes
 
 
 def pid_keys(g):
@@ -87,18 +97,30 @@ def load_trajectory(path):
     is there), or plain rows of 6 numbers (or 7: a sample number / time first,
     as `halsampler -t` prints), separated by spaces or commas; lines starting
     with # are comments. .gz files are read too."""
+    if os.path.isdir(path):
+        raise BadInput("--trajectory %s is a directory: give the recorded file (docs/tuning.md)" % path)
     if not os.path.isfile(path):
         raise BadInput("no such trajectory file: %s" % path)
-    with open(path, "rb") as f:
-        if f.readline().rstrip(b"\r\n") in hg.RECORD_MAGICS:
-            return check_trajectory(path, load_record(path))
+    try:
+        with open(path, "rb") as f:
+            if f.readline().rstrip(b"\r\n") in hg.RECORD_MAGICS:
+                return check_trajectory(path, load_record(path))
+    except OSError as ex:
+        raise BadInput("%s: cannot read it: %s" % (path, ex.strerror or ex))
     import gzip
+    import zlib
     opener = gzip.open if path.endswith(".gz") else open
     try:
         with opener(path, "rt") as f:
             lines = f.read().splitlines()
-    except (OSError, UnicodeDecodeError) as ex:
-        raise BadInput("%s: cannot read it as text: %s" % (path, ex))
+    except EOFError:
+        raise BadInput("%s: the compressed file ends before its end-of-stream marker (cut short?): "
+                       "copy or compress it again" % path)
+    except (OSError, zlib.error) as ex:
+        raise BadInput("%s: cannot read it%s: %s" % (path, " as gzip" if path.endswith(".gz") else "",
+                                                      getattr(ex, "strerror", None) or ex))
+    except UnicodeDecodeError as ex:
+        raise BadInput("%s: not text (%s): give joint commands as text, one line per servo period" % (path, ex))
     header = None
     rows = []
     for no, line in enumerate(lines, 1):
@@ -228,13 +250,19 @@ def s_curve(dist, vmax, amax, jerk_time=0.02):
     return pos * (dist / pos[-1]) if pos[-1] > 0 else pos
 
 
-def generated_move(axes, params=None):
+def generated_move(axes, params=None, ini=None):
     """Joint commands of a default test move: each world axis out and back
-    on an S-curve at its MAX_VELOCITY / MAX_ACCELERATION, then all together."""
+    on an S-curve at its MAX_VELOCITY / MAX_ACCELERATION (ini given: both
+    required, BadInput naming the key; else 20 mm/s, 200 mm/s^2 where absent),
+    then all together; the joints by the inverse kinematics of params."""
     amp = {"X": 40.0, "Y": 40.0, "Z": 40.0, "A": 8.0, "B": 8.0, "C": 10.0}
     poses = [np.zeros(6)]
     for i, a in enumerate("XYZABC"):
         lim = axes.get(a, {})
+        for key in ("MAX_VELOCITY", "MAX_ACCELERATION"):
+            if ini is not None and key not in lim:
+                raise BadInput("%s: [AXIS_%s]%s is missing: the generated move runs each axis at its limits "
+                               "(or give --trajectory)" % (ini, a, key))
         v, acc = lim.get("MAX_VELOCITY", 20.0), lim.get("MAX_ACCELERATION", 200.0)
         for sign in (1, -1):
             prof = s_curve(amp[a], v, acc) * sign
@@ -242,7 +270,10 @@ def generated_move(axes, params=None):
             seg[:, i] += prof
             poses.extend(seg)
     poses = np.array(poses)
-    return np.ascontiguousarray([hg.ik(p, params) for p in poses])
+    try:
+        return np.ascontiguousarray([hg.ik(p, params) for p in poses])
+    except hg.HexaglideError as ex:
+        raise BadInput("the generated move leaves this machine's working volume (%s): give --trajectory" % ex)
 
 
 # ------------------------------------------------------------------ model-based start
@@ -296,7 +327,6 @@ def model_start(cmd, params=None):
 
 
 pid_from_bandwidth = hgm.pid_from_bandwidth
-_params_check = hg._sig("hg_params_check", C.c_int, C.c_void_p, C.POINTER(C.c_char_p), C.POINTER(C.c_char_p))
 
 
 # ------------------------------------------------------------------ evaluation (runs in workers)
@@ -730,6 +760,35 @@ def search(a, prob, notch=None):
 
 
 # ------------------------------------------------------------------ main
+# the options' ranges (docs/tuning.md "Options"): (lowest, highest, what it is); a float's
+# lower bound is open where the third entry says so
+RANGES = {
+    "--runs": (1, 16, "closed-loop runs per candidate"),
+    "--maxiter": (1, 1000, "generations"),
+    "--popsize": (1, 100, "members per search variable"),
+    "--seed": (0, 2 ** 32 - 1, "the search's random seed"),
+    "--jobs": (0, 1024, "threads, 0 for every core"),
+    "--bandwidth": (0.0, 250.0, "Hz, above 0: the model start's closed-loop bandwidth, at most a quarter "
+                    "of the 1 kHz servo rate"),
+    "--damping": (0.0, 5.0, "above 0: the model start's damping ratio"),
+    "--max-overshoot": (0.0, 1.0, "the step overshoot allowed, a fraction"),
+}
+
+
+def check_options(a):
+    """BadInput naming the first option outside its range (RANGES), before anything runs."""
+    for opt, (lo, hi, what) in RANGES.items():
+        v = getattr(a, opt[2:].replace("-", "_"))
+        if isinstance(lo, int):
+            ok = lo <= v <= hi
+            rng = "%d..%d" % (lo, hi)
+        else:
+            ok = (lo <= v <= hi) if opt == "--max-overshoot" else (lo < v <= hi)
+            rng = "%s%g, %g]" % ("[" if opt == "--max-overshoot" else "(", lo, hi)
+        if not ok:
+            raise BadInput("%s %s: must be in %s (%s)" % (opt, "%g" % v if isinstance(v, float) else v, rng, what))
+
+
 def serial_plant(argv):
     """True when the command line asks for the serial plant: --plant serial, or an --ini with a
     [SERIAL] section (docs/serial.md): tools/hexaglide_tune_serial.py tunes it."""
@@ -764,18 +823,26 @@ def main(argv=None):
     ap.add_argument("--set", action="append", default=[], metavar="KEY=V",
                     help="with --evaluate: override a gain on all joints, e.g. P=20")
     ap.add_argument("--max-volts", type=float, default=None,
-                    help="peak output allowed on the trajectory in every search run (default: the current "
-                    "gains' median peak over the prediction's runs, at most MAX_OUTPUT)")
+                    help="peak output allowed on the trajectory in every search run, in (0, MAX_OUTPUT] V "
+                    "(10 V, the DAC's range, when MAX_OUTPUT is 0); default: the current gains' median peak "
+                    "over the prediction's runs, at most MAX_OUTPUT")
     ap.add_argument("--runs", type=int, default=3,
-                    help="closed-loop runs per candidate in the search (different settling; default 3)")
-    ap.add_argument("--max-overshoot", type=float, default=0.15, help="step overshoot allowed (fraction)")
-    ap.add_argument("--bandwidth", type=float, default=25.0, help="start bandwidth, Hz")
-    ap.add_argument("--damping", type=float, default=0.7, help="start damping ratio")
-    ap.add_argument("--maxiter", type=int, default=25, help="generations of differential evolution")
-    ap.add_argument("--popsize", type=int, default=8, help="population per search variable")
+                    help="closed-loop runs per candidate in the search (different settling), %d..%d; default 3"
+                    % RANGES["--runs"][:2])
+    ap.add_argument("--max-overshoot", type=float, default=0.15,
+                    help="step overshoot allowed (fraction), 0..1; default 0.15")
+    ap.add_argument("--bandwidth", type=float, default=25.0,
+                    help="start bandwidth, in (0, %g] Hz (a quarter of the 1 kHz servo rate); default 25"
+                    % RANGES["--bandwidth"][1])
+    ap.add_argument("--damping", type=float, default=0.7,
+                    help="start damping ratio, in (0, %g]; default 0.7" % RANGES["--damping"][1])
+    ap.add_argument("--maxiter", type=int, default=25,
+                    help="generations of differential evolution, %d..%d; default 25" % RANGES["--maxiter"][:2])
+    ap.add_argument("--popsize", type=int, default=8,
+                    help="population per search variable, %d..%d; default 8" % RANGES["--popsize"][:2])
     ap.add_argument("--jobs", type=int, default=0,
-                    help="threads the closed-loop runs share (hg_batch; default 0: every core); the answer "
-                    "is the same for any number")
+                    help="threads the closed-loop runs share (hg_batch; default 0: every core; at most %d); "
+                    "the answer is the same for any number" % RANGES["--jobs"][1])
     ap.add_argument("--no-stop-early", action="store_true",
                     help="run every candidate's every trajectory run, also one whose first run already "
                     "costs more than the member it competes with (the same answer, slower: a check)")
@@ -784,19 +851,13 @@ def main(argv=None):
                     "for rigid drive trains; default the board's defaults (flexible trains)")
     ap.add_argument("--no-notch", action="store_true",
                     help="do not try a biquad notch at the drive trains' resonance")
-    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--seed", type=int, default=1, help="the search's random seed, 0..2^32-1; default 1")
     ap.add_argument("--output", help="also write the suggestion to this file")
     ap.add_argument("--plots", help="directory for tune_step.png, tune_ferror.png, tune_bode.png")
     a = ap.parse_args(argv)
 
     try:
-        joints, axes = read_ini(a.ini)
-        if a.trajectory:
-            cmd = load_trajectory(a.trajectory)
-            source = a.trajectory
-        else:
-            cmd = generated_move(axes)
-            source = "the generated move"
+        check_options(a)
         sets = {}
         for s in a.set:
             k, _, v = s.partition("=")
@@ -808,20 +869,31 @@ def main(argv=None):
                 raise BadInput("--set %s: not a number" % s)
             if not np.isfinite(sets[k]):
                 raise BadInput("--set %s: not a finite number" % s)
-        params = hg.Params()
-        for s in a.param:
+        for s in a.param:                  # the names and numbers here; the values the C reader checks
             k, _, v = s.partition("=")
             try:
-                params[k] = float(v)
+                hg.Params()[k] = float(v)
             except (KeyError, ValueError):
                 raise BadInput("--param %s: not a model parameter with a number it accepts (names: docs/model.md)"
                                % s)
-        bad_field, bad_why = C.c_char_p(), C.c_char_p()
-        if a.param and _params_check(params.buf, C.byref(bad_field), C.byref(bad_why)):
-            raise BadInput("--param %s: the model refuses it: %s %s (docs/model.md)"
-                           % (" ".join(a.param), (bad_field.value or b"?").decode(), (bad_why.value or b"").decode()))
-        if a.jobs < 0:
-            raise BadInput("--jobs %d: a number of threads, 0 for every core" % a.jobs)
+        cfg = read_config(a.ini, a.param)  # defaults, [HEXAGLIDE], --param: as sim and soak take them
+        joints, axes, params = cfg.joints, cfg.axes, cfg.params
+        vmax_dac = min(g["MAX_OUTPUT"] or 10.0 for g in joints)
+        if a.max_volts is not None and not (0 < a.max_volts <= vmax_dac):
+            raise BadInput("--max-volts %g: must be in (0, %g] V (the smallest [JOINT_N]MAX_OUTPUT of %s; "
+                           "MAX_OUTPUT 0 means the DAC's 10 V)" % (a.max_volts, vmax_dac, a.ini))
+        if a.trajectory:
+            cmd = load_trajectory(a.trajectory)
+            source = a.trajectory
+        else:
+            cmd = generated_move(axes, params, a.ini)
+            source = "the generated move"
+        given = None
+        if a.gains:
+            try:
+                given, _ = hg.read_gains(a.gains)
+            except (OSError, ValueError) as ex:
+                raise BadInput("--gains %s: %s" % (a.gains, getattr(ex, "strerror", None) or ex))
         if a.output:
             hg_output.target(a.output)         # a missing directory now, not after the search
     except (BadInput, hg_output.OutputError) as ex:
@@ -829,13 +901,17 @@ def main(argv=None):
         return 2
     log("trajectory: %s, %d samples (%.1f s)" % (source, len(cmd), len(cmd) * PERIOD_S))
     cur = [dict(pid_keys(g), **sets) for g in joints]
-    ferror_limit = min(g.get("FERROR", 2.0) for g in joints)
+    ferror_limit = min(g["FERROR"] for g in joints)
     threads = a.jobs or hg.cores()
     prob = {"cmd": cmd, "ferror_limit": ferror_limit, "max_overshoot": a.max_overshoot,
             "search_settles": [SETTLE + 137 * i for i in range(max(1, a.runs))],
             "params": params, "board_params": params.board_params(), "threads": threads}
     settles = PREDICT_SETTLES
-    start = setup(a, prob, joints, cmd)
+    try:
+        start = setup(a, prob, joints, cmd)
+    except BadInput as ex:
+        log(ex)
+        return 2
     t0 = time.time()
     try:
         prob["frf_hz"], prob["frf"] = hgm.plant_frf(start, params, threads)
@@ -869,14 +945,8 @@ def main(argv=None):
         vcur = cur_pred["volts_median"]
         log("current gains: peak |f-error| %.5f mm, peak output %.3f V (median of %d runs; max %.3f V)"
             % (cur_pred["ferror"].max(), vcur, cur_pred["runs"], cur_pred["volts"].max()))
-    vmax_dac = min(g.get("MAX_OUTPUT", 10.0) or 10.0 for g in joints)
     prob["vmax"] = a.max_volts if a.max_volts is not None else min(vmax_dac, vcur if vcur else vmax_dac)
     if a.gains:
-        try:
-            given, _ = hg.read_gains(a.gains)
-        except (OSError, ValueError) as ex:
-            log(ex)
-            return 2
         sug = [dict(c, **g) for c, g in zip(cur, given)]
         log("gains of %s (no search)" % a.gains)
         notch, without = None, None

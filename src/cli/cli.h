@@ -20,18 +20,20 @@ int cmd_replay(int argc, char **argv); /* replay FILE ... */
 int cmd_tune(int argc, char **argv); /* tune [--trajectory FILE] (runs tools/hexaglide_tune.py) */
 int cmd_identify(int argc, char **argv); /* identify RECORD... (runs tools/hexaglide_identify.py) */
 int cmd_excite(int argc, char **argv);   /* excite [--output FILE] (runs tools/hexaglide_excite.py) */
+int cmd_config(int argc, char **argv);   /* config [--ini FILE] (the config as cli_ini.c reads it) */
 
 /* Run tools/SCRIPT ARGS... of the source tree this binary was built in
  * under the first Python 3 that imports `modules` (cli_find_python; `why`
  * says what they are for), with HEXAGLIDE_LIB naming the library beside
- * it; returns only on failure (1, after a message naming cmd), or 0 for a
+ * it (unless set) and HEXAGLIDE_CLI this executable (the INI reader the
+ * scripts use: `hexaglide config`, tools/hg_config.py); returns only on failure (1, after a message naming cmd), or 0 for a
  * --help it could not pass on (after printing `usage`). */
 int cli_run_python(const char *cmd, const char *script_name, const char *modules, const char *why,
                    const char *usage, int argc, char **argv);
 
 /* Each subcommand's usage text (what --help prints). */
 extern const char cli_usage_ik[], cli_usage_fk[], cli_usage_sim[], cli_usage_soak[], cli_usage_replay[],
-    cli_usage_tune[], cli_usage_identify[], cli_usage_excite[];
+    cli_usage_tune[], cli_usage_identify[], cli_usage_excite[], cli_usage_config[];
 
 /* The usage lines of --ini and --set, shared by ik, fk, sim and soak. */
 #define CLI_USAGE_MODEL                                                                            \
@@ -119,6 +121,12 @@ void cli_board_defaults(int plant, int variant, hg_board_params *bp);
 /* 0 if v is a valid machine of plant, else 1 after one message per invalid field. */
 int cli_params_check(const char *cmd, int plant, int variant, const hg_plant_params *v);
 
+/* The same, each refused field's message saying where its value came from
+ * (the last of the nset "name=value" in sets that sets it, the INI file
+ * ini's key with its value and line, or the default). */
+int cli_params_check_from(const char *cmd, int plant, int variant, const hg_plant_params *v, const char *ini,
+                          char *const *sets, int nset);
+
 /* A board (malloc'd; free() it) of plant with model variant and block p (0: the plant's defaults),
  * or 0 after a message on stderr naming every invalid field (spec names,
  * SI units). */
@@ -166,12 +174,37 @@ int cli_ini_number(const char *cmd, const cli_ini *ini, const cli_ini_entry *e, 
 int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int variant, hg_plant_params *v);
 
 /* [JOINT_0]..[JOINT_{joints-1}] gains and scales onto c, as
- * configs/hexaglide.hal wires them (absent keys keep c's values); each
- * section must exist. 0, or -1 after naming every problem. */
+ * configs/hexaglide.hal wires them: every key the HAL file sets must be
+ * there (halcmd stops at a setp of a missing key), FF3 (not wired) may be
+ * absent and keeps c's value; each section must exist. 0, or -1 after
+ * naming every problem. */
 int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, int joints, hg_loop_config *c);
+
+/* The keys cli_ini_apply_joints reads, by index (0 past the last). */
+const char *cli_ini_joint_key(int i);
 
 /* [JOINT_joint]key as a number (required); 0 or -1 with a message. */
 int cli_ini_joint_number(const char *cmd, const cli_ini *ini, int joint, const char *key, double *v);
+
+/* [section]key as a number if it is there: 0 (*v, and its line in *line if
+ * line is not 0), 1 if absent, -1 after a message (not a finite number,
+ * given twice, in a second section). */
+int cli_ini_optional(const char *cmd, const cli_ini *ini, const char *section, const char *key, double *v,
+                     int *line);
+
+/* LinuxCNC's following-error rule of a joint (control.c: the limit is
+ * max(FERROR |v| / MAX_VELOCITY, MIN_FERROR)), mm and mm/s. */
+typedef struct {
+    double ferror, min_ferror, max_velocity;
+} cli_ferror_rule;
+
+/* The servo loops of [JOINT_0..joints-1] as LinuxCNC runs them: c from
+ * cli_ini_apply_joints (c initialised by the caller) and each joint's
+ * following-error rule (FERROR, MIN_FERROR, MAX_VELOCITY: required), then
+ * checked: INPUT_SCALE != 0, MAX_VELOCITY > 0, FERROR >= 0 and
+ * MIN_FERROR >= 0, a failing key named with its line. soak and
+ * `hexaglide config --loop` (tune) read a config through this. 0 or -1. */
+int cli_ini_loop(const char *cmd, const cli_ini *ini, int joints, hg_loop_config *c, cli_ferror_rule *r);
 
 /* ---- the source tree and Python (cli_tree.c) ---- */
 

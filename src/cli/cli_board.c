@@ -58,7 +58,8 @@ int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, in
     hg_plant_params v;
     int i, n;
     const int variant = hg_plant_at(0)->default_variant;
-    if (cli_params_build(cmd, 0, variant, ini, sets, nset, &v) || cli_params_check(cmd, 0, variant, &v))
+    if (cli_params_build(cmd, 0, variant, ini, sets, nset, &v) ||
+        cli_params_check_from(cmd, 0, variant, &v, ini, sets, nset))
         return 2;
     hg_params_table(&n);
     hg_params_default(p);
@@ -72,23 +73,66 @@ void cli_board_defaults(int plant, int variant, hg_board_params *bp)
     hg_board_params_default(plant, variant, bp);
 }
 
+/* Where parameter i of v came from, as " (...)" into buf: the last --set of
+ * it, else the INI's key (value and line), else the default; "" when unknown. */
+static void origin(const char *cmd, int plant, int variant, int i, const hg_plant_params *v, const char *ini,
+                   char *const *sets, int nset, char *buf, size_t len)
+{
+    hg_param_info e;
+    int k;
+    buf[0] = '\0';
+    if (!sets && !ini)
+        return;
+    if (hg_plant_param_at(plant, variant, i, &e))
+        return;
+    for (k = sets ? nset - 1 : -1; k >= 0; k--) {
+        const char *eq = strchr(sets[k], '=');
+        if (eq && strncmp(sets[k], e.name, (size_t)(eq - sets[k])) == 0 && e.name[eq - sets[k]] == '\0') {
+            snprintf(buf, len, " (--set %s)", sets[k]);
+            return;
+        }
+    }
+    if (ini && e.ini_key) {
+        cli_ini f;
+        const cli_ini_entry *en;
+        if (cli_ini_read(cmd, ini, &f) == 0) {
+            if (cli_ini_get(cmd, &f, hg_plant_at(plant)->ini_section, e.ini_key, &en) == 0 && en->value) {
+                snprintf(buf, len, " ([%s]%s = %s %s, line %d of %s)", hg_plant_at(plant)->ini_section, e.ini_key,
+                         en->value, e.hal_unit, en->line, ini);
+                cli_ini_free(&f);
+                return;
+            }
+            cli_ini_free(&f);
+        }
+    }
+    snprintf(buf, len, " (the default, %.9g %s%s%s%s)", v->v[i], e.unit, ini && e.ini_key ? "; " : "",
+             ini && e.ini_key ? ini : "", ini && e.ini_key ? " does not set it" : "");
+}
+
 /* One line per set bit: bit i < table length is parameter i, then the
- * board's substeps / integrator bits. */
-static void report_refused(const char *cmd, int plant, int variant, const hg_bitset *bad, const char *const *why)
+ * board's substeps / integrator bits; with ini or sets, where each refused
+ * parameter's value came from. */
+static void report_refused(const char *cmd, int plant, int variant, const hg_bitset *bad, const char *const *why,
+                           const hg_plant_params *v, const char *ini, char *const *sets, int nset)
 {
     int i;
     for (i = 0; i < HG_BOARD_WHY_LEN; i++) {
         hg_param_info e;
+        char from[600] = "";
+        int is_param;
         if (!hg_bitset_has(bad, i))
             continue;
-        fprintf(stderr, "hexaglide %s: bad parameter '%s': %s\n", cmd,
-                hg_plant_param_at(plant, variant, i, &e) == 0 ? e.name
-                : i == HG_BOARD_BIT_SUBSTEPS ? "--substeps" : "--integrator",
+        is_param = hg_plant_param_at(plant, variant, i, &e) == 0;
+        if (is_param && v)
+            origin(cmd, plant, variant, i, v, ini, sets, nset, from, sizeof from);
+        fprintf(stderr, "hexaglide %s: bad parameter '%s'%s: %s\n", cmd,
+                is_param ? e.name : i == HG_BOARD_BIT_SUBSTEPS ? "--substeps" : "--integrator", from,
                 why[i] ? why[i] : "invalid");
     }
 }
 
-int cli_params_check(const char *cmd, int plant, int variant, const hg_plant_params *v)
+int cli_params_check_from(const char *cmd, int plant, int variant, const hg_plant_params *v, const char *ini,
+                          char *const *sets, int nset)
 {
     static const char *why[HG_BOARD_WHY_LEN];
     hg_bitset bad;
@@ -96,8 +140,13 @@ int cli_params_check(const char *cmd, int plant, int variant, const hg_plant_par
     hg_bitset_clear(&bad);
     if (!hg_plant_at(plant)->check(variant, v, &bad, why))
         return 0;
-    report_refused(cmd, plant, variant, &bad, why);
+    report_refused(cmd, plant, variant, &bad, why, v, ini, sets, nset);
     return 1;
+}
+
+int cli_params_check(const char *cmd, int plant, int variant, const hg_plant_params *v)
+{
+    return cli_params_check_from(cmd, plant, variant, v, 0, 0, 0);
 }
 
 hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_params *p)
@@ -113,7 +162,7 @@ hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_
     b->plant = plant;                 /* the checks need the plant and variant */
     b->variant = variant;
     if (p && hg_board_params_check(b, p, &bad, why)) {
-        report_refused(cmd, plant, variant, &bad, why);
+        report_refused(cmd, plant, variant, &bad, why, 0, 0, 0, 0);
         free(b);
         return 0;
     }

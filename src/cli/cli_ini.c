@@ -32,28 +32,32 @@ static const struct {
 /* [JOINT_N] key -> servo-loop setting, as configs/hexaglide.hal wires it
  * (pid.N.* pins, motenc.0.enc-NN-scale, dac-NN-gain, dac-NN-offset):
  * in_pid 1: a double at offset in hg_pid_gains; 0: in hg_loop_config,
- * a double[6] array at offset. The keys tools/hexaglide.py's Loop reads
- * (so soak and tune agree); FF3 is one of them although hexaglide.hal does
- * not wire pid.N.FF3 (0 in every shipped config). */
+ * a double[6] array at offset. The keys tools/hexaglide_tune.py reads
+ * (through `hexaglide config --loop`, the same function as soak). pin: what
+ * configs/hexaglide.hal sets from the key ("%d": the joint, "%02d": its
+ * channel); a key the HAL file sets must be there (halcmd stops at a setp of a
+ * missing key: "Ini variable '[JOINT_0]P' not found"). FF3 has no pin:
+ * hexaglide.hal does not wire pid.N.FF3, pid.c's 0 stays when it is absent. */
 static const struct {
     const char *key;
     int in_pid;
     size_t offset;
+    const char *pin;
 } joint_keys[] = {
-    {"P", 1, offsetof(hg_pid_gains, pgain)},
-    {"I", 1, offsetof(hg_pid_gains, igain)},
-    {"D", 1, offsetof(hg_pid_gains, dgain)},
-    {"BIAS", 1, offsetof(hg_pid_gains, bias)},
-    {"FF0", 1, offsetof(hg_pid_gains, ff0)},
-    {"FF1", 1, offsetof(hg_pid_gains, ff1)},
-    {"FF2", 1, offsetof(hg_pid_gains, ff2)},
-    {"FF3", 1, offsetof(hg_pid_gains, ff3)},
-    {"DEADBAND", 1, offsetof(hg_pid_gains, deadband)},
-    {"MAX_OUTPUT", 1, offsetof(hg_pid_gains, maxoutput)},
-    {"MAX_ERROR_I", 1, offsetof(hg_pid_gains, maxerror_i)},
-    {"INPUT_SCALE", 0, offsetof(hg_loop_config, input_scale)},
-    {"OUTPUT_SCALE", 0, offsetof(hg_loop_config, output_scale)},
-    {"OUTPUT_OFFSET", 0, offsetof(hg_loop_config, output_offset)},
+    {"P", 1, offsetof(hg_pid_gains, pgain), "pid.%d.Pgain"},
+    {"I", 1, offsetof(hg_pid_gains, igain), "pid.%d.Igain"},
+    {"D", 1, offsetof(hg_pid_gains, dgain), "pid.%d.Dgain"},
+    {"BIAS", 1, offsetof(hg_pid_gains, bias), "pid.%d.bias"},
+    {"FF0", 1, offsetof(hg_pid_gains, ff0), "pid.%d.FF0"},
+    {"FF1", 1, offsetof(hg_pid_gains, ff1), "pid.%d.FF1"},
+    {"FF2", 1, offsetof(hg_pid_gains, ff2), "pid.%d.FF2"},
+    {"FF3", 1, offsetof(hg_pid_gains, ff3), 0},
+    {"DEADBAND", 1, offsetof(hg_pid_gains, deadband), "pid.%d.deadband"},
+    {"MAX_OUTPUT", 1, offsetof(hg_pid_gains, maxoutput), "pid.%d.maxoutput"},
+    {"MAX_ERROR_I", 1, offsetof(hg_pid_gains, maxerror_i), "pid.%d.maxerrorI"},
+    {"INPUT_SCALE", 0, offsetof(hg_loop_config, input_scale), "motenc.0.enc-%02d-scale"},
+    {"OUTPUT_SCALE", 0, offsetof(hg_loop_config, output_scale), "motenc.0.dac-%02d-gain"},
+    {"OUTPUT_OFFSET", 0, offsetof(hg_loop_config, output_offset), "motenc.0.dac-%02d-offset"},
 };
 
 #define N_OF(a) (sizeof(a) / sizeof((a)[0]))
@@ -350,8 +354,17 @@ int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, int joints, hg_loo
             double v;
             char *field;
             int rc = cli_ini_get(cmd, ini, sec, joint_keys[k].key, &e);
+            if (rc > 0 && joint_keys[k].pin) {   /* LinuxCNC would stop at the HAL file's setp */
+                char pin[48];
+                snprintf(pin, sizeof pin, joint_keys[k].pin, j);
+                fprintf(stderr, "hexaglide %s: %s: [%s]%s is missing: configs/hexaglide.hal sets %s from it "
+                        "(LinuxCNC stops there: \"Ini variable '[%s]%s' not found\"); add it\n", cmd, ini->path,
+                        sec, joint_keys[k].key, pin, sec, joint_keys[k].key);
+                bad = 1;
+                continue;
+            }
             if (rc) {
-                bad |= rc < 0;         /* absent: pid.c's load-time value stays */
+                bad |= rc < 0;         /* absent FF3: pid.c's load-time 0 stays */
                 continue;
             }
             if (cli_ini_number(cmd, ini, e, &v)) {
@@ -376,4 +389,75 @@ int cli_ini_joint_number(const char *cmd, const cli_ini *ini, int joint, const c
     if (rc > 0)
         fprintf(stderr, "hexaglide %s: %s: [%s]%s is missing\n", cmd, ini->path, sec, key);
     return rc ? -1 : cli_ini_number(cmd, ini, e, v);
+}
+
+int cli_ini_optional(const char *cmd, const cli_ini *ini, const char *section, const char *key, double *v,
+                     int *line)
+{
+    const cli_ini_entry *e;
+    int rc = cli_ini_get(cmd, ini, section, key, &e);
+    if (rc)
+        return rc;
+    if (cli_ini_number(cmd, ini, e, v))
+        return -1;
+    if (line)
+        *line = e->line;
+    return 0;
+}
+
+const char *cli_ini_joint_key(int i)
+{
+    return i >= 0 && (size_t)i < N_OF(joint_keys) ? joint_keys[i].key : 0;
+}
+
+/* [JOINT_j]key's line (0 if absent): for the messages of checks after reading. */
+static int joint_line(const cli_ini *ini, int j, const char *key)
+{
+    char sec[16];
+    int i;
+    snprintf(sec, sizeof sec, "JOINT_%d", j);
+    for (i = 0; i < ini->n; i++)
+        if (ini->e[i].key && strcmp(ini->e[i].section, sec) == 0 && strcmp(ini->e[i].key, key) == 0)
+            return ini->e[i].line;
+    return 0;
+}
+
+int cli_ini_loop(const char *cmd, const cli_ini *ini, int joints, hg_loop_config *c, cli_ferror_rule *r)
+{
+    static const char *const rule_keys[3] = {"FERROR", "MIN_FERROR", "MAX_VELOCITY"};
+    int j, k, bad = cli_ini_apply_joints(cmd, ini, joints, c) != 0;
+    for (j = 0; j < joints && j < HG_LOOP_JOINTS; j++) {
+        for (k = 0; k < 3; k++) {
+            double *f = k == 0 ? &r[j].ferror : k == 1 ? &r[j].min_ferror : &r[j].max_velocity;
+            char sec[16];
+            snprintf(sec, sizeof sec, "JOINT_%d", j);
+            if (!cli_ini_has_section(ini, sec))
+                continue;              /* named by cli_ini_apply_joints */
+            bad |= cli_ini_joint_number(cmd, ini, j, rule_keys[k], f) != 0;
+        }
+    }
+    if (bad)
+        return -1;
+    for (j = 0; j < joints && j < HG_LOOP_JOINTS; j++) {   /* each rule the loop needs, the failing key named */
+        static const struct {
+            const char *key, *rule;
+        } need[4] = {
+            {"INPUT_SCALE", "must not be 0 (counts per mm: the encoder's position is counts / scale)"},
+            {"MAX_VELOCITY", "must be > 0 (mm/s: LinuxCNC's following-error limit scales FERROR by speed / it)"},
+            {"FERROR", "must be >= 0 (mm)"},
+            {"MIN_FERROR", "must be >= 0 (mm)"},
+        };
+        double val[4];
+        val[0] = c->input_scale[j];
+        val[1] = r[j].max_velocity;
+        val[2] = r[j].ferror;
+        val[3] = r[j].min_ferror;
+        for (k = 0; k < 4; k++)
+            if (!(k == 0 ? val[k] != 0 : k == 1 ? val[k] > 0 : val[k] >= 0)) {
+                fprintf(stderr, "hexaglide %s: %s line %d: [JOINT_%d]%s = %g %s\n", cmd, ini->path,
+                        joint_line(ini, j, need[k].key), j, need[k].key, val[k], need[k].rule);
+                bad = 1;
+            }
+    }
+    return bad ? -1 : 0;
 }

@@ -2,8 +2,9 @@
  * a script of the source tree's tools/ with the arguments given, under the
  * first Python 3 that imports the modules it needs ($HEXAGLIDE_PYTHON, else
  * each python3 on $PATH), with the library beside the binary
- * (build/libhexaglide.so, through HEXAGLIDE_LIB), as tune, identify and
- * excite do. */
+ * (build/libhexaglide.so, through HEXAGLIDE_LIB) and this executable's
+ * path in HEXAGLIDE_CLI (the scripts read INI files through its `config`
+ * command), as tune, identify and excite do. */
 #include <errno.h>
 #include <limits.h>
 #include <stdio.h>
@@ -35,6 +36,14 @@ int cli_run_python(const char *cmd, const char *script_name, const char *modules
     }
     if (cli_beside_path("libhexaglide.so", lib, sizeof lib) == 0 && access(lib, R_OK) == 0)
         setenv("HEXAGLIDE_LIB", lib, 0);   /* the core this hexaglide was built with */
+    {                                  /* this executable: its INI reader (hexaglide config) */
+        char self[PATH_MAX];
+        ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+        if (n > 0) {
+            self[n] = '\0';
+            setenv("HEXAGLIDE_CLI", self, 1);
+        }
+    }
     args = calloc((size_t)argc + 3, sizeof *args);
     if (!args)
         return 1;

@@ -46,7 +46,8 @@ const char cli_usage_soak[] =
     "  or a following-error trip.\n"
     "  --ini FILE  the config: [JOINT_0..5] P I D FF0 FF1 FF2 FF3 BIAS DEADBAND MAX_OUTPUT\n"
     "              MAX_ERROR_I INPUT_SCALE OUTPUT_SCALE OUTPUT_OFFSET (as configs/hexaglide.hal\n"
-    "              wires them; FF3 as tune reads it), FERROR MIN_FERROR MAX_VELOCITY (the trip),\n"
+    "              wires them, each required as halcmd requires a setp's key; FF3 may be absent:\n"
+    "              0; tune reads them alike), FERROR MIN_FERROR MAX_VELOCITY (the trip),\n"
     "              [EMCMOT]SERVO_PERIOD, [HEXAGLIDE] geometry. Default: configs/hexaglide.ini\n"
     "              of the source tree this hexaglide was built in (../configs/ beside build/)\n"
     "  --dt S      servo period (default the config's SERVO_PERIOD)\n"
@@ -62,9 +63,7 @@ typedef struct {
 } soak_trajectory;
 
 /* The config's following-error rule, per joint (mm, mm/s). */
-typedef struct {
-    double ferror, min_ferror, max_velocity;
-} soak_ferror_rule;
+typedef cli_ferror_rule soak_ferror_rule;
 
 /* xorshift64* uniform in [lo, hi). */
 static double uniform(unsigned long long *s, double lo, double hi)
@@ -128,24 +127,15 @@ static double now_s(void)
  * (dt_s > 0 overrides [EMCMOT]SERVO_PERIOD). 0 or 2 after messages. */
 static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_config *c, soak_ferror_rule *r)
 {
-    static const char *const rule_keys[3] = {"FERROR", "MIN_FERROR", "MAX_VELOCITY"};
     cli_ini ini;
-    const cli_ini_entry *e;
     double servo_ns = 1e6;
-    int j, k, bad = 0;
+    int bad = 0;
     if (cli_ini_read("soak", ini_path, &ini))
         return 2;
     hg_loop_config_default(c);
     c->variant = kind;
-    bad |= cli_ini_apply_joints("soak", &ini, 6, c) != 0;
-    for (j = 0; j < 6; j++)
-        for (k = 0; k < 3; k++) {
-            double *f = k == 0 ? &r[j].ferror : k == 1 ? &r[j].min_ferror : &r[j].max_velocity;
-            bad |= cli_ini_joint_number("soak", &ini, j, rule_keys[k], f) != 0;
-        }
-    k = cli_ini_get("soak", &ini, "EMCMOT", "SERVO_PERIOD", &e);
-    if (k < 0 || (k == 0 && cli_ini_number("soak", &ini, e, &servo_ns)))
-        bad = 1;
+    bad |= cli_ini_loop("soak", &ini, 6, c, r) != 0;
+    bad |= cli_ini_optional("soak", &ini, "EMCMOT", "SERVO_PERIOD", &servo_ns, 0) < 0;
     cli_ini_free(&ini);
     if (bad) {
         fprintf(stderr, "hexaglide soak: fix %s (or give another with --ini)\n", ini_path);
@@ -160,12 +150,6 @@ static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_conf
             return 2;
         }
     }
-    for (j = 0; j < 6; j++)
-        if (!(c->input_scale[j] != 0 && r[j].max_velocity > 0 && r[j].ferror >= 0 && r[j].min_ferror >= 0)) {
-            fprintf(stderr, "hexaglide soak: %s: [JOINT_%d] needs INPUT_SCALE != 0, MAX_VELOCITY > 0, "
-                    "FERROR >= 0 and MIN_FERROR >= 0\n", ini_path, j);
-            return 2;
-        }
     return 0;
 }
 
@@ -252,7 +236,7 @@ int cmd_soak(int argc, char **argv)
     /* the board's load-time block (substeps, integrator), the model's parameters from the config */
     cli_board_defaults(0, kind, &bp);
     if (cli_params_build("soak", 0, kind, ini, sets, nset, &bp.plant) ||
-        cli_params_check("soak", 0, kind, &bp.plant)) {
+        cli_params_check_from("soak", 0, kind, &bp.plant, ini, sets, nset)) {
         free(L);
         return 2;
     }

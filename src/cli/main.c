@@ -7,6 +7,7 @@
  *   hexaglide tune [--trajectory FILE]  PID gains tuned against the model (docs/tuning.md)
  *   hexaglide identify RECORD...        dynamic parameters from recorded runs (docs/identification.md)
  *   hexaglide excite [--output FILE]    an excitation program to record them with
+ *   hexaglide config [--ini FILE]       the config as these commands read it (for tune and excite)
  * `hexaglide CMD --help` prints CMD's usage. */
 #include <stdio.h>
 #include <string.h>
@@ -25,6 +26,7 @@ static const struct {
     {"tune", cmd_tune, cli_usage_tune},
     {"identify", cmd_identify, cli_usage_identify},
     {"excite", cmd_excite, cli_usage_excite},
+    {"config", cmd_config, cli_usage_config},
 };
 #define N_COMMANDS (int)(sizeof commands / sizeof commands[0])
 

@@ -1,0 +1,176 @@
+/* cmd_config.c - the config subcommand: a LinuxCNC INI as build/hexaglide
+ * reads it (cli_ini.c: LinuxCNC's reading, with what LinuxCNC resolves
+ * silently refused), printed one value a line for the Python tools (tune,
+ * excite: tools/hg_config.py), so that they take the machine, the servo
+ * loops and the limits from the same reader as sim and soak:
+ *   param NAME VALUE       every model parameter of the Hexaglide (spec name, SI,
+ *                          %.17g: the double itself) after the defaults, [HEXAGLIDE]
+ *                          and --set, checked as soak checks them
+ *   joint N KEY VALUE      [JOINT_N]: with --loop the servo loop's keys as soak reads
+ *                          them (cli_ini_loop, FERROR and MIN_FERROR too); MIN_LIMIT
+ *                          MAX_LIMIT MAX_VELOCITY MAX_ACCELERATION where given
+ *   axis A KEY VALUE       [AXIS_A] MIN_LIMIT MAX_LIMIT MAX_VELOCITY MAX_ACCELERATION
+ *                          where given
+ *   servo_period_ns N      [EMCMOT]SERVO_PERIOD where given
+ * A limit pair must have MIN_LIMIT < MAX_LIMIT, a MAX_VELOCITY and a
+ * MAX_ACCELERATION must be > 0: the key, file and line of a refused value
+ * named, exit 2, nothing on stdout. */
+#include <stdio.h>
+#include <string.h>
+#include "cli.h"
+
+const char cli_usage_config[] =
+    "usage: hexaglide config [--ini FILE] [--set name=value]... [--loop]\n"
+    "  the config as build/hexaglide reads it (src/cli/cli_ini.c), one value a line, as tune and\n"
+    "  excite take it (tools/hg_config.py): 'param NAME VALUE' for every model parameter (spec\n"
+    "  name, SI) after the defaults, [HEXAGLIDE] and --set, checked as soak checks them;\n"
+    "  'joint N KEY VALUE' and 'axis A KEY VALUE' for the limits MIN_LIMIT MAX_LIMIT\n"
+    "  MAX_VELOCITY MAX_ACCELERATION where given; 'servo_period_ns N'.\n"
+    "  --loop      also [JOINT_0..5]'s servo loops as soak reads them (P I D FF0 FF1 FF2 FF3\n"
+    "              BIAS DEADBAND MAX_OUTPUT MAX_ERROR_I INPUT_SCALE OUTPUT_SCALE OUTPUT_OFFSET,\n"
+    "              every key configs/hexaglide.hal sets required; FERROR MIN_FERROR MAX_VELOCITY)\n"
+    "              as 'joint N KEY VALUE' lines\n"
+    "  Default --ini: configs/hexaglide.ini of the source tree this hexaglide was built in.\n"
+    "  A value that is not a finite number, a key given twice, MIN_LIMIT >= MAX_LIMIT or a\n"
+    "  MAX_VELOCITY or MAX_ACCELERATION <= 0: named with its line, exit 2.\n"
+    CLI_USAGE_MODEL;
+
+enum { OPT_INI, OPT_SET, OPT_LOOP };
+static const cli_opt config_opts[] = {{"--ini", 1}, {"--set", 1}, {"--loop", 0}, {0, 0}};
+
+static const char *const limit_keys[] = {"MIN_LIMIT", "MAX_LIMIT", "MAX_VELOCITY", "MAX_ACCELERATION"};
+
+/* The limits of [sec] printed as "what id KEY VALUE" lines into out (held until every
+ * check passed); 0 or -1 after naming each bad value. */
+static int limits(const cli_ini *ini, const char *sec, const char *what, const char *id, FILE *out)
+{
+    double v[4];
+    int line[4], got[4], k, bad = 0, n = 4;
+    for (k = 0; k < n; k++) {
+        int rc = cli_ini_optional("config", ini, sec, limit_keys[k], &v[k], &line[k]);
+        got[k] = rc == 0;
+        bad |= rc < 0;
+    }
+    if (bad)
+        return -1;
+    if (got[0] && got[1] && !(v[0] < v[1])) {
+        fprintf(stderr, "hexaglide config: %s: [%s] MIN_LIMIT = %g (line %d) is not below MAX_LIMIT = %g (line %d): "
+                "the range is empty; give MIN_LIMIT < MAX_LIMIT\n", ini->path, sec, v[0], line[0], v[1], line[1]);
+        bad = 1;
+    }
+    for (k = 2; k < n; k++)
+        if (got[k] && !(v[k] > 0)) {
+            fprintf(stderr, "hexaglide config: %s line %d: [%s]%s = %g must be > 0\n", ini->path, line[k], sec,
+                    limit_keys[k], v[k]);
+            bad = 1;
+        }
+    for (k = 0; k < n && !bad; k++)
+        if (got[k])
+            fprintf(out, "%s %s %s %.17g\n", what, id, limit_keys[k], v[k]);
+    return bad ? -1 : 0;
+}
+
+int cmd_config(int argc, char **argv)
+{
+    cli_args a;
+    cli_ini ini;
+    hg_plant_params p;
+    hg_loop_config c;
+    cli_ferror_rule rule[HG_LOOP_JOINTS];
+    char default_ini[4096], *sets[argc > 0 ? argc : 1], buf[1 << 15];
+    const char *path = 0, *v;
+    const int variant = hg_plant_at(0)->default_variant;
+    int o, nset = 0, loop = 0, bad = 0, i, j, n;
+    double servo_ns;
+    FILE *out;
+    cli_args_init(&a, "config", cli_usage_config, config_opts, argc, argv);
+    while ((o = cli_next(&a, &v)) != CLI_DONE) {
+        if (o == CLI_HELP)
+            return 0;
+        if (o == CLI_BAD)
+            return 2;
+        if (o == CLI_ARG) {
+            fprintf(stderr, "hexaglide config: unexpected argument '%s' ('hexaglide config --help' lists the "
+                    "options)\n", v);
+            return 2;
+        }
+        if (o == OPT_INI) {
+            if (path) {
+                fprintf(stderr, "hexaglide config: --ini given twice (%s and %s)\n", path, v);
+                return 2;
+            }
+            path = v;
+        }
+        if (o == OPT_SET)
+            sets[nset++] = (char *)v;
+        if (o == OPT_LOOP)
+            loop = 1;
+    }
+    if (!path) {
+        if (cli_tree_path("configs/hexaglide.ini", default_ini, sizeof default_ini)) {
+            fprintf(stderr, "hexaglide config: no config beside this program (../configs/hexaglide.ini): give "
+                    "--ini FILE\n");
+            return 2;
+        }
+        path = default_ini;
+    }
+    if (cli_params_build("config", 0, variant, path, sets, nset, &p) ||
+        cli_params_check_from("config", 0, variant, &p, path, sets, nset))
+        return 2;
+    if (cli_ini_read("config", path, &ini))
+        return 2;
+    out = fmemopen(buf, sizeof buf, "w");   /* nothing on stdout unless every check passed */
+    if (!out) {
+        cli_ini_free(&ini);
+        fprintf(stderr, "hexaglide config: out of memory\n");
+        return 1;
+    }
+    n = hg_plant_at(0)->nparams(variant);
+    for (i = 0; i < n; i++) {
+        hg_param_info e;
+        hg_plant_param_at(0, variant, i, &e);
+        fprintf(out, "param %s %.17g\n", e.name, p.v[i]);
+    }
+    if (loop) {                        /* the servo loops as soak reads them */
+        hg_loop_config_default(&c);
+        if (cli_ini_loop("config", &ini, 6, &c, rule))
+            bad = 1;
+        for (j = 0; j < 6 && !bad; j++) {
+            char sec[16];
+            snprintf(sec, sizeof sec, "JOINT_%d", j);
+            for (i = 0; cli_ini_joint_key(i); i++) {
+                double x;
+                if (cli_ini_optional("config", &ini, sec, cli_ini_joint_key(i), &x, 0) == 0)
+                    fprintf(out, "joint %d %s %.17g\n", j, cli_ini_joint_key(i), x);
+            }
+            fprintf(out, "joint %d FERROR %.17g\njoint %d MIN_FERROR %.17g\n", j, rule[j].ferror, j,
+                    rule[j].min_ferror);
+        }
+    }
+    for (j = 0; j < 6 && !bad; j++) {  /* (after a refused loop: its keys are named already) */
+        char sec[16], id[4];
+        snprintf(sec, sizeof sec, "JOINT_%d", j);
+        snprintf(id, sizeof id, "%d", j);
+        bad |= limits(&ini, sec, "joint", id, out) != 0;
+    }
+    for (j = 0; j < 6; j++) {
+        char sec[16], id[2] = {"XYZABC"[j], 0};
+        snprintf(sec, sizeof sec, "AXIS_%c", "XYZABC"[j]);
+        bad |= limits(&ini, sec, "axis", id, out) != 0;
+    }
+    i = cli_ini_optional("config", &ini, "EMCMOT", "SERVO_PERIOD", &servo_ns, 0);
+    bad |= i < 0;
+    if (i == 0)
+        fprintf(out, "servo_period_ns %.17g\n", servo_ns);
+    cli_ini_free(&ini);
+    if (fclose(out) || strlen(buf) >= sizeof buf - 1) {
+        fprintf(stderr, "hexaglide config: the output does not fit %zu bytes\n", sizeof buf);
+        return 1;
+    }
+    if (bad) {
+        fprintf(stderr, "hexaglide config: fix %s (or give another with --ini)\n", path);
+        return 2;
+    }
+    fputs(buf, stdout);
+    return 0;
+}

@@ -1,0 +1,82 @@
+"""hg_config.py - a LinuxCNC INI as build/hexaglide reads it, for the Python tools.
+
+tune and excite take the machine ([HEXAGLIDE] onto the model's defaults, then
+--set), the servo loops ([JOINT_N] gains and scales, as soak reads them) and
+the limits ([JOINT_N], [AXIS_*] MIN_LIMIT MAX_LIMIT MAX_VELOCITY
+MAX_ACCELERATION) from `hexaglide config` (src/cli/cmd_config.c), the C CLI's
+one INI reader (src/cli/cli_ini.c: LinuxCNC's reading; a key given twice, a
+value that is not a finite number, an unknown [HEXAGLIDE] key, a missing
+key the HAL file sets, an empty limit range refused, naming key, file and
+line). No second parser: what sim, soak, ik and LinuxCNC see is what the
+tools see.
+
+    cfg = hg_config.read("configs/hexaglide.ini", sets=["m_head=8"], loop=True, cmd="tune")
+    cfg.params       # hg.Params, SI, checked as soak checks them
+    cfg.joints[0]    # {"P": 24.6726, ..., "MIN_LIMIT": -240, ...}
+    cfg.axes["X"]    # {"MIN_LIMIT": -100, ...}
+
+build/hexaglide is found as $HEXAGLIDE_CLI (set by the hexaglide that runs
+the tool), else beside the library (hg.LIB_PATH: build/hexaglide).
+"""
+import os
+import subprocess
+
+import hexaglide as hg
+
+
+class ConfigError(ValueError):
+    """The config (or a --set) is refused: the message is the C reader's, in the tool's name."""
+
+
+def cli_path():
+    """The hexaglide executable whose INI reader the tools use."""
+    return os.environ.get("HEXAGLIDE_CLI") or os.path.join(os.path.dirname(os.path.abspath(hg.LIB_PATH)),
+                                                           "hexaglide")
+
+
+class Config:
+    """What `hexaglide config` printed: params (hg.Params), joints ([{KEY: float}] of the six
+    [JOINT_N]), axes ({axis: {KEY: float}}), servo_period_ns (None when not given)."""
+
+    def __init__(self, path):
+        self.path = path
+        self.params = hg.Params()
+        self.joints = [dict() for _ in range(hg.JOINTS)]
+        self.axes = {a: {} for a in "XYZABC"}
+        self.servo_period_ns = None
+
+
+def read(path, sets=(), loop=False, cmd="tune", set_option="--set"):
+    """Config of the INI file path with the model parameters of sets ("name=value", SI) after it;
+    loop: also the servo loops ([JOINT_0..5] as soak reads them, every key the HAL file sets
+    required). ConfigError with the C reader's messages, one a line, every line after the first
+    starting "hexaglide CMD: " (the caller prints the first with its prefix), naming
+    set_option where the C side says --set."""
+    exe = cli_path()
+    if not os.access(exe, os.X_OK):
+        raise ConfigError("%s is not there: the INI is read by build/hexaglide; build it with make host "
+                          "(or set HEXAGLIDE_CLI)" % exe)
+    args = [exe, "config", "--ini", path] + [x for s in sets for x in ("--set", s)] + (["--loop"] if loop else [])
+    try:
+        r = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
+    except OSError as ex:
+        raise ConfigError("cannot run %s: %s" % (exe, ex))
+    if r.returncode != 0:
+        lines = [x[len("hexaglide config: "):] if x.startswith("hexaglide config: ") else x
+                 for x in r.stderr.strip().splitlines()] or ["hexaglide config: exit %d" % r.returncode]
+        text = ("\nhexaglide %s: " % cmd).join(lines)
+        if set_option != "--set":
+            text = text.replace("(--set ", "(%s " % set_option).replace("--set: ", "%s: " % set_option)
+        raise ConfigError(text)
+    cfg = Config(path)
+    for line in r.stdout.splitlines():
+        w = line.split()
+        if w[0] == "param":
+            cfg.params[w[1]] = float(w[2])
+        elif w[0] == "joint":
+            cfg.joints[int(w[1])][w[2]] = float(w[3])
+        elif w[0] == "axis":
+            cfg.axes[w[1]][w[2]] = float(w[3])
+        elif w[0] == "servo_period_ns":
+            cfg.servo_period_ns = float(w[1])
+    return cfg
