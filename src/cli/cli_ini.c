@@ -122,6 +122,18 @@ int cli_ini_read(const char *cmd, const char *path, cli_ini *ini)
     if (slurp(cmd, path, &ini->text))
         return -1;
     p = ini->text;
+    if (strncmp(p, "\xEF\xBB\xBF", 3) == 0) { /* a UTF-8 byte order mark, as some editors write */
+        fprintf(stderr, "hexaglide %s: %s starts with a UTF-8 byte order mark: LinuxCNC would not see its "
+                "first section; save it without one (sed -i '1s/^\\xEF\\xBB\\xBF//' FILE)\n", cmd, path);
+        cli_ini_free(ini);
+        return -1;
+    }
+    if (strchr(p, '\r') && !strchr(p, '\n')) {
+        fprintf(stderr, "hexaglide %s: %s has carriage returns and no line feeds (old Mac line ends): "
+                "LinuxCNC reads it as one line; convert it (tr '\\r' '\\n' < FILE)\n", cmd, path);
+        cli_ini_free(ini);
+        return -1;
+    }
     while (*p) {
         char *start = p, *s, *eq, *w, *r;
         int first = ++line;
