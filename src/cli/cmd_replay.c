@@ -429,9 +429,9 @@ static int loop_config(const hg_record *r, const char *file, const int *col_cmd,
                         "--open-loop\n", file, key, val);
                 return 1;
             }
-            if (i == nset)
+            if (!ps && i == nset)         /* the DAC's gain and offset after the pid settings */
                 c->output_scale[k] = v;
-            else if (i == nset + 1)
+            else if (!ps)
                 c->output_offset[k] = v;
             else if (ps->kind == HG_PID_FLAG)
                 c->pid[k].error_previous_target = v != 0.0;
