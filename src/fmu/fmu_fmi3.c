@@ -232,6 +232,17 @@ static long long as_int(double x)
     return x >= -9e18 && x <= 9e18 ? (long long)x : x > 0 ? 9000000000000000000LL : -9000000000000000000LL;
 }
 
+/* The plant's setup from the variables' values v (the parameters point into v). */
+static void setup_of(const double *v, fmu_plant_setup *setup)
+{
+    setup->model = as_int(v[fmu_var_vr(FMU_G_MODEL, 0)]);
+    setup->integrator = as_int(v[fmu_var_vr(FMU_G_INTEGRATOR, 0)]);
+    setup->substeps = as_int(v[fmu_var_vr(FMU_G_SUBSTEPS, 0)]);
+    setup->period_s = v[fmu_var_vr(FMU_G_PERIOD, 0)];
+    setup->enc_scale = v[fmu_var_vr(FMU_G_ENC_SCALE, 0)];
+    setup->params = &v[fmu_var_vr(FMU_G_PARAM, 0)];
+}
+
 /* Build the board of the parameter values (if not built): 0, or -1 after the plant's messages. */
 static int build(instance_t *s, const char *fn)
 {
@@ -240,12 +251,7 @@ static int build(instance_t *s, const char *fn)
     fmu_plant_outputs o;
     if (st(s)->built)
         return 0;
-    setup.model = as_int(v[fmu_var_vr(FMU_G_MODEL, 0)]);
-    setup.integrator = as_int(v[fmu_var_vr(FMU_G_INTEGRATOR, 0)]);
-    setup.substeps = as_int(v[fmu_var_vr(FMU_G_SUBSTEPS, 0)]);
-    setup.period_s = v[fmu_var_vr(FMU_G_PERIOD, 0)];
-    setup.enc_scale = v[fmu_var_vr(FMU_G_ENC_SCALE, 0)];
-    setup.params = &v[fmu_var_vr(FMU_G_PARAM, 0)];
+    setup_of(v, &setup);
     if (fmu_plant_init(plant(s), &setup, plant_say, s)) {
         say(s, FMU_SAY_ERROR, "%s: %s: the parameters above are refused; set valid values (the FMU stays in %s)",
             s->name, fn, mode_name(st(s)->mode));
@@ -902,12 +908,7 @@ static int block_wrong(const instance_t *s, const unsigned char *blob, char *why
     if (t->built) {
         fmu_plant_setup setup;
         char what[200];
-        setup.model = as_int(v[fmu_var_vr(FMU_G_MODEL, 0)]);
-        setup.integrator = as_int(v[fmu_var_vr(FMU_G_INTEGRATOR, 0)]);
-        setup.substeps = as_int(v[fmu_var_vr(FMU_G_SUBSTEPS, 0)]);
-        setup.period_s = v[fmu_var_vr(FMU_G_PERIOD, 0)];
-        setup.enc_scale = v[fmu_var_vr(FMU_G_ENC_SCALE, 0)];
-        setup.params = &v[fmu_var_vr(FMU_G_PARAM, 0)];
+        setup_of(v, &setup);
         if (fmu_plant_check(pl, &setup, what, sizeof what)) {
             snprintf(why, len, "not a machine of its parameters: %s", what);
             return -1;
