@@ -627,6 +627,8 @@ def _pid_settings():
 _PID_MEMBER = {getattr(PidGains, n).offset: n for n, _ in PidGains._fields_}
 # the pid settings a config's [JOINT_N] sets, INI key -> PidGains field (src/hg_pid.c's table)
 GAIN_KEYS = {e.ini_key.decode(): _PID_MEMBER[e.offset] for e in _pid_settings() if e.ini_key}
+# the same keys -> pid.N's pin names ("P" -> "Pgain"), for a setp
+GAIN_PINS = {e.ini_key.decode(): e.pin.decode() for e in _pid_settings() if e.ini_key}
 SCALE_KEYS = {"INPUT_SCALE": "input_scale", "OUTPUT_SCALE": "output_scale", "OUTPUT_OFFSET": "output_offset"}
 LOOP_KEYS = set(GAIN_KEYS) | set(SCALE_KEYS)     # what a gains dict of Loop / loop_config sets
 # LinuxCNC's own [JOINT_N] keys (motion's limits and homing, src/emc/ini/inijoint.cc): taken in a

@@ -33,14 +33,11 @@ sys.path.insert(0, HERE)
 import hexaglide as hg  # noqa: E402
 import hexaglide_tune as tune  # noqa: E402
 
-PIN = {"P": "Pgain", "I": "Igain", "D": "Dgain", "FF0": "FF0", "FF1": "FF1", "FF2": "FF2", "FF3": "FF3",
-       "BIAS": "bias", "DEADBAND": "deadband", "MAX_OUTPUT": "maxoutput", "MAX_ERROR_I": "maxerrorI"}
-assert set(PIN) == set(hg.GAIN_KEYS)
 
 
 def run_linuxcnc(gains, program, out, tag):
     """Headless LinuxCNC run with the gains; the sampled CSV's path."""
-    setp = ";".join("pid.%d.%s %.17g" % (j, PIN[k], v) for j, g in enumerate(gains) for k, v in g.items())
+    setp = ";".join("pid.%d.%s %.17g" % (j, hg.GAIN_PINS[k], v) for j, g in enumerate(gains) for k, v in g.items())
     env = dict(os.environ, HG_SETP=setp, HG_SCENARIO="run", HG_TAG=tag, HG_OUT=out, HG_PROGRAM=program)
     csv = os.path.join(out, tag + ".csv")
     if os.path.exists(csv):

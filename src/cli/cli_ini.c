@@ -29,36 +29,25 @@ static const struct {
     {"HEXAGLIDE", "H", "the carriage height at HOME follows from L, LB and LP now: remove the key"},
 };
 
-/* [JOINT_N] key -> servo-loop setting, as configs/hexaglide.hal wires it
- * (pid.N.* pins, motenc.0.enc-NN-scale, dac-NN-gain, dac-NN-offset):
- * in_pid 1: a double at offset in hg_pid_gains; 0: in hg_loop_config,
- * a double[6] array at offset. The keys tools/hexaglide_tune.py reads
- * (through `hexaglide config --loop`, the same function as soak). pin: what
- * configs/hexaglide.hal sets from the key ("%d": the joint, "%02d": its
- * channel); a key the HAL file sets must be there (halcmd stops at a setp of a
- * missing key: "Ini variable '[JOINT_0]P' not found"). FF3 has no pin:
- * hexaglide.hal does not wire pid.N.FF3, pid.c's 0 stays when it is absent. */
+/* [JOINT_N] keys -> servo-loop settings, as configs/hexaglide.hal wires
+ * them. The pid.N settings with an INI key come from src/hg_pid.c's table
+ * (hg_pid_setting_at: the key, the pin, the field); the three loop scales
+ * below are hg_loop_config's double[6] arrays. The keys tools/hexaglide_tune.py
+ * reads (through `hexaglide config --loop`, the same function as soak). A
+ * key the HAL file sets must be there (halcmd stops at a setp of a missing
+ * key: "Ini variable '[JOINT_0]P' not found"), except those in
+ * unwired_keys: hexaglide.hal does not wire pid.N.FF3, so pid.c's 0 stays
+ * when it is absent. */
 static const struct {
     const char *key;
-    int in_pid;
-    size_t offset;
-    const char *pin;
-} joint_keys[] = {
-    {"P", 1, offsetof(hg_pid_gains, pgain), "pid.%d.Pgain"},
-    {"I", 1, offsetof(hg_pid_gains, igain), "pid.%d.Igain"},
-    {"D", 1, offsetof(hg_pid_gains, dgain), "pid.%d.Dgain"},
-    {"BIAS", 1, offsetof(hg_pid_gains, bias), "pid.%d.bias"},
-    {"FF0", 1, offsetof(hg_pid_gains, ff0), "pid.%d.FF0"},
-    {"FF1", 1, offsetof(hg_pid_gains, ff1), "pid.%d.FF1"},
-    {"FF2", 1, offsetof(hg_pid_gains, ff2), "pid.%d.FF2"},
-    {"FF3", 1, offsetof(hg_pid_gains, ff3), 0},
-    {"DEADBAND", 1, offsetof(hg_pid_gains, deadband), "pid.%d.deadband"},
-    {"MAX_OUTPUT", 1, offsetof(hg_pid_gains, maxoutput), "pid.%d.maxoutput"},
-    {"MAX_ERROR_I", 1, offsetof(hg_pid_gains, maxerror_i), "pid.%d.maxerrorI"},
-    {"INPUT_SCALE", 0, offsetof(hg_loop_config, input_scale), "motenc.0.enc-%02d-scale"},
-    {"OUTPUT_SCALE", 0, offsetof(hg_loop_config, output_scale), "motenc.0.dac-%02d-gain"},
-    {"OUTPUT_OFFSET", 0, offsetof(hg_loop_config, output_offset), "motenc.0.dac-%02d-offset"},
+    size_t offset;             /* offsetof(hg_loop_config, the array) */
+    const char *pin;           /* what hexaglide.hal sets from the key ("%02d": the joint's channel) */
+} scale_keys[] = {
+    {"INPUT_SCALE", offsetof(hg_loop_config, input_scale), "motenc.0.enc-%02d-scale"},
+    {"OUTPUT_SCALE", offsetof(hg_loop_config, output_scale), "motenc.0.dac-%02d-gain"},
+    {"OUTPUT_OFFSET", offsetof(hg_loop_config, output_offset), "motenc.0.dac-%02d-offset"},
 };
+static const char *const unwired_keys[] = {"FF3"};
 
 #define N_OF(a) (sizeof(a) / sizeof((a)[0]))
 
@@ -348,10 +337,45 @@ int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int vari
     return bad ? -1 : 0;
 }
 
+/* One [JOINT_N] key: the key, the pin hexaglide.hal sets from it (0: none)
+ * and where its double goes in an hg_loop_config for joint j. */
+typedef struct {
+    const char *key;
+    char pin[48];
+    char *field;
+} joint_key;
+
+/* Joint key i (the pid settings with an INI key in hg_pid.c's order, then
+ * the scales) for joint j of c (c may be 0: no field): 1 with *k filled,
+ * or 0 past the last. */
+static int joint_key_at(int i, hg_loop_config *c, int j, joint_key *k)
+{
+    const hg_pid_setting *s;
+    size_t u;
+    int n;
+    for (n = 0; (s = hg_pid_setting_at(n)) != 0; n++) {
+        if (!s->ini_key || s->kind == HG_PID_FLAG || i-- > 0)
+            continue;                  /* (a flag is an int: none has a key) */
+        k->key = s->ini_key;
+        snprintf(k->pin, sizeof k->pin, "pid.%d.%s", j, s->pin);
+        for (u = 0; u < N_OF(unwired_keys); u++)
+            if (strcmp(s->ini_key, unwired_keys[u]) == 0)
+                k->pin[0] = '\0';
+        k->field = c ? (char *)&c->pid[j] + s->offset : 0;
+        return 1;
+    }
+    if (i < 0 || (size_t)i >= N_OF(scale_keys))
+        return 0;
+    k->key = scale_keys[i].key;
+    snprintf(k->pin, sizeof k->pin, scale_keys[i].pin, j);
+    k->field = c ? (char *)c + scale_keys[i].offset + (size_t)j * sizeof(double) : 0;
+    return 1;
+}
+
 int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, int joints, hg_loop_config *c)
 {
-    int j, bad = 0;
-    size_t k;
+    int i, j, bad = 0;
+    joint_key k;
     for (j = 0; j < joints && j < HG_LOOP_JOINTS; j++) {
         char sec[16];
         snprintf(sec, sizeof sec, "JOINT_%d", j);
@@ -361,17 +385,14 @@ int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, int joints, hg_loo
             bad = 1;
             continue;
         }
-        for (k = 0; k < N_OF(joint_keys); k++) {
+        for (i = 0; joint_key_at(i, c, j, &k); i++) {
             const cli_ini_entry *e;
             double v;
-            char *field;
-            int rc = cli_ini_get(cmd, ini, sec, joint_keys[k].key, &e);
-            if (rc > 0 && joint_keys[k].pin) {   /* LinuxCNC would stop at the HAL file's setp */
-                char pin[48];
-                snprintf(pin, sizeof pin, joint_keys[k].pin, j);
+            int rc = cli_ini_get(cmd, ini, sec, k.key, &e);
+            if (rc > 0 && k.pin[0]) {  /* LinuxCNC would stop at the HAL file's setp */
                 fprintf(stderr, "hexaglide %s: %s: [%s]%s is missing: configs/hexaglide.hal sets %s from it "
                         "(LinuxCNC stops there: \"Ini variable '[%s]%s' not found\"); add it\n", cmd, ini->path,
-                        sec, joint_keys[k].key, pin, sec, joint_keys[k].key);
+                        sec, k.key, k.pin, sec, k.key);
                 bad = 1;
                 continue;
             }
@@ -383,9 +404,7 @@ int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, int joints, hg_loo
                 bad = 1;
                 continue;
             }
-            field = joint_keys[k].in_pid ? (char *)&c->pid[j] + joint_keys[k].offset
-                                         : (char *)c + joint_keys[k].offset + (size_t)j * sizeof v;
-            memcpy(field, &v, sizeof v);   /* a double field at that offset (offsetof above) */
+            memcpy(k.field, &v, sizeof v);   /* a double field (hg_pid.c's offsetof, or a scale's) */
         }
     }
     return bad ? -1 : 0;
@@ -419,7 +438,8 @@ int cli_ini_optional(const char *cmd, const cli_ini *ini, const char *section, c
 
 const char *cli_ini_joint_key(int i)
 {
-    return i >= 0 && (size_t)i < N_OF(joint_keys) ? joint_keys[i].key : 0;
+    joint_key k;
+    return joint_key_at(i, 0, 0, &k) ? k.key : 0;
 }
 
 /* [JOINT_j]key's line (0 if absent): for the messages of checks after reading. */
