@@ -50,10 +50,7 @@ typedef struct {
     int geometry_reported_bad;                     /* message already printed */
     hal_float_t checked[HG_PARAMS_MAX];            /* the geometry last checked (as geo) ... */
     int checked_rc, checked_valid;                 /* ... its result; 0: check again */
-    hg_fk_options fk_in_force;                     /* the last valid fk-max-iterations, fk-tolerance */
-    int fk_refused_iterations;                     /* the pins' values last refused (reported once) */
-    double fk_refused_tolerance_mm;
-    int fk_failing;                                /* the last forward call failed (reported once a run) */
+    hg_fk_session fk;                              /* the settings in force, what was refused, failing */
 } hexaglidekins_hal;
 
 static hexaglidekins_hal *hd; /* the module's one instance, in HAL shared memory */
@@ -96,34 +93,25 @@ static int current_geometry(hg_geometry *g)
     return rc;
 }
 
-/* The forward solver's settings from the pins: the last valid ones when
- * the pins hold an invalid pair, which is reported once per pair. */
+/* The forward solver's settings from the pins (the core keeps the last
+ * valid pair); a refused pair is said once. */
 static void fk_options(hg_fk_options *opt)
 {
     const char *field = "", *why = "";
-    const int iterations = *hd->fk_max_iterations;
-    const double tolerance_mm = *hd->fk_tolerance_mm;
-    hg_fk_options o = hd->fk_in_force;
-    o.max_iterations = iterations;
-    o.tolerance_m = tolerance_mm / HG_MM_PER_M;
-    if (hg_fk_options_check(&o, &field, &why) == 0) {
-        hd->fk_in_force = o;
-    } else if (iterations != hd->fk_refused_iterations ||
-               memcmp(&tolerance_mm, &hd->fk_refused_tolerance_mm, sizeof tolerance_mm) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise, NaN equals itself
+    if (hg_fk_session_settings(&hd->fk, *hd->fk_max_iterations, *hd->fk_tolerance_mm / HG_MM_PER_M, &field,
+                               &why) == HG_FK_SAY_REFUSED) {
         char max_mm[HG_TEXT_VALUE_LEN], kept_mm[HG_TEXT_VALUE_LEN];
-        hd->fk_refused_iterations = iterations;
-        hd->fk_refused_tolerance_mm = tolerance_mm;
         hg_text_value(max_mm, HG_FK_TOLERANCE_MAX_M * HG_MM_PER_M);
-        hg_text_value(kept_mm, hd->fk_in_force.tolerance_m * HG_MM_PER_M);
+        hg_text_value(kept_mm, hd->fk.in_force.tolerance_m * HG_MM_PER_M);
         if (strcmp(field, "max_iterations") == 0)
             rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: pin hexaglidekins.fk-max-iterations %s; keeping %d\n",
-                            why, hd->fk_in_force.max_iterations);
+                            why, hd->fk.in_force.max_iterations);
         else
             rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: pin hexaglidekins.fk-tolerance must be positive and "
                             "at most %s mm (a coarser Newton step would leave the pose off by more than an encoder "
                             "count); keeping %s mm\n", max_mm, kept_mm);
     }
-    *opt = hd->fk_in_force;
+    *opt = hd->fk.in_force;
 }
 
 /* EmcPose (mm, deg) -> core pose (m, rad). */
@@ -151,7 +139,7 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     hg_fk_options opt;
     hg_fk_report rep = {0, 0.0};
     double z[6], pose[6];
-    int k, rc;
+    int k, rc, say;
     (void)fflags;
     (void)iflags;
     pose_from_emc(pos, pose);
@@ -165,19 +153,17 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     *hd->fk_residual_mm = rep.residual_m * HG_MM_PER_M;
     *hd->fk_error = rc;
     *hd->fk_fault = (rc != 0);
-    if (rc) {
-        *hd->fk_fail_count += 1;
-        if (!hd->fk_failing)         /* the first of a run of failures: motion keeps the last pose */
-            rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: forward kinematics failed (code %d: %s); the "
-                            "position shown stays at the last solved pose until it succeeds "
-                            "(hexaglidekins.fk-error, fk-fail-count)\n", rc, hg_strerror(rc));
-        hd->fk_failing = 1;
-        return rc;
-    }
-    if (hd->fk_failing)
+    say = hg_fk_session_result(&hd->fk, rc);
+    *hd->fk_fail_count = hd->fk.fail_count;
+    if (say == HG_FK_SAY_FAILING)      /* the first of a run of failures: motion keeps the last pose */
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: forward kinematics failed (code %d: %s); the "
+                        "position shown stays at the last solved pose until it succeeds "
+                        "(hexaglidekins.fk-error, fk-fail-count)\n", rc, hg_strerror(rc));
+    else if (say == HG_FK_SAY_SOLVES_AGAIN)
         rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: forward kinematics solves again (after %u failed calls "
-                        "in all)\n", (unsigned)*hd->fk_fail_count);
-    hd->fk_failing = 0;
+                        "in all)\n", hd->fk.fail_count);
+    if (rc)
+        return rc;
     pose_to_emc(pose, pos);
     return 0;
 }
@@ -212,11 +198,9 @@ KINEMATICS_TYPE kinematicsType(void)
 static int export_hal(void)
 {
     hg_params p;
-    hg_fk_options o;
     int r = 0, i, n;
     const hg_param_info *t = hg_params_table(&n);
     hg_params_default(&p);
-    hg_fk_options_default(&o);
     for (i = 0; i < n; i++)
         if (hg_param_is_geometry(i)) {
             r |= hal_param_float_newf(HAL_RW, &hd->geo[i], comp_id, "hexaglidekins.%s", t[i].hal_name);
@@ -233,12 +217,9 @@ static int export_hal(void)
     r |= hal_pin_u32_newf(HAL_IN, &hd->board_geometry, comp_id, "hexaglidekins.board-geometry");
     if (r)
         return r;
-    *hd->fk_max_iterations = o.max_iterations;
-    *hd->fk_tolerance_mm = o.tolerance_m * HG_MM_PER_M;
-    hd->fk_in_force = o;
-    hd->fk_refused_iterations = o.max_iterations;
-    hd->fk_refused_tolerance_mm = o.tolerance_m * HG_MM_PER_M;
-    hd->fk_failing = 0;
+    hg_fk_session_init(&hd->fk);
+    *hd->fk_max_iterations = hd->fk.in_force.max_iterations;
+    *hd->fk_tolerance_mm = hd->fk.in_force.tolerance_m * HG_MM_PER_M;
     *hd->fk_iterations = 0;
     *hd->fk_residual_mm = 0.0;
     *hd->fk_error = 0;

@@ -1,6 +1,7 @@
 /* hg_kinematics.c - Hexaglide frames, closed-form inverse kinematics and
  * Newton-Raphson forward kinematics with the analytic Jacobian. */
 #include "hg_math.h"
+#include "hg_string.h"
 #include "hg_kinematics.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
@@ -41,6 +42,45 @@ int hg_fk_options_check(const hg_fk_options *o, const char **field, const char *
     if (why)
         *why = w;
     return f ? HG_ERR_BAD_PARAM : HG_OK;
+}
+
+void hg_fk_session_init(hg_fk_session *s)
+{
+    memset(s, 0, sizeof *s);
+    hg_fk_options_default(&s->in_force);
+    s->refused_iterations = s->in_force.max_iterations;   /* a valid pair: nothing refused yet */
+    s->refused_tolerance_m = s->in_force.tolerance_m;
+}
+
+int hg_fk_session_settings(hg_fk_session *s, int max_iterations, double tolerance_m, const char **field,
+                           const char **why)
+{
+    hg_fk_options o = s->in_force;
+    o.max_iterations = max_iterations;
+    o.tolerance_m = tolerance_m;
+    if (hg_fk_options_check(&o, field, why) == 0) {
+        s->in_force = o;
+        s->refused_iterations = max_iterations;   /* a valid pair: the next refusal is said again */
+        s->refused_tolerance_m = tolerance_m;
+        return HG_FK_SAY_NOTHING;
+    }
+    if (max_iterations == s->refused_iterations &&
+        memcmp(&tolerance_m, &s->refused_tolerance_m, sizeof tolerance_m) == 0) // NOLINT(bugprone-suspicious-memory-comparison): bitwise, NaN equals itself
+        return HG_FK_SAY_NOTHING;      /* refused and said already */
+    s->refused_iterations = max_iterations;
+    s->refused_tolerance_m = tolerance_m;
+    return HG_FK_SAY_REFUSED;
+}
+
+int hg_fk_session_result(hg_fk_session *s, int rc)
+{
+    const int was_failing = s->failing;
+    s->failing = (rc != 0);
+    if (rc) {
+        s->fail_count++;
+        return was_failing ? HG_FK_SAY_NOTHING : HG_FK_SAY_FAILING;
+    }
+    return was_failing ? HG_FK_SAY_SOLVES_AGAIN : HG_FK_SAY_NOTHING;
 }
 
 void hg_tool_tip(const double pose[6], double tool_d_m, double tip[3])

@@ -63,6 +63,41 @@ void hg_fk_options_default(hg_fk_options *o);
  * or "tolerance", either pointer may be 0) and *why (static strings). */
 int hg_fk_options_check(const hg_fk_options *o, const char **field, const char **why);
 
+/* What a kinematics module keeps between forward calls (hexaglidekins):
+ * the settings in force, the last pair refused (said once), and the run
+ * of failed calls (its start said once, its end once). */
+typedef struct {
+    hg_fk_options in_force;    /* the last valid settings */
+    int refused_iterations;    /* the last refused pair, as given */
+    double refused_tolerance_m;
+    int failing;               /* 1: the last forward call failed */
+    unsigned fail_count;       /* failed calls since init (wraps as a HAL u32) */
+} hg_fk_session;
+
+/* What a session asks its caller to say. */
+enum {
+    HG_FK_SAY_NOTHING = 0,
+    HG_FK_SAY_REFUSED = 1,     /* a new invalid pair: refused, in_force kept */
+    HG_FK_SAY_FAILING = 2,     /* the first failure of a run: the pose shown stays */
+    HG_FK_SAY_SOLVES_AGAIN = 3 /* the first success after a run of failures */
+};
+
+/* A session with the default settings in force, nothing refused or failed. */
+void hg_fk_session_init(hg_fk_session *s);
+
+/* Take the settings given (iterations, tolerance in m) into s->in_force
+ * if hg_fk_options_check accepts them (the other fields of in_force stay);
+ * else keep in_force and return HG_FK_SAY_REFUSED, with *field and *why
+ * from the check, when this pair differs from the one given before
+ * (bitwise: a NaN equals itself), HG_FK_SAY_NOTHING while it stays. */
+int hg_fk_session_settings(hg_fk_session *s, int max_iterations, double tolerance_m, const char **field,
+                           const char **why);
+
+/* Note a forward call's result rc (0 or an hg_error code): counts a
+ * failure; HG_FK_SAY_FAILING at the first of a run, HG_FK_SAY_SOLVES_AGAIN
+ * at the first success after one, else HG_FK_SAY_NOTHING. */
+int hg_fk_session_result(hg_fk_session *s, int rc);
+
 /* Base point of guide k at height 0: Rz(alpha_i)(lb, s_j e, 0). */
 void hg_guide_point(const hg_geometry *g, int k, double out[3]);
 

@@ -438,6 +438,64 @@ static void test_ik_guarded(const hg_params *p)
           rc1);
 }
 
+/* A kinematics module's session (hexaglidekins): a valid pair is taken, an
+ * invalid one keeps the last valid pair and is said once while it stays
+ * (NaN included), again after a valid one; the run of failed forward calls
+ * is said at its first failure and at the first success after it, and
+ * counted, the count wrapping as a HAL u32. */
+static void test_fk_session(void)
+{
+    hg_fk_session s;
+    hg_fk_options def;
+    const char *field = 0, *why = 0;
+    int say, quiet = 1, k;
+    hg_fk_options_default(&def);
+    hg_fk_session_init(&s);
+    CHECK(s.in_force.max_iterations == def.max_iterations && s.in_force.tolerance_m == def.tolerance_m &&
+              !s.failing && s.fail_count == 0,
+          "session starts with the default settings (%d, %g m), nothing failed", s.in_force.max_iterations,
+          s.in_force.tolerance_m);
+    CHECK(hg_fk_session_settings(&s, def.max_iterations, def.tolerance_m, 0, 0) == HG_FK_SAY_NOTHING,
+          "the defaults as pins: nothing to say");
+    CHECK(hg_fk_session_settings(&s, 12, 1e-10, 0, 0) == HG_FK_SAY_NOTHING && s.in_force.max_iterations == 12 &&
+              s.in_force.tolerance_m == 1e-10,
+          "a valid pair (12, 1e-10 m) is taken");
+    say = hg_fk_session_settings(&s, 0, 1e-10, &field, &why);
+    CHECK(say == HG_FK_SAY_REFUSED && field && strcmp(field, "max_iterations") == 0 && why &&
+              s.in_force.max_iterations == 12,
+          "0 iterations refused naming max_iterations (%s), 12 kept", why ? why : "");
+    for (k = 0; k < 5; k++)
+        quiet &= hg_fk_session_settings(&s, 0, 1e-10, 0, 0) == HG_FK_SAY_NOTHING;
+    CHECK(quiet && s.in_force.max_iterations == 12, "the same refused pair is said once, not every call");
+    say = hg_fk_session_settings(&s, 12, NAN, &field, &why);
+    CHECK(say == HG_FK_SAY_REFUSED && strcmp(field, "tolerance") == 0 && s.in_force.tolerance_m == 1e-10,
+          "a NaN tolerance: a new pair, refused naming tolerance, 1e-10 m kept");
+    CHECK(hg_fk_session_settings(&s, 12, NAN, 0, 0) == HG_FK_SAY_NOTHING, "the NaN pair again: said already");
+    CHECK(hg_fk_session_settings(&s, 12, HG_FK_TOLERANCE_MAX_M * 2, 0, 0) == HG_FK_SAY_REFUSED &&
+              hg_fk_session_settings(&s, HG_FK_ITERATION_CAP + 1, 1e-10, 0, 0) == HG_FK_SAY_REFUSED,
+          "tolerance 2e-6 m and %d iterations refused", HG_FK_ITERATION_CAP + 1);
+    CHECK(hg_fk_session_settings(&s, HG_FK_ITERATION_CAP, HG_FK_TOLERANCE_MAX_M, 0, 0) == HG_FK_SAY_NOTHING &&
+              s.in_force.max_iterations == HG_FK_ITERATION_CAP && s.in_force.tolerance_m == HG_FK_TOLERANCE_MAX_M,
+          "the bounds themselves are valid");
+    CHECK(hg_fk_session_settings(&s, 0, 1e-10, 0, 0) == HG_FK_SAY_REFUSED,
+          "a pair refused before is said again after a valid one");
+    /* the run of failures */
+    CHECK(hg_fk_session_result(&s, 0) == HG_FK_SAY_NOTHING && s.fail_count == 0, "a success: nothing to say");
+    CHECK(hg_fk_session_result(&s, HG_ERR_NO_CONVERGENCE) == HG_FK_SAY_FAILING && s.failing && s.fail_count == 1,
+          "the first failure of a run is said");
+    quiet = 1;
+    for (k = 0; k < 9; k++)
+        quiet &= hg_fk_session_result(&s, k % 2 ? HG_ERR_NO_CONVERGENCE : HG_ERR_UNREACHABLE) == HG_FK_SAY_NOTHING;
+    CHECK(quiet && s.fail_count == 10, "the rest of the run is counted, not said (%u failures)", s.fail_count);
+    CHECK(hg_fk_session_result(&s, 0) == HG_FK_SAY_SOLVES_AGAIN && !s.failing, "the first success after it is said");
+    CHECK(hg_fk_session_result(&s, 0) == HG_FK_SAY_NOTHING, "the next success: nothing");
+    CHECK(hg_fk_session_result(&s, HG_ERR_UNREACHABLE) == HG_FK_SAY_FAILING && s.fail_count == 11,
+          "a new run is said again");
+    s.fail_count = 0xffffffffu;
+    hg_fk_session_result(&s, HG_ERR_UNREACHABLE);
+    CHECK(s.fail_count == 0, "the count wraps as a HAL u32 does");
+}
+
 int main(void)
 {
     hg_params p, wide;
@@ -458,5 +516,6 @@ int main(void)
     test_refusals(&p);
     test_geometry_mismatch(&p);
     test_ik_guarded(&p);
+    test_fk_session();
     return hg_test_exit();
 }
