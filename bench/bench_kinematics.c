@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include "hg_errors.h"
 #include "hg_kinematics.h"
+#include "hg_guard.h"
 #include "hg_params.h"
 #include "bench_timing.h"
 

@@ -26,6 +26,7 @@
 
 #include "hg_errors.h"
 #include "hg_kinematics.h"
+#include "hg_guard.h"
 #include "hg_params.h"
 #include "hg_text.h"
 #include "hg_units.h"

@@ -269,3 +269,40 @@ double hg_guard_home_clearance(const hg_geometry *g)
             best = fmin(best, hg_segment_distance(B[j], A[j], B[k], A[k]));
     return best;
 }
+
+int hg_inverse_kinematics_guarded(const hg_geometry *g, const double pose[6], double z[6],
+                                  hg_guard_report *report)
+{
+    double out[6];
+    int k, rc;
+    if (report) {
+        report->kind = HG_GUARD_NONE;
+        report->bar = report->other = -1;
+        report->value = report->limit = 0.0;
+    }
+    rc = hg_inverse_kinematics(g, pose, out);
+    if (rc == HG_OK)                   /* joints exist; can the machine take the pose? */
+        rc = hg_guard_check(g, out, pose, 0, report);
+    if (rc == HG_OK)
+        for (k = 0; k < 6; k++)
+            z[k] = out[k];
+    return rc;
+}
+
+int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6],
+                          const hg_fk_options *opt, hg_fk_report *report)
+{
+    double c[6];
+    int k, rc;
+    if (report)
+        report->guard.kind = HG_GUARD_NONE;
+    for (k = 0; k < 6; k++)
+        c[k] = pose[k];
+    rc = hg_forward_solve(g, z, c, opt, report ? &report->iterations : 0, report ? &report->residual_m : 0);
+    if (rc == HG_OK)
+        rc = hg_guard_check(g, z, c, 0, report ? &report->guard : 0);
+    if (rc == HG_OK)
+        for (k = 0; k < 6; k++)
+            pose[k] = c[k];
+    return rc;
+}

@@ -19,6 +19,7 @@
 #define HG_GUARD_H
 
 #include "hg_geometry.h"
+#include "hg_kinematics.h"
 
 /* The region a machine with broken bars may be in: the model has no
  * contacts, and a head swinging further would strike bars and posts that
@@ -45,10 +46,6 @@ typedef struct {
     double value;                 /* the angle (rad) or distance (m) found */
     double limit;                 /* the limit it crossed (rad or m) */
 } hg_guard_report;
-
-/* after hg_guard_report, which hg_kinematics.h uses (it defines hg_frame,
- * used below, before it includes this file) */
-#include "hg_kinematics.h"
 
 /* Check the state (carriage heights z, head pose) against the limits of
  * g; bars whose bit is set in `broken` are left out (region check
@@ -112,5 +109,31 @@ double hg_segment_distance(const double p1[3], const double q1[3], const double 
 
 /* Smallest distance between two bar axes with the machine at HOME (m). */
 double hg_guard_home_clearance(const hg_geometry *g);
+
+/* The kinematics the machine answers with: the solves of hg_kinematics.h,
+ * their answers checked by the guard. */
+typedef struct {
+    int iterations;            /* iterations used by the last call */
+    double residual_m;         /* max over bars of ||B-A| - l| at the answer */
+    hg_guard_report guard;     /* the limit crossed, when the answer was refused by the guard */
+} hg_fk_report;
+
+/* The joints of a pose the machine can take: hg_inverse_kinematics, then
+ * hg_guard_check of the answer (the bars' joint ranges and clearance; what
+ * `hexaglide ik` and the Python binding's ik report). 0, or the inverse's
+ * codes, or HG_ERR_JOINT_RANGE / HG_ERR_BAR_CLEARANCE with *report (may
+ * be 0; kind HG_GUARD_NONE when the inverse failed) naming the bar(s),
+ * value and limit. z untouched on failure. */
+int hg_inverse_kinematics_guarded(const hg_geometry *g, const double pose[6], double z[6],
+                                  hg_guard_report *report);
+
+/* The pose of joints z the machine can take: hg_forward_solve from the
+ * guess pose (overwritten with the answer on success only), then
+ * hg_guard_check of the answer: a bar beyond its joint range or two bars
+ * touching is refused (HG_ERR_JOINT_RANGE, HG_ERR_BAR_CLEARANCE,
+ * report->guard says which), so a guess far away never yields a crossed
+ * assembly. 0, or those, or hg_forward_solve's codes. report may be 0. */
+int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6],
+                          const hg_fk_options *opt, hg_fk_report *report);
 
 #endif

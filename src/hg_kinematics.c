@@ -26,7 +26,6 @@ void hg_fk_options_default(hg_fk_options *o)
 {
     o->max_iterations = 30;
     o->tolerance_m = 1e-12;
-    o->skip_guard = 0;
 }
 
 int hg_fk_options_check(const hg_fk_options *o, const char **field, const char **why)
@@ -284,25 +283,6 @@ int hg_inverse_kinematics(const hg_geometry *g, const double pose[6], double z[6
     return HG_OK;
 }
 
-int hg_inverse_kinematics_guarded(const hg_geometry *g, const double pose[6], double z[6],
-                                  hg_guard_report *report)
-{
-    double out[6];
-    int k, rc;
-    if (report) {
-        report->kind = HG_GUARD_NONE;
-        report->bar = report->other = -1;
-        report->value = report->limit = 0.0;
-    }
-    rc = hg_inverse_kinematics(g, pose, out);
-    if (rc == HG_OK)                   /* joints exist; can the machine take the pose? */
-        rc = hg_guard_check(g, out, pose, 0, report);
-    if (rc == HG_OK)
-        for (k = 0; k < 6; k++)
-            z[k] = out[k];
-    return rc;
-}
-
 double hg_bar_length_error(const hg_geometry *g, const double z[6], const double pose[6])
 {
     double phi[6], worst = 0.0;
@@ -357,8 +337,8 @@ static int on_machine_branch(const hg_geometry *g, const double z[6], const doub
     return 1;
 }
 
-int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6],
-                          const hg_fk_options *opt, hg_fk_report *report)
+int hg_forward_solve(const hg_geometry *g, const double z[6], double pose[6], const hg_fk_options *opt,
+                     int *iterations, double *residual_m)
 {
     hg_fk_options o;
     hg_frame f;
@@ -368,11 +348,10 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
         o = *opt;
     else
         hg_fk_options_default(&o);
-    if (report) {
-        report->iterations = 0;
-        report->residual_m = 0.0;
-        report->guard.kind = HG_GUARD_NONE;
-    }
+    if (iterations)
+        *iterations = 0;
+    if (residual_m)
+        *residual_m = 0.0;
     if (hg_fk_options_check(&o, 0, 0))
         return HG_ERR_BAD_PARAM;      /* nothing clamped: the caller names the setting (hg_fk_options_check) */
     if (!hg_all_finite(6, z) || !hg_all_finite(6, pose) || !isfinite(o.tolerance_m))
@@ -396,8 +375,8 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
             if (!(sk <= step))
                 step = sk;
         }
-        if (report)
-            report->iterations = it;
+        if (iterations)
+            *iterations = it;
         if (!(step <= HG_FK_MAX_STEP * g->l_m) || !hg_all_finite(6, c)) {
             rc = HG_ERR_DIVERGED;
             break;
@@ -408,8 +387,8 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
         }
     }
     residual = hg_bar_length_error(g, z, c);
-    if (report)
-        report->residual_m = residual;
+    if (residual_m)
+        *residual_m = residual;
     /* the last step was below tolerance, so the residual is far below it;
      * the margin only guards against a Jacobian that lied */
     if (rc == HG_OK && !(residual <= 1e3 * o.tolerance_m + 1e-12))
@@ -418,8 +397,6 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
         rc = HG_ERR_EULER_SINGULAR;
     if (rc == HG_OK && !on_machine_branch(g, z, c))
         rc = HG_ERR_WRONG_BRANCH;
-    if (rc == HG_OK && !o.skip_guard)
-        rc = hg_guard_check(g, z, c, 0, report ? &report->guard : 0);
     if (rc == HG_OK)
         for (k = 0; k < 6; k++)
             pose[k] = c[k];

@@ -25,10 +25,6 @@ typedef struct {
     double head[6][3];         /* hg_head_point of each bar */
 } hg_frame;
 
-/* after hg_frame, which hg_guard.h uses (hg_guard.h in turn defines its
- * report before it includes this file) */
-#include "hg_guard.h"
-
 #define HG_NBARS 6
 /* positions (pose X Y Z, joints) beyond this many bar lengths are refused
  * as unreachable: far outside any machine, and where rounding would
@@ -42,17 +38,9 @@ typedef struct {
     int max_iterations;        /* hard bound on iterations, >= 1 */
     double tolerance_m;        /* stop when the Newton step (m, angles as arc length l*rad)
                                   is below this; the residual is then far below it */
-    int skip_guard;            /* 1: no mechanical guard on the answer (a measure near a pose the
-                                  machine holds: the commanded tool of a tool-path error) */
 } hg_fk_options;
 
-typedef struct {
-    int iterations;            /* iterations used by the last call */
-    double residual_m;         /* max over bars of ||B-A| - l| at the answer */
-    hg_guard_report guard;     /* the limit crossed, when the answer was refused by the guard */
-} hg_fk_report;
-
-/* Default FK options: 30 iterations, 1e-12 m, guarded. */
+/* Default FK options: 30 iterations, 1e-12 m. */
 void hg_fk_options_default(hg_fk_options *o);
 
 #define HG_FK_ITERATION_CAP 100    /* max_iterations at most this */
@@ -148,27 +136,19 @@ void hg_constraint_jacobian(const hg_geometry *g, const double z[6], const doubl
  * |X|, |Y|, |Z| beyond HG_MAX_ABS_POSITION_BARS l) (joints untouched on failure). */
 int hg_inverse_kinematics(const hg_geometry *g, const double pose[6], double z[6]);
 
-/* The joints of a pose the machine can take: hg_inverse_kinematics, then
- * hg_guard_check of the answer (the bars' joint ranges and clearance; what
- * `hexaglide ik` and the Python binding's ik report). 0, or the inverse's
- * codes, or HG_ERR_JOINT_RANGE / HG_ERR_BAR_CLEARANCE with *report (may
- * be 0; kind HG_GUARD_NONE when the inverse failed) naming the bar(s),
- * value and limit. z untouched on failure. */
-int hg_inverse_kinematics_guarded(const hg_geometry *g, const double pose[6], double z[6],
-                                  hg_guard_report *report);
-
 /* Forward kinematics by Newton-Raphson on the six bar equations with the
  * analytic Jacobian, starting from pose (the guess) and overwriting it with
- * the answer on success only. An answer the machine cannot take is
- * refused: a carriage below its head joint (HG_ERR_WRONG_BRANCH), a bar
- * beyond its joint range or two bars touching (hg_guard_check:
- * HG_ERR_JOINT_RANGE, HG_ERR_BAR_CLEARANCE, report->guard says which);
- * so a guess far away never yields a crossed assembly. 0, or those, or
- * HG_ERR_NONFINITE_INPUT, HG_ERR_UNREACHABLE (a joint beyond
- * HG_MAX_ABS_POSITION_BARS l), HG_ERR_NO_CONVERGENCE,
- * HG_ERR_SINGULAR_JACOBIAN, HG_ERR_DIVERGED, HG_ERR_EULER_SINGULAR.
- * report may be 0. */
-int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6],
-                          const hg_fk_options *opt, hg_fk_report *report);
+ * the answer on success only; *iterations and *residual_m (either may be
+ * 0) are the iterations used and the largest bar-length error at the last
+ * iterate. An answer on the other branch, a carriage below its head joint,
+ * is refused (HG_ERR_WRONG_BRANCH); the mechanical limits are not checked:
+ * hg_forward_kinematics (hg_guard.h) is the solve the machine answers
+ * with, this one a measure near a pose it holds (the commanded tool of a
+ * tool-path error). 0, or HG_ERR_BAD_PARAM (opt refused by
+ * hg_fk_options_check), HG_ERR_NONFINITE_INPUT, HG_ERR_UNREACHABLE (a joint
+ * beyond HG_MAX_ABS_POSITION_BARS l), HG_ERR_NO_CONVERGENCE,
+ * HG_ERR_SINGULAR_JACOBIAN, HG_ERR_DIVERGED, HG_ERR_EULER_SINGULAR. */
+int hg_forward_solve(const hg_geometry *g, const double z[6], double pose[6], const hg_fk_options *opt,
+                     int *iterations, double *residual_m);
 
 #endif

@@ -346,9 +346,8 @@ static double tool_error(const hg_plant_model *m, const hg_plant_data *d, const 
     int k;
     hg_fk_options_default(&o);
     o.max_iterations = TOOL_FK_ITERATIONS;
-    o.skip_guard = 1;
     memcpy(pose, hd->pose, sizeof pose);
-    if (hg_forward_kinematics(&hm->p.geo, pos_cmd, pose, &o, 0))
+    if (hg_forward_solve(&hm->p.geo, pos_cmd, pose, &o, 0, 0))   /* a measure near the pose held: no guard */
         return -1.0;
     hg_tool_tip(hd->pose, hm->p.tool_d_m, tip);
     hg_tool_tip(pose, hm->p.tool_d_m, tip_cmd);

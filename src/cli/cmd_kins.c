@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "hg_errors.h"
 #include "hg_kinematics.h"
+#include "hg_guard.h"
 #include "hg_guard_text.h"
 #include "hg_units.h"
 

@@ -6,6 +6,7 @@
 #include "hg_test.h"
 #include "hg_errors.h"
 #include "hg_kinematics.h"
+#include "hg_guard.h"
 
 #define DEG (3.14159265358979323846 / 180.0)
 

@@ -12,7 +12,7 @@
  *  - hg_lu_factor and hg_lu_solve (constant bounds for 6x6, unrolled
  *    loops, a scan without a branch per entry) against their generic
  *    loops, copied here;
- *  - hg_forward_kinematics's Newton terms (one sin/cos, rotation and frame
+ *  - hg_forward_solve's Newton terms (one sin/cos, rotation and frame
  *    for phi and its Jacobian) against hg_constraints +
  *    hg_constraint_jacobian, the iterations it replaces;
  * (the guard's clearance bound: test_guard; golden states: test_golden). */
@@ -22,6 +22,7 @@
 #include "hg_spd6.h"
 #include "hg_linalg.h"
 #include "hg_kinematics.h"
+#include "hg_guard.h"
 #include "hg_drive.h"
 #include "hg_errors.h"
 #include "hg_params.h"
@@ -336,7 +337,7 @@ static void test_lu6(void)
           "(%d refused alike: singular, zero, Inf, NaN; %d solves of 1..3 columns)", singular, solved);
 }
 
-/* hg_forward_kinematics's Newton iteration as it was: hg_constraints and
+/* hg_forward_solve's Newton iteration as it was: hg_constraints and
  * hg_constraint_jacobian at each iterate; the iterations run, or -1. */
 static int fk_reference(const hg_geometry *g, const double z[6], double c[6], int max_it)
 {
@@ -367,24 +368,22 @@ static void test_fk_terms(void)
     int t, k, tried = 0, same = 1, its = 0;
     hg_params_default(&p);
     hg_fk_options_default(&o);
-    o.skip_guard = 1;
     for (t = 0; t < 1500; t++) {
         double target[6], z[6], c[6], pose[6];
-        hg_fk_report rep;
-        int rc, it;
+        int rc, it, iterations;
         for (k = 0; k < 6; k++)
             target[k] = hg_test_uniform(-1, 1) * (k < 3 ? 0.1 : 0.25);
         if (hg_inverse_kinematics(&p.geo, target, z) != HG_OK)
             continue;
         for (k = 0; k < 6; k++)        /* started up to 5 mm / 1 degree away, as the tool error's */
             c[k] = pose[k] = target[k] + hg_test_uniform(-1, 1) * (k < 3 ? 5e-3 : 0.0175);
-        rc = hg_forward_kinematics(&p.geo, z, pose, &o, &rep);
+        rc = hg_forward_solve(&p.geo, z, pose, &o, &iterations, 0);
         it = fk_reference(&p.geo, z, c, o.max_iterations);
         tried++;
         its += it;
-        same &= rc == HG_OK && it == rep.iterations && same_bits(pose, c, 6);
+        same &= rc == HG_OK && it == iterations && same_bits(pose, c, 6);
     }
-    CHECK(tried > 500 && same, "hg_forward_kinematics = the Newton iteration on hg_constraints and "
+    CHECK(tried > 500 && same, "hg_forward_solve = the Newton iteration on hg_constraints and "
           "hg_constraint_jacobian bit for bit, iterations alike, on %d poses (%.2f iterations each)",
           tried, its / (double)(tried ? tried : 1));
 }
