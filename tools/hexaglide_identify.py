@@ -1668,6 +1668,15 @@ def main(argv=None):
     try:
         if not (a.cutoff > 0):
             raise BadInput("--cutoff must be positive (Hz)")
+        # the outputs and the validation's commands now, not after the fit
+        if a.plots and os.path.exists(a.plots) and not os.path.isdir(a.plots):
+            raise BadInput("--plots %s: not a directory; give a directory (made when missing)" % a.plots)
+        if a.commands and not a.validate:
+            raise BadInput("--commands %s: the joint commands of the closed-loop validation; give --validate "
+                           "RECORD as well" % a.commands)
+        if a.commands and not os.path.isfile(a.commands):
+            raise BadInput("--commands %s: %s" % (a.commands, "a directory; give a file" if os.path.isdir(a.commands)
+                                                  else "no such file"))
         runs = [read_run(p, a.ini) for p in a.records]
         if a.cutoff * 2 * runs[0].dt >= 0.5:
             raise BadInput("--cutoff %g Hz: must be below a quarter of the sampling rate (%g Hz)"
