@@ -238,6 +238,7 @@ for _i, _s in ((7, BoardParams), (9, BoardInputs), (10, BoardOutputs)):
                           % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
 
 _board_init = _sig("hg_board_init", C.c_int, _P, C.c_int, C.c_int, _P)
+_board_params_check = _sig("hg_board_params_check", C.c_int, _P, _P, _P, _P)
 _plant_find = _sig("hg_plant_find", C.c_int, C.c_char_p)
 _plant_variant_named = _sig("hg_plant_variant_named", C.c_int, C.c_int, C.c_char_p)
 _board_inputs_default = _sig("hg_board_inputs_default", None, _P, C.POINTER(BoardInputs))
@@ -372,6 +373,19 @@ class PlantParams:
         out = BoardOutputs()
         _board_peek(buf, C.byref(out))
         return out.channels
+
+    def refused(self):
+        """[(name, value, why)] of every parameter the plant refuses (hg_board_params_check); [] if none."""
+        buf = C.create_string_buffer(_sizeof(8))
+        if _board_init(buf, self.plant, self.variant, None):      # the plant's defaults: its checks
+            raise ValueError("plant %s: cannot build its board" % plant_names()[self.plant])
+        bp = self.board_params()
+        bad = (C.c_ulonglong * 5)()                              # hg_bitset (HG_BITSET_BITS 320)
+        why = (C.c_char_p * (PLANT_PARAMS_MAX + 2))()            # HG_BOARD_WHY_LEN
+        if not _board_params_check(buf, C.byref(bp), bad, why):
+            return []
+        return [(name, self.v[i], (why[i] or b"refused").decode()) for i, name in enumerate(self.names)
+                if bad[i // 64] >> (i % 64) & 1]
 
     def board_params(self, substeps=1, integrator=DEFAULT_INTEGRATOR):
         bp = BoardParams()

@@ -556,10 +556,19 @@ def read_sampler(path, ini):
 
 def read_run(path, ini):
     """A board record (magic line) or a sampler recording."""
+    import hexaglide_identify_serial as ids
+    if os.path.isdir(path):
+        raise BadInput("%s: a directory; give a record file" % path)
     if not os.path.isfile(path):
         raise BadInput("%s: no such file" % path)
-    with open(path, "rb") as f:
-        first = f.read(len(REC_MAGICS[0]))
+    try:
+        with open(path, "rb") as f:
+            first = f.read(len(REC_MAGICS[0]))
+    except OSError as ex:
+        raise BadInput("%s: cannot read it: %s" % (path, ex.strerror or ex))
+    if ids.is_serial_record(path):
+        raise BadInput("%s: a record of the serial plant (in.plant); this run of identify is the Hexaglide's: "
+                       "give a serial machine's records alone, a Hexaglide's alone (docs/serial.md)" % path)
     run = read_board_record(path) if first in REC_MAGICS else read_sampler(path, ini)
     if run.volts is None or len(run.volts) == 0:
         raise BadInput("%s: line %d: the %s has no samples (%s): record a run, one row per servo period"
@@ -1599,13 +1608,38 @@ def known_params(runs, sets):
     return p
 
 
+def record_args(args):
+    """The RECORD arguments of identify's command line (not the values of its options)."""
+    import argparse
+    ap = argparse.ArgumentParser(add_help=False)
+    for opt in ("--validate", "--output", "--plots", "--ini", "--set", "--source", "--cutoff", "--timing",
+                "--commands"):
+        ap.add_argument(opt, action="append")
+    ap.add_argument("records", nargs="*")
+
+    def error(msg):                           # a bad command line: the real parser says what is wrong
+        raise ValueError(msg)
+    ap.error = error
+    try:
+        ns, _ = ap.parse_known_intermixed_args(args)
+    except (TypeError, ValueError):
+        return []
+    return [x for x in ns.records if os.path.isfile(x)]
+
+
 def main(argv=None):
     """hexaglide identify: read, fit, report, validate, write."""
     import argparse
     import hexaglide_identify_serial as ids
     args = list(sys.argv[1:] if argv is None else argv)
-    recs = [x for x in args if not x.startswith("-") and os.path.isfile(x)]
-    if recs and ids.is_serial_record(recs[0]):    # the serial plant's records: its own force balance
+    recs = record_args(args)
+    serial = [r for r in recs if ids.is_serial_record(r)]
+    if serial and len(serial) < len(recs):
+        other = next(r for r in recs if r not in serial)
+        log("%s is a record of the serial plant, %s is not: identify fits one machine; give the records of "
+            "one plant (docs/serial.md)" % (serial[0], other))
+        return 2
+    if serial:                                # the serial plant's records: its own force balance
         return ids.main(args)
     ap = argparse.ArgumentParser(prog="hexaglide identify", description=__doc__.split("\n\n")[0])
     ap.add_argument("records", nargs="+", metavar="RECORD",
@@ -1634,6 +1668,15 @@ def main(argv=None):
     try:
         if not (a.cutoff > 0):
             raise BadInput("--cutoff must be positive (Hz)")
+        # the outputs and the validation's commands now, not after the fit
+        if a.plots and os.path.exists(a.plots) and not os.path.isdir(a.plots):
+            raise BadInput("--plots %s: not a directory; give a directory (made when missing)" % a.plots)
+        if a.commands and not a.validate:
+            raise BadInput("--commands %s: the joint commands of the closed-loop validation; give --validate "
+                           "RECORD as well" % a.commands)
+        if a.commands and not os.path.isfile(a.commands):
+            raise BadInput("--commands %s: %s" % (a.commands, "a directory; give a file" if os.path.isdir(a.commands)
+                                                  else "no such file"))
         runs = [read_run(p, a.ini) for p in a.records]
         if a.cutoff * 2 * runs[0].dt >= 0.5:
             raise BadInput("--cutoff %g Hz: must be below a quarter of the sampling rate (%g Hz)"

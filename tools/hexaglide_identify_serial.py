@@ -86,8 +86,15 @@ class Record:
 
 def read_record(path):
     import hexaglide_identify as hid
-    with open(path, "rb") as f:
-        data = f.read()
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError as ex:
+        raise BadInput("%s: cannot read it: %s; give a record file" % (path, ex.strerror or ex))
+    if not is_serial_record(path) and not hid._rec_open(C.create_string_buffer(hid.REC_BYTES), data, len(data),
+                                                       C.byref(hid._RecErr())):
+        raise BadInput("%s: not a record of the serial plant (its in.plant, '# plant'): give a serial machine's "
+                       "records alone (docs/serial.md)" % path)
     r = C.create_string_buffer(hid.REC_BYTES)
     e = hid._RecErr()
     if hid._rec_open(r, data, len(data), C.byref(e)):
@@ -209,7 +216,21 @@ def known(rec, sets):
             kn[k] = float(v)
         except ValueError:
             raise BadInput("--set %s: not a number" % s)
+    pp = record_params(rec, rec_told_index(rec))
+    for name, v in kn.items():
+        pp[name] = v
+    for name, v, why in pp.refused():
+        given = [x for x in sets if x.partition("=")[0] == name]
+        if given:
+            raise BadInput("--set %s: %s" % (given[-1], why))
+        if name in kn:
+            raise BadInput("%s: %s = %r: %s" % (rec.path, name, v, why))
     return kn
+
+
+def rec_told_index(rec):
+    """rec.told by table index (record_params' form)."""
+    return {rec.names.index(name): v for name, v in rec.told.items()}
 
 
 def axis_rows(rec, k, kn, slow_vs=SLOW, mc=(None, 0.0)):

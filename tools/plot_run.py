@@ -22,14 +22,18 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import hg_csv  # noqa: E402
+
 JOINTS = ["z11", "z12", "z21", "z22", "z31", "z32"]
 
 
+NEED = ["t_s"] + ["joint.%d.motor-pos-%s" % (j, w) for j in range(6) for w in ("cmd", "fb")]
+
+
 def load(path):
-    with open(path) as f:
-        names = f.readline().strip().split(",")
-    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    return {n: data[:, i] for i, n in enumerate(names)}
+    """The run's columns by name; hg_csv.CsvError naming the line of a bad file."""
+    return hg_csv.read(path, NEED, "a run sampled by tools/headless/hexaglide_headless.py")[1]
 
 
 def program_window(d):
@@ -187,21 +191,33 @@ def plot_tool_error(d, path):
 
 
 def main(argv):
-    if len(argv) < 2:
+    if len(argv) not in (2, 3) or argv[1] in ("-h", "--help"):
         print(__doc__, file=sys.stderr)
         return 2
     csv = argv[1]
     outdir = argv[2] if len(argv) > 2 else os.path.dirname(os.path.abspath(csv))
+    if not os.path.isdir(outdir):
+        print("plot_run.py: %s: not a directory; give an existing directory for the plots" % outdir,
+              file=sys.stderr)
+        return 2
     stem = os.path.join(outdir, os.path.splitext(os.path.basename(csv))[0])
-    d = load(csv)
-    plot_z11_z12(d, stem + "_z11_z12.png")
-    plot_ferror(d, stem + "_ferror.png")
-    plot_step_time(d, stem + "_step_time.png")
-    plot_pose(d, stem + "_pose.png")
-    tool = plot_tool_error(d, stem + "_tool_error.png")
-    s = summarize(d)
-    with open(stem + "_summary.json", "w") as f:
-        json.dump(s, f, indent=1)
+    try:
+        d = load(csv)
+    except hg_csv.CsvError as ex:
+        print("plot_run.py: %s" % ex, file=sys.stderr)
+        return 1
+    try:
+        plot_z11_z12(d, stem + "_z11_z12.png")
+        plot_ferror(d, stem + "_ferror.png")
+        step = plot_step_time(d, stem + "_step_time.png")
+        pose = plot_pose(d, stem + "_pose.png")
+        tool = plot_tool_error(d, stem + "_tool_error.png")
+        s = summarize(d)
+        with open(stem + "_summary.json", "w") as f:
+            json.dump(s, f, indent=1)
+    except OSError as ex:
+        print("plot_run.py: cannot write %s: %s" % (ex.filename or stem, ex.strerror or ex), file=sys.stderr)
+        return 1
     print("program: %.1f s simulated, %d samples" % (s["program_s"], s["program_samples"]))
     print("max following error per joint (joint.N.f-error; cmd-fb incl. one servo period of lag):")
     for name, v in s["joints"].items():
@@ -221,7 +237,8 @@ def main(argv):
         print("tool-path error (motenc-hexaglide.0.tool-error): max %.4f mm, rms %.4f mm%s"
               % (te["max"], te["rms"], ", %d samples without a pose" % te["no_pose_samples"]
                  if te["no_pose_samples"] else ""))
-    print("plots: %s_{z11_z12,ferror,step_time,pose%s}.png" % (stem, ",tool_error" if tool else ""))
+    print("plots: %s_{%s}.png" % (stem, ",".join(["z11_z12", "ferror"] + ["step_time"] * step + ["pose"] * pose +
+                                                 ["tool_error"] * tool)))
     return 0
 
 

@@ -201,7 +201,7 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
             break;
         case OPT_SPREAD: {
             long n;
-            if (int_opt("--spread", v, 1, REPLAY_MAX_SPREAD, "an integer 1..8", &n))
+            if (int_opt("--spread", v, 1, REPLAY_MAX_SPREAD, "an integer 1..16", &n))
                 return 2;
             o->spread = (int)n;
             break;

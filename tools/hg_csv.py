@@ -1,0 +1,67 @@
+"""hg_csv.py - the numeric CSV files the plotting tools read (plot_replay.py:
+`hexaglide replay --csv`; plot_run.py: the headless front end's run): one
+header line of column names, then rows of as many finite numbers. Every
+defect is a CsvError naming the file, the line (and the column) and what is
+wrong: a file that cannot be read (missing, a directory, unreadable), an
+empty one, a header only, a row with too many or too few fields (a file cut
+short), a field that is not a number, NaN or inf, a column the tool needs.
+"""
+import math
+
+import numpy as np
+
+
+class CsvError(Exception):
+    """A CSV that cannot be used: the message names the file, the line and the cause."""
+
+
+def read(path, need=(), what="the CSV this tool reads"):
+    """(names, columns): the header's names and a dict name -> float64 array
+    of the rows; need: columns that must be there (else an error saying the
+    file is not `what`)."""
+    try:
+        with open(path, "rb") as f:
+            raw = f.read()
+    except OSError as ex:
+        raise CsvError("%s: cannot read it: %s" % (path, ex.strerror or ex))
+    if b"\0" in raw:
+        raise CsvError("%s: line %d: binary data, not a CSV" % (path, raw[:raw.index(b"\0")].count(b"\n") + 1))
+    lines = raw.decode("utf-8", errors="replace").split("\n")
+    if lines and lines[-1] == "":
+        lines.pop()
+    if not lines:
+        raise CsvError("%s: the file is empty: no header line" % path)
+    names = [x.strip() for x in lines[0].rstrip("\r").split(",")]
+    if len(set(names)) != len(names):
+        dup = next(n for n in names if names.count(n) > 1)
+        raise CsvError("%s: line 1: column '%s' appears twice" % (path, dup))
+    check_columns(path, names, need, what)
+    rows = []
+    for no, line in enumerate(lines[1:], 2):
+        fields = line.rstrip("\r").split(",")
+        if len(fields) != len(names):
+            raise CsvError("%s: line %d: %d fields, the header names %d (a file cut short?)"
+                           % (path, no, len(fields), len(names)))
+        vals = []
+        for i, x in enumerate(fields):
+            try:
+                v = float(x)
+            except ValueError:
+                v = None
+            if v is None or not math.isfinite(v):
+                raise CsvError("%s: line %d, field %d (%s): '%s' is not a finite number"
+                               % (path, no, i + 1, names[i], x.strip()))
+            vals.append(v)
+        rows.append(vals)
+    if not rows:
+        raise CsvError("%s: a header and no rows: nothing to plot" % path)
+    data = np.array(rows)
+    return names, {n: data[:, i] for i, n in enumerate(names)}
+
+
+
+def check_columns(path, names, need, what="the CSV this tool reads"):
+    """CsvError naming the first of need that names lacks (the file is not `what`)."""
+    for n in need:
+        if n not in names:
+            raise CsvError("%s: line 1: no column '%s': not %s" % (path, n, what))
