@@ -5,7 +5,8 @@ Usage: tools/plot_replay.py REPLAY.csv OUT.png [FROM TO]
 Reads the CSV of `hexaglide replay --csv` (recorded and replayed columns
 side by side, docs/replay.md) and draws, against simulated time: the six
 carriage heights (a serial machine's axes) recorded (solid) and replayed
-(dashed), and their difference per joint (mm); when the record holds the
+(dashed), and their difference per joint (mm; deg for a rotary axis, whose
+columns end in _deg); when the record holds the
 joint commands, also the following error recorded and replayed (or
 predicted by the closed-loop what-if) of the joint whose predicted peak is
 largest, and the largest drive voltage of all, over samples FROM..TO
@@ -16,6 +17,7 @@ The PNG is written as tools/hg_output.py writes (a temporary file and a
 rename for a regular file).
 """
 import os
+import re
 import sys
 
 import matplotlib
@@ -50,15 +52,22 @@ def main():
         if window is None or not 0 <= window[0] <= window[1]:
             return fail("FROM TO '%s %s': give two sample numbers, 0 <= FROM <= TO" % (sys.argv[3], sys.argv[4]), 2)
     try:
-        names, col = hg_csv.read(src, ("sample", "t_s", "z0_rec_mm", "z0_mm"), WHAT)
-        # the channels: the Hexaglide's six joints, a serial machine's axes (replay writes one column each)
-        nj = sum(1 for n in names if n.endswith("_rec_mm") and n[1:-7].isdigit() and n.startswith("z"))
-        hg_csv.check_columns(src, names, ["z%d_mm" % k for k in range(nj)], WHAT)
-        loop = "ferror0_mm" in col
+        names, col = hg_csv.read(src, ("sample", "t_s"), WHAT)
+        # the channels: the Hexaglide's six joints, a serial machine's axes (replay writes one column
+        # each, named in the channel's machine unit: z0_rec_mm, or z0_rec_deg for a rotary axis)
+        unit = {int(m.group(1)): m.group(2) for m in (re.match(r"z(\d+)_rec_(mm|deg)$", n) for n in names) if m}
+        nj = len(unit)
+        if nj == 0 or sorted(unit) != list(range(nj)):
+            raise hg_csv.CsvError("%s: no columns z0_rec_mm (or z0_rec_deg), z1_rec_mm, ... in its header: not %s"
+                                  % (src, WHAT))
+        u = [unit[k] for k in range(nj)]
+        hg_csv.check_columns(src, names, ["z%d_%s" % (k, u[k]) for k in range(nj)], WHAT)
+        loop = "ferror0_%s" % u[0] in col
         if loop:
-            hg_csv.check_columns(src, names, ["%s%d%s" % (c, k, r) for k in range(nj) for c, r in
-                                          (("ferror", "_mm"), ("ferror", "_rec_mm"), ("volts", ""), ("volts", "_rec"))],
-                             WHAT)
+            hg_csv.check_columns(src, names, ["%s%d%s" % (c, k, r % u[k] if "%" in r else r) for k in range(nj)
+                                              for c, r in (("ferror", "_%s"), ("ferror", "_rec_%s"), ("volts", ""),
+                                                           ("volts", "_rec"))],
+                                 WHAT)
     except hg_csv.CsvError as ex:
         return fail(ex)
     hexaglide = nj == len(JOINTS) and "a_rec" in col          # the head's pose: the Hexaglide's CSV
@@ -73,21 +82,23 @@ def main():
     fig, axes = plt.subplots(4 if loop else 2, 1, figsize=(10, 12 if loop else 7), sharex=True)
     ax, dx = axes[0], axes[1]
     for k, name in enumerate(labels):
-        line, = ax.plot(t, col["z%d_rec_mm" % k], lw=1.2, label="%s recorded" % name)
-        ax.plot(t, col["z%d_mm" % k], lw=1.0, ls="--", color=line.get_color(), label="%s replayed" % name)
-        dx.plot(t, col["z%d_mm" % k] - col["z%d_rec_mm" % k], lw=1.0, color=line.get_color(), label=name)
-    ax.set_ylabel("carriage height (mm)" if hexaglide else "axis position (mm)")
+        rec, rep = col["z%d_rec_%s" % (k, u[k])], col["z%d_%s" % (k, u[k])]
+        line, = ax.plot(t, rec, lw=1.2, label="%s recorded" % name)
+        ax.plot(t, rep, lw=1.0, ls="--", color=line.get_color(), label="%s replayed" % name)
+        dx.plot(t, rep - rec, lw=1.0, color=line.get_color(), label=name)
+    units = " or ".join(sorted(set(u), key=u.index))           # mm, deg, or "mm or deg"
+    ax.set_ylabel("carriage height (mm)" if hexaglide else "axis position (%s)" % units)
     ax.set_title("recorded (solid) and replayed (dashed) run")
     ax.legend(ncol=4, fontsize=7)
-    dx.set_ylabel("replayed - recorded (mm)")
+    dx.set_ylabel("replayed - recorded (%s)" % units)
     dx.legend(ncol=6, fontsize=7)
     if loop:
-        k = int(np.argmax([np.max(np.abs(col["ferror%d_mm" % j][w])) for j in range(nj)]))
+        k = int(np.argmax([np.max(np.abs(col["ferror%d_%s" % (j, u[j])][w])) for j in range(nj)]))
         fx, vx = axes[2], axes[3]
-        fx.plot(t[w], col["ferror%d_rec_mm" % k][w] * 1e3, lw=0.8, label="%s recorded" % labels[k])
-        fx.plot(t[w], col["ferror%d_mm" % k][w] * 1e3, lw=0.8, alpha=0.8,
+        fx.plot(t[w], col["ferror%d_rec_%s" % (k, u[k])][w] * 1e3, lw=0.8, label="%s recorded" % labels[k])
+        fx.plot(t[w], col["ferror%d_%s" % (k, u[k])][w] * 1e3, lw=0.8, alpha=0.8,
                 label="%s replayed / predicted" % labels[k])
-        fx.set_ylabel("following error (um)")
+        fx.set_ylabel("following error (%s)" % ("um" if u[k] == "mm" else "millidegrees"))
         fx.set_title("following error%s" % (" (samples %d..%d)" % window if window else ""))
         fx.legend(fontsize=7)
         rec = np.max(np.abs([col["volts%d_rec" % j] for j in range(nj)]), axis=0)

@@ -280,10 +280,23 @@ static int csv_extra(const hg_plant *p, int i)
     return p->outputs[i].rec_name && !p->outputs[i].is_u32;
 }
 
-/* One CSV row: sample, time, recorded and replayed joints (mm), the replayed
- * motors (the encoders' side, mm), counts, the plant's own outputs (its HAL
- * units), the replayed tool-path error (mm, -1 none: a format-1 record has
- * no commands), fault codes; with joint commands: f-errors (mm) and drive volts. */
+/* Channel k's machine unit: deg for a rotary channel (bit k of rotary), else mm. */
+static double machine_unit(unsigned rotary, int k)
+{
+    return (rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M;
+}
+
+/* Its name, as the CSV's column names end. */
+static const char *machine_unit_name(unsigned rotary, int k)
+{
+    return (rotary >> k) & 1u ? "deg" : "mm";
+}
+
+/* One CSV row: sample, time, recorded and replayed joints (machine units:
+ * mm, deg for a rotary axis), the replayed motors (the encoders' side),
+ * counts, the plant's own outputs (its HAL units), the replayed tool-path
+ * error (mm, -1 none: a format-1 record has no commands), fault codes; with
+ * joint commands: f-errors (machine units) and drive volts. */
 static void csv_row(FILE *f, long n, const double *row, const replay_cols *c, const hg_board_outputs *o,
                     const double (*fe)[HG_CHANNELS_MAX], const double (*volts)[HG_CHANNELS_MAX])
 {
@@ -291,11 +304,11 @@ static void csv_row(FILE *f, long n, const double *row, const replay_cols *c, co
     int k, w;
     fprintf(f, "%ld,%.17g", n, o->sim_time_s);
     for (k = 0; k < c->nj; k++)
-        fprintf(f, ",%.17g", row[c->z[k]] * HG_MM_PER_M);
+        fprintf(f, ",%.17g", row[c->z[k]] * machine_unit(o->rotary, k));
     for (k = 0; k < c->nj; k++)
-        fprintf(f, ",%.17g", o->pos[k] * HG_MM_PER_M);
+        fprintf(f, ",%.17g", o->pos[k] * machine_unit(o->rotary, k));
     for (k = 0; k < c->nj; k++)
-        fprintf(f, ",%.17g", o->motor_pos[k] * HG_MM_PER_M);
+        fprintf(f, ",%.17g", o->motor_pos[k] * machine_unit(o->rotary, k));
     for (k = 0; k < c->nj; k++)
         fprintf(f, ",%.0f", row[c->count[k]]);
     for (k = 0; k < c->nj; k++)
@@ -315,18 +328,19 @@ static void csv_row(FILE *f, long n, const double *row, const replay_cols *c, co
     fputc('\n', f);
 }
 
-/* The CSV header (the plant's outputs by their short names: x, a, ...). */
-static void csv_header(FILE *f, const replay_cols *c, int with_loop)
+/* The CSV header (the plant's outputs by their short names: x, a, ...;
+ * a joint's columns end in its machine unit, _mm or _deg as rotary says). */
+static void csv_header(FILE *f, const replay_cols *c, int with_loop, unsigned rotary)
 {
     const hg_plant *p = c->plant;
     int k, w;
     fprintf(f, "sample,t_s");
     for (k = 0; k < c->nj; k++)
-        fprintf(f, ",z%d_rec_mm", k);
+        fprintf(f, ",z%d_rec_%s", k, machine_unit_name(rotary, k));
     for (k = 0; k < c->nj; k++)
-        fprintf(f, ",z%d_mm", k);
+        fprintf(f, ",z%d_%s", k, machine_unit_name(rotary, k));
     for (k = 0; k < c->nj; k++)
-        fprintf(f, ",zm%d_mm", k);
+        fprintf(f, ",zm%d_%s", k, machine_unit_name(rotary, k));
     for (k = 0; k < c->nj; k++)
         fprintf(f, ",count%d_rec", k);
     for (k = 0; k < c->nj; k++)
@@ -340,9 +354,9 @@ static void csv_header(FILE *f, const replay_cols *c, int with_loop)
     fprintf(f, ",tool_error_mm,fault_code_rec,fault_code");
     if (with_loop) {
         for (k = 0; k < c->nj; k++)
-            fprintf(f, ",ferror%d_rec_mm,volts%d_rec", k, k);
+            fprintf(f, ",ferror%d_rec_%s,volts%d_rec", k, machine_unit_name(rotary, k), k);
         for (k = 0; k < c->nj; k++)
-            fprintf(f, ",ferror%d_mm,volts%d", k, k);
+            fprintf(f, ",ferror%d_%s,volts%d", k, machine_unit_name(rotary, k), k);
     }
     fputc('\n', f);
 }
@@ -716,6 +730,7 @@ int cmd_replay(int argc, char **argv)
     long period = 0, win_from = 0;
     long settings_from = 0, first_enabled = -1, last_enabled = -1;
     FILE *csv = 0;
+    int csv_header_written = 0;
     char csv_auto[4096], png_auto[4000];
     cli_out csv_out;
     const char *csv_path;
@@ -872,8 +887,7 @@ int cmd_replay(int argc, char **argv)
             free(ev);
             return 1;
         }
-        csv = csv_out.f;
-        csv_header(csv, &cols, has_cmd);
+        csv = csv_out.f;               /* its header with the first row: the board knows the units then */
     }
 
     while ((rc = hg_record_next(&r, row, &e)) == 1) {
@@ -1060,6 +1074,10 @@ int cmd_replay(int argc, char **argv)
         }
         prev_ie_rec = ie_rec;
         prev_latched_rec = latched_rec;
+        if (csv && !csv_header_written) {
+            csv_header(csv, &cols, has_cmd, out_w.rotary);
+            csv_header_written = 1;
+        }
         if (csv)
             csv_row(csv, n, row, &cols, &out_w, has_cmd ? (const double (*)[HG_CHANNELS_MAX])fe : 0,
                     (const double (*)[HG_CHANNELS_MAX])volts);
@@ -1070,6 +1088,8 @@ int cmd_replay(int argc, char **argv)
         fprintf(stderr, "hexaglide replay: %s: %s\n", o.file, e.msg);
         status = 1;
     }
+    if (csv && !csv_header_written)    /* no row replayed: the header alone (linear units) */
+        csv_header(csv, &cols, has_cmd, 0);
     if (csv && cli_out_close("replay", &csv_out, !status))
         status = 1;
     free(buf);
