@@ -506,8 +506,10 @@ static void joint_add(joint_stats *j, int w, long n, double fe, double v)
         j->peak_v[w] = fabs(v);
 }
 
-/* The per-joint lines: recorded (and predicted) peak and RMS f-error, peak volts. */
-static void joint_report(const joint_stats *js, int nj, int whatif, long from, long to, int auto_from)
+/* The per-joint lines: recorded (and predicted) peak and RMS f-error (in
+ * the joint's machine unit: deg for a rotary one, bit k of rotary), peak volts. */
+static void joint_report(const joint_stats *js, int nj, unsigned rotary, int whatif, long from, long to,
+                         int auto_from)
 {
     int k;
     printf("f-error window: samples %ld..%ld (%s), each joint while its amplifier is enabled\n", from, to,
@@ -515,17 +517,18 @@ static void joint_report(const joint_stats *js, int nj, int whatif, long from, l
     for (k = 0; k < nj; k++) {
         const joint_stats *j = &js[k];
         double rms0 = j->n ? sqrt(j->sq[0] / (double)j->n) : 0.0, rms1 = j->n ? sqrt(j->sq[1] / (double)j->n) : 0.0;
+        const char *u = machine_unit_name(rotary, k);
         if (!whatif) {
-            printf("joint %d: peak |f-error| %.6f mm (sample %ld), RMS %.6f mm, peak volts %.4f V\n", k,
-                   j->peak_mm[0], j->peak_at[0], rms0, j->peak_v[0]);
+            printf("joint %d: peak |f-error| %.6f %s (sample %ld), RMS %.6f %s, peak volts %.4f V\n", k,
+                   j->peak_mm[0], u, j->peak_at[0], rms0, u, j->peak_v[0]);
             continue;
         }
-        printf("joint %d: peak |f-error| recorded %.6f mm (sample %ld), predicted %.6f mm (sample %ld)",
-               k, j->peak_mm[0], j->peak_at[0], j->peak_mm[1], j->peak_at[1]);
+        printf("joint %d: peak |f-error| recorded %.6f %s (sample %ld), predicted %.6f %s (sample %ld)",
+               k, j->peak_mm[0], u, j->peak_at[0], j->peak_mm[1], u, j->peak_at[1]);
         if (j->peak_mm[0] > 0)
             printf(" %+.1f%%", 100.0 * (j->peak_mm[1] / j->peak_mm[0] - 1.0));
-        printf("; RMS recorded %.6f, predicted %.6f mm; peak volts recorded %.4f, predicted %.4f V\n",
-               rms0, rms1, j->peak_v[0], j->peak_v[1]);
+        printf("; RMS recorded %.6f, predicted %.6f %s; peak volts recorded %.4f, predicted %.4f V\n",
+               rms0, rms1, u, j->peak_v[0], j->peak_v[1]);
     }
 }
 
@@ -1110,7 +1113,7 @@ int cmd_replay(int argc, char **argv)
                 "(run replay without options for the fields): the recorded f-errors are the replayed ones\n",
                 stx.first_mismatch);
     if (has_cmd && first_enabled >= 0)
-        joint_report(js, nj, whatif, win_from, last_enabled, o.from < 0);
+        joint_report(js, nj, out_x.rotary, whatif, win_from, last_enabled, o.from < 0);
     else if (has_cmd && o.from >= stx.samples)
         fprintf(stderr, "hexaglide replay: note: --from %ld is past the record's last sample (%ld): no f-error "
                 "statistics; give a --from below %ld\n", o.from, stx.samples - 1, stx.samples);
