@@ -115,6 +115,13 @@ int cli_params_build(const char *cmd, int plant, int variant, const char *ini, c
  * 0, or 2 after one message per invalid field. */
 int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, int nset, hg_params *p);
 
+/* Channel k's machine unit per SI unit, LinuxCNC's: deg per rad for a
+ * rotary channel (bit k of rotary, hg_board_outputs.rotary), else mm per m. */
+double cli_machine_unit(unsigned rotary, int k);
+
+/* Its name as the CSV columns end: "deg" or "mm". */
+const char *cli_machine_unit_name(unsigned rotary, int k);
+
 /* The board's parameter block of plant as HAL loads it (spec defaults, substeps, integrator). */
 void cli_board_defaults(int plant, int variant, hg_board_params *bp);
 

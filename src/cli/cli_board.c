@@ -6,6 +6,7 @@
 #include <string.h>
 #include "cli.h"
 #include "hg_errors.h"
+#include "hg_units.h"
 
 int cli_plant(const char *cmd, const char *name)
 {
@@ -66,6 +67,16 @@ int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, in
     for (i = 0; i < n; i++)
         *hg_params_at(p, i) = v.v[i];
     return 0;
+}
+
+double cli_machine_unit(unsigned rotary, int k)
+{
+    return (rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M;
+}
+
+const char *cli_machine_unit_name(unsigned rotary, int k)
+{
+    return (rotary >> k) & 1u ? "deg" : "mm";
 }
 
 void cli_board_defaults(int plant, int variant, hg_board_params *bp)

@@ -280,18 +280,6 @@ static int csv_extra(const hg_plant *p, int i)
     return p->outputs[i].rec_name && !p->outputs[i].is_u32;
 }
 
-/* Channel k's machine unit: deg for a rotary channel (bit k of rotary), else mm. */
-static double machine_unit(unsigned rotary, int k)
-{
-    return (rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M;
-}
-
-/* Its name, as the CSV's column names end. */
-static const char *machine_unit_name(unsigned rotary, int k)
-{
-    return (rotary >> k) & 1u ? "deg" : "mm";
-}
-
 /* One CSV row: sample, time, recorded and replayed joints (machine units:
  * mm, deg for a rotary axis), the replayed motors (the encoders' side),
  * counts, the plant's own outputs (its HAL units), the replayed tool-path
@@ -304,11 +292,11 @@ static void csv_row(FILE *f, long n, const double *row, const replay_cols *c, co
     int k, w;
     fprintf(f, "%ld,%.17g", n, o->sim_time_s);
     for (k = 0; k < c->nj; k++)
-        fprintf(f, ",%.17g", row[c->z[k]] * machine_unit(o->rotary, k));
+        fprintf(f, ",%.17g", row[c->z[k]] * cli_machine_unit(o->rotary, k));
     for (k = 0; k < c->nj; k++)
-        fprintf(f, ",%.17g", o->pos[k] * machine_unit(o->rotary, k));
+        fprintf(f, ",%.17g", o->pos[k] * cli_machine_unit(o->rotary, k));
     for (k = 0; k < c->nj; k++)
-        fprintf(f, ",%.17g", o->motor_pos[k] * machine_unit(o->rotary, k));
+        fprintf(f, ",%.17g", o->motor_pos[k] * cli_machine_unit(o->rotary, k));
     for (k = 0; k < c->nj; k++)
         fprintf(f, ",%.0f", row[c->count[k]]);
     for (k = 0; k < c->nj; k++)
@@ -336,11 +324,11 @@ static void csv_header(FILE *f, const replay_cols *c, int with_loop, unsigned ro
     int k, w;
     fprintf(f, "sample,t_s");
     for (k = 0; k < c->nj; k++)
-        fprintf(f, ",z%d_rec_%s", k, machine_unit_name(rotary, k));
+        fprintf(f, ",z%d_rec_%s", k, cli_machine_unit_name(rotary, k));
     for (k = 0; k < c->nj; k++)
-        fprintf(f, ",z%d_%s", k, machine_unit_name(rotary, k));
+        fprintf(f, ",z%d_%s", k, cli_machine_unit_name(rotary, k));
     for (k = 0; k < c->nj; k++)
-        fprintf(f, ",zm%d_%s", k, machine_unit_name(rotary, k));
+        fprintf(f, ",zm%d_%s", k, cli_machine_unit_name(rotary, k));
     for (k = 0; k < c->nj; k++)
         fprintf(f, ",count%d_rec", k);
     for (k = 0; k < c->nj; k++)
@@ -354,9 +342,9 @@ static void csv_header(FILE *f, const replay_cols *c, int with_loop, unsigned ro
     fprintf(f, ",tool_error_mm,fault_code_rec,fault_code");
     if (with_loop) {
         for (k = 0; k < c->nj; k++)
-            fprintf(f, ",ferror%d_rec_%s,volts%d_rec", k, machine_unit_name(rotary, k), k);
+            fprintf(f, ",ferror%d_rec_%s,volts%d_rec", k, cli_machine_unit_name(rotary, k), k);
         for (k = 0; k < c->nj; k++)
-            fprintf(f, ",ferror%d_%s,volts%d", k, machine_unit_name(rotary, k), k);
+            fprintf(f, ",ferror%d_%s,volts%d", k, cli_machine_unit_name(rotary, k), k);
     }
     fputc('\n', f);
 }
@@ -517,7 +505,7 @@ static void joint_report(const joint_stats *js, int nj, unsigned rotary, int wha
     for (k = 0; k < nj; k++) {
         const joint_stats *j = &js[k];
         double rms0 = j->n ? sqrt(j->sq[0] / (double)j->n) : 0.0, rms1 = j->n ? sqrt(j->sq[1] / (double)j->n) : 0.0;
-        const char *u = machine_unit_name(rotary, k);
+        const char *u = cli_machine_unit_name(rotary, k);
         if (!whatif) {
             printf("joint %d: peak |f-error| %.6f %s (sample %ld), RMS %.6f %s, peak volts %.4f V\n", k,
                    j->peak_mm[0], u, j->peak_at[0], rms0, u, j->peak_v[0]);

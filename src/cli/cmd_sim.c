@@ -26,30 +26,24 @@ const char cli_usage_sim[] =
     "CSV to stdout; --volts takes one value per channel of the plant; --substeps and --integrator\n"
     "as the board loads them (motenc-hexaglide.N.substeps, .integrator).\n"
     "--dt is the board's servo period (whole ns); --volts go through the board's 13-bit DAC;\n"
-    "--list-params prints every parameter: spec name, SI unit, default, HAL name and INI key;\n"
+    "--list-params prints every parameter: spec name, SI unit, value (the defaults, then --ini\n"
+    "and --set, checked), HAL name and INI key;\n"
     "--record FILE writes the run as a record of the board's rec pins (hexaglide replay FILE)\n"
     CLI_USAGE_MODEL;
 
-static void list_params(int plant, int variant)
+/* Every parameter of v: spec name, SI unit, value, what it is, HAL name and INI key. */
+static void list_params(int plant, int variant, const hg_plant_params *v)
 {
     const hg_plant *pl = hg_plant_at(plant);
-    hg_plant_params v;
     int i, n = pl->nparams(variant);
-    pl->defaults(variant, &v);
     for (i = 0; i < n; i++) {
         hg_param_info t;
         pl->param(variant, i, &t);
-        printf("%-16s %-8s %-14.9g %s (HAL: %s, %s", t.name, t.unit, v.v[i], t.what, t.hal_name, t.hal_unit);
+        printf("%-16s %-8s %-14.9g %s (HAL: %s, %s", t.name, t.unit, v->v[i], t.what, t.hal_name, t.hal_unit);
         if (t.ini_key)
             printf("; INI: [%s]%s, %s", pl->ini_section, t.ini_key, t.hal_unit);
         printf(")\n");
     }
-}
-
-/* Scale of channel k's position to its CSV unit (mm or deg). */
-static double channel_scale(const hg_board_outputs *o, int k)
-{
-    return (o->rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M;
 }
 
 static void write_row(FILE *f, double t, const hg_plant *pl, const hg_board_outputs *o)
@@ -57,11 +51,11 @@ static void write_row(FILE *f, double t, const hg_plant *pl, const hg_board_outp
     int k;
     fprintf(f, "%.9g", t);
     for (k = 0; k < o->channels; k++)
-        fprintf(f, ",%.9g", o->pos[k] * channel_scale(o, k));
+        fprintf(f, ",%.9g", o->pos[k] * cli_machine_unit(o->rotary, k));
     for (k = 0; k < o->channels; k++)
-        fprintf(f, ",%.9g", o->vel[k] * channel_scale(o, k));
+        fprintf(f, ",%.9g", o->vel[k] * cli_machine_unit(o->rotary, k));
     for (k = 0; k < o->channels; k++)
-        fprintf(f, ",%.9g", o->motor_pos[k] * channel_scale(o, k));
+        fprintf(f, ",%.9g", o->motor_pos[k] * cli_machine_unit(o->rotary, k));
     for (k = 0; k < pl->noutputs; k++)
         if (pl->outputs[k].csv_name)
             fprintf(f, ",%.9g", o->extra[k] * pl->outputs[k].hal_scale);
@@ -74,11 +68,11 @@ static void write_header(FILE *f, const hg_plant *pl, const hg_board_outputs *o)
     int k;
     fprintf(f, "t_s");
     for (k = 0; k < o->channels; k++)
-        fprintf(f, ",z%d_%s", k, (o->rotary >> k) & 1u ? "deg" : "mm");
+        fprintf(f, ",z%d_%s", k, cli_machine_unit_name(o->rotary, k));
     for (k = 0; k < o->channels; k++)
-        fprintf(f, ",zd%d_%s", k, (o->rotary >> k) & 1u ? "deg_s" : "mm_s");
+        fprintf(f, ",zd%d_%s_s", k, cli_machine_unit_name(o->rotary, k));
     for (k = 0; k < o->channels; k++)
-        fprintf(f, ",zm%d_%s", k, (o->rotary >> k) & 1u ? "deg" : "mm");
+        fprintf(f, ",zm%d_%s", k, cli_machine_unit_name(o->rotary, k));
     for (k = 0; k < pl->noutputs; k++)
         if (pl->outputs[k].csv_name)
             fprintf(f, ",%s", pl->outputs[k].csv_name);
@@ -228,10 +222,6 @@ int cmd_sim(int argc, char **argv)
     pl = hg_plant_at(plant);
     if ((variant = cli_variant("sim", plant, model)) < 0)
         return 2;
-    if (list) {
-        list_params(plant, variant);
-        return 0;
-    }
     cli_board_defaults(plant, variant, &bp);
     if (given_substeps)
         bp.substeps = (unsigned)substeps;
@@ -239,6 +229,12 @@ int cmd_sim(int argc, char **argv)
         bp.integrator = (unsigned)hg_integrator_from_name(integrator);
     if (cli_params_build("sim", plant, variant, ini, sets, nset, &bp.plant))
         return 2;
+    if (list) {                        /* the parameters in force: defaults, --ini, --set, checked */
+        if (cli_params_check("sim", plant, variant, &bp.plant))
+            return 2;
+        list_params(plant, variant, &bp.plant);
+        return 0;
+    }
     if (!(t_end >= 0.0)) {
         fprintf(stderr, "hexaglide sim: --time must be >= 0 s, got %g\n", t_end);
         return 2;
