@@ -337,18 +337,19 @@ int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int vari
     return bad ? -1 : 0;
 }
 
-/* One [JOINT_N] key: the key, the pin hexaglide.hal sets from it (0: none)
- * and where its double goes in an hg_loop_config for joint j. */
+/* One [JOINT_N] key: the key, the pin hexaglide.hal sets from it ("": none)
+ * and where its double goes: at offset in joint j's hg_pid_gains (in_pid),
+ * else in hg_loop_config's double[6] array at offset. */
 typedef struct {
     const char *key;
     char pin[48];
-    char *field;
+    int in_pid;
+    size_t offset;
 } joint_key;
 
 /* Joint key i (the pid settings with an INI key in hg_pid.c's order, then
- * the scales) for joint j of c (c may be 0: no field): 1 with *k filled,
- * or 0 past the last. */
-static int joint_key_at(int i, hg_loop_config *c, int j, joint_key *k)
+ * the scales) for joint j: 1 with *k filled, or 0 past the last. */
+static int joint_key_at(int i, int j, joint_key *k)
 {
     const hg_pid_setting *s;
     size_t u;
@@ -361,14 +362,16 @@ static int joint_key_at(int i, hg_loop_config *c, int j, joint_key *k)
         for (u = 0; u < N_OF(unwired_keys); u++)
             if (strcmp(s->ini_key, unwired_keys[u]) == 0)
                 k->pin[0] = '\0';
-        k->field = c ? (char *)&c->pid[j] + s->offset : 0;
+        k->in_pid = 1;
+        k->offset = s->offset;
         return 1;
     }
     if (i < 0 || (size_t)i >= N_OF(scale_keys))
         return 0;
     k->key = scale_keys[i].key;
     snprintf(k->pin, sizeof k->pin, scale_keys[i].pin, j);
-    k->field = c ? (char *)c + scale_keys[i].offset + (size_t)j * sizeof(double) : 0;
+    k->in_pid = 0;
+    k->offset = scale_keys[i].offset + (size_t)j * sizeof(double);
     return 1;
 }
 
@@ -385,7 +388,7 @@ int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, int joints, hg_loo
             bad = 1;
             continue;
         }
-        for (i = 0; joint_key_at(i, c, j, &k); i++) {
+        for (i = 0; joint_key_at(i, j, &k); i++) {
             const cli_ini_entry *e;
             double v;
             int rc = cli_ini_get(cmd, ini, sec, k.key, &e);
@@ -404,7 +407,7 @@ int cli_ini_apply_joints(const char *cmd, const cli_ini *ini, int joints, hg_loo
                 bad = 1;
                 continue;
             }
-            memcpy(k.field, &v, sizeof v);   /* a double field (hg_pid.c's offsetof, or a scale's) */
+            memcpy((k.in_pid ? (char *)&c->pid[j] : (char *)c) + k.offset, &v, sizeof v);   /* a double field */
         }
     }
     return bad ? -1 : 0;
@@ -439,7 +442,7 @@ int cli_ini_optional(const char *cmd, const cli_ini *ini, const char *section, c
 const char *cli_ini_joint_key(int i)
 {
     joint_key k;
-    return joint_key_at(i, 0, 0, &k) ? k.key : 0;
+    return joint_key_at(i, 0, &k) ? k.key : 0;
 }
 
 /* [JOINT_j]key's line (0 if absent): for the messages of checks after reading. */
