@@ -26,34 +26,18 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hexaglide_trainid as trainid  # noqa: E402
 import hg_output  # noqa: E402
+from hg_identify_base import (COLUMNS, NAMES, NCOL, NIN, REC_BYTES, REC_MAGICS, RecErr,  # noqa: E402
+                              RecEvent, Settings, _dp, autocorr_time, butter_lp, clamped_periods,
+                              dac_output, dilate, force_per_volt, fric_col, params_copy, rec_event_of,
+                              rec_next, rec_open, rec_set_kind, usable_stretches)
 
 _reg_sizeof = hg._sig("hg_regressor_sizeof", C.c_ulong)
 _reg_init = hg._sig("hg_regressor_init", C.c_int, C.c_void_p, C.c_void_p, C.POINTER(C.c_char_p),
                     C.POINTER(C.c_char_p))
-_reg_column = hg._sig("hg_regressor_column", C.c_char_p, C.c_int, C.POINTER(C.c_char_p),
-                      C.POINTER(C.c_int))
-_dp = np.ctypeslib.ndpointer(dtype=np.float64, flags="C_CONTIGUOUS")
 _reg_joints_n = hg._sig("hg_regressor_joints_n", C.c_int, C.c_void_p, C.c_long, _dp, _dp, _dp,
                         C.c_void_p, C.c_void_p, _dp, C.POINTER(C.c_long))
 _reg_pose_n = hg._sig("hg_regressor_pose_n", C.c_int, C.c_void_p, C.c_long, _dp, _dp, _dp, _dp,
                       C.c_void_p, C.c_void_p, C.c_void_p, C.POINTER(C.c_long))
-
-
-def _columns():
-    """[(name, unit, carriage)] of the regressor's columns, in order (src/hg_regressor.c)."""
-    out = []
-    j = 0
-    while True:
-        unit, car = C.c_char_p(), C.c_int()
-        name = _reg_column(j, C.byref(unit), C.byref(car))
-        if name is None:
-            return out
-        out.append((name.decode(), unit.value.decode(), car.value))
-        j += 1
-
-
-COLUMNS = _columns()
-NCOL = len(COLUMNS)
 
 
 class Regressor:
@@ -99,21 +83,6 @@ class Regressor:
 _spec = hg._sig("hg_gen_regressor_spec", None, C.c_void_p, C.c_void_p)
 
 
-def column_name(j):
-    """Display name of column j: 'm_head', 'm_drive[3]', 'c_visc[3]'."""
-    n, _, k = COLUMNS[j]
-    return n if k < 0 else "%s[%d]" % (n, k)
-
-
-NAMES = [column_name(j) for j in range(NCOL)]
-NIN = sum(1 for _, _, k in COLUMNS if k < 0)
-
-
-def fric_col(name, k):
-    """Index of friction column `name` ('c_visc', ...) of carriage k."""
-    return NAMES.index("%s[%d]" % (name, k))
-
-
 def param_or(params, name, default=None):
     """params[name], or default when the table has no such parameter."""
     try:
@@ -136,22 +105,6 @@ def prior_pi(params):
         pi[fric_col("f_coulomb", k)] = fc
         pi[fric_col("f_breakaway", k)] = (fs - fc) if fs is not None else 0.0
     return pi
-
-
-_dac_output = hg._sig("hg_dac_output", C.c_double, C.c_double)
-
-
-def dac_output(volts):
-    """What the MOTENC-100's 13-bit DAC puts out for commanded volts (clamped to
-    +-10 V, truncated to steps of 20/8191 V: on average 1.2 mV above the command;
-    src/hg_sensors.c, the board's own model of it)."""
-    v = np.asarray(volts, dtype=float)
-    return np.vectorize(_dac_output, otypes=[float])(v)
-
-
-def force_per_volt(params):
-    """Drive force per DAC volt, N/V: ka kt 2 pi / lead (what a user must know beforehand)."""
-    return params["ka"] * params["kt"] * 2 * np.pi / params["lead"]
 
 
 def params_with(sets, base=None):
@@ -295,36 +248,14 @@ class Run:
         self.last_line = 0
 
 
-class _RecErr(C.Structure):
-    _fields_ = [("code", C.c_int), ("line", C.c_long), ("column", C.c_long), ("field", C.c_int),
-                ("msg", C.c_char * 320)]
-
-
-_rec_open = hg._sig("hg_record_open", C.c_int, C.c_void_p, C.c_char_p, C.c_size_t, C.POINTER(_RecErr))
-_rec_column = hg._sig("hg_record_column", C.c_int, C.c_void_p, C.c_char_p)
-_rec_kind = hg._sig("hg_record_set_kind", None, C.c_void_p, C.c_int, C.c_int)
-_rec_next = hg._sig("hg_record_next", C.c_int, C.c_void_p, _dp, C.POINTER(_RecErr))
-REC_MAGICS = hg.RECORD_MAGICS   # the formats identify reads
-REC_BYTES = 1 << 16           # room for the reader's struct (hg_record: about 5 kB)
-
-
-class _RecEvent(C.Structure):
-    """hg_board_rec_event: one parameter event of a format-2 record (src/hg_board_rec.h)."""
-    _fields_ = [("entry", C.c_uint), ("value", C.c_double), ("at", C.c_ulong)]
-
-
-_rec_event_of = hg._sig("hg_board_rec_event_of", C.c_int, C.c_double, C.c_double, C.c_double, C.c_ulong,
-                        C.POINTER(_RecEvent))
-
-
 def read_board_record(path):
     """A record of tools/hg_record.py (docs/replay.md), through the C reader
     (src/hg_record.c): its messages name line, column and field."""
     with open(path, "rb") as f:
         data = f.read()
     r = C.create_string_buffer(REC_BYTES)
-    e = _RecErr()
-    if _rec_open(r, data, len(data), C.byref(e)):
+    e = RecErr()
+    if rec_open(r, data, len(data), C.byref(e)):
         raise BadInput("%s: %s" % (path, e.msg.decode(errors="replace")))
     lines = data.split(b"\n", 64)
     hdr_no = next(i for i, l in enumerate(lines) if l.startswith(b"sample,")) + 1
@@ -347,23 +278,23 @@ def read_board_record(path):
     entry_of = {n: i for i, n in enumerate(t)}
     told, events = {}, {}
     for name in ("out.count-%02d" % j for j in range(6)):
-        _rec_kind(r, header.index(name), 1)                # s32
+        rec_set_kind(r, header.index(name), 1)                # s32
     for name in ("out.amps-on", "out.fault"):
-        _rec_kind(r, header.index(name), 3)                # bit
+        rec_set_kind(r, header.index(name), 3)                # bit
     cols = [header.index(x) for x in need]
     if "in.substeps" in header:                         # the board's asked substeps (the trains' fast fit)
         cols.append(header.index("in.substeps"))
     row = np.zeros(len(header) + 8)
     out = []
     while True:
-        rc = _rec_next(r, row, C.byref(e))
+        rc = rec_next(r, row, C.byref(e))
         if rc == 0:
             break
         if rc < 0:
             raise BadInput("%s: %s" % (path, e.msg.decode(errors="replace")))
         for c_entry, c_value, c_age in slots:
-            ev = _RecEvent()
-            if _rec_event_of(row[c_entry], row[c_value], row[c_age], len(out), C.byref(ev)):
+            ev = RecEvent()
+            if rec_event_of(row[c_entry], row[c_value], row[c_age], len(out), C.byref(ev)):
                 told[ev.entry] = ev.value
                 events[(ev.entry, ev.at)] = ev.value
         out.append(row[cols].copy())
@@ -579,48 +510,6 @@ def read_run(path, ini):
 
 
 # ====================================================================== equations
-class Settings:
-    """How recordings become equations (the defaults are docs/identification.md's)."""
-    cutoff_hz = 10.0          # zero-phase low-pass of the equations (parallel filter of Y and F) before decimation
-    diff_ratio = 1.0          # positions (counts) are differentiated after a low-pass at diff_ratio x cutoff
-    order = 4                 # Butterworth order (filtfilt doubles it, zero phase)
-    source = "counts"         # counts: encoder counts only (as on a real machine); state: a board record's exact z, z'
-    slow_mps = 0.002          # rows of a carriage slower than this are left out (stick: friction unknown)
-    slow_window = 3.0         # ... and within this many cutoff periods of such a moment
-    margin_s = 0.3            # trimmed at both ends of every usable stretch (filter transients)
-    timing = "auto"           # start / mid: where the volts of a period act (auto: the record's integrator; mid)
-    second_cutoff = 1.5       # a second fit at this x cutoff: the difference is the cutoff's cost, in the sigmas
-    stribeck_band = 2.5       # below this many v_stribeck a carriage may stick and slip
-    stick_s = 0.015           # breakaway: a carriage whose count has not changed for this long is stuck
-    event_s = 0.06            # ... and is simulated from there for at most this long
-    event_check_s = (0.04, 0.1)  # ... and, as a check of the model, this long: the differences join the sigma
-    huber_counts = 5.0        # ... its position error (counts) weighs quadratically up to this, linearly beyond
-    boot = 200                # ... block bootstrap replicates over slow stretches
-    draws = 16                # ... draws of the other estimates (their uncertainty in the breakaway's)
-
-
-def _butter(s, dt, hz=None):
-    """Butterworth low-pass coefficients (b, a) at hz (default the cutoff) for period dt."""
-    from scipy.signal import butter
-    return butter(s.order, (hz or s.cutoff_hz) * 2 * dt)
-
-
-def _dilate(mask, n):
-    """mask true within n samples of a true sample."""
-    if n <= 0 or not mask.any():
-        return mask
-    k = np.ones(2 * n + 1)
-    return np.convolve(mask.astype(float), k, mode="same") > 0
-
-
-def _pieces(run, s):
-    """Contiguous usable stretches (i0, i1) of a run, long enough for the filters."""
-    dt = run.dt
-    dec = max(1, int(1.0 / (4 * s.cutoff_hz * dt)))
-    edge = int(round(s.margin_s / dt))
-    idx = np.flatnonzero(run.ok)
-    pieces = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1) if len(idx) else []
-    return [(seg[0], seg[-1]) for seg in pieces if len(seg) >= 2 * edge + 10 * dec + 3]
 
 
 def _load_positions(run):
@@ -652,7 +541,7 @@ def _counts_motion(run, s, i0, i1, series=None, raw=False):
     when raw)."""
     from scipy.signal import filtfilt
     dt = run.dt
-    bd, ad = _butter(s, dt, min(s.cutoff_hz * s.diff_ratio, 0.4 / dt))
+    bd, ad = butter_lp(s, dt, min(s.cutoff_hz * s.diff_ratio, 0.4 / dt))
     n = np.arange(i0 + 1, i1 - 1)
     zf = (_load_positions(run) if series is None else series)[i0:i1 + 1]
     zf = zf if raw else filtfilt(bd, ad, zf, axis=0)
@@ -664,11 +553,6 @@ def _counts_motion(run, s, i0, i1, series=None, raw=False):
 def _start_timing(run, s):
     """True when a period's volts act from its start (improved Euler), else around its middle."""
     return run.integrator == 0 if s.timing == "auto" else s.timing == "start"
-
-
-def _clamped(run, params):
-    """Periods whose drive current is (nearly) at the amplifier's limit: force unknown."""
-    return np.abs(params["ka"] * dac_output(run.volts)) >= 0.98 * params["i_max"]
 
 
 def slow_speed(params, s):
@@ -707,19 +591,19 @@ def equations(run, reg, params, s):
     if source == "state" and run.vel is None:
         raise BadInput("%s: --source state needs a board record (out.z, out.zd); this recording has "
                        "encoder positions only: use --source counts" % run.path)
-    b, a = _butter(s, dt)
-    bd, ad = _butter(s, dt, min(s.cutoff_hz * s.diff_ratio, 0.4 / dt))
+    b, a = butter_lp(s, dt)
+    bd, ad = butter_lp(s, dt, min(s.cutoff_hz * s.diff_ratio, 0.4 / dt))
     dec = max(1, int(1.0 / (4 * s.cutoff_hz * dt)))     # 4 samples per cutoff period
     edge = int(round(s.margin_s / dt))
     # improved Euler: V_n+1 accelerates uniformly from state n (friction at n);
     # a continuous machine, Heun, RK4: V_n+1 acts around the middle of the period
     start_timing = _start_timing(run, s)
-    clamped = _clamped(run, params)
+    clamped = clamped_periods(run, params)
     # the trains' dither: its chatter in the free play and the friction is no rigid machine's
     dith = trainid.dithered(run, trainid.Settings())[:, None]
     Fr = fpv * dac_output(run.volts)
     Ys, Fs, Us, Bs, Ts = [], [], [], [], []
-    for i0, i1 in _pieces(run, s):
+    for i0, i1 in usable_stretches(run, s):
         if source == "state":
             n = np.arange(i0, i1)                       # states n, forces of period n + 1
             F_at = Fr[n + 1] if start_timing else 0.5 * (Fr[n] + Fr[n + 1])
@@ -759,7 +643,7 @@ def equations(run, reg, params, s):
         keep = np.arange(edge, len(n) - edge, dec)
         for out, slow in ((Us, band), (Bs, rev | _stretches_with(band, _stuck_readings(run, n + 1)))):
             bad = clamped[n] | clamped[n + 1] | slow | dith[n]
-            out.append(~np.stack([_dilate(bad[:, k], wide) for k in range(6)], 1)[keep])
+            out.append(~np.stack([dilate(bad[:, k], wide) for k in range(6)], 1)[keep])
         Ys.append(Yf[keep])
         Fs.append(Ff[keep])
         Ts.append(n[keep] * dt)
@@ -798,22 +682,6 @@ def feasibility(x):
 
 class Estimate:
     """The weighted least-squares estimate of the base parameters and its physically consistent pi."""
-
-
-def autocorr_time(r, maxlag=200):
-    """Integrated autocorrelation time of a residual series (samples; 1 = white):
-    1 + 2 sum of the autocorrelation up to its first non-positive value."""
-    r = r - r.mean()
-    v = np.dot(r, r)
-    if v == 0 or len(r) < 10:
-        return 1.0
-    tau = 1.0
-    for lag in range(1, min(maxlag, len(r) // 4)):
-        rho = np.dot(r[:-lag], r[lag:]) / v
-        if rho <= 0:
-            break
-        tau += 2 * rho
-    return tau
 
 
 def estimate(eqs, base, pi0, breakaway_n=None):
@@ -996,13 +864,6 @@ def breakaway_columns(base):
     return [base.base.index(fric_col("f_breakaway", k)) for k in range(6)]
 
 
-def params_copy(params):
-    """A copy of an hg.Params."""
-    p = hg.Params()
-    C.memmove(p.buf, params.buf, C.sizeof(p.buf))
-    return p
-
-
 def stick_events(run, s, params, r):
     """Carriage k's events in run r: from a period after which its count has
     not changed for s.stick_s (stuck: v = 0, the height mid-count), or at
@@ -1016,14 +877,14 @@ def stick_events(run, s, params, r):
     nper = len(run.volts)
     mot = {key: np.full((nper, 6), np.nan) for key in ("z", "v", "a", "zend", "dacc")}
     counts = _load_counts(run)
-    clamped = _clamped(run, params).any(1)
+    clamped = clamped_periods(run, params).any(1)
     L = max(2, int(round(s.stick_s / dt)))
     H = max(5, int(round(max((s.event_s,) + tuple(s.event_check_s)) / dt)))
     edge = int(round(s.margin_s / dt))
     vslow = slow_speed(params, s)
     evs = [[] for _ in range(6)]
     block = 0
-    for i0, i1 in _pieces(run, s):
+    for i0, i1 in usable_stretches(run, s):
         n, z0, zm, v, acc = _counts_motion(run, s, i0, i1)
         p = n + 1
         mot["z"][p], mot["v"][p], mot["a"][p] = zm, v, acc
@@ -1686,7 +1547,7 @@ def main(argv=None):
         reg = Regressor(params)
         # the drive trains: stiffness and backlash first (the rigid equations take the carriages' motion)
         ts = trainid.Settings()
-        pieces = [_pieces(r, Settings()) for r in runs]
+        pieces = [usable_stretches(r, Settings()) for r in runs]
         trains = trainid.estimate_slow(runs, params, pieces, ts, log)
         told = any(x.split("=")[0].strip() in ("k_axial", "backlash") for x in a.set)
         for r in runs:

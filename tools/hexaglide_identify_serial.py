@@ -33,6 +33,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
+import hg_identify_base as ib  # noqa: E402
 import hg_output  # noqa: E402
 
 CUTOFF_HZ = 25.0
@@ -85,19 +86,18 @@ class Record:
 
 
 def read_record(path):
-    import hexaglide_identify as hid
     try:
         with open(path, "rb") as f:
             data = f.read()
     except OSError as ex:
         raise BadInput("%s: cannot read it: %s; give a record file" % (path, ex.strerror or ex))
-    if not is_serial_record(path) and not hid._rec_open(C.create_string_buffer(hid.REC_BYTES), data, len(data),
-                                                       C.byref(hid._RecErr())):
+    if not is_serial_record(path) and not ib.rec_open(C.create_string_buffer(ib.REC_BYTES), data, len(data),
+                                                       C.byref(ib.RecErr())):
         raise BadInput("%s: not a record of the serial plant (its in.plant, '# plant'): give a serial machine's "
                        "records alone (docs/serial.md)" % path)
-    r = C.create_string_buffer(hid.REC_BYTES)
-    e = hid._RecErr()
-    if hid._rec_open(r, data, len(data), C.byref(e)):
+    r = C.create_string_buffer(ib.REC_BYTES)
+    e = ib.RecErr()
+    if ib.rec_open(r, data, len(data), C.byref(e)):
         raise BadInput("%s: %s" % (path, e.msg.decode(errors="replace")))
     lines = data.split(b"\n", 64)
     hdr_no = next(i for i, l in enumerate(lines) if l.startswith(b"sample,")) + 1
@@ -111,23 +111,23 @@ def read_record(path):
             raise BadInput("%s: line %d (the header): no column '%s': not a serial plant's board record" %
                            (path, hdr_no, name))
     for name in ("out.count-%02d" % k for k in range(n)):
-        hid._rec_kind(r, header.index(name), 1)
+        ib.rec_set_kind(r, header.index(name), 1)
     for name in ("out.amps-on", "out.fault"):
-        hid._rec_kind(r, header.index(name), 3)
+        ib.rec_set_kind(r, header.index(name), 3)
     slots = [[header.index("in.pev-%d-%s" % (k, part)) for part in ("entry", "value", "age")]
              for k in range(2) if "in.pev-%d-entry" % k in header]
     cols = [header.index(x) for x in need]
     row = np.zeros(len(header) + 8)
     out, told = [], {}
     while True:
-        rc = hid._rec_next(r, row, C.byref(e))
+        rc = ib.rec_next(r, row, C.byref(e))
         if rc == 0:
             break
         if rc < 0:
             raise BadInput("%s: %s" % (path, e.msg.decode(errors="replace")))
         for c_entry, c_value, c_age in slots:
-            ev = hid._RecEvent()
-            if hid._rec_event_of(row[c_entry], row[c_value], row[c_age], len(out), C.byref(ev)):
+            ev = ib.RecEvent()
+            if ib.rec_event_of(row[c_entry], row[c_value], row[c_age], len(out), C.byref(ev)):
                 told[ev.entry] = ev.value
         out.append(row[cols].copy())
     a = np.array(out).reshape(-1, len(cols))
@@ -144,7 +144,7 @@ def read_record(path):
     rec.ok = (a[:, 2] > 0.5) & (a[:, 3] < 0.5)
     rec.counts = a[:, 4:4 + n]
     rec.current = a[:, 4 + n:4 + 2 * n]
-    rec.volts = hid.dac_output(a[:, 4 + 2 * n:4 + 3 * n])     # what the board's DAC puts out
+    rec.volts = ib.dac_output(a[:, 4 + 2 * n:4 + 3 * n])     # what the board's DAC puts out
     if np.ptp(a[:, -2]) > 0 or np.ptp(a[:, -1]) > 0:
         raise BadInput("%s: the substeps or the integrator change within the record" % path)
     rec.substeps = substeps_run(rec, told, int(a[0, -2]), int(a[0, -1]), int(a[0, 0]))
@@ -313,8 +313,7 @@ def fit_axis(recs, k, kns):
             break
         m_prev, mc = theta[0], (theta[0], theta[1])
     r = y - Xk @ theta
-    import hexaglide_identify as hid
-    tau = hid.autocorr_time(r, maxlag=2000)
+    tau = ib.autocorr_time(r, maxlag=2000)
     s2 = r @ r / (len(y) - len(keep))
     cov = np.linalg.inv(Xk.T @ Xk) * s2 * tau
     sig = np.sqrt(np.diag(cov))

@@ -45,6 +45,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
+import hg_identify_base as ib  # noqa: E402
 
 _d6 = C.c_double * 6
 _dp = np.ctypeslib.ndpointer(dtype=np.float64, flags="C_CONTIGUOUS")
@@ -104,8 +105,7 @@ def board_scheme(run, params, k):
     trains: src/hg_stability.h), else a continuous machine's (CONTINUOUS)."""
     if run.integrator is None or getattr(run, "substeps", None) is None:
         return CONTINUOUS
-    import hexaglide_identify as hid
-    p = hid.params_copy(params)
+    p = ib.params_copy(params)
     p["k_axial"] = float(np.max(k))
     st = _Stability()
     rc = _stability(p.buf, int(run.integrator), run.dt, max(1, int(run.substeps)), SUBSTEPS_MAX, C.byref(st))
@@ -154,11 +154,10 @@ def slow_signals(run, params, pieces, hz, hp_hz=Settings.highpass_hz):
     train force f = F - m_r zr'' (F of the periods either side of a reading:
     its acceleration's), per usable piece (list of Slow)."""
     from scipy.signal import filtfilt, butter
-    import hexaglide_identify as hid
     dt = run.dt
     b, a = _lp(dt, hz)
     mr = rotor_mass(params)
-    F = hid.force_per_volt(params) * hid.dac_output(run.volts)
+    F = ib.force_per_volt(params) * ib.dac_output(run.volts)
     out = []
     for i0, i1 in pieces:
         g = Slow()
@@ -183,13 +182,12 @@ def _slow_rows(g, run, s, hz, k_nom):
     train force's sign changes, by zero_band_n and by preload x the fast
     (dither's) force k_nom x its deflection's RMS (it chatters through the
     free play there)."""
-    import hexaglide_identify as hid
     w = int(round(s.zero_window / (hz * run.dt)))
     edge = int(round(s.margin_s / run.dt))
     use = np.zeros(g.f.shape, bool)
     band = s.zero_band_n + s.preload * k_nom * g.fast
     for k in range(6):
-        use[:, k] = ~hid._dilate(np.abs(g.f[:, k]) < band[:, k], w)
+        use[:, k] = ~ib.dilate(np.abs(g.f[:, k]) < band[:, k], w)
     use[:edge] = use[-edge:] = False
     return use
 
@@ -272,12 +270,11 @@ def deflection(run, params, k_axial, backlash, s):
     if not (k > 0).all():
         return out
     from scipy.signal import filtfilt
-    import hexaglide_identify as hid
     dt = run.dt
     b, a = _lp(dt, s.cutoff_hz)
-    F = hid.force_per_volt(params) * hid.dac_output(run.volts)
+    F = ib.force_per_volt(params) * ib.dac_output(run.volts)
     Fn = np.vstack([F[1:], F[-1:]])
-    for i0, i1 in hid._pieces(run, hid.Settings()):
+    for i0, i1 in ib.usable_stretches(run, ib.Settings()):
         zr = filtfilt(b, a, run.counts[i0:i1 + 1] / run.count_scale, axis=0)
         acc = np.gradient(np.gradient(zr, dt, axis=0), dt, axis=0)
         f = filtfilt(b, a, 0.5 * (F[i0:i1 + 1] + Fn[i0:i1 + 1]), axis=0) - rotor_mass(params) * acc
@@ -290,13 +287,12 @@ def dithered(run, s):
     high-passed volts' RMS above excited_v on any drive): left out of the
     rigid fit, whose 10 Hz machine has no trains."""
     from scipy.signal import filtfilt, butter
-    import hexaglide_identify as hid
     if len(run.volts) < 30:
         return np.zeros(len(run.volts), bool)
     bh, ah = butter(4, s.highpass_hz * 2 * run.dt, "high")
     w = max(1, int(round(s.rms_window_s / run.dt)))
-    on = (_rms(filtfilt(bh, ah, hid.dac_output(run.volts), axis=0), w) > s.excited_v).any(1)
-    return hid._dilate(on, int(round(s.dither_pad_s / run.dt)))
+    on = (_rms(filtfilt(bh, ah, ib.dac_output(run.volts), axis=0), w) > s.excited_v).any(1)
+    return ib.dilate(on, int(round(s.dither_pad_s / run.dt)))
 
 
 # ---------------------------------------------------------------- the fast fit
@@ -327,13 +323,12 @@ def stretches(runs, pieces, reg, params, pi, k_slow, s):
     """The stretches of the runs where the dither excites every train and the
     small motion is linear (list of Stretch)."""
     from scipy.signal import filtfilt, butter
-    import hexaglide_identify as hid
     out = []
     for run, pcs in zip(runs, pieces):
         dt = run.dt
         bh, ah = butter(4, s.highpass_hz * 2 * dt, "high")
         w = max(1, int(round(s.rms_window_s / dt)))
-        V = hid.dac_output(run.volts)
+        V = ib.dac_output(run.volts)
         for g in slow_signals(run, params, pcs, s.cutoff_hz):
             i0, i1 = g.n[0], g.n[-1] + 1
             d = run.counts[i0:i1] / run.count_scale - run.carriage[i0:i1]
@@ -344,7 +339,7 @@ def stretches(runs, pieces, reg, params, pi, k_slow, s):
             vslow = np.gradient(filtfilt(g.b, g.a, zc, axis=0), dt, axis=0)
             ok = ((vh > s.excited_v) & (np.abs(g.f) > s.preload * fh) &
                   (np.abs(vslow) > s.speed_margin * vfast)).all(1)
-            ok &= ~hid._clamped(run, params)[i0:i1].any(1)
+            ok &= ~ib.clamped_periods(run, params)[i0:i1].any(1)
             idx = np.flatnonzero(ok)
             for seg in np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1) if len(idx) else []:
                 if len(seg) * dt < s.settle_s + s.min_stretch_s:
@@ -391,9 +386,8 @@ def fast_fit(segs, reg, params, pi, k, s, sk=None):
     the rotor plus carriage, m_drive, well, the carriage behind the spring
     less well; the mode's frequency tells it): dict."""
     from scipy.optimize import least_squares
-    import hexaglide_identify as hid
     mr = np.full(6, rotor_mass(params))
-    cv = np.array([pi[hid.fric_col("c_visc", j)] for j in range(6)])
+    cv = np.array([pi[ib.fric_col("c_visc", j)] for j in range(6)])
     c0 = max(float(params["c_axial"]), 100.0)
     k = np.asarray(k, float)
     load = min(np.min(t.mass[:, ::7] - mr) for t in segs)     # the lightest carriage behind its spring (kg)
@@ -408,7 +402,7 @@ def fast_fit(segs, reg, params, pi, k, s, sk=None):
                              bounds=(np.r_[[0.0] * 6, [-0.8 * load] * 6], np.r_[[100.0] * 6, [5 * load] * 6]))
     res = solve(s.highpass_hz, np.r_[[1.0] * 6, [0.0] * 6])
     r = res.fun.reshape(-1, 6)
-    tau = np.mean([hid.autocorr_time(r[:, j]) for j in range(6)])
+    tau = np.mean([ib.autocorr_time(r[:, j]) for j in range(6)])
     dof = max(1, r.size - 12)
     cov = np.linalg.pinv(res.jac.T @ res.jac) * (res.fun @ res.fun) / dof * tau
     scale = np.r_[[c0] * 6, [1.0] * 6]

@@ -30,14 +30,13 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hg_config  # noqa: E402
 import hg_margins as hgm  # noqa: E402
+from hg_program import LEAD_IN, PERIOD_S, program_rows, s_curve  # noqa: E402
 import hg_output  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-PERIOD_S = 0.001
 MIN_SAMPLES = 200          # a trajectory shorter than this is refused (0.2 s)
 SETTLE = 1500              # periods at the first command before the trajectory
 RAMP = 500                 # periods of the smooth move from HOME to the first command
-LEAD_IN = 300              # rows kept before the program starts (recorded runs)
 PREDICT_SETTLES = [SETTLE + 53 * i for i in range(15)]   # the prediction's 15 runs
 KEYS = ["P", "I", "D", "FF0", "FF1", "FF2", "FF3", "BIAS"]
 
@@ -71,20 +70,6 @@ def read_ini(path, cmd="tune"):
 def pid_keys(g):
     """What hg.Loop takes of an INI joint dict: the pid gains and limits, the scales."""
     return {k: v for k, v in g.items() if k in hg.GAIN_KEYS or k in ("INPUT_SCALE", "OUTPUT_SCALE", "OUTPUT_OFFSET")}
-
-
-def program_rows(running, cmd):
-    """Rows (start, end) of the program in a sampled run: from the last rest
-    before its first move to the last row halui.program.is-running is set.
-    is-running can rise a few periods after the commands start moving (halui
-    lags motion on a loaded machine), so the start is found from the commands:
-    back from the rise while any joint's command changes. None when it never ran."""
-    if not running.any():
-        return None
-    s = int(np.argmax(running))
-    while s > 0 and np.any(cmd[s] != cmd[s - 1]):
-        s -= 1
-    return s, len(running) - int(np.argmax(running[::-1]))
 
 
 # ------------------------------------------------------------------ trajectories
@@ -230,24 +215,6 @@ def load_record(path):
     i0 = latched[-1] + 2 if len(latched) else (on[0] if len(on) else 0)
     i1 = on[-1] + 1 if len(on) else len(data)
     return np.ascontiguousarray(data[i0:i1, :6])
-
-
-def s_curve(dist, vmax, amax, jerk_time=0.02):
-    """Positions (per period) of a rest-to-rest move of dist with velocity
-    vmax and acceleration amax, the acceleration ramped over jerk_time."""
-    dist = abs(dist)
-    ta = vmax / amax
-    if amax * ta * ta > dist:                  # no cruise: triangle
-        ta = np.sqrt(dist / amax)
-        vmax = amax * ta
-    tc = max(0.0, (dist - amax * ta * ta) / vmax)
-    T = 2 * ta + tc + jerk_time
-    t = np.arange(0, T + 0.2, PERIOD_S)
-    acc = np.where(t < ta, amax, 0.0) - np.where((t >= ta + tc) & (t < 2 * ta + tc), amax, 0.0)
-    n = max(1, int(jerk_time / PERIOD_S))
-    acc = np.convolve(acc, np.ones(n) / n)[:len(t)]   # jerk-limited (S-curve)
-    pos = np.cumsum(np.cumsum(acc) * PERIOD_S) * PERIOD_S
-    return pos * (dist / pos[-1]) if pos[-1] > 0 else pos
 
 
 def generated_move(axes, params=None, ini=None):

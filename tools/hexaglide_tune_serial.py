@@ -34,6 +34,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hg_output  # noqa: E402
+import hg_program  # noqa: E402
 
 PERIOD_S = 0.001
 MIN_SAMPLES = 200
@@ -168,10 +169,9 @@ def load_trajectory(path, n):
                 raise BadInput("%s: column %s missing (the serial plant's model has joints 0..%d)" % (path, name, n - 1))
             cols.append(header.index(name))
         if "halui.program.is-running" in header:      # the program, with its lead-in and tail kept
-            import hexaglide_tune as tune
-            span = tune.program_rows(a[:, header.index("halui.program.is-running")] > 0.5, a[:, cols])
+            span = hg_program.program_rows(a[:, header.index("halui.program.is-running")] > 0.5, a[:, cols])
             if span:
-                a = a[max(0, span[0] - tune.LEAD_IN):min(len(a), span[1] + tune.LEAD_IN)]
+                a = a[max(0, span[0] - hg_program.LEAD_IN):min(len(a), span[1] + hg_program.LEAD_IN)]
         cmd = a[:, cols]
     else:
         if a.shape[1] != n:
@@ -186,12 +186,11 @@ def load_trajectory(path, n):
 def generated_move(m):
     """Each joint out and back over a quarter of its travel (at most 2 units) at its MAX_VELOCITY and
     MAX_ACCELERATION, toward - (the stock config's machine 0 is its + end)."""
-    import hexaglide_tune as tune
     segs = [np.zeros((1, m.n))]
     for j in range(m.n):
         g = m.joints[j]
         dist = min(2.0, 0.25 * abs(g.get("MAX_LIMIT", 0.0) - g.get("MIN_LIMIT", -8.0)))
-        prof = tune.s_curve(dist, g.get("MAX_VELOCITY", 1.0), g.get("MAX_ACCELERATION", 4.0))
+        prof = hg_program.s_curve(dist, g.get("MAX_VELOCITY", 1.0), g.get("MAX_ACCELERATION", 4.0))
         for path in (-prof, prof - dist):
             seg = np.repeat(segs[-1][-1:], len(prof), 0)
             seg[:, j] = path
