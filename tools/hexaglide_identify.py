@@ -29,7 +29,7 @@ import hg_output  # noqa: E402
 from hg_identify_base import (COLUMNS, NAMES, NCOL, NIN, REC_BYTES, REC_MAGICS, RecErr,  # noqa: E402
                               RecEvent, Settings, _dp, autocorr_time, butter_lp, clamped_periods,
                               dac_output, dilate, force_per_volt, fric_col, params_copy, rec_event_of,
-                              rec_next, rec_open, rec_set_kind, usable_stretches)
+                              rec_bind, rec_next, rec_open, usable_stretches)
 
 _reg_sizeof = hg._sig("hg_regressor_sizeof", C.c_ulong)
 _reg_init = hg._sig("hg_regressor_init", C.c_int, C.c_void_p, C.c_void_p, C.POINTER(C.c_char_p),
@@ -277,10 +277,10 @@ def read_board_record(path):
              for k in range(2) if "in.pev-%d-entry" % k in header]
     entry_of = {n: i for i, n in enumerate(t)}
     told, events = {}, {}
-    for name in ("out.count-%02d" % j for j in range(6)):
-        rec_set_kind(r, header.index(name), 1)                # s32
-    for name in ("out.amps-on", "out.fault"):
-        rec_set_kind(r, header.index(name), 3)                # bit
+    first = lines[hdr_no].split(b"\n", 1)[0].rstrip(b"\r") if len(lines) > hdr_no else b""
+    why = rec_bind(r, header, first)         # every column typed as its pin, as replay reads it
+    if why:
+        raise BadInput("%s: %s" % (path, why))
     cols = [header.index(x) for x in need]
     if "in.substeps" in header:                         # the board's asked substeps (the trains' fast fit)
         cols.append(header.index("in.substeps"))

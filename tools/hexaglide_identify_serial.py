@@ -110,10 +110,10 @@ def read_record(path):
         if name not in header:
             raise BadInput("%s: line %d (the header): no column '%s': not a serial plant's board record" %
                            (path, hdr_no, name))
-    for name in ("out.count-%02d" % k for k in range(n)):
-        ib.rec_set_kind(r, header.index(name), 1)
-    for name in ("out.amps-on", "out.fault"):
-        ib.rec_set_kind(r, header.index(name), 3)
+    first = lines[hdr_no].split(b"\n", 1)[0].rstrip(b"\r") if len(lines) > hdr_no else b""
+    why = ib.rec_bind(r, header, first)         # every column typed as its pin, as replay reads it
+    if why:
+        raise BadInput("%s: %s" % (path, why))
     slots = [[header.index("in.pev-%d-%s" % (k, part)) for part in ("entry", "value", "age")]
              for k in range(2) if "in.pev-%d-entry" % k in header]
     cols = [header.index(x) for x in need]

@@ -83,8 +83,7 @@ class RecErr(C.Structure):
 
 
 rec_open = hg._sig("hg_record_open", C.c_int, C.c_void_p, C.c_char_p, C.c_size_t, C.POINTER(RecErr))
-_rec_column = hg._sig("hg_record_column", C.c_int, C.c_void_p, C.c_char_p)
-rec_set_kind = hg._sig("hg_record_set_kind", None, C.c_void_p, C.c_int, C.c_int)
+_rec_bind_plant = hg._sig("hg_board_rec_bind_plant", C.c_int, C.c_void_p, C.c_int, C.c_int, C.POINTER(RecErr))
 rec_next = hg._sig("hg_record_next", C.c_int, C.c_void_p, _dp, C.POINTER(RecErr))
 REC_MAGICS = hg.RECORD_MAGICS   # the formats identify reads
 REC_BYTES = 1 << 16           # room for the reader's struct (hg_record: about 5 kB)
@@ -97,6 +96,23 @@ class RecEvent(C.Structure):
 
 rec_event_of = hg._sig("hg_board_rec_event_of", C.c_int, C.c_double, C.c_double, C.c_double, C.c_ulong,
                         C.POINTER(RecEvent))
+
+
+def rec_bind(r, header, first_row):
+    """Every column of the board's record table for the record's plant and
+    model variant (its first row's in.plant, in.model; format 1: the
+    Hexaglide) needed in the opened reader r and checked as its pin's type
+    on every row, as `hexaglide replay` checks them (src/hg_board_rec_read.h):
+    None, or the reader's message. Without a first row (or with one the
+    reader will refuse) nothing is bound: the reading says what is wrong."""
+    try:
+        f = first_row.split(b",")
+        variant = int(float(f[header.index("in.model")]))
+        plant = int(float(f[header.index("in.plant")])) if "in.plant" in header else 0
+    except (ValueError, IndexError):
+        return None
+    e = RecErr()
+    return e.msg.decode(errors="replace") if _rec_bind_plant(r, plant, variant, C.byref(e)) else None
 
 
 # ---------------------------------------------------------------- a run's stretches

@@ -19,6 +19,7 @@
 #include "cli.h"
 #include "hg_board.h"
 #include "hg_board_rec.h"
+#include "hg_board_rec_read.h"
 #include "hg_errors.h"
 #include "hg_loop.h"
 #include "hg_record.h"
@@ -787,15 +788,7 @@ int cmd_replay(int argc, char **argv)
         free(ev);
         return 1;
     }
-    for (i = 0; rc == 0 && i < nf; i++) {
-        col[i] = hg_record_need(&r, fld[i].name, &e);
-        if (col[i] < 0)
-            rc = e.code;
-        else
-            hg_record_set_kind(&r, col[i], fld[i].type == HG_BRF_F64 ? HG_REC_F64
-                               : fld[i].type == HG_BRF_S32 ? HG_REC_S32
-                               : fld[i].type == HG_BRF_BIT ? HG_REC_BIT : HG_REC_U32);
-    }
+    rc = hg_board_rec_bind(&r, fld, nf, col, &e);
     if (rc) {
         fprintf(stderr, "hexaglide replay: %s: %s\n", o.file, e.msg);
         free(buf);

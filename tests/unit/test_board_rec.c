@@ -17,6 +17,7 @@
 #include <string.h>
 #include "hg_test.h"
 #include "hg_board_rec.h"
+#include "hg_board_rec_read.h"
 #include "hg_record.h"
 #include "hg_plant_hexaglide.h"
 
@@ -347,6 +348,64 @@ static void test_overflow(int n)
           nev, -1 - rows);
 }
 
+/* A one-row record of table f[0..n) (every value 0, column `bad`'s `value`), without column `drop`. */
+static size_t one_row(int n, int drop, int bad, const char *value)
+{
+    size_t len = (size_t)snprintf(text, sizeof text, "%s\n# board 0\nsample", HG_RECORD_MAGIC);
+    int k;
+    for (k = 0; k < n; k++)
+        if (k != drop)
+            len += (size_t)snprintf(text + len, sizeof text - len, ",%s", f[k].name);
+    len += (size_t)snprintf(text + len, sizeof text - len, "\n0");
+    for (k = 0; k < n; k++)
+        if (k != drop)
+            len += (size_t)snprintf(text + len, sizeof text - len, ",%s", k == bad ? value : "0");
+    len += (size_t)snprintf(text + len, sizeof text - len, "\n");
+    return len;
+}
+
+/* The first entry of table f[0..n) of type t, or -1. */
+static int first_of(int n, int t)
+{
+    int k;
+    for (k = 0; k < n && f[k].type != t; k++)
+        ;
+    return k < n ? k : -1;
+}
+
+/* hg_board_rec_bind_plant: every column needed and read as its pin's type (replay's and identify's readers). */
+static void test_bind(int n)
+{
+    static hg_record r;
+    static double row[HG_RECORD_MAX_COLS];
+    static const struct { int type; const char *value, *says; } bad[] = {
+        {HG_BRF_U32, "2.5", "not a u32 integer"}, {HG_BRF_U32, "-1", "not a u32 integer"},
+        {HG_BRF_S32, "0.25", "not an s32 integer"}, {HG_BRF_BIT, "2", "not 0 or 1"}};
+    hg_record_error e;
+    int i, k, plain, bound;
+    for (i = 0; i < (int)(sizeof bad / sizeof bad[0]); i++) {
+        k = first_of(n, bad[i].type);
+        plain = hg_record_open(&r, text, one_row(n, -1, k, bad[i].value), &e) == 0 &&
+                hg_record_next(&r, row, &e) == 1;
+        bound = hg_record_open(&r, text, one_row(n, -1, k, bad[i].value), &e) == 0 &&
+                hg_board_rec_bind_plant(&r, 0, HG_MODEL_REDUCED_CARTESIAN, &e) == 0 &&
+                hg_record_next(&r, row, &e) == HG_REC_ERR_KIND && strstr(e.msg, f[k].name) &&
+                strstr(e.msg, bad[i].says);
+        CHECK(k >= 0 && plain && bound, "%s = %s: read as a number unbound, refused bound (%s)",
+              k >= 0 ? f[k].name : "?", bad[i].value, e.msg);
+    }
+    CHECK(hg_record_open(&r, text, one_row(n, -1, -1, "0"), &e) == 0 &&
+              hg_board_rec_bind_plant(&r, 0, HG_MODEL_REDUCED_CARTESIAN, &e) == 0 && hg_record_next(&r, row, &e) == 1,
+          "a row of zeros is read, bound");
+    CHECK(hg_record_open(&r, text, one_row(n, n / 2, -1, "0"), &e) == 0 &&
+              hg_board_rec_bind_plant(&r, 0, HG_MODEL_REDUCED_CARTESIAN, &e) == HG_REC_ERR_COLUMN &&
+              strstr(e.msg, f[n / 2].name),
+          "a record without %s: the bind names it (%s)", f[n / 2].name, e.msg);
+    CHECK(hg_record_open(&r, text, one_row(n, -1, -1, "0"), &e) == 0 &&
+              hg_board_rec_bind_plant(&r, 99, 0, &e) == HG_REC_ERR_HEADER && strstr(e.msg, "plant 99"),
+          "an unknown plant: no table, said (%s)", e.msg);
+}
+
 int main(void)
 {
     int n1, n = hg_board_rec_fields(f, HG_BOARD_REC_MAX, 0, HG_MODEL_REDUCED_CARTESIAN, 2);
@@ -365,5 +424,6 @@ int main(void)
     test_pack(n);
     test_round_trip(n);
     test_overflow(n);
+    test_bind(n);
     return hg_test_exit();
 }
