@@ -60,9 +60,10 @@ typedef struct {
 typedef struct {
     long samples;
     long long max_count_diff;
-    double max_pos_diff_mm, max_pose_diff;
+    double max_pos_diff_mm, max_pose_diff;  /* linear channels (mm), the plant's own outputs */
     long first_mismatch;              /* sample, -1 if none */
     long mismatched_samples;
+    double max_pos_diff_deg;          /* rotary channels (deg: LinuxCNC's unit) */
 } replay_stats;
 
 /* Following error and drive volts of one joint over the statistics window:
@@ -461,8 +462,12 @@ static int compare_row(const hg_board_rec_field *fld, int nf, const int *col, co
         d = fabs(rep - rec);
         if (strncmp(fld[i].name, "out.count-", 10) == 0 && d > (double)st->max_count_diff)
             st->max_count_diff = (long long)d;
-        if (strncmp(fld[i].name, "out.z-", 6) == 0 && d * HG_MM_PER_M > st->max_pos_diff_mm)
-            st->max_pos_diff_mm = d * HG_MM_PER_M;
+        if (strncmp(fld[i].name, "out.z-", 6) == 0) {   /* channel k, in its machine unit */
+            int k = atoi(fld[i].name + 6);
+            double *max = (ctx->out->rotary >> k) & 1u ? &st->max_pos_diff_deg : &st->max_pos_diff_mm;
+            if (d * cli_machine_unit(ctx->out->rotary, k) > *max)
+                *max = d * cli_machine_unit(ctx->out->rotary, k);
+        }
         if (fld[i].offset >= offsetof(hg_board_outputs, extra) &&
             fld[i].offset < offsetof(hg_board_outputs, extra) + sizeof ctx->out->extra &&
             fld[i].type == HG_BRF_F64 && d > st->max_pose_diff)   /* the plant's own outputs (the head pose) */
@@ -714,7 +719,7 @@ int cmd_replay(int argc, char **argv)
     hg_loop_check_report lrep;
     int set_idx[REPLAY_MAX_SETS];
     double set_val[REPLAY_MAX_SETS];
-    replay_stats st = {0, 0, 0.0, 0.0, -1, 0}, stx = {0, 0, 0.0, 0.0, -1, 0};
+    replay_stats st = {0, 0, 0.0, 0.0, -1, 0, 0.0}, stx = {0, 0, 0.0, 0.0, -1, 0, 0.0};
     joint_stats js[HG_CHANNELS_MAX];
     double prev_cmd[HG_CHANNELS_MAX] = {0}, fe[2][HG_CHANNELS_MAX], volts[2][HG_CHANNELS_MAX];
     int nf, np, i, k, rc, whatif, closed, kind = -1, status = 0, plant, variant, variant_w = -1, nj;
@@ -723,7 +728,7 @@ int cmd_replay(int argc, char **argv)
     long settings_from = 0, first_enabled = -1, last_enabled = -1;
     FILE *csv = 0;
     int csv_header_written = 0;
-    char csv_auto[4096], png_auto[4000];
+    char csv_auto[4096], png_auto[4000], deg[40] = "";
     cli_out csv_out;
     const char *csv_path;
     const hg_plant *pl;
@@ -1127,9 +1132,11 @@ int cmd_replay(int argc, char **argv)
         snprintf(text, sizeof text, "none (bit-exact)");
     else
         snprintf(text, sizeof text, "sample %ld (%ld samples differ)", st.first_mismatch, st.mismatched_samples);
-    printf("%s: samples %ld, max |count diff| %lld, max |pos diff| %.3g mm, max |pose diff| %.3g m/rad, "
+    if (out_x.rotary)                  /* a rotary axis's difference in its own unit */
+        snprintf(deg, sizeof deg, ", %.3g deg", st.max_pos_diff_deg);
+    printf("%s: samples %ld, max |count diff| %lld, max |pos diff| %.3g mm%s, max |pose diff| %.3g m/rad, "
            "first mismatch %s\n", whatif ? "what-if" : "replay", st.samples, st.max_count_diff,
-           st.max_pos_diff_mm, st.max_pose_diff, text);
+           st.max_pos_diff_mm, deg, st.max_pose_diff, text);
     if (o.plot && run_plot(csv_path, o.plot, has_cmd && first_enabled >= 0 ? win_from : -1, last_enabled))
         return 1;
     return (whatif || st.first_mismatch < 0) ? 0 : 1;
