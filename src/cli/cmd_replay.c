@@ -465,8 +465,9 @@ static int compare_row(const hg_board_rec_field *fld, int nf, const int *col, co
         if (strncmp(fld[i].name, "out.z-", 6) == 0) {   /* channel k, in its machine unit */
             int k = atoi(fld[i].name + 6);
             double *max = (ctx->out->rotary >> k) & 1u ? &st->max_pos_diff_deg : &st->max_pos_diff_mm;
-            if (d * cli_machine_unit(ctx->out->rotary, k) > *max)
-                *max = d * cli_machine_unit(ctx->out->rotary, k);
+            double du = d * cli_machine_unit(ctx->out->rotary, k);
+            if (du > *max)
+                *max = du;
         }
         if (fld[i].offset >= offsetof(hg_board_outputs, extra) &&
             fld[i].offset < offsetof(hg_board_outputs, extra) + sizeof ctx->out->extra &&
