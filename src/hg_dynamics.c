@@ -133,6 +133,7 @@ int hg_data_reset(const hg_model *m, hg_data *d)
     d->stuck = HG_BARS_ALL;            /* at rest: every carriage held by static friction */
     d->residual_m = hg_bar_length_error(&m->p.geo, d->z_m, d->pose);
     d->work.guard.valid = 0;
+    d->work.guard.cones_valid = 0;
     memset(&d->work.drive, 0, sizeof d->work.drive);
     return 0;
 }

@@ -48,11 +48,14 @@ static void joint_cosines(const hg_guard_geo *gg, const double B[6][3], const do
 
 void hg_guard_prepare(const hg_geometry *g, hg_guard_geo *gg)
 {
+    int k;
     gg->g = *g;
     hg_frame_of(g, &gg->f);
     gg->cos_carriage = cos(g->cone_carriage_rad);
     gg->cos_head = cos(g->cone_head_rad);
     home_directions(g, gg->u0);
+    for (k = 0; k < 6; k++)
+        gg->head_r[k] = sqrt(dot3(gg->f.head[k], gg->f.head[k]));
 }
 
 /* Angle (rad) whose cosine is c, c clamped to [-1, 1]. */
@@ -167,8 +170,9 @@ static double end_moved(const hg_guard_memo *memo, const double B[6][3], const d
  * BAR_CLEARANCE with the first pair (in pair order) closer than d_bar; the
  * memo's bound skips pairs it clears (hg_guard_memo), and the memo takes
  * this state when some pair was measured and none touches. */
-static int clearance(const hg_guard_geo *gg, const double B[6][3], const double A[6][3],
-                     unsigned broken, hg_guard_memo *memo, hg_guard_report *r)
+static int clearance(const hg_guard_geo *gg, const double z[6], const double pose[6],
+                     const double B[6][3], const double A[6][3], unsigned broken,
+                     hg_guard_memo *memo, hg_guard_report *r)
 {
     const double d_bar = gg->g.d_bar_m, clear = d_bar + HG_GUARD_SLACK_M;
     double moved[6], dist[HG_GUARD_PAIRS], most = 0.0;
@@ -207,10 +211,83 @@ static int clearance(const hg_guard_geo *gg, const double B[6][3], const double 
                 memo->dist_min = isnan(memo->dist_min) ? memo->dist_min : memo->dist[p];
         memcpy(memo->B, B, sizeof memo->B);
         memcpy(memo->A, A, sizeof memo->A);
+        memcpy(memo->z, z, sizeof memo->z);
+        memcpy(memo->pose, pose, sizeof memo->pose);
         memo->valid = 1;
         memo->refreshed++;
     }
     return 0;
+}
+
+/* How far the head moved from the reference pose ref (hg_guard_memo):
+ * *shift the distance of Op (m), returned the bound of its turn (rad). */
+static double head_moved(const double pose[6], const double ref[6], double *shift)
+{
+    const double dx = pose[0] - ref[0], dy = pose[1] - ref[1], dz = pose[2] - ref[2];
+    *shift = sqrt(dx * dx + dy * dy + dz * dz);
+    return fabs(pose[3] - ref[3]) + fabs(pose[4] - ref[4]) + fabs(pose[5] - ref[5]);
+}
+
+/* 1 when the memo's cone reference proves every bar of the state (z,
+ * pose) within both of its joints' cones (hg_guard_memo), else 0 (also
+ * for a NaN anywhere: every comparison fails). */
+static int cones_clear(const hg_guard_geo *gg, const double z[6], const double pose[6],
+                       const hg_guard_memo *memo)
+{
+    const double top_c = gg->g.cone_carriage_rad - HG_GUARD_SLACK_RAD;
+    const double top_h = gg->g.cone_head_rad - HG_GUARD_SLACK_RAD;
+    double shift, turn;
+    int k;
+    if (!memo->cones_valid)
+        return 0;
+    turn = head_moved(pose, memo->cone_pose, &shift);
+    for (k = 0; k < 6; k++) {
+        const double x = (fabs(z[k] - memo->cone_z[k]) + shift + turn * gg->head_r[k]) / memo->bar_len[k];
+        const double alpha = HG_GUARD_ASIN_SLOPE * x;
+        if (!(x <= 0.5 && memo->cone_carriage[k] + alpha <= top_c &&
+              memo->cone_head[k] + alpha + turn <= top_h))
+            return 0;
+    }
+    return 1;
+}
+
+/* 1 when the memo's clearance reference proves every pair of bars of the
+ * state (z, pose) apart (hg_guard_memo: its smallest distance against the
+ * most any end moved), else 0 (also for a NaN). */
+static int pairs_clear(const hg_guard_geo *gg, const double z[6], const double pose[6],
+                       const hg_guard_memo *memo)
+{
+    double shift, turn, most = 0.0;
+    int k;
+    if (!memo->valid)
+        return 0;
+    turn = head_moved(pose, memo->pose, &shift);
+    for (k = 0; k < 6; k++) {
+        const double b = fabs(z[k] - memo->z[k]), a = shift + turn * gg->head_r[k];
+        const double m = b > a ? b : a;
+        most = m > most ? m : most;
+    }
+    return memo->dist_min - 2.0 * most >= gg->g.d_bar_m + HG_GUARD_SLACK_M;
+}
+
+/* The state (z, pose) with joint points B, A and joint cosines cc, ch
+ * becomes the memo's cone reference. */
+static void cones_remember(const double z[6], const double pose[6], const double B[6][3],
+                           const double A[6][3], const double cc[6], const double ch[6],
+                           hg_guard_memo *memo)
+{
+    int k, r;
+    for (k = 0; k < 6; k++) {
+        double u[3];
+        for (r = 0; r < 3; r++)
+            u[r] = A[k][r] - B[k][r];
+        memo->bar_len[k] = sqrt(dot3(u, u));
+        memo->cone_carriage[k] = angle_of(cc[k]);
+        memo->cone_head[k] = angle_of(ch[k]);
+    }
+    memcpy(memo->cone_z, z, sizeof memo->cone_z);
+    memcpy(memo->cone_pose, pose, sizeof memo->cone_pose);
+    memo->cones_valid = 1;
 }
 
 int hg_guard_check_sc(const hg_guard_geo *gg, const double z[6], const double pose[6],
@@ -218,7 +295,7 @@ int hg_guard_check_sc(const hg_guard_geo *gg, const double z[6], const double po
                       hg_guard_report *r)
 {
     double B[6][3], A[6][3], cc[6], ch[6], R[9];
-    int k, rc;
+    int k, rc, cones_known = 0;
     report(r, HG_GUARD_NONE, -1, -1, 0.0, 0.0);
     if (!(hg_all_finite(6, z) && hg_all_finite(6, pose))) {
         report(r, HG_GUARD_REGION, -1, -1, NAN, 0.0);
@@ -228,6 +305,12 @@ int hg_guard_check_sc(const hg_guard_geo *gg, const double z[6], const double po
         rc = region_check(z, pose, r);
         if (rc)
             return rc;
+    } else if (memo) {                  /* an intact machine near the memo's references */
+        cones_known = cones_clear(gg, z, pose, memo);
+        if (cones_known && pairs_clear(gg, z, pose, memo)) {
+            memo->cleared++;
+            return 0;
+        }
     }
     hg_rotation_sc(sc, R);
     hg_joint_points_rot(&gg->f, R, z, pose, B, A);
@@ -244,7 +327,9 @@ int hg_guard_check_sc(const hg_guard_geo *gg, const double z[6], const double po
             return HG_ERR_JOINT_RANGE;
         }
     }
-    return clearance(gg, B, A, broken, memo, r);
+    if (memo && !(broken & 0x3fu) && !cones_known)
+        cones_remember(z, pose, B, A, cc, ch, memo);
+    return clearance(gg, z, pose, B, A, broken, memo, r);
 }
 
 int hg_guard_check(const hg_geometry *g, const double z[6], const double pose[6],

@@ -62,6 +62,7 @@ typedef struct {
     hg_frame f;                   /* its fixed points (hg_frame_of) */
     double cos_carriage, cos_head; /* cosines of the cone half-angles */
     double u0[6][3];              /* each bar's direction at HOME, carriage to head joint */
+    double head_r[6];             /* |r_k|: each head joint's distance from Op (m) */
 } hg_guard_geo;
 
 #define HG_GUARD_PAIRS 15         /* pairs of bars, (0,1) (0,2) .. (4,5) */
@@ -70,21 +71,56 @@ typedef struct {
  * distance's near-parallel branch can overstate a distance (|d1| 1e-6 = 1 um
  * for 1 m bars), far below any bar diameter. */
 #define HG_GUARD_SLACK_M 1e-5
+/* Safety slack (rad) of the cone bound below: far above the error of an
+ * angle taken by acos from a rounded cosine (sqrt(2 x 4e-16) = 3e-8 rad
+ * next to the HOME direction, where acos is steepest), far below any cone. */
+#define HG_GUARD_SLACK_RAD 1e-6
+/* asin(x) <= HG_GUARD_ASIN_SLOPE x for 0 <= x <= 1/2 (asin(1/2) / (1/2) =
+ * 1.0472): a bar whose ends moved by at most x of its length turned by at
+ * most this many times x (rad); beyond x = 1/2 the bound is not used. */
+#define HG_GUARD_ASIN_SLOPE 1.05
 
-/* The bar-clearance memo of a state that is being stepped: the joint
- * points of a reference state and the distances between the bar axes
- * there (hg_segment_distance). Points of a segment move by at most the
- * larger of its ends' displacements, so a state whose bars' ends moved by
- * at most m_j, m_k from the reference has the bars j, k at least
- * dist - m_j - m_k apart: a pair with dist - m_j - m_k >= d_bar +
- * HG_GUARD_SLACK_M cannot touch and is not measured. A fact about the
- * points it holds, valid in any copy; valid 0 = empty (hg_data_reset). */
+/* The guard's memo of a state that is being stepped: facts about two
+ * reference states that passed, which let most checks of a nearby state
+ * finish without its joint points (a state that is not cleared is checked
+ * in full, by the same code, with the same report).
+ *
+ * Movement from a reference: a state whose carriages moved by dz_k and
+ * whose head moved by dP (Op) and turned through at most theta = |dA| +
+ * |dB| + |dC| (the rotation angle between two orientations is at most the
+ * sum of their Euler angles' differences: the angle between rotations is a
+ * metric that left and right factors keep) has bar k's carriage joint
+ * moved by dz_k and its head joint by at most dP + theta |r_k|.
+ *
+ * Clearance (valid): the joint points of a reference state and the
+ * distances between the bar axes there (hg_segment_distance). Points of a
+ * segment move by at most the larger of its ends' displacements, so a
+ * state whose bars' ends moved by at most m_j, m_k from the reference has
+ * the bars j, k at least dist - m_j - m_k apart: a pair with dist - m_j -
+ * m_k >= d_bar + HG_GUARD_SLACK_M cannot touch and is not measured.
+ *
+ * Cones (cones_valid): a reference state's joint angles and bar vectors
+ * A - B. A bar whose ends moved by at most e (both ends together) turned
+ * by at most asin(e / |A - B|_ref) <= HG_GUARD_ASIN_SLOPE e / |A - B|_ref
+ * = alpha_k, so its carriage-joint angle is at most the reference's +
+ * alpha_k, and its head-joint angle (in head axes, which turned by theta)
+ * the reference's + alpha_k + theta: within both cones by
+ * HG_GUARD_SLACK_RAD, the bar is not measured.
+ *
+ * A fact about the points it holds, valid in any copy; valid and
+ * cones_valid 0 = empty (hg_data_reset). */
 typedef struct {
     int valid;
-    double B[6][3], A[6][3];      /* the reference state's joint points */
+    double B[6][3], A[6][3];      /* the clearance reference's joint points */
+    double z[6], pose[6];         /* ... its state */
     double dist[HG_GUARD_PAIRS];  /* distances of the bar axes there (NaN: a broken bar's pair) */
     double dist_min;              /* the smallest of them (NaN when one is NaN) */
-    unsigned long refreshed;      /* times the memo was (re)written: a measure of its use */
+    int cones_valid;
+    double cone_z[6], cone_pose[6]; /* the cones' reference state (an intact machine) */
+    double cone_carriage[6], cone_head[6]; /* its bars' angles in their carriage and head joints (rad) */
+    double bar_len[6];            /* its |A - B| of each bar (m) */
+    unsigned long refreshed;      /* times the clearance reference was (re)written: a measure of its use */
+    unsigned long cleared;        /* checks the bounds alone passed (no joint points): a measure too */
 } hg_guard_memo;
 
 /* Fill gg for g. */
@@ -92,9 +128,12 @@ void hg_guard_prepare(const hg_geometry *g, hg_guard_geo *gg);
 
 /* hg_guard_check with gg prepared, the pose's sin/cos sc given
  * (hg_head_trig of pose: the stabilization has them) and memo (may be 0):
- * the same code, the same report. A pair the memo's bound clears is not
- * measured; when some pair had to be measured and the state passes, the
- * memo is rewritten with this state and all its distances. */
+ * the same code, the same report. An intact machine's state that the
+ * memo's bounds clear of every cone and pair passes without its joint
+ * points; else a pair the memo's bound clears is not measured. When some
+ * pair had to be measured and the state passes, the clearance reference
+ * becomes this state (with all its distances); when the cones were
+ * measured and an intact machine's state passes them, the cones'. */
 int hg_guard_check_sc(const hg_guard_geo *gg, const double z[6], const double pose[6],
                       const double sc[6], unsigned broken, hg_guard_memo *memo,
                       hg_guard_report *r);

@@ -311,8 +311,7 @@ static void test_clearance_memo(void)
         }
         if (hg_inverse_kinematics(&p.geo, c0, z0) || hg_inverse_kinematics(&p.geo, c, z))
             continue;
-        memo.valid = 0;
-        memo.refreshed = 0;
+        memset(&memo, 0, sizeof memo);
         hg_head_trig(c0, sc0);
         if (hg_guard_check_sc(&gg, z0, c0, sc0, broken, &memo, 0) != 0 || !memo.valid)
             continue;                      /* the reference must pass to be written */
@@ -350,6 +349,71 @@ static void test_clearance_memo(void)
           cleared, wrong, rewritten);
 }
 
+/* The memo's bounds alone (hg_guard_memo: no joint points): on random
+ * states near reference states that passed, many of them close to the
+ * joint cones (head tilted up to 45 deg, the cones 40 deg, or moved
+ * sideways up to 0.45 m, the carriages' cone 25 deg) or to a bar
+ * touching another (the memo's clearance test above), moved 0.1 mm to 5 cm
+ * and 0.006 to 3 deg, the check with the memo gives the code and report
+ * (bit for bit) of the check without; and every state the bounds alone
+ * clear is inside both cones and the clearance by this file's geometry
+ * (the spec's formulas). */
+static void test_bounds_alone(void)
+{
+    hg_params p;
+    hg_guard_geo gg;
+    long states = 0, same = 0, cleared = 0, wrong = 0, crossing = 0, near = 0;
+    double worst_c = 0, worst_h = 0;
+    int n;
+    hg_params_default(&p);
+    hg_guard_prepare(&p.geo, &gg);
+    for (n = 0; n < 40000; n++) {
+        static const double size[4] = {1e-4, 1e-3, 1e-2, 5e-2};
+        double c0[6], c[6], z0[6], z[6], sc0[6], sc[6], cj, hj, cl;
+        hg_guard_memo memo, m2;
+        hg_guard_report rf, rm;
+        int k, rc_full, rc_memo;
+        double s = size[n % 4];
+        const double reach = n % 2 ? 0.1 : 0.45, tilt = n % 2 ? 45 : 5;   /* near the head's or the carriages' cones */
+        c0[0] = hg_test_uniform(-reach, reach);
+        c0[1] = hg_test_uniform(-reach, reach);
+        c0[2] = hg_test_uniform(-0.2, 0.1);
+        for (k = 3; k < 6; k++)
+            c0[k] = hg_test_uniform(-tilt, tilt) * DEG;
+        for (k = 0; k < 6; k++)
+            c[k] = c0[k] + hg_test_uniform(-s, s);
+        if (hg_inverse_kinematics(&p.geo, c0, z0) || hg_inverse_kinematics(&p.geo, c, z))
+            continue;
+        memset(&memo, 0, sizeof memo);
+        hg_head_trig(c0, sc0);
+        if (hg_guard_check_sc(&gg, z0, c0, sc0, 0, &memo, 0) != 0 || !memo.cones_valid)
+            continue;                      /* the reference must pass to be written */
+        states++;
+        spec_limits(&p.geo, z0, c0, &cj, &hj, &cl);
+        near += hj > p.geo.cone_head_rad - 5 * DEG || cj > p.geo.cone_carriage_rad - 5 * DEG;
+        m2 = memo;
+        hg_head_trig(c, sc);
+        rc_full = hg_guard_check(&p.geo, z, c, 0, &rf);
+        rc_memo = hg_guard_check_sc(&gg, z, c, sc, 0, &m2, &rm);
+        same += rc_full == rc_memo && rf.kind == rm.kind && rf.bar == rm.bar && rf.other == rm.other &&
+                memcmp(&rf.value, &rm.value, sizeof rf.value) == 0 && memcmp(&rf.limit, &rm.limit, sizeof rf.limit) == 0;
+        crossing += rc_full == HG_ERR_JOINT_RANGE;
+        if (m2.cleared > memo.cleared) {   /* passed on the bounds alone */
+            cleared++;
+            spec_limits(&p.geo, z, c, &cj, &hj, &cl);
+            wrong += !(cj <= p.geo.cone_carriage_rad && hj <= p.geo.cone_head_rad && cl >= p.geo.d_bar_m);
+            worst_c = fmax(worst_c, cj);
+            worst_h = fmax(worst_h, hj);
+        }
+    }
+    CHECK(states > 10000 && same == states && cleared > 5000 && wrong == 0 && crossing > 200 && near > 1000,
+          "the memo's bounds alone: %ld random states near a reference (%ld references within 5 deg of a cone), "
+          "the check with the memo as without (code and report) in %ld, %ld beyond a joint's cone; %ld passed on "
+          "the bounds alone, %ld of them outside a limit by the second method (largest carriage-joint angle "
+          "%.2f deg, head-joint %.2f deg, cones %.0f and %.0f deg)", states, near, same, crossing, cleared, wrong,
+          worst_c / DEG, worst_h / DEG, p.geo.cone_carriage_rad / DEG, p.geo.cone_head_rad / DEG);
+}
+
 int main(void)
 {
     static const double issue16[6] = {1.5, -2, 0.7, 2.5, -1.2, 0.3};
@@ -359,6 +423,7 @@ int main(void)
     test_rotation_path(0);
     test_rotation_path(1);
     test_clearance_memo();
+    test_bounds_alone();
     test_open_loop_strike(issue16, "1.5,-2,0.7,2.5,-1.2,0.3 V");
     test_open_loop_strike(twist, "+-2 V alternating (the head turns)");
     return hg_test_exit();
