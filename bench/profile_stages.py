@@ -43,9 +43,11 @@ PARTS = {
         ("head sin/cos", ["hg_head_trig", r"__sin.*", r"__cos.*"]),
         ("generated constraint terms", ["hg_gen_reduced_stabilize"])],
     "guard": [
+        ("the memo's bounds alone (no joint points)", ["cones_clear", "pairs_clear", "head_moved"]),
         ("segment distances", ["hg_segment_distance"]),
         ("clearance bound (memo)", ["clearance", "end_moved"]),
-        ("joint cosines", ["joint_cosines"]),
+        ("joint cosines, the cones' reference", ["joint_cosines", "cones_remember", "angle_of", r"acos.*",
+                                                 r"__acos.*", r"__ieee754_acos.*"]),
         ("joint points", ["hg_joint_points", "hg_joint_points_rot", "head_offsets"]),
         ("rotation and its sin/cos", ["hg_rotation", "hg_rotation_sc", r"__sin.*", r"__cos.*"])],
 }
@@ -53,7 +55,7 @@ REST = {"accelerations (2 Heun stages)": "solve, z'' = A c'' + b",
         "friction": "mass responses (the correction; W where not split out), rest",
         "stabilization": "Newton step on z, z' = A c'",
         "drive (windings)": "amplifiers, windings",
-        "guard": "cone checks, clearance bound (inlined parts)"}
+        "guard": "cone checks, the memo's bounds (inlined parts)"}
 
 
 def matches(name, pats):

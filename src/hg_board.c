@@ -424,6 +424,12 @@ void hg_board_peek(const hg_board *b, hg_board_outputs *out)
     }
 }
 
+void hg_board_forget(hg_board *b)
+{
+    const hg_plant *pl = hg_board_plant(b);
+    memset((char *)b->d.store + pl->state_bytes, 0, pl->data_bytes - pl->state_bytes);
+}
+
 /* First channel whose reset-blocking injection input is set (its injection
  * in *which), or -1. */
 static int reset_blocked(const hg_board *b, const hg_board_inputs *in, int *which)

@@ -251,6 +251,12 @@ void hg_board_inputs_default(const hg_board *b, hg_board_inputs *in);
  * without stepping: no events. */
 void hg_board_peek(const hg_board *b, hg_board_outputs *out);
 
+/* Empty the plant's caches (its data's scratch, zeroed: hg_plant.h's
+ * rule), which a board of unknown origin (a deserialized FMU state) must
+ * not bring: a cache's fact would be taken unchecked. The next step gives
+ * the bits it gives with the caches full. */
+void hg_board_forget(hg_board *b);
+
 /* One servo period of period_ns (the HAL thread's period): see the file
  * comment. Order: reset edge, parameter change, watchdog (control, kick,
  * DAC auto reset, advance), amplifier enables, the plant's injections,

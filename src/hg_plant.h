@@ -116,7 +116,8 @@ typedef struct {
     const hg_plant_injection *injections; /* its per-channel fault injections (bit i of inject[ch]) */
     int ninjections;
     unsigned long model_bytes, data_bytes; /* sizes of its model and data types (<= the storage) */
-    unsigned long state_bytes;       /* the first state_bytes of its data are its whole state */
+    unsigned long state_bytes;       /* the first state_bytes of its data are its whole state; the rest
+                                        is scratch, whose caches are empty when it is all zeros */
     /* the variant called name (model=), or -1 */
     int (*variant_of)(const char *name);
     /* its name into buf (len bytes): 0, or -1 for no such variant */

@@ -966,6 +966,8 @@ fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte seriali
             memcpy(blob, serializedState + sizeof h, s->blob_size);
             if (block_wrong(s, blob, content, sizeof content))
                 why = content;
+            else if (((const status_t *)(const void *)blob)->built)
+                fmu_plant_forget(blob + s->off_plant);   /* its caches were not checked */
         }
     }
     if (why) {

@@ -505,6 +505,13 @@ static const char *plant_wrong(const plant *p, const plant *ref, double enc_scal
     d = hg_hexaglide_data(&b->d);
     if (!isfinite(d->t_s) || d->t_s < 0 || d->broken_bars != 0)
         return "its machine's time is not finite, or a bar is broken (the FMU breaks none)";
+    if (d->trig_valid) {              /* the state's sin/cos of the head's angles: the core's of them */
+        double sc[6];
+        hg_head_trig(d->pose, sc);
+        if (d->trig_valid != 1 || memcmp(d->trig_key_rad, d->pose + 3, sizeof d->trig_key_rad) != 0 ||
+            !SAME(d->trig_sc, sc))
+            return "its head's sin and cos are not its angles'";
+    }
     pl->sense(&b->m, &b->d, &sense);
     if (!SAME(sense, b->sense))
         return "its sensors do not show its machine's state";
@@ -549,6 +556,11 @@ int fmu_plant_check(const void *plant_bytes, const fmu_plant_setup *s, char *why
         return 0;
     snprintf(why, len, "%s", wrong);
     return -1;
+}
+
+void fmu_plant_forget(void *plant_bytes)
+{
+    hg_board_forget(&((plant *)plant_bytes)->b);
 }
 
 unsigned long long fmu_plant_layout(void)

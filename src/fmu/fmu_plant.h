@@ -125,6 +125,10 @@ double fmu_plant_period_s(const void *plant);
  * else -1 with the first thing wrong in why (len bytes). */
 int fmu_plant_check(const void *plant, const fmu_plant_setup *s, char *why, size_t len);
 
+/* Empty the caches of plant bytes that fmu_plant_check passed
+ * (hg_board_forget): what they hold was not checked. */
+void fmu_plant_forget(void *plant);
+
 /* A hash of the plant's layout (sizes and offsets of the board's fields):
  * the serialized FMU state's header carries it. */
 unsigned long long fmu_plant_layout(void);

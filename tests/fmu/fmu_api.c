@@ -12,6 +12,7 @@
 #include "fmu_test.h"
 #include "fmu_state.h"
 #include "hg_board.h"             /* the board's fields, to forge states (a plant begins with its hg_board) */
+#include "hg_model.h"             /* the Hexaglide's data (hg_data at the start of the board's plant data) */
 
 #define PERIOD 0.001
 #define MAX_OUT 256
@@ -622,7 +623,7 @@ static void test_forged(void)
     static const int huge = 1000000;
     static const unsigned many = 4000000000u;
     static const long long llmax = 9223372036854775807LL;
-    static const double nan = NAN, minus1 = -1, seven = 7, one = 1;
+    static const double nan = NAN, minus1 = -1, seven = 7, one = 1, half = 0.5;
     static const int ninety_nine = 99, zero = 0;
     static const char format01[2] = {'0', '1'};
     const struct {
@@ -645,6 +646,8 @@ static void test_forged(void)
         {"an encoder at revolution 2^63 - 1", BOARD, offsetof(hg_board, enc[0].revolution), &llmax, sizeof llmax,
          "encoders"},
         {"a fault latch of 99", BOARD, offsetof(hg_board, fault), &ninety_nine, sizeof(int), "latches"},
+        {"the head's kept sin A 0.5", BOARD, offsetof(hg_board, d) + offsetof(hg_data, trig_sc), &half, sizeof half,
+         "sin and cos"},
         {"m_head = -1 (out of range)", VALUE, 0, &minus1, sizeof minus1, "m_head"},
         {"m_head = 7 (not the machine's 6.697)", VALUE, 0, &seven, sizeof seven, "model"},
         {"z_0 = NaN (an output)", VALUE, 1, &nan, sizeof nan, "z_0"},
@@ -704,6 +707,69 @@ static void test_forged(void)
     fmi3FreeInstance(s2);
 }
 
+/* Drive instance s at +-10 V alternating from its time t0 until it faults (at most n periods): the
+ * periods stepped before the fault (n when none) and its message in why. */
+static long until_fault(fmi3Instance s, logbook *b, double t0, long n, char *why, size_t len)
+{
+    static const double v[6] = {10, -10, 10, -10, 10, -10};
+    long i;
+    set_volts(s, v);
+    for (i = 0; i < n; i++)
+        if (step_at(s, t0 + (double)i * PERIOD, PERIOD) != fmi3OK)
+            break;
+    snprintf(why, len, "%s", b->last);
+    return i;
+}
+
+/* A serialized state whose guard memo (scratch the check cannot see) was forged to clear every
+ * limit is taken with its caches emptied: driven at +-10 V it faults where the genuine state's
+ * machine does, with the same message (the head joint's cone), instead of passing through. */
+static void test_forged_memo(void)
+{
+    logbook b = {0}, b2 = {0}, b3 = {0};
+    fmi3Instance s = started("memo", &b, 0), s2 = instantiate("forged", &b2), s3 = instantiate("genuine", &b3);
+    fmi3Byte *bytes = 0;
+    fmi3FMUState st = 0, st3 = 0;
+    fmu_serial_header h;
+    hg_guard_memo memo;
+    char why2[1024], why3[1024];
+    size_t size;
+    long n2, n3;
+    int k, p;
+    b.quiet = b2.quiet = b3.quiet = 1;
+    size = s ? serialized(s, &bytes) : 0;
+    if (!size || !s2 || !s3 || fmi3DeserializeFMUState(s3, bytes, size, &st3) != fmi3OK ||
+        fmi3SetFMUState(s3, st3) != fmi3OK) {
+        check(0, "forged memo: instances and a state");
+        free(bytes), fmi3FreeInstance(s), fmi3FreeInstance(s2), fmi3FreeInstance(s3);
+        return;
+    }
+    memset(&memo, 0, sizeof memo);    /* references that clear every cone and pair of any state */
+    memo.valid = memo.cones_valid = 1;
+    for (k = 0; k < 6; k++) {
+        memo.cone_carriage[k] = memo.cone_head[k] = -1e9;
+        memo.bar_len[k] = 1e9;
+    }
+    for (p = 0; p < HG_GUARD_PAIRS; p++)
+        memo.dist[p] = 1e9;
+    memo.dist_min = 1e9;
+    memcpy(&h, bytes, sizeof h);
+    forge(bytes, (size_t)h.off_plant + offsetof(hg_board, d) + offsetof(hg_data, work.guard), &memo, sizeof memo);
+    check(fmi3DeserializeFMUState(s2, bytes, size, &st) == fmi3OK && fmi3SetFMUState(s2, st) == fmi3OK,
+          "a state with a forged guard memo passes the check (the memo is scratch: %s)", b2.last);
+    n3 = until_fault(s3, &b3, get_f64(s3, "time"), 3000, why3, sizeof why3);
+    n2 = until_fault(s2, &b2, get_f64(s2, "time"), 3000, why2, sizeof why2);
+    check(n3 < 3000 && strstr(why3, "cone") && n2 == n3 && strchr(why2, ':') && strchr(why3, ':') &&
+              strcmp(strchr(why2, ':'), strchr(why3, ':')) == 0,    /* the same message after the instance's name */
+          "... and its machine faults where the genuine state's does: period %ld as %ld (%.160s)", n2, n3, why2);
+    fmi3FreeFMUState(s2, &st);
+    fmi3FreeFMUState(s3, &st3);
+    free(bytes);
+    fmi3FreeInstance(s);
+    fmi3FreeInstance(s2);
+    fmi3FreeInstance(s3);
+}
+
 /* A fault's message names the period by the FMU's time (startTime 5 s), not the board's clock. */
 static void test_fault_time(void)
 {
@@ -737,6 +803,7 @@ int main(void)
     test_period();
     test_ranges();
     test_forged();
+    test_forged_memo();
     test_fault_time();
     return test_failures ? 1 : 0;
 }
