@@ -109,8 +109,9 @@ enum {
                                          stiff_param at the period needs steps of stiff_dt_max_s */
     HG_EV_ADDF_ORDER = 1u << 12,      /* two periods in a row without a fresh dac-write before the
                                          step (no dac_written, or dac_stale): once per load or reset */
-    HG_EV_ADC_NAN = 1u << 13          /* adc_nan_new: bit ch = channel ch's conversion (current x
+    HG_EV_ADC_NAN = 1u << 13,         /* adc_nan_new: bit ch = channel ch's conversion (current x
                                          adc_volts_per_amp, x gain - offset) became Inf or NaN (reads 0) */
+    HG_EV_ALL = (HG_EV_ADC_NAN << 1) - 1u /* every event bit (a new event goes before this line and here) */
 };
 
 /* Why the fault latched (hg_board_outputs.fault_cause). */

@@ -75,11 +75,13 @@ run_target() {
     name=$1
     RUNS=$(runs_for "$name")
     mkdir -p "$OUT/corpus-$name"
+    # tests/fuzz/seeds/NAME: inputs that once broke a property, run first every time (read, not written)
+    seeds=""; [ -d "tests/fuzz/seeds/$name" ] && seeds="$PWD/tests/fuzz/seeds/$name"
     start=$(date +%s.%N)
     if [ $ENGINE = libFuzzer ]; then
         mask=0; [ "$name" = fuzz_cli ] && mask=3   # the CLI talks; keep libFuzzer's own report
         (cd "$OUT" && "./$name" -runs="$RUNS" -max_total_time="$MAXT" -max_len=512 -seed=1 \
-            -close_fd_mask=$mask -print_final_stats=1 "corpus-$name" >"$name.log" 2>&1)
+            -close_fd_mask=$mask -print_final_stats=1 "corpus-$name" $seeds >"$name.log" 2>&1)
         rc=$?
         runs=$(grep -a -o 'stat::number_of_executed_units: *[0-9]*' "$OUT/$name.log" | grep -o '[0-9]*$' | tail -1)
     else

@@ -146,7 +146,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             fail("an output is not finite");
         if (out.fault_code > 0 || out.fault_code < HG_ERR_LAST || (out.fault == 0) != (out.fault_code == 0))
             fail("fault code out of range or inconsistent with the fault flag");
-        if (out.events >= (HG_EV_ADDF_ORDER << 1))
+        if (out.events & ~(unsigned)HG_EV_ALL)
             fail("unknown event bit");
         if (out.fault_cause < HG_FAULT_NONE || out.fault_cause > HG_FAULT_STIFF ||
             out.reset_refused_channel < -1 || out.reset_refused_channel >= nch ||
