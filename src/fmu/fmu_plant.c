@@ -508,7 +508,8 @@ static const char *plant_wrong(const plant *p, const plant *ref, double enc_scal
     if (d->trig_valid) {              /* the state's sin/cos of the head's angles: the core's of them */
         double sc[6];
         hg_head_trig(d->pose, sc);
-        if (d->trig_valid != 1 || memcmp(d->trig_key_rad, d->pose + 3, sizeof d->trig_key_rad) != 0 ||
+        if (d->trig_valid != 1 ||
+            memcmp(d->trig_key_rad, d->pose + 3, sizeof d->trig_key_rad) != 0 || // NOLINT(bugprone-suspicious-memory-comparison): bitwise on purpose
             !SAME(d->trig_sc, sc))
             return "its head's sin and cos are not its angles'";
     }
