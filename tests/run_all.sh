@@ -12,21 +12,24 @@
 #          fmu (build/hexaglide.fmu under fmusim and its FMI API; make fmu)
 # TESTS_ONLY=tier[,tier] runs a subset.
 #
-# Two lanes run side by side, each one test at a time: the HAL lane (hal,
+# Three lanes run side by side, each one test at a time: the HAL lane (hal,
 # lcnc, linuxcnc: one HAL per host, and their LinuxCNC runs wait on the
-# wall clock more than they compute) and the offline lane (unit, generator,
-# engine, cli, check, fmu: CPU-bound, no HAL), the latter at nice 19 so that
+# wall clock more than they compute), the offline lane (unit, generator,
+# engine, cli, fmu) and the check lane (check: sanitizers, fuzzing, static
+# analysis, soak), the last two CPU-bound without HAL and at nice 19, so that
 # LinuxCNC's processes keep the cores they ask for. HG_TEST_LANES=serial runs
-# the offline lane first, then the HAL lane. Each test's lines are printed
-# as one block when it ends; the counts of both lanes are summed at the end.
-#   run_all.sh --lane offline|hal   (internal) one lane, its counts into
-#                                   build/test-logs/lane-NAME.counts
+# them one after the other. Each test's lines are printed as one block when
+# it ends; the counts of every lane are summed at the end.
+#   run_all.sh --lane offline|check|hal   (internal) one lane, its counts into
+#                                         build/test-logs/lane-NAME.counts
 cd "$(dirname "$0")/.." || exit 1
 LOGS=build/test-logs
 mkdir -p "$LOGS"
 SKIP_RE='^ok( |$).*#[[:space:]]*[Ss][Kk][Ii][Pp]([^[:alnum:]]|$)'
-OFFLINE_TIERS="unit generator engine cli check fmu"
+OFFLINE_TIERS="unit generator engine cli fmu"
+CHECK_TIERS="check"
 HAL_TIERS="hal lcnc linuxcnc"
+LANES="offline check hal"
 
 run_one() { # counts-file name command...
     counts=$1 name=$2; shift 2
@@ -86,31 +89,33 @@ run_tiers() {
 if [ "$1" = --lane ]; then
     case $2 in
     offline) run_tiers "$LOGS/lane-offline.counts" $OFFLINE_TIERS ;;
+    check) run_tiers "$LOGS/lane-check.counts" $CHECK_TIERS ;;
     hal) run_tiers "$LOGS/lane-hal.counts" $HAL_TIERS ;;
-    *) echo "run_all.sh: --lane offline|hal"; exit 2 ;;
+    *) echo "run_all.sh: --lane offline|check|hal"; exit 2 ;;
     esac
     echo "0 0 0 :done" >>"$LOGS/lane-$2.counts"   # the lane ran to its end
     exit 0
 fi
 
-rm -f "$LOGS/lane-offline.counts" "$LOGS/lane-hal.counts"
+for lane in $LANES; do rm -f "$LOGS/lane-$lane.counts"; done
 if [ "$HG_TEST_LANES" = serial ]; then
-    sh "$0" --lane offline
-    sh "$0" --lane hal
+    for lane in $LANES; do sh "$0" --lane $lane; done
 else
     nice -n 19 sh "$0" --lane offline &
     offline=$!
+    nice -n 19 sh "$0" --lane check &
+    check=$!
     sh "$0" --lane hal
-    wait $offline
+    wait $offline $check
 fi
-# both lanes' counts, "passed failed skipped name" per test; a lane that did
+# every lane's counts, "passed failed skipped name" per test; a lane that did
 # not reach its end (killed, crashed) is one failure
-for lane in offline hal; do
+for lane in $LANES; do
     grep -q ' :done$' "$LOGS/lane-$lane.counts" 2>/dev/null && continue
     echo "not ok - the $lane lane of the tests did not run to its end"
     echo "0 1 0 lane-$lane" >>"$LOGS/lane-$lane.counts"
 done
-cat "$LOGS/lane-offline.counts" "$LOGS/lane-hal.counts" | awk '
+for lane in $LANES; do cat "$LOGS/lane-$lane.counts"; done | awk '
     { p += $1; f += $2; s += $3; if ($2 > 0) failed = failed " " $4 }
     END {
         if (failed != "") print "failed:" failed
