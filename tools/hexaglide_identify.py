@@ -933,9 +933,12 @@ class SlowData:
         self.hcols = [i for i, j in enumerate(base.base) if j not in fr]     # gravity, offset, velocity terms
         self.mcols = [i for i, j in enumerate(base.base) if j < NIN]         # inertial
         self.events = [[] for _ in range(6)]
+        self.states = [[] for _ in range(6)]       # per event: every carriage's (z, z') where it starts
         self.per = []
         for r, run in enumerate(runs):
             evs, mot = stick_events(run, s, params, r)
+            for k in range(6):
+                self.states[k] += [np.r_[mot["z"][e[1]], mot["v"][e[1]]] for e in evs[k]]
             steps = sorted({q for k in range(6) for _, p0, L, _, _, _ in evs[k] for q in range(p0 + 1, p0 + 1 + L)})
             steps = np.array(steps, dtype=int)
             d = {"steps": steps, "index": {q: i for i, q in enumerate(steps)},
@@ -1035,6 +1038,30 @@ def _vertex(grid, total, w=2):
     return float(np.clip(-c[1] / (2 * c[0]), grid[lo], grid[hi - 1]))
 
 
+def same_motions(blocks, states, s):
+    """One label per event: the distinct motion its slow stretch (blocks)
+    is. Two stretches are one motion when an event of one starts with every
+    carriage within s.same_motion_m and s.same_motion_mps of an event of the
+    other (single linkage): a program that repeats a move meets the same
+    stick-slip, and the model's error there, at every repeat, so repeats are
+    not independent samples of the breakaway."""
+    ub, inv = np.unique(blocks, return_inverse=True)
+    root = list(range(len(ub)))
+
+    def find(i):
+        while root[i] != i:
+            root[i] = root[root[i]]
+            i = root[i]
+        return i
+    x = np.asarray(states, dtype=float).reshape(len(blocks), 12)
+    tol = np.r_[np.full(6, s.same_motion_m), np.full(6, s.same_motion_mps)]
+    for a in range(len(blocks)):
+        near = np.flatnonzero((np.abs(x[a + 1:] - x[a]) <= tol).all(1)) + a + 1
+        for b in near:
+            root[find(inv[a])] = find(inv[b])
+    return np.array([find(i) for i in inv], dtype=np.int64)
+
+
 def _boot_vertices(grid, L, blocks, n, rng):
     """Vertices of n block-bootstrap replicates of the summed losses L (grid x events)."""
     ub, inv = np.unique(blocks, return_inverse=True)
@@ -1097,7 +1124,8 @@ def breakaway(est, base, runs, reg, params, s, pi0):
         evs = sd.events[k]
         blocks = np.array([(e[0] << 32) + e[5] for e in evs], dtype=np.int64)     # (run, stretch)
         nblk = len(set(blocks.tolist()))
-        row = {"events": len(evs), "blocks": nblk, "periods": sum(e[2] for e in evs)}
+        nmot = len(set(same_motions(blocks, sd.states[k], s).tolist())) if len(evs) else 0
+        row = {"events": len(evs), "blocks": nblk, "motions": nmot, "periods": sum(e[2] for e in evs)}
         info.append(row)
         if nblk < MIN_BLOCKS:
             row["why"] = "%d slow stretches with a stick (at least %d)" % (nblk, MIN_BLOCKS)
@@ -1117,7 +1145,10 @@ def breakaway(est, base, runs, reg, params, s, pi0):
             g = np.linspace(max(low, v - half), v + half, 21)
             Ls = sd.losses(k, theta, params, g, forces)
             L = Ls[s.event_s]
-            sd_boot = np.std(_boot_vertices(g, L, blocks, s.boot, rng))
+            # a program's repeats meet the same stick-slip and the same model error: the
+            # bootstrap over stretches counts each repeat as new, so its spread is scaled to
+            # the distinct motions (exact for exact repeats: n stretches, n / r independent)
+            sd_boot = np.std(_boot_vertices(g, L, blocks, s.boot, rng)) * np.sqrt(nblk / nmot)
             half = max(4 * sd_boot, 2 * (g[1] - g[0]))
         fb = _vertex(g, L.sum(1))
         # the model's check: events simulated shorter and longer give the same breakaway
@@ -1243,13 +1274,14 @@ def report(est, base, runs, s, params, pi0):
     done = [b for b in bk if "value" in b]
     if done:
         out.append("# f_breakaway[k] from stick-slip below %.3g mm/s (%g v_stribeck; the rows above: the rest): "
-                   "%s events in %s slow stretches per carriage, each carriage moved from where its count "
+                   "%s events in %s slow stretches (%s distinct motions) per carriage, each carriage moved from where its count "
                    "shows it stuck as the machine moves it, fitted to its counts (RMS %s counts), the middle of "
                    "the fits with the other carriages free and held during a slip (%s N); sigma: block bootstrap "
-                   "over the stretches, the other estimates' uncertainty, what events of %s s instead of %g s "
+                   "over the stretches scaled to the distinct motions, the other estimates' uncertainty, what events of %s s instead of %g s "
                    "change, and half the free and held fits' difference"
                    % (1e3 * slow_speed(params, s), s.stribeck_band, "/".join("%d" % b["events"] for b in bk),
-                      "/".join("%d" % b["blocks"] for b in bk), "/".join("%.2g" % b.get("rms_counts", np.nan)
+                      "/".join("%d" % b["blocks"] for b in bk), "/".join("%d" % b["motions"] for b in bk),
+                      "/".join("%.2g" % b.get("rms_counts", np.nan)
                                                                           for b in bk),
                       "/".join("%.4g..%.4g" % (b["fb_free"], b["fb_held"]) if "value" in b else "-" for b in bk),
                       " and ".join("%g" % h for h in s.event_check_s), s.event_s))
