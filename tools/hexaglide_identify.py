@@ -1089,6 +1089,16 @@ def _vertex_search(loss, x0, step, low, tries=8):
     return _vertex(g, loss(g))
 
 
+def _jackknife(grid, L, labels):
+    """Delete-one-group jackknife sigma of the vertex of the summed losses L
+    (grid x events) over the groups labels (0 with fewer than 2)."""
+    ug = np.unique(labels)
+    if len(ug) < 2:
+        return 0.0
+    v = np.array([_vertex(grid, L[:, labels != u].sum(1)) for u in ug])
+    return float(np.sqrt((len(ug) - 1) / len(ug) * ((v - v.mean()) ** 2).sum()))
+
+
 MIN_BLOCKS = 5                # slow stretches with events a breakaway estimate needs
 
 
@@ -1124,7 +1134,8 @@ def breakaway(est, base, runs, reg, params, s, pi0):
         evs = sd.events[k]
         blocks = np.array([(e[0] << 32) + e[5] for e in evs], dtype=np.int64)     # (run, stretch)
         nblk = len(set(blocks.tolist()))
-        nmot = len(set(same_motions(blocks, sd.states[k], s).tolist())) if len(evs) else 0
+        motions = same_motions(blocks, sd.states[k], s) if len(evs) else blocks
+        nmot = len(set(motions.tolist()))
         row = {"events": len(evs), "blocks": nblk, "motions": nmot, "periods": sum(e[2] for e in evs)}
         info.append(row)
         if nblk < MIN_BLOCKS:
@@ -1147,8 +1158,11 @@ def breakaway(est, base, runs, reg, params, s, pi0):
             L = Ls[s.event_s]
             # a program's repeats meet the same stick-slip and the same model error: the
             # bootstrap over stretches counts each repeat as new, so its spread is scaled to
-            # the distinct motions (exact for exact repeats: n stretches, n / r independent)
-            sd_boot = np.std(_boot_vertices(g, L, blocks, s.boot, rng)) * np.sqrt(nblk / nmot)
+            # the distinct motions (exact for exact repeats: n stretches, n / r independent);
+            # and a motion that holds much of the fit moves it by what it holds, which the
+            # jackknife over the motions says: the larger of the two
+            sd_boot = max(np.std(_boot_vertices(g, L, blocks, s.boot, rng)) * np.sqrt(nblk / nmot),
+                          _jackknife(g, L, motions))
             half = max(4 * sd_boot, 2 * (g[1] - g[0]))
         fb = _vertex(g, L.sum(1))
         # the model's check: events simulated shorter and longer give the same breakaway
@@ -1277,7 +1291,8 @@ def report(est, base, runs, s, params, pi0):
                    "%s events in %s slow stretches (%s distinct motions) per carriage, each carriage moved from where its count "
                    "shows it stuck as the machine moves it, fitted to its counts (RMS %s counts), the middle of "
                    "the fits with the other carriages free and held during a slip (%s N); sigma: block bootstrap "
-                   "over the stretches scaled to the distinct motions, the other estimates' uncertainty, what events of %s s instead of %g s "
+                   "over the stretches scaled to the distinct motions or the jackknife over the motions (the larger), "
+                   "the other estimates' uncertainty, what events of %s s instead of %g s "
                    "change, and half the free and held fits' difference"
                    % (1e3 * slow_speed(params, s), s.stribeck_band, "/".join("%d" % b["events"] for b in bk),
                       "/".join("%d" % b["blocks"] for b in bk), "/".join("%d" % b["motions"] for b in bk),
