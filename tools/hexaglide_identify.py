@@ -933,9 +933,12 @@ class SlowData:
         self.hcols = [i for i, j in enumerate(base.base) if j not in fr]     # gravity, offset, velocity terms
         self.mcols = [i for i, j in enumerate(base.base) if j < NIN]         # inertial
         self.events = [[] for _ in range(6)]
+        self.states = [[] for _ in range(6)]       # per event: every carriage's (z, z') where it starts
         self.per = []
         for r, run in enumerate(runs):
             evs, mot = stick_events(run, s, params, r)
+            for k in range(6):
+                self.states[k] += [np.r_[mot["z"][e[1]], mot["v"][e[1]]] for e in evs[k]]
             steps = sorted({q for k in range(6) for _, p0, L, _, _, _ in evs[k] for q in range(p0 + 1, p0 + 1 + L)})
             steps = np.array(steps, dtype=int)
             d = {"steps": steps, "index": {q: i for i, q in enumerate(steps)},
@@ -962,11 +965,15 @@ class SlowData:
             for k in range(6):
                 self.events[k] += evs[k]
 
-    def forces(self, theta):
+    def forces(self, theta, held=False):
         """Per run: u (steps, 6), the force on each carriage from everything
         but its own inertia and friction, with the others' filtered motion
         given and their fast response to it free (so the inertia is 1/W_kk),
-        and m = 1/W_kk (steps, 6), for base parameters theta."""
+        and m = 1/W_kk (steps, 6), for base parameters theta. held: the
+        others' fast response held (each other carriage stuck or too damped
+        to follow a slip of a few ms): the inertia is M_kk. The machine's
+        lies between the two (its other carriages stick or slide, each with
+        its viscous friction, which neither model has)."""
         out = []
         for d in self.per:
             if not len(d["steps"]):
@@ -974,10 +981,10 @@ class SlowData:
                 continue
             h = d["Y0"] @ theta[self.hcols]
             M = d["D"] @ theta[self.mcols]
-            Wkk = np.diagonal(np.linalg.inv(M), axis1=1, axis2=2)
+            m = np.diagonal(M, axis1=1, axis2=2) if held else 1.0 / np.diagonal(np.linalg.inv(M), axis1=1, axis2=2)
             a = d["a"]
-            u = d["F"] - h - np.einsum("nkj,nj->nk", M, a) + a / Wkk
-            out.append((u, 1.0 / Wkk))
+            u = d["F"] - h - np.einsum("nkj,nj->nk", M, a) + a * m
+            out.append((u, m.copy()))
         return out
 
     def losses(self, k, theta, params, grid, forces=None):
@@ -1031,6 +1038,30 @@ def _vertex(grid, total, w=2):
     return float(np.clip(-c[1] / (2 * c[0]), grid[lo], grid[hi - 1]))
 
 
+def same_motions(blocks, states, s):
+    """One label per event: the distinct motion its slow stretch (blocks)
+    is. Two stretches are one motion when an event of one starts with every
+    carriage within s.same_motion_m and s.same_motion_mps of an event of the
+    other (single linkage): a program that repeats a move meets the same
+    stick-slip, and the model's error there, at every repeat, so repeats are
+    not independent samples of the breakaway."""
+    ub, inv = np.unique(blocks, return_inverse=True)
+    root = list(range(len(ub)))
+
+    def find(i):
+        while root[i] != i:
+            root[i] = root[root[i]]
+            i = root[i]
+        return i
+    x = np.asarray(states, dtype=float).reshape(len(blocks), 12)
+    tol = np.r_[np.full(6, s.same_motion_m), np.full(6, s.same_motion_mps)]
+    for a in range(len(blocks)):
+        near = np.flatnonzero((np.abs(x[a + 1:] - x[a]) <= tol).all(1)) + a + 1
+        for b in near:
+            root[find(inv[a])] = find(inv[b])
+    return np.array([find(i) for i in inv], dtype=np.int64)
+
+
 def _boot_vertices(grid, L, blocks, n, rng):
     """Vertices of n block-bootstrap replicates of the summed losses L (grid x events)."""
     ub, inv = np.unique(blocks, return_inverse=True)
@@ -1040,13 +1071,44 @@ def _boot_vertices(grid, L, blocks, n, rng):
     return np.array([_vertex(grid, LB @ wi) for wi in w])
 
 
+def _vertex_search(loss, x0, step, low, tries=8):
+    """The vertex of loss (summed losses on a grid) near x0: 9 points step
+    apart, moved to the lowest and the step doubled while the lowest is at
+    an edge, then 9 points a quarter of that step apart about it."""
+    for _ in range(tries):
+        g = x0 + step * np.arange(-4, 5)
+        g = g[g >= low] if (g >= low).sum() >= 5 else low + step * np.arange(9)
+        tot = loss(g)
+        i = int(np.argmin(tot))
+        if 0 < i < len(g) - 1 or (i == 0 and g[0] - step < low):
+            break
+        x0, step = g[i], 2 * step
+    v = _vertex(g, tot)
+    g = v + 0.25 * step * np.arange(-4, 5)
+    g = g[g >= low] if (g >= low).sum() >= 5 else low + 0.25 * step * np.arange(9)
+    return _vertex(g, loss(g))
+
+
+def _jackknife(grid, L, labels):
+    """Delete-one-group jackknife sigma of the vertex of the summed losses L
+    (grid x events) over the groups labels (0 with fewer than 2)."""
+    ug = np.unique(labels)
+    if len(ug) < 2:
+        return 0.0
+    v = np.array([_vertex(grid, L[:, labels != u].sum(1)) for u in ug])
+    return float(np.sqrt((len(ug) - 1) / len(ug) * ((v - v.mean()) ** 2).sum()))
+
+
 MIN_BLOCKS = 5                # slow stretches with events a breakaway estimate needs
 
 
 def breakaway(est, base, runs, reg, params, s, pi0):
     """f_breakaway[k] from stick-slip (the section's comment), into est:
     value, sigma (block bootstrap over the slow stretches, plus the spread
-    over draws of the least squares' parameters from their covariance)."""
+    over draws of the least squares' parameters from their covariance, the
+    event horizon's check and the inertia's bracket: the middle of the fits
+    with the other carriages free and held during a slip, half their
+    difference)."""
     # the force on a carriage needs every other estimate: with some not
     # identified (in combinations only) it is not known at the events' states
     others = [i for i in range(len(base.base)) if i not in breakaway_columns(base)]
@@ -1065,13 +1127,16 @@ def breakaway(est, base, runs, reg, params, s, pi0):
         t[idx] += chol @ rng.standard_normal(len(idx))
         draws.append((t, sd.forces(t)))
     forces = sd.forces(theta)
+    held = sd.forces(theta, held=True)
     prior_fb = max(pi0[fric_col("f_breakaway", 0)], 0.0)
     info = []
     for k, bi in enumerate(breakaway_columns(base)):
         evs = sd.events[k]
         blocks = np.array([(e[0] << 32) + e[5] for e in evs], dtype=np.int64)     # (run, stretch)
         nblk = len(set(blocks.tolist()))
-        row = {"events": len(evs), "blocks": nblk, "periods": sum(e[2] for e in evs)}
+        motions = same_motions(blocks, sd.states[k], s) if len(evs) else blocks
+        nmot = len(set(motions.tolist()))
+        row = {"events": len(evs), "blocks": nblk, "motions": nmot, "periods": sum(e[2] for e in evs)}
         info.append(row)
         if nblk < MIN_BLOCKS:
             row["why"] = "%d slow stretches with a stick (at least %d)" % (nblk, MIN_BLOCKS)
@@ -1091,7 +1156,13 @@ def breakaway(est, base, runs, reg, params, s, pi0):
             g = np.linspace(max(low, v - half), v + half, 21)
             Ls = sd.losses(k, theta, params, g, forces)
             L = Ls[s.event_s]
-            sd_boot = np.std(_boot_vertices(g, L, blocks, s.boot, rng))
+            # a program's repeats meet the same stick-slip and the same model error: the
+            # bootstrap over stretches counts each repeat as new, so its spread is scaled to
+            # the distinct motions (exact for exact repeats: n stretches, n / r independent);
+            # and a motion that holds much of the fit moves it by what it holds, which the
+            # jackknife over the motions says: the larger of the two
+            sd_boot = max(np.std(_boot_vertices(g, L, blocks, s.boot, rng)) * np.sqrt(nblk / nmot),
+                          _jackknife(g, L, motions))
             half = max(4 * sd_boot, 2 * (g[1] - g[0]))
         fb = _vertex(g, L.sum(1))
         # the model's check: events simulated shorter and longer give the same breakaway
@@ -1104,9 +1175,16 @@ def breakaway(est, base, runs, reg, params, s, pi0):
         vd = [_vertex(g3, sd.losses(k, t, params, g3, f)[s.event_s].sum(1)) for t, f in draws]
         sd_par = float(np.std(vd)) if len(vd) > 1 else 0.0
         n = sum(e[2] for e in evs)
-        row.update(value=fb, sd_boot=sd_boot, sd_par=sd_par, d_check=d_check,
-                   sigma=np.sqrt(sd_boot ** 2 + sd_par ** 2 + d_check ** 2),
-                   rms_counts=np.sqrt(L.sum(1).min() / max(1, n)) * sd.per[0]["scale"][k])
+        rms = np.sqrt(L.sum(1).min() / max(1, n)) * sd.per[0]["scale"][k]
+        # the other carriages during a slip: free (1/W_kk, above) or held (M_kk); the machine's
+        # stick or slide damped by their viscous friction, between the two: the estimate is the
+        # middle of the two fits, half their difference joins the sigma
+        fb_held = _vertex_search(lambda gg: sd.losses(k, theta, params, gg, held)[s.event_s].sum(1),
+                                 fb, step, low)
+        d_inertia = 0.5 * abs(fb_held - fb)
+        row.update(value=0.5 * (fb + fb_held), fb_free=fb, fb_held=fb_held, d_inertia=d_inertia,
+                   sd_boot=sd_boot, sd_par=sd_par, d_check=d_check,
+                   sigma=np.sqrt(sd_boot ** 2 + sd_par ** 2 + d_check ** 2 + d_inertia ** 2), rms_counts=rms)
     est.breakaway = info
 
 
@@ -1210,13 +1288,17 @@ def report(est, base, runs, s, params, pi0):
     done = [b for b in bk if "value" in b]
     if done:
         out.append("# f_breakaway[k] from stick-slip below %.3g mm/s (%g v_stribeck; the rows above: the rest): "
-                   "%s events in %s slow stretches per carriage, each carriage moved from where its count "
-                   "shows it stuck as the machine moves it, fitted to its counts (RMS %s counts); sigma: "
-                   "block bootstrap over the stretches, the other estimates' uncertainty, and what events of "
-                   "%s s instead of %g s change"
+                   "%s events in %s slow stretches (%s distinct motions) per carriage, each carriage moved from where its count "
+                   "shows it stuck as the machine moves it, fitted to its counts (RMS %s counts), the middle of "
+                   "the fits with the other carriages free and held during a slip (%s N); sigma: block bootstrap "
+                   "over the stretches scaled to the distinct motions or the jackknife over the motions (the larger), "
+                   "the other estimates' uncertainty, what events of %s s instead of %g s "
+                   "change, and half the free and held fits' difference"
                    % (1e3 * slow_speed(params, s), s.stribeck_band, "/".join("%d" % b["events"] for b in bk),
-                      "/".join("%d" % b["blocks"] for b in bk), "/".join("%.2g" % b.get("rms_counts", np.nan)
+                      "/".join("%d" % b["blocks"] for b in bk), "/".join("%d" % b["motions"] for b in bk),
+                      "/".join("%.2g" % b.get("rms_counts", np.nan)
                                                                           for b in bk),
+                      "/".join("%.4g..%.4g" % (b["fb_free"], b["fb_held"]) if "value" in b else "-" for b in bk),
                       " and ".join("%g" % h for h in s.event_check_s), s.event_s))
     for k, b in enumerate(bk):
         if "why" in b:

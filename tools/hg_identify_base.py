@@ -132,7 +132,10 @@ class Settings:
     event_s = 0.06            # ... and is simulated from there for at most this long
     event_check_s = (0.04, 0.1)  # ... and, as a check of the model, this long: the differences join the sigma
     huber_counts = 5.0        # ... its position error (counts) weighs quadratically up to this, linearly beyond
-    boot = 200                # ... block bootstrap replicates over slow stretches
+    boot = 200                # ... block bootstrap replicates over the slow stretches, their spread
+    same_motion_m = 1e-3      # ... times sqrt(stretches / distinct motions): stretches with an event
+    same_motion_mps = 5e-3    # ... starting with every carriage within this (m) and this (m/s) of
+    #                           another's are one motion (a program's repeats: not independent)
     draws = 16                # ... draws of the other estimates (their uncertainty in the breakaway's)
 
 
