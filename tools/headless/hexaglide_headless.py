@@ -22,6 +22,9 @@ Settings (environment):
   HG_SAMPLE_EXTRA  more pins to sample, space separated
   HG_TAG        file name stem of outputs (default: the scenario)
   HG_TIMEOUT    seconds allowed for the program (default 300)
+  (a program standing 2 s waiting for a spindle this machine cannot report,
+  G33/G33.1/G76 or G95 with no spindle feedback, is aborted with a message
+  naming the cause: LinuxCNC would wait forever without one)
   HG_ON_PAUSE   resume  a pause the program makes (M0, M1) is resumed as an
                         operator would (default; "pauses" lists LinuxCNC's
                         line then: that of the last move before it)
@@ -246,6 +249,39 @@ class Sampler:
 ERROR_KINDS = (linuxcnc.NML_ERROR, linuxcnc.OPERATOR_ERROR)
 
 
+STALL_S = 2.0   # simulated seconds a program may stand on the spindle before it is aborted
+
+
+def spindle_wait(s):
+    """What the running program stands still waiting for: "index", "speed"
+    or None. LinuxCNC starts a spindle-synchronized move (G33, G33.1, G76)
+    at the spindle's index (spindle.0.index-enable, cleared by its encoder)
+    and feeds a G95 move by the measured speed (spindle.0.speed-in): with
+    neither connected, as on this machine, it waits forever and says
+    nothing."""
+    if s.queue == 0:
+        return None
+    if hal.get_value("spindle.0.index-enable"):
+        return "index"
+    if 950 in s.gcodes and float(hal.get_value("spindle.0.speed-in")) == 0.0:
+        return "speed"
+    return None
+
+
+def spindle_wait_text(kind, s):
+    """The message for spindle_wait's kind, naming the line and the pin."""
+    pin = "spindle.0.index-enable" if kind == "index" else "spindle.0.speed-in"
+    wired = pin_table().get(pin, (None, None))[1] is not None
+    if kind == "index":
+        return ("the program waits for the spindle's index pulse to start a spindle-synchronized move "
+                "(G33, G33.1, G76) after line %d: %s is %s" % (
+                    s.motion_line, pin, "never answered by the encoder" if wired
+                    else "not connected, this machine has no spindle encoder"))
+    return ("the move of line %d has no feed: feed per revolution (G95) with the measured spindle speed "
+            "%s at 0 (%s)" % (s.motion_line, pin, "the spindle stands" if wired
+                              else "not connected, this machine has no spindle encoder"))
+
+
 class Machine:
     def __init__(self):
         self.s = linuxcnc.stat()
@@ -322,10 +358,22 @@ class Machine:
         the M0/M1."""
         t0 = time.time()
         pauses = []
+        stall = None               # simulated time since which the program stands on a spindle
         while True:
             s = self.poll()
             if s.interp_state == linuxcnc.INTERP_IDLE and s.queue == 0 and s.state != linuxcnc.RCS_EXEC:
                 return pauses
+            why = None if s.paused or s.current_vel != 0.0 else spindle_wait(s)
+            if why is None:
+                stall = None
+            elif stall is None:
+                stall = sim_time()
+            elif sim_time() - stall >= STALL_S:
+                text = spindle_wait_text(why, s)
+                self.c.abort()
+                self.wait(lambda st: st.interp_state == linuxcnc.INTERP_IDLE, 10, "abort")
+                raise RuntimeError("%s; LinuxCNC waits for it with no message: the program was aborted after "
+                                   "%.0f s standing still" % (text, STALL_S))
             if s.paused and s.interp_state == linuxcnc.INTERP_PAUSED:
                 line = s.current_line      # LinuxCNC's: the line of the last move, before the M0/M1
                 if on_pause != "resume":
@@ -552,6 +600,8 @@ def main():
             res["board"] = {k: hal.get_value("motenc-hexaglide.0." + k)
                             for k in ("fault", "fault-code", "steps", "step-time-max-ns",
                                       "sim-time")}
+            res["task_state_end"] = m.s.task_state
+            res["interp_idle_end"] = m.s.interp_state == linuxcnc.INTERP_IDLE
             # where the simulated head is (beside pose_end, where LinuxCNC says it is)
             res["head_end"] = [hal.get_value("motenc-hexaglide.0.head-" + a) for a in AXES]
         except Exception as ex:
