@@ -94,9 +94,9 @@ static int current_geometry(hg_geometry *g)
     return rc;
 }
 
-/* The forward solver's settings from the pins (the core keeps the last
- * valid pair); a refused pair is said once. */
-static void fk_options(hg_fk_options *opt)
+/* The forward solver's settings from the pins into the session (the core
+ * keeps the last valid pair); a refused pair is said once. */
+static void fk_settings(void)
 {
     const char *field = "", *why = "";
     if (hg_fk_session_settings(&hd->fk, *hd->fk_max_iterations, *hd->fk_tolerance_mm / HG_MM_PER_M, &field,
@@ -112,7 +112,6 @@ static void fk_options(hg_fk_options *opt)
                             "at most %s mm (a coarser Newton step would leave the pose off by more than an encoder "
                             "count); keeping %s mm\n", max_mm, kept_mm);
     }
-    *opt = hd->fk.in_force;
 }
 
 /* EmcPose (mm, deg) -> core pose (m, rad). */
@@ -137,7 +136,6 @@ int kinematicsForward(const double *joints, EmcPose *pos,
                       KINEMATICS_INVERSE_FLAGS *iflags)
 {
     hg_geometry g;
-    hg_fk_options opt;
     hg_fk_report rep = {0, 0.0};
     double z[6], pose[6];
     int k, rc, say;
@@ -146,10 +144,12 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     pose_from_emc(pos, pose);
     for (k = 0; k < 6; k++)
         z[k] = joints[k] / HG_MM_PER_M;
-    fk_options(&opt);
+    fk_settings();
     rc = current_geometry(&g);
     if (rc == 0)
-        rc = hg_forward_kinematics(&g, z, pose, &opt, &rep);
+        rc = hg_fk_session_solve(&hd->fk, &g, z, pose, &rep);   /* on failure: the last pose solved */
+    else
+        hg_fk_session_hold(&hd->fk, pose);
     *hd->fk_iterations = rep.iterations;
     *hd->fk_residual_mm = rep.residual_m * HG_MM_PER_M;
     *hd->fk_error = rc;
@@ -163,10 +163,11 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     else if (say == HG_FK_SAY_SOLVES_AGAIN)
         rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: forward kinematics solves again (after %u failed calls "
                         "in all)\n", hd->fk.fail_count);
-    if (rc)
-        return rc;
+    /* also on failure: motion keeps what is written here as its position
+     * (it shows the last solved pose, not the world home it passes as the
+     * next guess) */
     pose_to_emc(pose, pos);
-    return 0;
+    return rc;
 }
 
 int kinematicsInverse(const EmcPose *pos, double *joints,

@@ -391,3 +391,40 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
             pose[k] = c[k];
     return rc;
 }
+void hg_fk_session_hold(const hg_fk_session *s, double pose[6])
+{
+    int k;
+    if (s->have_last)
+        for (k = 0; k < 6; k++)
+            pose[k] = s->last_pose[k];
+}
+
+int hg_fk_session_solve(hg_fk_session *s, const hg_geometry *g, const double z[6], double pose[6],
+                        hg_fk_report *report)
+{
+    int k, rc = hg_forward_kinematics(g, z, pose, &s->in_force, report);
+    if (rc != HG_OK && s->have_last) {
+        double c[6];
+        hg_fk_report again;
+        int differs = 0;
+        for (k = 0; k < 6; k++) {
+            c[k] = s->last_pose[k];
+            differs |= (c[k] != pose[k]);
+        }
+        if (differs && hg_forward_kinematics(g, z, c, &s->in_force, report ? &again : 0) == HG_OK) {
+            rc = HG_OK;
+            for (k = 0; k < 6; k++)
+                pose[k] = c[k];
+            if (report)
+                *report = again;
+        }
+    }
+    if (rc == HG_OK) {
+        for (k = 0; k < 6; k++)
+            s->last_pose[k] = pose[k];
+        s->have_last = 1;
+    } else {
+        hg_fk_session_hold(s, pose);
+    }
+    return rc;
+}

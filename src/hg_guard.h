@@ -175,4 +175,21 @@ int hg_inverse_kinematics_guarded(const hg_geometry *g, const double pose[6], do
 int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6],
                           const hg_fk_options *opt, hg_fk_report *report);
 
+/* One forward call of a kinematics module with a session s (its settings
+ * in force): hg_forward_kinematics from the guess in pose; if that fails
+ * and s has solved before, once more from s's last solved pose (LinuxCNC's
+ * motion passes its world home as the guess after a failed call, which can
+ * be far from the machine). On success pose is the answer and becomes s's
+ * last pose; on failure pose is s's last solved pose (left as given when
+ * there is none), so what the caller shows stays at the last pose solved
+ * until a call succeeds. The report is the successful attempt's, else the
+ * first one's. 0 or hg_forward_kinematics' codes; counts nothing
+ * (hg_fk_session_result does). */
+int hg_fk_session_solve(hg_fk_session *s, const hg_geometry *g, const double z[6], double pose[6],
+                        hg_fk_report *report);
+
+/* A failed call that never reached the solve (a refused geometry): pose
+ * becomes s's last solved pose, left as given when there is none. */
+void hg_fk_session_hold(const hg_fk_session *s, double pose[6]);
+
 #endif

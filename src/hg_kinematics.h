@@ -52,14 +52,17 @@ void hg_fk_options_default(hg_fk_options *o);
 int hg_fk_options_check(const hg_fk_options *o, const char **field, const char **why);
 
 /* What a kinematics module keeps between forward calls (hexaglidekins):
- * the settings in force, the last pair refused (said once), and the run
- * of failed calls (its start said once, its end once). */
+ * the settings in force, the last pair refused (said once), the run
+ * of failed calls (its start said once, its end once) and the last pose
+ * solved (what the module answers while its calls fail). */
 typedef struct {
     hg_fk_options in_force;    /* the last valid settings */
     int refused_iterations;    /* the last refused pair, as given */
     double refused_tolerance_m;
     int failing;               /* 1: the last forward call failed */
     unsigned fail_count;       /* failed calls since init (wraps as a HAL u32) */
+    int have_last;             /* 1: last_pose holds an answer */
+    double last_pose[6];       /* the last pose solved (hg_fk_session_solve, hg_guard.h) */
 } hg_fk_session;
 
 /* What a session asks its caller to say. */

@@ -497,6 +497,69 @@ static void test_fk_session(void)
     CHECK(s.fail_count == 0, "the count wraps as a HAL u32 does");
 }
 
+/* A kinematics module's forward call with its session (hexaglidekins):
+ * what LinuxCNC's motion does around it. Motion passes its last position as
+ * the guess and, after a failed call, its world home (HOME) instead; it
+ * shows what the call leaves in the pose either way. The answer is checked
+ * against the joints by the second formulation of the bars; a struck
+ * machine's joints (beyond a carriage joint's 25 deg: X = 420 mm) are
+ * refused by the guard, and the pose then held is the last one solved,
+ * never the guess (HOME is 420 mm from the machine). */
+static void test_fk_session_solve(const hg_params *p)
+{
+    hg_fk_session s;
+    hg_fk_report rep;
+    const double near_strike[6] = {0.37, 0.0, 0.0, 0, 0, 0}, struck[6] = {0.42, 0.0, 0.0, 0, 0, 0};
+    const double corner[6] = {-0.09, 0.09, -0.08, 8 * DEG, -8 * DEG, 15 * DEG};
+    double z1[6], z2[6], zc[6], pose[6], zero[6] = {0, 0, 0, 0, 0, 0}, d = 0;
+    int k, rc, same;
+    hg_fk_session_init(&s);
+    hg_inverse_kinematics(&p->geo, near_strike, z1);
+    hg_inverse_kinematics(&p->geo, struck, z2);
+    CHECK(hg_inverse_kinematics_guarded(&p->geo, near_strike, z1, 0) == HG_OK &&
+              hg_inverse_kinematics_guarded(&p->geo, struck, z2, 0) == HG_ERR_JOINT_RANGE,
+          "X = 370 mm is within the joints' ranges, X = 420 mm is not (the test's premise)");
+    /* no pose solved yet: a failure leaves the guess */
+    memcpy(pose, zero, sizeof pose);
+    rc = hg_fk_session_solve(&s, &p->geo, z2, pose, &rep);
+    CHECK(rc == HG_ERR_JOINT_RANGE && memcmp(pose, zero, sizeof pose) == 0 && !s.have_last,
+          "nothing solved yet: a refused call leaves the guess (code %d)", rc);
+    memcpy(pose, zero, sizeof pose);
+    rc = hg_fk_session_solve(&s, &p->geo, z1, pose, &rep);
+    CHECK(rc == HG_OK && bar_error_independent(&p->geo, z1, pose) < 1e-12 && fabs(pose[0] - 0.37) < 1e-12 &&
+              s.have_last,
+          "solved from HOME: X = %.9f m, bar error %.1e m", pose[0], bar_error_independent(&p->geo, z1, pose));
+    /* the strike: guess = the last position, then HOME as motion passes it */
+    rc = hg_fk_session_solve(&s, &p->geo, z2, pose, &rep);
+    same = fabs(pose[0] - 0.37) < 1e-12;
+    memcpy(pose, zero, sizeof pose);
+    rc = rc == HG_ERR_JOINT_RANGE ? hg_fk_session_solve(&s, &p->geo, z2, pose, &rep) : rc;
+    CHECK(rc == HG_ERR_JOINT_RANGE && same && fabs(pose[0] - 0.37) < 1e-12 && pose[1] == s.last_pose[1],
+          "struck joints refused (code %d); the pose held is the last solved (X = %.3f m), also when the "
+          "guess is HOME", rc, pose[0]);
+    memcpy(pose, zero, sizeof pose);
+    hg_fk_session_hold(&s, pose);
+    CHECK(fabs(pose[0] - 0.37) < 1e-12, "a call refused before the solve holds the last solved pose too");
+    /* the retry from the last pose: 4 iterations do not reach the corner
+     * from HOME, but do from the last pose 0.01 mm away */
+    hg_fk_session_settings(&s, 4, s.in_force.tolerance_m, 0, 0);
+    hg_inverse_kinematics(&p->geo, corner, zc);
+    memcpy(pose, corner, sizeof pose);
+    rc = hg_fk_session_solve(&s, &p->geo, zc, pose, &rep);
+    for (k = 0; k < 6; k++)
+        zc[k] += 1e-5;
+    memcpy(pose, zero, sizeof pose);
+    CHECK(rc == HG_OK && hg_forward_kinematics(&p->geo, zc, pose, &s.in_force, 0) == HG_ERR_NO_CONVERGENCE,
+          "premise: 4 iterations from HOME do not reach the corner (X-90 Y90 Z-80 A8 B-8 C15)");
+    memcpy(pose, zero, sizeof pose);
+    rc = hg_fk_session_solve(&s, &p->geo, zc, pose, &rep);
+    for (k = 0; k < 3; k++)
+        d = fmax(d, fabs(pose[k] - corner[k]));
+    CHECK(rc == HG_OK && bar_error_independent(&p->geo, zc, pose) < 1e-12 && d < 2e-5 && rep.iterations <= 4,
+          "with HOME as the guess the session solves from its last pose (%d iterations, bar error %.1e m, "
+          "%.1e m from the corner)", rep.iterations, bar_error_independent(&p->geo, zc, pose), d);
+}
+
 int main(void)
 {
     hg_params p, wide;
@@ -518,5 +581,6 @@ int main(void)
     test_geometry_mismatch(&p);
     test_ik_guarded(&p);
     test_fk_session();
+    test_fk_session_solve(&p);
     return hg_test_exit();
 }

@@ -22,6 +22,15 @@ Settings (environment):
   HG_SAMPLE_EXTRA  more pins to sample, space separated
   HG_TAG        file name stem of outputs (default: the scenario)
   HG_TIMEOUT    seconds allowed for the program (default 300)
+  (a program standing 2 s waiting for a spindle this machine cannot report,
+  G33/G33.1/G76 or G95 with no spindle feedback, is aborted with a message
+  naming the cause: LinuxCNC would wait forever without one)
+  HG_ON_PAUSE   resume  a pause the program makes (M0, M1) is resumed as an
+                        operator would (default; "pauses" lists LinuxCNC's
+                        line then: that of the last move before it)
+                stop    it ends the run with an error naming the line
+  HG_FEED_OVERRIDE  feed override set before the program (an operator's
+                slider; LinuxCNC bounds it by [DISPLAY]MAX_FEED_OVERRIDE)
   HG_SETP       "pin value;pin value..." set with halcmd before estop reset
   HG_ESTOP_AFTER  seconds (default 2); estop = the board's E-STOP button
                 (motenc-hexaglide.0.estop-button), released afterwards and
@@ -34,7 +43,8 @@ Settings (environment):
                 a drive whose fault output is not wired
   HG_FAULT_ON_AGAIN 1: try machine on while the fault is still there
   HG_FAULT_MDI  the recovery's MDI move (default "G90 G1 X5 Y-5 Z5 F600")
-Outputs: HG_OUT/HG_TAG.json (verdict, positions, errors, timings) and,
+Outputs: HG_OUT/HG_TAG.json (verdict, positions, errors, the program's own
+messages ((MSG,...), (DEBUG,...): "messages", not errors), timings) and,
 with sampling, HG_OUT/HG_TAG.csv (one row per servo period).
 """
 import json
@@ -205,11 +215,18 @@ class Sampler:
         return rows
 
     def write_csv(self, csv_path):
-        """Raw halsampler text -> CSV with a time column; returns (rows, gaps)."""
+        """Raw halsampler text -> CSV with a time column; returns (rows, gaps,
+        the largest |joint.N.f-error| per joint while halui.program.is-running,
+        None without those columns or a running program)."""
         parts = [self.read_raw(p) for p in self.raw_paths]
         keys = sorted(set(parts[0]).intersection(*parts[1:]))
         step = 1000 if self.key else 1
         gaps = sum(1 for a, b in zip(keys, keys[1:]) if b - a > step)
+        fcols = ["joint.%d.f-error" % j for j in range(6)]
+        watch = None
+        if all(c in self.cols for c in fcols + ["halui.program.is-running"]):
+            watch = [self.cols.index(c) for c in fcols], self.cols.index("halui.program.is-running")
+        fmax = None
         with open(csv_path, "w") as dst:
             dst.write("t_s," + ",".join(self.cols) + "\n")
             first = keys[0] if keys else 0
@@ -219,9 +236,50 @@ class Sampler:
                     vals += part[n]
                 dst.write("%.3f,%s\n" % ((n - first) * (1e-6 if self.key else SERVO_PERIOD_S),
                                           ",".join(vals)))
+                if watch and int(float(vals[watch[1]])):
+                    fe = [abs(float(vals[i])) for i in watch[0]]
+                    fmax = fe if fmax is None else [max(a, b) for a, b in zip(fmax, fe)]
         for p in self.raw_paths:
             os.unlink(p)
-        return len(keys), gaps
+        return len(keys), gaps, fmax
+
+
+# LinuxCNC's error channel carries errors and the program's own messages
+# ((MSG,...), (DEBUG,...), M-code texts): only these kinds are errors
+ERROR_KINDS = (linuxcnc.NML_ERROR, linuxcnc.OPERATOR_ERROR)
+
+
+STALL_S = 2.0   # simulated seconds a program may stand on the spindle before it is aborted
+
+
+def spindle_wait(s):
+    """What the running program stands still waiting for: "index", "speed"
+    or None. LinuxCNC starts a spindle-synchronized move (G33, G33.1, G76)
+    at the spindle's index (spindle.0.index-enable, cleared by its encoder)
+    and feeds a G95 move by the measured speed (spindle.0.speed-in): with
+    neither connected, as on this machine, it waits forever and says
+    nothing."""
+    if s.queue == 0:
+        return None
+    if hal.get_value("spindle.0.index-enable"):
+        return "index"
+    if 950 in s.gcodes and float(hal.get_value("spindle.0.speed-in")) == 0.0:
+        return "speed"
+    return None
+
+
+def spindle_wait_text(kind, s):
+    """The message for spindle_wait's kind, naming the line and the pin."""
+    pin = "spindle.0.index-enable" if kind == "index" else "spindle.0.speed-in"
+    wired = pin_table().get(pin, (None, None))[1] is not None
+    if kind == "index":
+        return ("the program waits for the spindle's index pulse to start a spindle-synchronized move "
+                "(G33, G33.1, G76) after line %d: %s is %s" % (
+                    s.motion_line, pin, "never answered by the encoder" if wired
+                    else "not connected, this machine has no spindle encoder"))
+    return ("the move of line %d has no feed: feed per revolution (G95) with the measured spindle speed "
+            "%s at 0 (%s)" % (s.motion_line, pin, "the spindle stands" if wired
+                              else "not connected, this machine has no spindle encoder"))
 
 
 class Machine:
@@ -230,6 +288,7 @@ class Machine:
         self.c = linuxcnc.command()
         self.e = linuxcnc.error_channel()
         self.errors = []
+        self.messages = []     # what the program displays: not errors
 
     def poll(self):
         self.s.poll()
@@ -238,8 +297,12 @@ class Machine:
             if not m:
                 break
             kind, text = m
-            self.errors.append(text)
-            log("LinuxCNC says:", text)
+            if kind in ERROR_KINDS:
+                self.errors.append(text)
+                log("LinuxCNC says:", text)
+            else:
+                self.messages.append(text)
+                log("LinuxCNC displays:", text)
         return self.s
 
     def wait(self, cond, timeout, what, fail_on_error=False):
@@ -279,9 +342,53 @@ class Machine:
     def run_program(self, path):
         self.c.mode(linuxcnc.MODE_AUTO)
         self.c.wait_complete()
+        if os.environ.get("HG_FEED_OVERRIDE"):
+            self.c.feedrate(float(os.environ["HG_FEED_OVERRIDE"]))
+            self.c.wait_complete()
         self.c.program_open(path)
         self.c.wait_complete()
         self.c.auto(linuxcnc.AUTO_RUN, 0)
+
+    def run_to_end(self, timeout, on_pause="resume"):
+        """Wait until the program has ended (or was refused or aborted).
+        A pause the program makes itself (M0, M1 with optional stop on) is
+        met as an operator meets it: resumed (cycle start), or with
+        on_pause "stop" a RuntimeError naming the line. Returns, for each
+        pause, LinuxCNC's current line then: that of the last move before
+        the M0/M1."""
+        t0 = time.time()
+        pauses = []
+        stall = None               # simulated time since which the program stands on a spindle
+        while True:
+            s = self.poll()
+            if s.interp_state == linuxcnc.INTERP_IDLE and s.queue == 0 and s.state != linuxcnc.RCS_EXEC:
+                return pauses
+            why = None if s.paused or s.current_vel != 0.0 else spindle_wait(s)
+            if why is None:
+                stall = None
+            elif stall is None:
+                stall = sim_time()
+            elif sim_time() - stall >= STALL_S:
+                text = spindle_wait_text(why, s)
+                self.c.abort()
+                self.wait(lambda st: st.interp_state == linuxcnc.INTERP_IDLE, 10, "abort")
+                raise RuntimeError("%s; LinuxCNC waits for it with no message: the program was aborted after "
+                                   "%.0f s standing still" % (text, STALL_S))
+            if s.paused and s.interp_state == linuxcnc.INTERP_PAUSED:
+                line = s.current_line      # LinuxCNC's: the line of the last move, before the M0/M1
+                if on_pause != "resume":
+                    raise RuntimeError("the program paused (M0, M1 or a pause) after line %d and waits for "
+                                       "cycle start; HG_ON_PAUSE=resume resumes it as an operator would"
+                                       % line)
+                log("the program paused (M0, M1) after line %d; resuming as an operator would "
+                    "(HG_ON_PAUSE=stop stops instead)" % line)
+                pauses.append(line)
+                self.c.auto(linuxcnc.AUTO_RESUME)
+                self.wait(lambda st: not st.paused, 10, "resume after the pause at line %d" % line)
+            if time.time() - t0 > timeout:
+                raise TimeoutError("program end: not reached within %.0f s (interpreter state %d, at line %d)"
+                                   % (timeout, s.interp_state, s.current_line))
+            time.sleep(0.05)
 
     def mdi(self, line, timeout=30):
         self.c.mode(linuxcnc.MODE_MDI)
@@ -393,7 +500,8 @@ def main():
     comp = hal.component("hexaglide_headless")
     comp.ready()
     m = Machine()
-    res = {"scenario": scenario, "program": program, "ok": False, "errors": m.errors}
+    res = {"scenario": scenario, "program": program, "ok": False, "errors": m.errors,
+           "messages": m.messages}
     sampler = None
     t_start = time.time()
     try:
@@ -457,8 +565,7 @@ def main():
             else:
                 # wait for the program to start and to finish (or to be refused)
                 time.sleep(0.5)
-                m.wait(lambda s: s.interp_state == linuxcnc.INTERP_IDLE and s.queue == 0
-                       and s.state != linuxcnc.RCS_EXEC, timeout, "program end")
+                res["pauses"] = m.run_to_end(timeout, os.environ.get("HG_ON_PAUSE", "resume"))
                 res["program_wall_s"] = round(time.time() - t0, 2)
                 time.sleep(0.3)
                 m.poll()
@@ -467,7 +574,10 @@ def main():
                 res["joints_end"] = m.joints_fb()
                 res["pose_end"] = list(m.s.actual_position[:6])
                 res["task_state"] = m.s.task_state
-                res["ferror_max_stat"] = [m.s.joint[j]["ferror_highmark"] for j in range(6)]
+                # LinuxCNC's own high mark counts from its start: it holds how far
+                # the unpowered machine sank before motion took each joint on
+                # (0.3-0.9 mm), not the program's following error (ferror_max_program)
+                res["ferror_highmark_since_start"] = [m.s.joint[j]["ferror_highmark"] for j in range(6)]
                 if scenario == "run":
                     res["ok"] = (not res["program_errors"] and m.s.task_state == linuxcnc.STATE_ON)
                 else:
@@ -490,13 +600,18 @@ def main():
             res["board"] = {k: hal.get_value("motenc-hexaglide.0." + k)
                             for k in ("fault", "fault-code", "steps", "step-time-max-ns",
                                       "sim-time")}
+            res["task_state_end"] = m.s.task_state
+            res["interp_idle_end"] = m.s.interp_state == linuxcnc.INTERP_IDLE
+            # where the simulated head is (beside pose_end, where LinuxCNC says it is)
+            res["head_end"] = [hal.get_value("motenc-hexaglide.0.head-" + a) for a in AXES]
         except Exception as ex:
             res["fk"] = "unavailable: %s" % ex
         if sampler:
             sampler.stop()
-            rows, gaps = sampler.write_csv(os.path.join(out, tag + ".csv"))
+            rows, gaps, fmax = sampler.write_csv(os.path.join(out, tag + ".csv"))
             res["samples"] = rows
             res["sample_gaps"] = gaps
+            res["ferror_max_program"] = fmax   # mm per joint, while the program ran
             res["columns"] = sampler.cols
         res["wall_s"] = round(time.time() - t_start, 2)
         with open(os.path.join(out, tag + ".json"), "w") as f:
