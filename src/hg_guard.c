@@ -391,6 +391,7 @@ int hg_forward_kinematics(const hg_geometry *g, const double z[6], double pose[6
             pose[k] = c[k];
     return rc;
 }
+
 void hg_fk_session_hold(const hg_fk_session *s, double pose[6])
 {
     int k;
