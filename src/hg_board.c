@@ -135,6 +135,7 @@ int hg_board_init(hg_board *b, int plant, int variant, const hg_board_params *p)
         b->last_in = *p;
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         b->enc_scale[k] = b->enc_scale_in[k] = 1.0;
+    b->estop_loop_out = b->estop_loop_out_in = 7;   /* out-07, as motenc_io.hal wires it */
     hg_watchdog_init(&b->wd);
     reinit_at_home(b, 0);
     return b->fault ? b->fault_code : HG_OK;
@@ -248,11 +249,30 @@ static void apply_params(hg_board *b, const hg_board_params *want, hg_board_outp
             hg_encoder_rescale(&b->enc[k], b->sense.turns[k], b->sense.counts_per_rev[k]);
 }
 
-/* 1 when the E-STOP loop is open: button pressed, or the loop output's
- * commanded state (value xor invert) is off. */
-static int estop_open(const hg_board_inputs *in)
+/* The E-STOP loop's output from the input, once per change: -1 (none) or
+ * 0..31 is taken; any other value is refused (ESTOP_OUT_BAD, param_error)
+ * and the output in force stays in the loop: a typo must not take the
+ * loop out of the circuit, which would leave the amplifiers on whatever
+ * LinuxCNC's E-STOP says. */
+static void estop_loop_out(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
 {
     int o = in->estop_loop_out;
+    if (o == b->estop_loop_out_in)
+        return;
+    b->estop_loop_out_in = o;
+    if (o >= -1 && o < HG_BOARD_OUTPUTS) {
+        b->estop_loop_out = o;
+    } else {
+        out->events |= HG_EV_ESTOP_OUT_BAD;
+        b->param_error = 1;
+    }
+}
+
+/* 1 when the E-STOP loop is open: button pressed, or the commanded state
+ * (value xor invert) of the loop output in force is off. */
+static int estop_open(const hg_board *b, const hg_board_inputs *in)
+{
+    int o = b->estop_loop_out;
     unsigned cmd = in->dout_values ^ in->dout_inverts;
     if (in->estop_button)
         return 1;
@@ -365,7 +385,7 @@ static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outpu
                     const double volts[HG_CHANNELS_MAX])
 {
     const hg_plant_sense *s = &b->sense;
-    int k, i, open = in ? estop_open(in) : 0; /* before any step: pins as hal_motenc powers up */
+    int k, i, open = in ? estop_open(b, in) : 0; /* before any step: pins as hal_motenc powers up */
     out->channels = s->channels;
     out->rotary = s->rotary;
     for (k = 0; k < s->channels; k++) {
@@ -402,6 +422,7 @@ static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outpu
     out->params.substeps = b->in_force.substeps;    /* (the entries past the plant's stay 0) */
     out->params.integrator = b->in_force.integrator;
     out->substeps_run = b->substeps_run;
+    out->estop_loop_out = b->estop_loop_out;
     if (out->stiff_param < 0 || !(out->events & HG_EV_PARAM_REFUSED)) {
         out->stiff_param = b->substeps_run > b->substeps || b->fault_code == HG_ERR_STIFF ? b->stiff_param : -1;
         out->stiff_dt_max_s = out->stiff_param >= 0 ? b->stiff_dt_max_s : 0.0;
@@ -520,7 +541,8 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
         hg_watchdog_dac_write(&b->wd);
     addf_order(b, in, out);
     expired = hg_watchdog_advance(&b->wd, dt);
-    amps_on = !estop_open(in) && !expired && !b->fault;
+    estop_loop_out(b, in, out);
+    amps_on = !estop_open(b, in) && !expired && !b->fault;
     for (k = 0; k < b->sense.channels; k++) {
         int on = amps_on && !in->amp_fail[k];
         volts[k] = on ? dac_out_v[k] : 0.0;

@@ -57,7 +57,9 @@ typedef struct {
                                          are the previous period's (dynamics addf'd before dac-write) */
     unsigned dout_values;             /* bit j = motenc.B.out-JJ (j 0..31) */
     unsigned dout_inverts;            /* bit j = motenc.B.out-JJ-invert */
-    int estop_loop_out;               /* motenc-hexaglide.B.estop-loop-out (-1 or out of 0..31: none) */
+    int estop_loop_out;               /* motenc-hexaglide.B.estop-loop-out: -1 (no output in the loop)
+                                         or 0..31; another value is refused (ESTOP_OUT_BAD), the one in
+                                         force stays */
     int estop_button;                 /* motenc-hexaglide.B.estop-button */
     int reset;                        /* motenc-hexaglide.B.reset (rising edge acts) */
     unsigned watchdog_control;        /* motenc.B.watchdog-control */
@@ -111,7 +113,9 @@ enum {
                                          step (no dac_written, or dac_stale): once per load or reset */
     HG_EV_ADC_NAN = 1u << 13,         /* adc_nan_new: bit ch = channel ch's conversion (current x
                                          adc_volts_per_amp, x gain - offset) became Inf or NaN (reads 0) */
-    HG_EV_ALL = (HG_EV_ADC_NAN << 1) - 1u /* every event bit (a new event goes before this line and here) */
+    HG_EV_ESTOP_OUT_BAD = 1u << 14,   /* estop_loop_out was set to neither -1 nor 0..31: refused, the
+                                         output in force (estop_loop_out of the outputs) stays in the loop */
+    HG_EV_ALL = (HG_EV_ESTOP_OUT_BAD << 1) - 1u /* every event bit (a new event goes before this line and here) */
 };
 
 /* Why the fault latched (hg_board_outputs.fault_cause). */
@@ -181,6 +185,8 @@ typedef struct {
     double stiff_value;               /* ... the limiting parameter's value (SI) in the set it names */
     int stiff_integrator;             /* ... and that set's integrator (refused or in force) */
     unsigned adc_nan_new;             /* ADC_NAN */
+    int estop_loop_out;               /* the E-STOP loop's output in force (-1 none; the glue shows it on
+                                         estop-loop-out after ESTOP_OUT_BAD) */
 } hg_board_outputs;
 
 /* The board: plant, model, state, sensors and latches (no pointers). */
@@ -221,6 +227,8 @@ typedef struct {
     double tool_error;                /* the tool-path error after the last step (m, -1: none) */
     int skip_tool_error;              /* set by a caller that never reads tool_error (an offline
                                          search): no forward solve, tool_error HG_TOOL_ERROR_SKIPPED */
+    int estop_loop_out;               /* the E-STOP loop's output in force: -1 none, 0..31 */
+    int estop_loop_out_in;            /* its input of the previous step (change detection) */
 } hg_board;
 
 /* The tool-path error of a board that was told to skip it (hg_board.skip_tool_error). */

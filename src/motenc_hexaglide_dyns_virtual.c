@@ -269,6 +269,10 @@ static void report(board_t *b, long period)
         if ((o->enc_scale_bad >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: enc-%02d-scale must be a finite non-zero "
                             "number of counts per unit; set to 1.0 (as hal_motenc)\n", id, k);
+    if (o->events & HG_EV_ESTOP_OUT_BAD)
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: " XP ".%d.estop-loop-out = %d refused: the E-STOP loop "
+                        "runs through a digital output, 0..31 (out-07 in motenc_io.hal), or -1 for none; keeping "
+                        "%d in the loop\n", id, id, b->ins.estop_loop_out, o->estop_loop_out);
     if (o->events & HG_EV_ADDF_ORDER)
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics ran without a motenc.%d.dac-write "
                         "before it in the period: the machine gets the volts one period late or not at all; "
@@ -349,6 +353,7 @@ static void publish(board_t *b)
     *b->watchdog_expired = o->watchdog_expired;
     *b->param_error = o->param_error;
     *b->dac_nan = o->dac_nan;
+    b->estop_loop_out = o->estop_loop_out; /* the output in force (a refused value is shown replaced) */
 }
 
 /* The record pins: this step's inputs, period and outputs, exactly. */

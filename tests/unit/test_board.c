@@ -97,6 +97,35 @@ static void test_estop_loop(void)
     in.estop_loop_out = -1;
     run(1);
     CHECK(out.estop_in == 0 && out.amps_on == 1, "estop-loop-out -1: no output in the loop, closed");
+    /* a value that names no output (a typo: 32, 70, -5) is refused, once, and the
+     * output in force stays in the loop: with out-07 off the drives stay off */
+    in.estop_loop_out = 7;
+    in.dout_values = 0;
+    run(1);
+    CHECK(out.estop_in == 1 && out.amps_on == 0 && out.estop_loop_out == 7 && !(out.events & HG_EV_ESTOP_OUT_BAD),
+          "estop-loop-out 7 again, out-07 off: loop open");
+    {
+        static const int bad[] = {32, 70, -2, -100, 2147483647};
+        unsigned i;
+        for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+            in.estop_loop_out = bad[i];
+            run(1);
+            CHECK((out.events & HG_EV_ESTOP_OUT_BAD) && out.param_error && out.estop_loop_out == 7 &&
+                  out.estop_in == 1 && out.amps_on == 0,
+                  "estop-loop-out %d refused (event, param-error), out-07 stays in the loop: still open, drives off",
+                  bad[i]);
+            run(1);
+            CHECK(!(out.events & HG_EV_ESTOP_OUT_BAD) && out.estop_in == 1 && out.amps_on == 0,
+                  "estop-loop-out %d held: said once, loop still open", bad[i]);
+        }
+    }
+    in.estop_loop_out = 31;
+    run(1);
+    CHECK(out.estop_loop_out == 31 && !(out.events & HG_EV_ESTOP_OUT_BAD) && out.estop_in == 1,
+          "estop-loop-out 31 (the last output) taken: out-31 off, loop open");
+    in.dout_values = 1u << 31;
+    run(1);
+    CHECK(out.estop_in == 0 && out.amps_on == 1, "out-31 on: loop closed");
 }
 
 static void test_watchdog(void)
