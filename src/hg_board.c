@@ -574,6 +574,15 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     publish(b, in, out, volts);
 }
 
+int hg_board_unstepped(long long *since_ns, long period_ns)
+{
+    long long before = *since_ns;
+    if (period_ns <= 0 || before >= HG_BOARD_UNSTEPPED_NS)
+        return 0;
+    *since_ns = before + period_ns;
+    return *since_ns >= HG_BOARD_UNSTEPPED_NS;
+}
+
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
                                  char buf[HG_BOARD_TEXT_LEN])
 {

@@ -288,6 +288,18 @@ int hg_board_params_check(const hg_board *b, const hg_board_params *p, hg_bitset
  * HAL name (hal 1, value in HAL units) or spec name (hal 0). Empty when
  * nothing limits. */
 #define HG_BOARD_TEXT_LEN 240
+/* Simulated time encoder-read may run without a step (the board's dynamics
+ * function) before the glue says the step is in no running thread: 1 s,
+ * a hundred of the longest period a step integrates (HG_PERIOD_MAX_NS). */
+#define HG_BOARD_UNSTEPPED_NS 1000000000LL
+
+/* Called by the glue's encoder-read with its thread's period: *since_ns
+ * (the glue's, 0 at load and set to 0 by every step) adds the period; 1
+ * exactly once, when it first reaches HG_BOARD_UNSTEPPED_NS: the counters
+ * stand still because nothing integrates the machine (motenc.N.dynamics
+ * never added to a thread). A period <= 0 adds nothing. */
+int hg_board_unstepped(long long *since_ns, long period_ns);
+
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
                                  char buf[HG_BOARD_TEXT_LEN]);
 

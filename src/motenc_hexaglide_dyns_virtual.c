@@ -88,6 +88,7 @@ typedef struct {
     int nrec;
     hg_board_rec_stream stream;       /* the parameters' events on the rec pins */
     int recording;                    /* record was TRUE in the last period */
+    long long unstepped_ns;           /* thread time encoder-read ran since the last dynamics call */
     const char *why[HG_BOARD_WHY_LEN]; /* a refusal's reasons (too large for the stack) */
     int nparams;                      /* entries of the plant's parameter table */
     hg_param_info info[HG_PLANT_PARAMS_MAX]; /* that table as the loaded model has it (units) */
@@ -101,8 +102,13 @@ static void encoder_read(void *arg, long period)
 {
     board_t *b = arg;
     int ch;
-    (void)period;
     b->ins.dac_stale |= b->ins.dac_written;   /* read after the volts were written: wrong addf order */
+    if (hg_board_unstepped(&b->unstepped_ns, period))
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics has not run for 1 s while "
+                        "motenc.%d.encoder-read runs: nothing moves the machine, the encoders stand still and "
+                        "LinuxCNC will trip on following error; addf motenc.%d.dynamics servo-thread right after "
+                        "motenc.%d.dac-write (hal_motenc has no such function: the virtual board needs it)\n",
+                        b->id, b->id, b->id, b->id, b->id);
     for (ch = 0; ch < HG_BOARD_ENCODERS; ch++) {
         if (b->o.index_latched[ch])
             *b->enc[ch].index_enable = 0; /* the latch fired: cancel index-enable */
@@ -387,6 +393,7 @@ static void dynamics(void *arg, long period)
     hg_board_inputs *in = &b->ins;
     long long t0 = rtapi_get_time(), dt_ns;
     int k, changed;
+    b->unstepped_ns = 0;              /* the machine is integrated (encoder-read's check) */
     in->dout_values = in->dout_inverts = 0;
     for (k = 0; k < HG_BOARD_OUTPUTS; k++) {
         in->dout_values |= (*b->out[k] ? 1u : 0u) << k;

@@ -699,6 +699,28 @@ static void test_geometry_rounding(void)
           "e 68.3 mm while running: a new shape, restarted at HOME (%.4f mm)", out.pos[0] * 1e3);
 }
 
+/* encoder-read's check that the step runs at all: said once after 1 s of
+ * thread time with no step, the count starts again at each step. */
+static void test_unstepped(void)
+{
+    long long since = 0;
+    int i, said = 0, first = -1;
+    for (i = 1; i <= 3000; i++)
+        if (hg_board_unstepped(&since, PERIOD)) {
+            said++;
+            if (first < 0)
+                first = i;
+        }
+    CHECK(said == 1 && first == 1000, "no step: said once, at the 1000th period of 1 ms (%d times, first %d)", said,
+          first);
+    since = 0;                        /* a step ran */
+    for (i = 0, said = 0; i < 999; i++)
+        said += hg_board_unstepped(&since, PERIOD);
+    CHECK(said == 0 && hg_board_unstepped(&since, 0) == 0 && hg_board_unstepped(&since, -5) == 0 &&
+              hg_board_unstepped(&since, PERIOD) == 1,
+          "after a step: quiet for 999 ms, a period <= 0 counts nothing, said at 1 s");
+}
+
 int main(void)
 {
     test_estop_loop();
@@ -717,5 +739,6 @@ int main(void)
     test_stop_beneath();
     test_adc_nan();
     test_geometry_rounding();
+    test_unstepped();
     return hg_test_exit();
 }
