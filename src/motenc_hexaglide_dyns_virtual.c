@@ -103,12 +103,15 @@ static void encoder_read(void *arg, long period)
     board_t *b = arg;
     int ch;
     b->ins.dac_stale |= b->ins.dac_written;   /* read after the volts were written: wrong addf order */
-    if (hg_board_unstepped(&b->unstepped_ns, period))
+    if (hg_board_unstepped(&b->unstepped_ns, period)) { /* two messages: LinuxCNC's error channel keeps
+                                                            255 characters of each (EMCMOT_ERROR_LEN) */
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics has not run for 1 s while "
                         "motenc.%d.encoder-read runs: nothing moves the machine, the encoders stand still and "
-                        "LinuxCNC will trip on following error; addf motenc.%d.dynamics servo-thread right after "
-                        "motenc.%d.dac-write (hal_motenc has no such function: the virtual board needs it)\n",
-                        b->id, b->id, b->id, b->id, b->id);
+                        "LinuxCNC will trip on following error\n", b->id, b->id, b->id);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: addf motenc.%d.dynamics servo-thread right after "
+                        "motenc.%d.dac-write (the virtual board's own function: hal_motenc has none)\n",
+                        b->id, b->id, b->id);
+    }
     for (ch = 0; ch < HG_BOARD_ENCODERS; ch++) {
         if (b->o.index_latched[ch])
             *b->enc[ch].index_enable = 0; /* the latch fired: cancel index-enable */
@@ -214,10 +217,12 @@ static void report_refusal(board_t *b, long period)
     if (b->o.param_rc != HG_ERR_BAD_PARAM) {
         char what[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&b->b, &b->o, period, 1, what);
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter set refused: %s (code %d)%s%s, even "
-                        "with %u substeps; keeping the set in force (show param displays it again)\n",
-                        b->id, hg_strerror(b->o.param_rc), b->o.param_rc, what[0] ? ": " : "", what,
-                        HG_SUBSTEPS_MAX);
+        /* two messages: LinuxCNC's error channel keeps 255 characters of each (EMCMOT_ERROR_LEN) */
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter set refused: %s (code %d), even with %u "
+                        "substeps; keeping the set in force (halcmd show param displays it again)\n",
+                        b->id, hg_strerror(b->o.param_rc), b->o.param_rc, HG_SUBSTEPS_MAX);
+        if (what[0])
+            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: refused because %s\n", b->id, what);
         return;
     }
     hg_board_params_check(&b->b, &b->ins.params, &bad, b->why);
@@ -281,9 +286,8 @@ static void report(board_t *b, long period)
                         "%d in the loop\n", id, id, b->ins.estop_loop_out, o->estop_loop_out);
     if (o->events & HG_EV_ADDF_ORDER)
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics ran without a motenc.%d.dac-write "
-                        "before it in the period: the machine gets the volts one period late or not at all; "
-                        "addf motenc.%d.dac-write, then motenc.%d.dynamics, after the PIDs in the same "
-                        "thread (docs/driver.md)\n", id, id, id, id, id);
+                        "before it: the machine gets the volts a period late or never; addf motenc.%d.dac-write, "
+                        "then motenc.%d.dynamics, after the PIDs in one thread\n", id, id, id, id, id);
     if (o->events & HG_EV_SUBSTEPS_AUTO) {
         char what[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&b->b, o, period, 1, what);
@@ -296,11 +300,12 @@ static void report(board_t *b, long period)
     if (o->events & HG_EV_FAULT_LATCHED && o->fault_cause == HG_FAULT_STIFF) {
         char what[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&b->b, o, period, 1, what);
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s: the step cannot integrate the parameters at "
-                        "this period even with %u substeps (code %d); drives off; set %s, then " XP ".%d.reset\n",
-                        id, what, HG_SUBSTEPS_MAX, o->fault_code,
-                        o->stiff_dt_max_s > 0.0 ? "a softer value or another integrator"
-                                                : "the mode damping or another integrator", id);
+        /* two messages: LinuxCNC's error channel keeps 255 characters of each (EMCMOT_ERROR_LEN) */
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s (code %d)\n", id, what, o->fault_code);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: the step cannot integrate these parameters at this "
+                        "period even with %u substeps: drives off; set %s, then " XP ".%d.reset\n",
+                        id, HG_SUBSTEPS_MAX, o->stiff_dt_max_s > 0.0 ? "a softer value or another integrator"
+                                                                       : "the mode damping or another integrator", id);
     } else if (o->events & HG_EV_FAULT_LATCHED) {
         static const char tail[] = "; drives off, state frozen; set " XP ".00.reset to restart at HOME";
         const char *cause = o->fault_cause == HG_FAULT_PERIOD ? "bad thread period"
