@@ -466,19 +466,31 @@ static int reset_blocked(const hg_board *b, const hg_board_inputs *in, int *whic
     return -1;
 }
 
-/* A step whose volts are not this period's (no dac-write since the last
- * step, or one before the encoders were read) twice in a row: the servo
- * thread's addf order is wrong; said once per load or reset. The first
- * period of a thread that runs dynamics first is not a fault: two in a row. */
-static void addf_order(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
+/* The servo thread's addf order: a step whose volts were written before
+ * the encoders were read (dynamics between encoder-read and dac-write)
+ * twice in a row, or steps with no dac-write at all for
+ * HG_BOARD_UNWRITTEN_NS (dac-write missing, or in a thread ten times
+ * slower): said once per load or reset. The first period of a thread that
+ * runs dynamics first is not a fault (two in a row), nor is dynamics in a
+ * faster thread of its own (a finer plant step: each period's volts are
+ * held for several steps, as a DAC holds them). */
+static void addf_order(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out, long period_ns)
 {
-    if (in->dac_written && !in->dac_stale) {
+    int bad = 0;
+    if (in->dac_written && in->dac_stale) {
+        if (b->order_bad_run < 2)
+            b->order_bad_run++;
+        bad = b->order_bad_run == 2;
+    } else {
         b->order_bad_run = 0;
-        return;
     }
-    if (b->order_bad_run < 2)
-        b->order_bad_run++;
-    if (b->order_bad_run == 2 && !b->order_reported) {
+    if (in->dac_written) {
+        b->unwritten_ns = 0;
+    } else if (b->unwritten_ns < HG_BOARD_UNWRITTEN_NS && period_ns > 0) {
+        b->unwritten_ns += period_ns;
+        bad |= b->unwritten_ns >= HG_BOARD_UNWRITTEN_NS;
+    }
+    if (bad && !b->order_reported) {
         out->events |= HG_EV_ADDF_ORDER;
         b->order_reported = 1;
     }
@@ -508,6 +520,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
             apply_params(b, &in->params, out);
             reinit_at_home(b, out);
             b->order_bad_run = b->order_reported = 0;
+            b->unwritten_ns = 0;
             out->events |= HG_EV_RESET_DONE;
         }
     } else if (params_differ(b, &in->params, &b->last_in)) {
@@ -539,7 +552,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     b->dac_nan = nan_now;
     if (in->dac_written)
         hg_watchdog_dac_write(&b->wd);
-    addf_order(b, in, out);
+    addf_order(b, in, out, period_ns);
     expired = hg_watchdog_advance(&b->wd, dt);
     estop_loop_out(b, in, out);
     amps_on = !estop_open(b, in) && !expired && !b->fault;

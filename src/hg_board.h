@@ -28,6 +28,8 @@
 
 #define HG_SUBSTEPS_MAX 64u           /* substeps param: 1..HG_SUBSTEPS_MAX */
 #define HG_PERIOD_MAX_NS 10000000L    /* the longest period integrated (10 ms) */
+#define HG_BOARD_UNWRITTEN_NS 10000000LL /* steps' time without a dac-write before ADDF_ORDER (a plant
+                                         thread up to ten times faster than the servo thread is fine) */
 #define HG_ENC_SCALE_MIN 1e-20        /* the smallest |enc-CC-scale| taken; a smaller or non-finite one
                                          reads 1.0 (as hal_motenc) and sets enc_scale_bad */
 
@@ -109,8 +111,9 @@ enum {
     HG_EV_WATCHDOG_KICKED = 1u << 10, /* watchdog_reset input consumed (glue clears the pin) */
     HG_EV_SUBSTEPS_AUTO = 1u << 11,   /* substeps_run changed: more substeps than asked for, because
                                          stiff_param at the period needs steps of stiff_dt_max_s */
-    HG_EV_ADDF_ORDER = 1u << 12,      /* two periods in a row without a fresh dac-write before the
-                                         step (no dac_written, or dac_stale): once per load or reset */
+    HG_EV_ADDF_ORDER = 1u << 12,      /* the addf order is wrong: two steps in a row whose volts were
+                                         written before the encoders were read (dac_stale), or no
+                                         dac_written for HG_BOARD_UNWRITTEN_NS: once per load or reset */
     HG_EV_ADC_NAN = 1u << 13,         /* adc_nan_new: bit ch = channel ch's conversion (current x
                                          adc_volts_per_amp, x gain - offset) became Inf or NaN (reads 0) */
     HG_EV_ESTOP_OUT_BAD = 1u << 14,   /* estop_loop_out was set to neither -1 nor 0..31: refused, the
@@ -222,13 +225,14 @@ typedef struct {
     hg_plant_report fault_report;     /* what a failed step struck */
     int param_error;
     unsigned steps;                   /* servo periods integrated since load */
-    int order_bad_run;                /* consecutive steps without a fresh dac-write (ADDF_ORDER) */
+    int order_bad_run;                /* consecutive steps with stale volts (ADDF_ORDER) */
     int order_reported;               /* ADDF_ORDER already reported since load or reset */
     double tool_error;                /* the tool-path error after the last step (m, -1: none) */
     int skip_tool_error;              /* set by a caller that never reads tool_error (an offline
                                          search): no forward solve, tool_error HG_TOOL_ERROR_SKIPPED */
     int estop_loop_out;               /* the E-STOP loop's output in force: -1 none, 0..31 */
     int estop_loop_out_in;            /* its input of the previous step (change detection) */
+    long long unwritten_ns;           /* steps' time since the last dac-write (ADDF_ORDER) */
 } hg_board;
 
 /* The tool-path error of a board that was told to skip it (hg_board.skip_tool_error). */

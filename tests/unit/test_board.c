@@ -562,6 +562,23 @@ static void test_addf_order(void)
     run(1);
     in.reset = 0;
     CHECK(order_events(200) == 1, "... and one again after a reset");
+    {   /* dynamics in a thread of its own k times faster than dac-write's: fresh volts every k-th
+         * step, held in between, as a DAC holds them: quiet up to k = 10 at 1 ms (10 ms unwritten) */
+        int k, i, ev;
+        for (k = 2; k <= 20; k += 18) {
+            fresh();
+            in.dac_stale = 0;
+            for (i = 0, ev = 0; i < 400; i++) {
+                in.dac_written = i % k == 0;
+                ev += order_events(1);
+            }
+            CHECK(ev == (k > 10), "dynamics %d times as often as dac-write (1 ms steps): %s (%d events)", k,
+                  k > 10 ? "one event (10 ms without volts)" : "no event", ev);
+        }
+        fresh();
+        in.dac_written = 0;
+        CHECK(order_events(9) == 0 && order_events(1) == 1, "no dac-write at all: the event at 10 ms of steps");
+    }
 }
 
 /* The tool-path error against closed forms: the commands of the pose the
