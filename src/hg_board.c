@@ -596,6 +596,18 @@ int hg_board_unstepped(long long *since_ns, long period_ns)
     return *since_ns >= HG_BOARD_UNSTEPPED_NS;
 }
 
+int hg_board_slow_step(int *run, unsigned reads)
+{
+    enum { SAID = 3 };
+    if (*run >= SAID)
+        return 0;
+    *run = reads > 1 ? *run + 1 : 0;
+    if (*run < 2)
+        return 0;
+    *run = SAID;
+    return 1;
+}
+
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
                                  char buf[HG_BOARD_TEXT_LEN])
 {

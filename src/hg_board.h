@@ -304,6 +304,16 @@ int hg_board_params_check(const hg_board *b, const hg_board_params *p, hg_bitset
  * never added to a thread). A period <= 0 adds nothing. */
 int hg_board_unstepped(long long *since_ns, long period_ns);
 
+/* Called by the glue's dynamics with the encoder-read calls since the
+ * previous step (reads; the glue counts them and sets them back to 0): 1
+ * exactly once, at the second step in a row that followed more than one
+ * read: the step's thread is slower than encoder-read's (dynamics in a
+ * 2 ms thread beside a 1 ms servo thread), so the counters move only at
+ * every n-th read and the PIDs' volts of the periods between are never
+ * applied: a loop tuned for the servo period trips on following error.
+ * *run: the glue's, 0 at load; set it back to 0 to have it said again. */
+int hg_board_slow_step(int *run, unsigned reads);
+
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
                                  char buf[HG_BOARD_TEXT_LEN]);
 

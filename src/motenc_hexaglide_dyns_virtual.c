@@ -89,6 +89,8 @@ typedef struct {
     hg_board_rec_stream stream;       /* the parameters' events on the rec pins */
     int recording;                    /* record was TRUE in the last period */
     long long unstepped_ns;           /* thread time encoder-read ran since the last dynamics call */
+    unsigned reads;                   /* encoder-read calls since the last dynamics call */
+    int slow_run;                     /* hg_board_slow_step's state */
     const char *why[HG_BOARD_WHY_LEN]; /* a refusal's reasons (too large for the stack) */
     int nparams;                      /* entries of the plant's parameter table */
     hg_param_info info[HG_PLANT_PARAMS_MAX]; /* that table as the loaded model has it (units) */
@@ -103,6 +105,8 @@ static void encoder_read(void *arg, long period)
     board_t *b = arg;
     int ch;
     b->ins.dac_stale |= b->ins.dac_written;   /* read after the volts were written: wrong addf order */
+    if (b->reads < 1000u)
+        b->reads++;
     if (hg_board_unstepped(&b->unstepped_ns, period)) { /* two messages: LinuxCNC's error channel keeps
                                                             255 characters of each (EMCMOT_ERROR_LEN) */
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics has not run for 1 s while "
@@ -399,6 +403,17 @@ static void dynamics(void *arg, long period)
     long long t0 = rtapi_get_time(), dt_ns;
     int k, changed;
     b->unstepped_ns = 0;              /* the machine is integrated (encoder-read's check) */
+    if (hg_board_slow_step(&b->slow_run, b->reads)) { /* two messages: LinuxCNC's error channel keeps 255
+                                                          characters of each (EMCMOT_ERROR_LEN) */
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics runs once per %u "
+                        "motenc.%d.encoder-read calls (its thread is slower): the encoders move every %u periods "
+                        "and the volts between are lost; the PID loops will trip on following error\n",
+                        b->id, b->id, b->reads, b->id, b->reads);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: addf motenc.%d.dynamics to the servo thread, right "
+                        "after motenc.%d.dac-write (a thread of its own may be faster, not slower)\n",
+                        b->id, b->id, b->id);
+    }
+    b->reads = 0;
     in->dout_values = in->dout_inverts = 0;
     for (k = 0; k < HG_BOARD_OUTPUTS; k++) {
         in->dout_values |= (*b->out[k] ? 1u : 0u) << k;
@@ -445,8 +460,10 @@ static void dynamics(void *arg, long period)
             *b->joint[k].enc_glitch = 0;  /* applied once */
     if (b->o.events & HG_EV_WATCHDOG_KICKED)
         *b->watchdog_reset = 0;
-    if (b->o.events & HG_EV_RESET_DONE)
+    if (b->o.events & HG_EV_RESET_DONE) {
         *b->step_max_ns = 0;
+        b->slow_run = 0;              /* said again after a reset, as the addf order */
+    }
     report(b, period);
     if (changed || (b->o.events & (HG_EV_PARAM_REFUSED | HG_EV_PARAM_APPLIED | HG_EV_RESET_DONE)))
         write_params(b);              /* show the block in force only when it may differ */

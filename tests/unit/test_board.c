@@ -738,6 +738,25 @@ static void test_unstepped(void)
           "after a step: quiet for 999 ms, a period <= 0 counts nothing, said at 1 s");
 }
 
+/* dynamics' check that its thread is not slower than encoder-read's: said
+ * once at the second step in a row after more than one read; one read per
+ * step (or none: a faster plant thread) is quiet; 0 again says it again. */
+static void test_slow_step(void)
+{
+    int run = 0, i, said = 0;
+    unsigned first_reads[] = {2, 1, 1, 1, 0, 1, 0, 0, 1};   /* LinuxCNC's start: the load's read + the first */
+    for (i = 0; i < (int)(sizeof first_reads / sizeof first_reads[0]); i++)
+        said += hg_board_slow_step(&run, first_reads[i]);
+    CHECK(said == 0, "one read per step, or none (a faster plant thread), one 2 at the start: quiet");
+    for (i = 0, said = 0; i < 100; i++)
+        said += hg_board_slow_step(&run, 2);
+    CHECK(said == 1, "two reads per step (dynamics in a 2 ms thread, the servo 1 ms): said once (%d)", said);
+    run = 0;
+    CHECK(hg_board_slow_step(&run, 3) == 0 && hg_board_slow_step(&run, 1) == 0 && hg_board_slow_step(&run, 3) == 0 &&
+              hg_board_slow_step(&run, 3) == 1,
+          "set back to 0: said again, at the second slow step in a row");
+}
+
 int main(void)
 {
     test_estop_loop();
@@ -757,5 +776,6 @@ int main(void)
     test_adc_nan();
     test_geometry_rounding();
     test_unstepped();
+    test_slow_step();
     return hg_test_exit();
 }
