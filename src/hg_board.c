@@ -469,8 +469,7 @@ static int reset_blocked(const hg_board *b, const hg_board_inputs *in, int *whic
 /* The servo thread's addf order: a step whose volts were written before
  * the encoders were read (dynamics between encoder-read and dac-write)
  * twice in a row, or steps with no dac-write at all for
- * HG_BOARD_UNWRITTEN_NS (dac-write missing, or in a thread ten times
- * slower): said once per load or reset. The first period of a thread that
+ * HG_BOARD_UNWRITTEN_NS (dac-write missing): said once per load or reset. The first period of a thread that
  * runs dynamics first is not a fault (two in a row), nor is dynamics in a
  * faster thread of its own (a finer plant step: each period's volts are
  * held for several steps, as a DAC holds them). */
@@ -596,16 +595,18 @@ int hg_board_unstepped(long long *since_ns, long period_ns)
     return *since_ns >= HG_BOARD_UNSTEPPED_NS;
 }
 
-int hg_board_slow_step(int *run, unsigned reads)
+int hg_board_slow_step(hg_board_rate *r, unsigned reads)
 {
-    enum { SAID = 3 };
-    if (*run >= SAID)
+    int slow;
+    if (r->said)
         return 0;
-    *run = reads > 1 ? *run + 1 : 0;
-    if (*run < 2)
+    r->reads += reads < 1000u ? reads : 1000u;
+    if (++r->steps < HG_BOARD_RATE_WINDOW)
         return 0;
-    *run = SAID;
-    return 1;
+    slow = 2u * r->reads >= 3u * r->steps;  /* at least 1.5 reads per step */
+    r->steps = r->reads = 0;
+    r->said = slow;
+    return slow;
 }
 
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,

@@ -28,8 +28,9 @@
 
 #define HG_SUBSTEPS_MAX 64u           /* substeps param: 1..HG_SUBSTEPS_MAX */
 #define HG_PERIOD_MAX_NS 10000000L    /* the longest period integrated (10 ms) */
-#define HG_BOARD_UNWRITTEN_NS 10000000LL /* steps' time without a dac-write before ADDF_ORDER (a plant
-                                         thread up to ten times faster than the servo thread is fine) */
+#define HG_BOARD_UNWRITTEN_NS 100000000LL /* steps' time without a dac-write before ADDF_ORDER (100 ms:
+                                         a faster plant thread is fine, and so is a servo thread the
+                                         host stalls a few ms on a loaded non-realtime machine) */
 #define HG_ENC_SCALE_MIN 1e-20        /* the smallest |enc-CC-scale| taken; a smaller or non-finite one
                                          reads 1.0 (as hal_motenc) and sets enc_scale_bad */
 
@@ -304,15 +305,23 @@ int hg_board_params_check(const hg_board *b, const hg_board_params *p, hg_bitset
  * never added to a thread). A period <= 0 adds nothing. */
 int hg_board_unstepped(long long *since_ns, long period_ns);
 
+/* The glue's count of encoder-read calls per step (hg_board_slow_step); all 0 at load. */
+typedef struct {
+    unsigned steps, reads;            /* in the window so far */
+    int said;
+} hg_board_rate;
+#define HG_BOARD_RATE_WINDOW 16u      /* steps per window */
+
 /* Called by the glue's dynamics with the encoder-read calls since the
  * previous step (reads; the glue counts them and sets them back to 0): 1
- * exactly once, at the second step in a row that followed more than one
- * read: the step's thread is slower than encoder-read's (dynamics in a
- * 2 ms thread beside a 1 ms servo thread), so the counters move only at
- * every n-th read and the PIDs' volts of the periods between are never
- * applied: a loop tuned for the servo period trips on following error.
- * *run: the glue's, 0 at load; set it back to 0 to have it said again. */
-int hg_board_slow_step(int *run, unsigned reads);
+ * exactly once, at the end of a window of HG_BOARD_RATE_WINDOW steps that
+ * followed at least 1.5 reads per step: the step's thread is slower than
+ * encoder-read's (dynamics in a 2 ms thread beside a 1 ms servo thread),
+ * so the counters move only at every n-th read and the PIDs' volts of the
+ * periods between are never applied: a loop tuned for the servo period
+ * trips on following error. A window, not a single step: the two threads
+ * of a non-realtime host wake in either order. Zero *r to have it said again. */
+int hg_board_slow_step(hg_board_rate *r, unsigned reads);
 
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
                                  char buf[HG_BOARD_TEXT_LEN]);

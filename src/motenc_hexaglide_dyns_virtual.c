@@ -90,7 +90,7 @@ typedef struct {
     int recording;                    /* record was TRUE in the last period */
     long long unstepped_ns;           /* thread time encoder-read ran since the last dynamics call */
     unsigned reads;                   /* encoder-read calls since the last dynamics call */
-    int slow_run;                     /* hg_board_slow_step's state */
+    hg_board_rate rate;               /* encoder-reads per dynamics call (hg_board_slow_step) */
     const char *why[HG_BOARD_WHY_LEN]; /* a refusal's reasons (too large for the stack) */
     int nparams;                      /* entries of the plant's parameter table */
     hg_param_info info[HG_PLANT_PARAMS_MAX]; /* that table as the loaded model has it (units) */
@@ -403,12 +403,12 @@ static void dynamics(void *arg, long period)
     long long t0 = rtapi_get_time(), dt_ns;
     int k, changed;
     b->unstepped_ns = 0;              /* the machine is integrated (encoder-read's check) */
-    if (hg_board_slow_step(&b->slow_run, b->reads)) { /* two messages: LinuxCNC's error channel keeps 255
+    if (hg_board_slow_step(&b->rate, b->reads)) { /* two messages: LinuxCNC's error channel keeps 255
                                                           characters of each (EMCMOT_ERROR_LEN) */
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics runs once per %u "
-                        "motenc.%d.encoder-read calls (its thread is slower): the encoders move every %u periods "
-                        "and the volts between are lost; the PID loops will trip on following error\n",
-                        b->id, b->id, b->reads, b->id, b->reads);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics runs less often than "
+                        "motenc.%d.encoder-read (its thread is slower): the encoders move every few periods and "
+                        "the volts between are lost; the PID loops will trip on following error\n",
+                        b->id, b->id, b->id);
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: addf motenc.%d.dynamics to the servo thread, right "
                         "after motenc.%d.dac-write (a thread of its own may be faster, not slower)\n",
                         b->id, b->id, b->id);
@@ -462,7 +462,7 @@ static void dynamics(void *arg, long period)
         *b->watchdog_reset = 0;
     if (b->o.events & HG_EV_RESET_DONE) {
         *b->step_max_ns = 0;
-        b->slow_run = 0;              /* said again after a reset, as the addf order */
+        memset(&b->rate, 0, sizeof b->rate); /* said again after a reset, as the addf order */
     }
     report(b, period);
     if (changed || (b->o.events & (HG_EV_PARAM_REFUSED | HG_EV_PARAM_APPLIED | HG_EV_RESET_DONE)))
