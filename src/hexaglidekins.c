@@ -48,7 +48,6 @@ typedef struct {
     hal_u32_t *board_geometry;                     /* the board's geometry-fingerprint, 0: unconnected */
     unsigned fingerprint;                          /* hg_geometry_fingerprint of the checked geometry */
     int mismatch_calls;                            /* consecutive calls that found a mismatch */
-    int geometry_reported_bad;                     /* message already printed */
     hal_float_t checked[HG_PARAMS_MAX];            /* the geometry last checked (as geo) ... */
     int checked_rc, checked_valid;                 /* ... its result; 0: check again */
     hg_fk_session fk;                              /* the settings in force, what was refused, failing */
@@ -86,11 +85,10 @@ static int current_geometry(hg_geometry *g)
     rc = hg_geometry_check(g, &field, &why);
     hd->checked_rc = rc;
     hd->checked_valid = 1;
-    if (rc && !hd->geometry_reported_bad)
+    if (rc)                              /* once per refused geometry: a new bad value is named too */
         rtapi_print_msg(RTAPI_MSG_ERR,
                         "hexaglidekins: parameter hexaglidekins.%s %s; kinematics refused "
                         "until it is fixed with setp\n", hg_params_hal_name(field), why);
-    hd->geometry_reported_bad = (rc != 0);
     return rc;
 }
 
@@ -230,7 +228,6 @@ static int export_hal(void)
     *hd->ik_error = 0;
     *hd->board_geometry = 0;
     hd->mismatch_calls = 0;
-    hd->geometry_reported_bad = 0;
     return 0;
 }
 

@@ -135,6 +135,7 @@ int hg_board_init(hg_board *b, int plant, int variant, const hg_board_params *p)
         b->last_in = *p;
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         b->enc_scale[k] = b->enc_scale_in[k] = 1.0;
+    b->estop_loop_out = b->estop_loop_out_in = 7;   /* out-07, as motenc_io.hal wires it */
     hg_watchdog_init(&b->wd);
     reinit_at_home(b, 0);
     return b->fault ? b->fault_code : HG_OK;
@@ -248,11 +249,30 @@ static void apply_params(hg_board *b, const hg_board_params *want, hg_board_outp
             hg_encoder_rescale(&b->enc[k], b->sense.turns[k], b->sense.counts_per_rev[k]);
 }
 
-/* 1 when the E-STOP loop is open: button pressed, or the loop output's
- * commanded state (value xor invert) is off. */
-static int estop_open(const hg_board_inputs *in)
+/* The E-STOP loop's output from the input, once per change: -1 (none) or
+ * 0..31 is taken; any other value is refused (ESTOP_OUT_BAD, param_error)
+ * and the output in force stays in the loop: a typo must not take the
+ * loop out of the circuit, which would leave the amplifiers on whatever
+ * LinuxCNC's E-STOP says. */
+static void estop_loop_out(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
 {
     int o = in->estop_loop_out;
+    if (o == b->estop_loop_out_in)
+        return;
+    b->estop_loop_out_in = o;
+    if (o >= -1 && o < HG_BOARD_OUTPUTS) {
+        b->estop_loop_out = o;
+    } else {
+        out->events |= HG_EV_ESTOP_OUT_BAD;
+        b->param_error = 1;
+    }
+}
+
+/* 1 when the E-STOP loop is open: button pressed, or the commanded state
+ * (value xor invert) of the loop output in force is off. */
+static int estop_open(const hg_board *b, const hg_board_inputs *in)
+{
+    int o = b->estop_loop_out;
     unsigned cmd = in->dout_values ^ in->dout_inverts;
     if (in->estop_button)
         return 1;
@@ -365,7 +385,7 @@ static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outpu
                     const double volts[HG_CHANNELS_MAX])
 {
     const hg_plant_sense *s = &b->sense;
-    int k, i, open = in ? estop_open(in) : 0; /* before any step: pins as hal_motenc powers up */
+    int k, i, open = in ? estop_open(b, in) : 0; /* before any step: pins as hal_motenc powers up */
     out->channels = s->channels;
     out->rotary = s->rotary;
     for (k = 0; k < s->channels; k++) {
@@ -402,6 +422,7 @@ static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outpu
     out->params.substeps = b->in_force.substeps;    /* (the entries past the plant's stay 0) */
     out->params.integrator = b->in_force.integrator;
     out->substeps_run = b->substeps_run;
+    out->estop_loop_out = b->estop_loop_out;
     if (out->stiff_param < 0 || !(out->events & HG_EV_PARAM_REFUSED)) {
         out->stiff_param = b->substeps_run > b->substeps || b->fault_code == HG_ERR_STIFF ? b->stiff_param : -1;
         out->stiff_dt_max_s = out->stiff_param >= 0 ? b->stiff_dt_max_s : 0.0;
@@ -445,19 +466,30 @@ static int reset_blocked(const hg_board *b, const hg_board_inputs *in, int *whic
     return -1;
 }
 
-/* A step whose volts are not this period's (no dac-write since the last
- * step, or one before the encoders were read) twice in a row: the servo
- * thread's addf order is wrong; said once per load or reset. The first
- * period of a thread that runs dynamics first is not a fault: two in a row. */
-static void addf_order(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
+/* The servo thread's addf order: a step whose volts were written before
+ * the encoders were read (dynamics between encoder-read and dac-write)
+ * twice in a row, or steps with no dac-write at all for
+ * HG_BOARD_UNWRITTEN_NS (dac-write missing): said once per load or reset. The first period of a thread that
+ * runs dynamics first is not a fault (two in a row), nor is dynamics in a
+ * faster thread of its own (a finer plant step: each period's volts are
+ * held for several steps, as a DAC holds them). */
+static void addf_order(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out, long period_ns)
 {
-    if (in->dac_written && !in->dac_stale) {
+    int bad = 0;
+    if (in->dac_written && in->dac_stale) {
+        if (b->order_bad_run < 2)
+            b->order_bad_run++;
+        bad = b->order_bad_run == 2;
+    } else {
         b->order_bad_run = 0;
-        return;
     }
-    if (b->order_bad_run < 2)
-        b->order_bad_run++;
-    if (b->order_bad_run == 2 && !b->order_reported) {
+    if (in->dac_written) {
+        b->unwritten_ns = 0;
+    } else if (b->unwritten_ns < HG_BOARD_UNWRITTEN_NS && period_ns > 0) {
+        b->unwritten_ns += period_ns;
+        bad |= b->unwritten_ns >= HG_BOARD_UNWRITTEN_NS;
+    }
+    if (bad && !b->order_reported) {
         out->events |= HG_EV_ADDF_ORDER;
         b->order_reported = 1;
     }
@@ -487,6 +519,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
             apply_params(b, &in->params, out);
             reinit_at_home(b, out);
             b->order_bad_run = b->order_reported = 0;
+            b->unwritten_ns = 0;
             out->events |= HG_EV_RESET_DONE;
         }
     } else if (params_differ(b, &in->params, &b->last_in)) {
@@ -518,9 +551,10 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     b->dac_nan = nan_now;
     if (in->dac_written)
         hg_watchdog_dac_write(&b->wd);
-    addf_order(b, in, out);
+    addf_order(b, in, out, period_ns);
     expired = hg_watchdog_advance(&b->wd, dt);
-    amps_on = !estop_open(in) && !expired && !b->fault;
+    estop_loop_out(b, in, out);
+    amps_on = !estop_open(b, in) && !expired && !b->fault;
     for (k = 0; k < b->sense.channels; k++) {
         int on = amps_on && !in->amp_fail[k];
         volts[k] = on ? dac_out_v[k] : 0.0;
@@ -550,6 +584,29 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
         b->switches[k] = hg_switches_stuck(b->sense.switches[k], b->switches[k], in->stuck[k]) | in->tripped[k];
     adc(b, in, out);
     publish(b, in, out, volts);
+}
+
+int hg_board_unstepped(long long *since_ns, long period_ns)
+{
+    long long before = *since_ns;
+    if (period_ns <= 0 || before >= HG_BOARD_UNSTEPPED_NS)
+        return 0;
+    *since_ns = before + period_ns;
+    return *since_ns >= HG_BOARD_UNSTEPPED_NS;
+}
+
+int hg_board_slow_step(hg_board_rate *r, unsigned reads)
+{
+    int slow;
+    if (r->said)
+        return 0;
+    r->reads += reads < 1000u ? reads : 1000u;
+    if (++r->steps < HG_BOARD_RATE_WINDOW)
+        return 0;
+    slow = 2u * r->reads >= 3u * r->steps;  /* at least 1.5 reads per step */
+    r->steps = r->reads = 0;
+    r->said = slow;
+    return slow;
 }
 
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,

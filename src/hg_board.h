@@ -28,6 +28,9 @@
 
 #define HG_SUBSTEPS_MAX 64u           /* substeps param: 1..HG_SUBSTEPS_MAX */
 #define HG_PERIOD_MAX_NS 10000000L    /* the longest period integrated (10 ms) */
+#define HG_BOARD_UNWRITTEN_NS 100000000LL /* steps' time without a dac-write before ADDF_ORDER (100 ms:
+                                         a faster plant thread is fine, and so is a servo thread the
+                                         host stalls a few ms on a loaded non-realtime machine) */
 #define HG_ENC_SCALE_MIN 1e-20        /* the smallest |enc-CC-scale| taken; a smaller or non-finite one
                                          reads 1.0 (as hal_motenc) and sets enc_scale_bad */
 
@@ -57,7 +60,9 @@ typedef struct {
                                          are the previous period's (dynamics addf'd before dac-write) */
     unsigned dout_values;             /* bit j = motenc.B.out-JJ (j 0..31) */
     unsigned dout_inverts;            /* bit j = motenc.B.out-JJ-invert */
-    int estop_loop_out;               /* motenc-hexaglide.B.estop-loop-out (-1 or out of 0..31: none) */
+    int estop_loop_out;               /* motenc-hexaglide.B.estop-loop-out: -1 (no output in the loop)
+                                         or 0..31; another value is refused (ESTOP_OUT_BAD), the one in
+                                         force stays */
     int estop_button;                 /* motenc-hexaglide.B.estop-button */
     int reset;                        /* motenc-hexaglide.B.reset (rising edge acts) */
     unsigned watchdog_control;        /* motenc.B.watchdog-control */
@@ -107,11 +112,14 @@ enum {
     HG_EV_WATCHDOG_KICKED = 1u << 10, /* watchdog_reset input consumed (glue clears the pin) */
     HG_EV_SUBSTEPS_AUTO = 1u << 11,   /* substeps_run changed: more substeps than asked for, because
                                          stiff_param at the period needs steps of stiff_dt_max_s */
-    HG_EV_ADDF_ORDER = 1u << 12,      /* two periods in a row without a fresh dac-write before the
-                                         step (no dac_written, or dac_stale): once per load or reset */
+    HG_EV_ADDF_ORDER = 1u << 12,      /* the addf order is wrong: two steps in a row whose volts were
+                                         written before the encoders were read (dac_stale), or no
+                                         dac_written for HG_BOARD_UNWRITTEN_NS: once per load or reset */
     HG_EV_ADC_NAN = 1u << 13,         /* adc_nan_new: bit ch = channel ch's conversion (current x
                                          adc_volts_per_amp, x gain - offset) became Inf or NaN (reads 0) */
-    HG_EV_ALL = (HG_EV_ADC_NAN << 1) - 1u /* every event bit (a new event goes before this line and here) */
+    HG_EV_ESTOP_OUT_BAD = 1u << 14,   /* estop_loop_out was set to neither -1 nor 0..31: refused, the
+                                         output in force (estop_loop_out of the outputs) stays in the loop */
+    HG_EV_ALL = (HG_EV_ESTOP_OUT_BAD << 1) - 1u /* every event bit (a new event goes before this line and here) */
 };
 
 /* Why the fault latched (hg_board_outputs.fault_cause). */
@@ -181,6 +189,8 @@ typedef struct {
     double stiff_value;               /* ... the limiting parameter's value (SI) in the set it names */
     int stiff_integrator;             /* ... and that set's integrator (refused or in force) */
     unsigned adc_nan_new;             /* ADC_NAN */
+    int estop_loop_out;               /* the E-STOP loop's output in force (-1 none; the glue shows it on
+                                         estop-loop-out after ESTOP_OUT_BAD) */
 } hg_board_outputs;
 
 /* The board: plant, model, state, sensors and latches (no pointers). */
@@ -216,11 +226,14 @@ typedef struct {
     hg_plant_report fault_report;     /* what a failed step struck */
     int param_error;
     unsigned steps;                   /* servo periods integrated since load */
-    int order_bad_run;                /* consecutive steps without a fresh dac-write (ADDF_ORDER) */
+    int order_bad_run;                /* consecutive steps with stale volts (ADDF_ORDER) */
     int order_reported;               /* ADDF_ORDER already reported since load or reset */
     double tool_error;                /* the tool-path error after the last step (m, -1: none) */
     int skip_tool_error;              /* set by a caller that never reads tool_error (an offline
                                          search): no forward solve, tool_error HG_TOOL_ERROR_SKIPPED */
+    int estop_loop_out;               /* the E-STOP loop's output in force: -1 none, 0..31 */
+    int estop_loop_out_in;            /* its input of the previous step (change detection) */
+    long long unwritten_ns;           /* steps' time since the last dac-write (ADDF_ORDER) */
 } hg_board;
 
 /* The tool-path error of a board that was told to skip it (hg_board.skip_tool_error). */
@@ -280,6 +293,36 @@ int hg_board_params_check(const hg_board *b, const hg_board_params *p, hg_bitset
  * HAL name (hal 1, value in HAL units) or spec name (hal 0). Empty when
  * nothing limits. */
 #define HG_BOARD_TEXT_LEN 240
+/* Simulated time encoder-read may run without a step (the board's dynamics
+ * function) before the glue says the step is in no running thread: 1 s,
+ * a hundred of the longest period a step integrates (HG_PERIOD_MAX_NS). */
+#define HG_BOARD_UNSTEPPED_NS 1000000000LL
+
+/* Called by the glue's encoder-read with its thread's period: *since_ns
+ * (the glue's, 0 at load and set to 0 by every step) adds the period; 1
+ * exactly once, when it first reaches HG_BOARD_UNSTEPPED_NS: the counters
+ * stand still because nothing integrates the machine (motenc.N.dynamics
+ * never added to a thread). A period <= 0 adds nothing. */
+int hg_board_unstepped(long long *since_ns, long period_ns);
+
+/* The glue's count of encoder-read calls per step (hg_board_slow_step); all 0 at load. */
+typedef struct {
+    unsigned steps, reads;            /* in the window so far */
+    int said;
+} hg_board_rate;
+#define HG_BOARD_RATE_WINDOW 16u      /* steps per window */
+
+/* Called by the glue's dynamics with the encoder-read calls since the
+ * previous step (reads; the glue counts them and sets them back to 0): 1
+ * exactly once, at the end of a window of HG_BOARD_RATE_WINDOW steps that
+ * followed at least 1.5 reads per step: the step's thread is slower than
+ * encoder-read's (dynamics in a 2 ms thread beside a 1 ms servo thread),
+ * so the counters move only at every n-th read and the PIDs' volts of the
+ * periods between are never applied: a loop tuned for the servo period
+ * trips on following error. A window, not a single step: the two threads
+ * of a non-realtime host wake in either order. Zero *r to have it said again. */
+int hg_board_slow_step(hg_board_rate *r, unsigned reads);
+
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
                                  char buf[HG_BOARD_TEXT_LEN]);
 

@@ -233,8 +233,20 @@ static void check_start(hg_check *r, const char **why)
 int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char **why)
 {
     hg_check r;
+    hg_params p;
+    int i, n;
+    const hg_param_info *t = hg_params_table(&n);
     check_start(&r, 0);
     geometry_rules(g, &r);
+    /* the whole set's bound (params_rules) on the geometry alone, so that the
+     * kinematics refuse what the board refuses (l = 1e300 mm passed the rules
+     * above, and the forward kinematics then failed without naming it) */
+    hg_params_default(&p);
+    p.geo = *g;
+    for (i = 0; i < n; i++)
+        if (hg_param_is_geometry(i) && !hg_check_failed(&r, t[i].name) &&
+            !(fabs(hg_params_get(&p, i)) < HG_PARAM_MAX_ABS))
+            hg_check_refuse(&r, t[i].name, "must be finite and below 1e9 in magnitude (SI units)");
     return first_failure(&r, bad_field, why);
 }
 

@@ -88,6 +88,9 @@ typedef struct {
     int nrec;
     hg_board_rec_stream stream;       /* the parameters' events on the rec pins */
     int recording;                    /* record was TRUE in the last period */
+    long long unstepped_ns;           /* thread time encoder-read ran since the last dynamics call */
+    unsigned reads;                   /* encoder-read calls since the last dynamics call */
+    hg_board_rate rate;               /* encoder-reads per dynamics call (hg_board_slow_step) */
     const char *why[HG_BOARD_WHY_LEN]; /* a refusal's reasons (too large for the stack) */
     int nparams;                      /* entries of the plant's parameter table */
     hg_param_info info[HG_PLANT_PARAMS_MAX]; /* that table as the loaded model has it (units) */
@@ -101,8 +104,18 @@ static void encoder_read(void *arg, long period)
 {
     board_t *b = arg;
     int ch;
-    (void)period;
     b->ins.dac_stale |= b->ins.dac_written;   /* read after the volts were written: wrong addf order */
+    if (b->reads < 1000u)
+        b->reads++;
+    if (hg_board_unstepped(&b->unstepped_ns, period)) { /* two messages: LinuxCNC's error channel keeps
+                                                            255 characters of each (EMCMOT_ERROR_LEN) */
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics has not run for 1 s while "
+                        "motenc.%d.encoder-read runs: nothing moves the machine, the encoders stand still and "
+                        "LinuxCNC will trip on following error\n", b->id, b->id, b->id);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: addf motenc.%d.dynamics servo-thread right after "
+                        "motenc.%d.dac-write (the virtual board's own function: hal_motenc has none)\n",
+                        b->id, b->id, b->id);
+    }
     for (ch = 0; ch < HG_BOARD_ENCODERS; ch++) {
         if (b->o.index_latched[ch])
             *b->enc[ch].index_enable = 0; /* the latch fired: cancel index-enable */
@@ -208,10 +221,12 @@ static void report_refusal(board_t *b, long period)
     if (b->o.param_rc != HG_ERR_BAD_PARAM) {
         char what[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&b->b, &b->o, period, 1, what);
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter set refused: %s (code %d)%s%s, even "
-                        "with %u substeps; keeping the set in force (show param displays it again)\n",
-                        b->id, hg_strerror(b->o.param_rc), b->o.param_rc, what[0] ? ": " : "", what,
-                        HG_SUBSTEPS_MAX);
+        /* two messages: LinuxCNC's error channel keeps 255 characters of each (EMCMOT_ERROR_LEN) */
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter set refused: %s (code %d), even with %u "
+                        "substeps; keeping the set in force (halcmd show param displays it again)\n",
+                        b->id, hg_strerror(b->o.param_rc), b->o.param_rc, HG_SUBSTEPS_MAX);
+        if (what[0])
+            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: refused because %s\n", b->id, what);
         return;
     }
     hg_board_params_check(&b->b, &b->ins.params, &bad, b->why);
@@ -269,11 +284,14 @@ static void report(board_t *b, long period)
         if ((o->enc_scale_bad >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: enc-%02d-scale must be a finite non-zero "
                             "number of counts per unit; set to 1.0 (as hal_motenc)\n", id, k);
+    if (o->events & HG_EV_ESTOP_OUT_BAD)
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: " XP ".%d.estop-loop-out = %d refused: the E-STOP loop "
+                        "runs through a digital output, 0..31 (out-07 in motenc_io.hal), or -1 for none; keeping "
+                        "%d in the loop\n", id, id, b->ins.estop_loop_out, o->estop_loop_out);
     if (o->events & HG_EV_ADDF_ORDER)
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics ran without a motenc.%d.dac-write "
-                        "before it in the period: the machine gets the volts one period late or not at all; "
-                        "addf motenc.%d.dac-write, then motenc.%d.dynamics, after the PIDs in the same "
-                        "thread (docs/driver.md)\n", id, id, id, id, id);
+                        "before it: the machine gets the volts a period late or never; addf motenc.%d.dac-write, "
+                        "then motenc.%d.dynamics, after the PIDs in one thread\n", id, id, id, id, id);
     if (o->events & HG_EV_SUBSTEPS_AUTO) {
         char what[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&b->b, o, period, 1, what);
@@ -286,11 +304,12 @@ static void report(board_t *b, long period)
     if (o->events & HG_EV_FAULT_LATCHED && o->fault_cause == HG_FAULT_STIFF) {
         char what[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&b->b, o, period, 1, what);
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s: the step cannot integrate the parameters at "
-                        "this period even with %u substeps (code %d); drives off; set %s, then " XP ".%d.reset\n",
-                        id, what, HG_SUBSTEPS_MAX, o->fault_code,
-                        o->stiff_dt_max_s > 0.0 ? "a softer value or another integrator"
-                                                : "the mode damping or another integrator", id);
+        /* two messages: LinuxCNC's error channel keeps 255 characters of each (EMCMOT_ERROR_LEN) */
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s (code %d)\n", id, what, o->fault_code);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: the step cannot integrate these parameters at this "
+                        "period even with %u substeps: drives off; set %s, then " XP ".%d.reset\n",
+                        id, HG_SUBSTEPS_MAX, o->stiff_dt_max_s > 0.0 ? "a softer value or another integrator"
+                                                                       : "the mode damping or another integrator", id);
     } else if (o->events & HG_EV_FAULT_LATCHED) {
         static const char tail[] = "; drives off, state frozen; set " XP ".00.reset to restart at HOME";
         const char *cause = o->fault_cause == HG_FAULT_PERIOD ? "bad thread period"
@@ -349,6 +368,7 @@ static void publish(board_t *b)
     *b->watchdog_expired = o->watchdog_expired;
     *b->param_error = o->param_error;
     *b->dac_nan = o->dac_nan;
+    b->estop_loop_out = o->estop_loop_out; /* the output in force (a refused value is shown replaced) */
 }
 
 /* The record pins: this step's inputs, period and outputs, exactly. */
@@ -382,6 +402,18 @@ static void dynamics(void *arg, long period)
     hg_board_inputs *in = &b->ins;
     long long t0 = rtapi_get_time(), dt_ns;
     int k, changed;
+    b->unstepped_ns = 0;              /* the machine is integrated (encoder-read's check) */
+    if (hg_board_slow_step(&b->rate, b->reads)) { /* two messages: LinuxCNC's error channel keeps 255
+                                                          characters of each (EMCMOT_ERROR_LEN) */
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics runs less often than "
+                        "motenc.%d.encoder-read (its thread is slower): the encoders move every few periods and "
+                        "the volts between are lost; the PID loops will trip on following error\n",
+                        b->id, b->id, b->id);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: addf motenc.%d.dynamics to the servo thread, right "
+                        "after motenc.%d.dac-write (a thread of its own may be faster, not slower)\n",
+                        b->id, b->id, b->id);
+    }
+    b->reads = 0;
     in->dout_values = in->dout_inverts = 0;
     for (k = 0; k < HG_BOARD_OUTPUTS; k++) {
         in->dout_values |= (*b->out[k] ? 1u : 0u) << k;
@@ -428,8 +460,10 @@ static void dynamics(void *arg, long period)
             *b->joint[k].enc_glitch = 0;  /* applied once */
     if (b->o.events & HG_EV_WATCHDOG_KICKED)
         *b->watchdog_reset = 0;
-    if (b->o.events & HG_EV_RESET_DONE)
+    if (b->o.events & HG_EV_RESET_DONE) {
         *b->step_max_ns = 0;
+        memset(&b->rate, 0, sizeof b->rate); /* said again after a reset, as the addf order */
+    }
     report(b, period);
     if (changed || (b->o.events & (HG_EV_PARAM_REFUSED | HG_EV_PARAM_APPLIED | HG_EV_RESET_DONE)))
         write_params(b);              /* show the block in force only when it may differ */

@@ -97,6 +97,35 @@ static void test_estop_loop(void)
     in.estop_loop_out = -1;
     run(1);
     CHECK(out.estop_in == 0 && out.amps_on == 1, "estop-loop-out -1: no output in the loop, closed");
+    /* a value that names no output (a typo: 32, 70, -5) is refused, once, and the
+     * output in force stays in the loop: with out-07 off the drives stay off */
+    in.estop_loop_out = 7;
+    in.dout_values = 0;
+    run(1);
+    CHECK(out.estop_in == 1 && out.amps_on == 0 && out.estop_loop_out == 7 && !(out.events & HG_EV_ESTOP_OUT_BAD),
+          "estop-loop-out 7 again, out-07 off: loop open");
+    {
+        static const int bad[] = {32, 70, -2, -100, 2147483647};
+        unsigned i;
+        for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+            in.estop_loop_out = bad[i];
+            run(1);
+            CHECK((out.events & HG_EV_ESTOP_OUT_BAD) && out.param_error && out.estop_loop_out == 7 &&
+                  out.estop_in == 1 && out.amps_on == 0,
+                  "estop-loop-out %d refused (event, param-error), out-07 stays in the loop: still open, drives off",
+                  bad[i]);
+            run(1);
+            CHECK(!(out.events & HG_EV_ESTOP_OUT_BAD) && out.estop_in == 1 && out.amps_on == 0,
+                  "estop-loop-out %d held: said once, loop still open", bad[i]);
+        }
+    }
+    in.estop_loop_out = 31;
+    run(1);
+    CHECK(out.estop_loop_out == 31 && !(out.events & HG_EV_ESTOP_OUT_BAD) && out.estop_in == 1,
+          "estop-loop-out 31 (the last output) taken: out-31 off, loop open");
+    in.dout_values = 1u << 31;
+    run(1);
+    CHECK(out.estop_in == 0 && out.amps_on == 1, "out-31 on: loop closed");
 }
 
 static void test_watchdog(void)
@@ -533,6 +562,23 @@ static void test_addf_order(void)
     run(1);
     in.reset = 0;
     CHECK(order_events(200) == 1, "... and one again after a reset");
+    {   /* dynamics in a thread of its own k times faster than dac-write's: fresh volts every k-th
+         * step, held in between, as a DAC holds them: quiet up to k = 100 at 1 ms (100 ms unwritten) */
+        int k, i, ev;
+        for (k = 2; k <= 200; k += 198) {
+            fresh();
+            in.dac_stale = 0;
+            for (i = 0, ev = 0; i < 400; i++) {
+                in.dac_written = i % k == 0;
+                ev += order_events(1);
+            }
+            CHECK(ev == (k > 100), "dynamics %d times as often as dac-write (1 ms steps): %s (%d events)", k,
+                  k > 100 ? "one event (100 ms without volts)" : "no event", ev);
+        }
+        fresh();
+        in.dac_written = 0;
+        CHECK(order_events(99) == 0 && order_events(1) == 1, "no dac-write at all: the event at 100 ms of steps");
+    }
 }
 
 /* The tool-path error against closed forms: the commands of the pose the
@@ -670,6 +716,53 @@ static void test_geometry_rounding(void)
           "e 68.3 mm while running: a new shape, restarted at HOME (%.4f mm)", out.pos[0] * 1e3);
 }
 
+/* encoder-read's check that the step runs at all: said once after 1 s of
+ * thread time with no step, the count starts again at each step. */
+static void test_unstepped(void)
+{
+    long long since = 0;
+    int i, said = 0, first = -1;
+    for (i = 1; i <= 3000; i++)
+        if (hg_board_unstepped(&since, PERIOD)) {
+            said++;
+            if (first < 0)
+                first = i;
+        }
+    CHECK(said == 1 && first == 1000, "no step: said once, at the 1000th period of 1 ms (%d times, first %d)", said,
+          first);
+    since = 0;                        /* a step ran */
+    for (i = 0, said = 0; i < 999; i++)
+        said += hg_board_unstepped(&since, PERIOD);
+    CHECK(said == 0 && hg_board_unstepped(&since, 0) == 0 && hg_board_unstepped(&since, -5) == 0 &&
+              hg_board_unstepped(&since, PERIOD) == 1,
+          "after a step: quiet for 999 ms, a period <= 0 counts nothing, said at 1 s");
+}
+
+/* dynamics' check that its thread is not slower than encoder-read's: said
+ * once when a window of 16 steps followed at least 1.5 reads per step; one
+ * read per step (or none: a faster plant thread, or a jittery 0/2) is
+ * quiet; a jittery 1/3 of a 2 ms plant thread is not; zeroed, said again. */
+static void test_slow_step(void)
+{
+    hg_board_rate r;
+    int i, said = 0, at = -1;
+    memset(&r, 0, sizeof r);
+    for (i = 0; i < 200; i++)           /* LinuxCNC's start: the load's read and the first: 2, then 1 or 0/2 */
+        said += hg_board_slow_step(&r, i == 0 ? 2u : i < 100 ? 1u : (unsigned)(i % 2) * 2u);
+    CHECK(said == 0, "one read per step, 0/2 alternating, one 2 at the start: quiet");
+    for (i = 0, said = 0; i < 100; i++)
+        if (hg_board_slow_step(&r, 2)) {
+            said++;
+            at = i;
+        }
+    CHECK(said == 1 && at < 32, "two reads per step (dynamics in a 2 ms thread, the servo 1 ms): said once, within "
+          "two windows (%d times, at step %d)", said, at);
+    memset(&r, 0, sizeof r);
+    for (i = 0, said = 0; i < 100; i++)
+        said += hg_board_slow_step(&r, i % 2 ? 3u : 1u);
+    CHECK(said == 1, "zeroed, the two threads waking in either order (1, 3, 1, 3 reads): said again (%d)", said);
+}
+
 int main(void)
 {
     test_estop_loop();
@@ -688,5 +781,7 @@ int main(void)
     test_stop_beneath();
     test_adc_nan();
     test_geometry_rounding();
+    test_unstepped();
+    test_slow_step();
     return hg_test_exit();
 }
