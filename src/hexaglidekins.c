@@ -1,18 +1,23 @@
 /* hexaglidekins.c - LinuxCNC kinematics module for the UPNa Hexaglide.
  *
  * Thin HAL glue around src/hg_kinematics.c: joints 0..5 are the carriage
- * heights z11 z12 z21 z22 z31 z32 (machine units, mm, relative to HOME),
- * world is X Y Z A B C of the head reference point (mm, degrees).
+ * heights z11 z12 z21 z22 z31 z32 (machine units, relative to HOME),
+ * world is X Y Z A B C of the head reference point (machine units,
+ * degrees). Machine units are mm unless hexaglidekins.mm-per-unit says
+ * otherwise (25.4 for [TRAJ]LINEAR_UNITS inch); the geometry is in mm.
  * Inverse: closed form. Forward: Newton-Raphson from the previous pose.
  *
  * HAL parameters (rw): the geometry of hg_params' table (hg_param_is_geometry),
  *   by HAL name and HAL unit: hexaglidekins.l .lb .e .lp (mm), .cone-carriage
  *   .cone-head (deg), .d-bar (mm); h follows from l, lb, lp
+ *   hexaglidekins.mm-per-unit (default 1): mm in one machine unit, 0.001..1000;
+ *   scales X Y Z and the joints (hg_joints_from_machine ...), a refused value
+ *   is said once and the last valid one kept
  * HAL pins:
  *   hexaglidekins.fk-iterations      s32 out  iterations of the last forward call
  *   hexaglidekins.fk-max-iterations  s32 in   iteration bound (default 30)
- *   hexaglidekins.fk-tolerance       float in convergence tolerance, mm (default 1e-9)
- *   hexaglidekins.fk-residual        float out bar-length error of the last answer, mm
+ *   hexaglidekins.fk-tolerance       float in convergence tolerance, mm whatever mm-per-unit (default 1e-9)
+ *   hexaglidekins.fk-residual        float out bar-length error of the last answer, mm whatever mm-per-unit
  *   hexaglidekins.fk-error           s32 out  0 or the hg_error code of the last forward call
  *   hexaglidekins.fk-fault           bit out  the last forward call failed
  *   hexaglidekins.fk-fail-count      u32 out  forward failures since load
@@ -37,6 +42,8 @@ MODULE_DESCRIPTION("Kinematics of the UPNa Hexaglide parallel machine");
 
 typedef struct {
     hal_float_t geo[HG_PARAMS_MAX];                /* geometry parameters, HAL units, by table index */
+    hal_float_t mm_per_unit;                       /* mm in one machine unit (param, rw) */
+    hg_units_setting units;                        /* the value in force, the last refused */
     hal_s32_t *fk_iterations;
     hal_s32_t *fk_max_iterations;
     hal_float_t *fk_tolerance_mm;
@@ -112,18 +119,34 @@ static void fk_settings(void)
     }
 }
 
-/* EmcPose (mm, deg) -> core pose (m, rad). */
-static void pose_from_emc(const EmcPose *pos, double pose[6])
+/* The machine units from the parameter into the setting (the core keeps
+ * the last valid value); a refused value is said once. The mm per unit in
+ * force. */
+static double mm_per_unit(void)
 {
-    double user[6] = {pos->tran.x, pos->tran.y, pos->tran.z, pos->a, pos->b, pos->c};
-    hg_pose_from_user(user, pose);
+    if (hg_units_take(&hd->units, hd->mm_per_unit) == HG_FK_SAY_REFUSED) {
+        char got[HG_TEXT_VALUE_LEN], kept[HG_TEXT_VALUE_LEN];
+        hg_text_value(got, hd->mm_per_unit);
+        hg_text_value(kept, hd->units.in_force);
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: parameter hexaglidekins.mm-per-unit %s must be from 0.001 "
+                        "to 1000 (mm in one machine unit: 1 for LINEAR_UNITS mm, 25.4 for inch); keeping %s\n",
+                        got, kept);
+    }
+    return hd->units.in_force;
 }
 
-/* core pose (m, rad) -> EmcPose (mm, deg); u v w are 0. */
-static void pose_to_emc(const double pose[6], EmcPose *pos)
+/* EmcPose (machine units, deg) -> core pose (m, rad). */
+static void pose_from_emc(const EmcPose *pos, double mpu, double pose[6])
+{
+    double user[6] = {pos->tran.x, pos->tran.y, pos->tran.z, pos->a, pos->b, pos->c};
+    hg_pose_from_machine(user, mpu, pose);
+}
+
+/* core pose (m, rad) -> EmcPose (machine units, deg); u v w are 0. */
+static void pose_to_emc(const double pose[6], double mpu, EmcPose *pos)
 {
     double user[6];
-    hg_pose_to_user(pose, user);
+    hg_pose_to_machine(pose, mpu, user);
     pos->tran.x = user[0]; pos->tran.y = user[1]; pos->tran.z = user[2];
     pos->a = user[3]; pos->b = user[4]; pos->c = user[5];
     pos->u = pos->v = pos->w = 0.0;
@@ -136,12 +159,12 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     hg_geometry g;
     hg_fk_report rep = {0, 0.0};
     double z[6], pose[6];
-    int k, rc, say;
+    double mpu = mm_per_unit();
+    int rc, say;
     (void)fflags;
     (void)iflags;
-    pose_from_emc(pos, pose);
-    for (k = 0; k < 6; k++)
-        z[k] = joints[k] / HG_MM_PER_M;
+    pose_from_emc(pos, mpu, pose);
+    hg_joints_from_machine(joints, mpu, z);
     fk_settings();
     rc = current_geometry(&g);
     if (rc == 0)
@@ -164,7 +187,7 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     /* also on failure: motion keeps what is written here as its position
      * (it shows the last solved pose, not the world home it passes as the
      * next guess) */
-    pose_to_emc(pose, pos);
+    pose_to_emc(pose, mpu, pos);
     return rc;
 }
 
@@ -174,18 +197,18 @@ int kinematicsInverse(const EmcPose *pos, double *joints,
 {
     hg_geometry g;
     double pose[6], z[6];
-    int k, rc;
+    double mpu = mm_per_unit();
+    int rc;
     (void)iflags;
     (void)fflags;
-    pose_from_emc(pos, pose);
+    pose_from_emc(pos, mpu, pose);
     rc = current_geometry(&g);
     if (rc == 0)
         rc = hg_inverse_kinematics(&g, pose, z);
     *hd->ik_error = rc;
     if (rc)
         return rc;
-    for (k = 0; k < 6; k++)
-        joints[k] = z[k] * HG_MM_PER_M;
+    hg_joints_to_machine(z, mpu, joints);
     return 0;
 }
 
@@ -206,6 +229,7 @@ static int export_hal(void)
             r |= hal_param_float_newf(HAL_RW, &hd->geo[i], comp_id, "hexaglidekins.%s", t[i].hal_name);
             hd->geo[i] = hg_params_get(&p, i) * t[i].hal_scale;
         }
+    r |= hal_param_float_newf(HAL_RW, &hd->mm_per_unit, comp_id, "hexaglidekins.mm-per-unit");
     r |= hal_pin_s32_newf(HAL_OUT, &hd->fk_iterations, comp_id, "hexaglidekins.fk-iterations");
     r |= hal_pin_s32_newf(HAL_IN, &hd->fk_max_iterations, comp_id, "hexaglidekins.fk-max-iterations");
     r |= hal_pin_float_newf(HAL_IN, &hd->fk_tolerance_mm, comp_id, "hexaglidekins.fk-tolerance");
@@ -218,6 +242,8 @@ static int export_hal(void)
     if (r)
         return r;
     hg_fk_session_init(&hd->fk);
+    hg_units_init(&hd->units);
+    hd->mm_per_unit = hd->units.in_force;
     *hd->fk_max_iterations = hd->fk.in_force.max_iterations;
     *hd->fk_tolerance_mm = hd->fk.in_force.tolerance_m * HG_MM_PER_M;
     *hd->fk_iterations = 0;

@@ -5,6 +5,7 @@
 #include "hg_kinematics.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
+#include "hg_units.h"
 
 /* cos and sin of the post angles alpha = 0, +120, -120 degrees */
 static const double post_cos[3] = {1.0, -0.5, -0.5};
@@ -80,6 +81,64 @@ int hg_fk_session_result(hg_fk_session *s, int rc)
         return was_failing ? HG_FK_SAY_NOTHING : HG_FK_SAY_FAILING;
     }
     return was_failing ? HG_FK_SAY_SOLVES_AGAIN : HG_FK_SAY_NOTHING;
+}
+
+int hg_mm_per_unit_check(double mm_per_unit)
+{
+    return (mm_per_unit >= HG_MM_PER_UNIT_MIN && mm_per_unit <= HG_MM_PER_UNIT_MAX) ? HG_OK : HG_ERR_BAD_PARAM;
+}
+
+void hg_units_init(hg_units_setting *u)
+{
+    u->in_force = HG_MM_PER_UNIT_DEFAULT;
+    u->refused = HG_MM_PER_UNIT_DEFAULT;
+}
+
+int hg_units_take(hg_units_setting *u, double mm_per_unit)
+{
+    if (hg_mm_per_unit_check(mm_per_unit) == HG_OK) {
+        u->in_force = mm_per_unit;
+        u->refused = mm_per_unit;      /* a valid value: the next refusal is said again */
+        return HG_FK_SAY_NOTHING;
+    }
+    if (memcmp(&mm_per_unit, &u->refused, sizeof mm_per_unit) == 0) // NOLINT(bugprone-suspicious-memory-comparison): bitwise, NaN equals itself
+        return HG_FK_SAY_NOTHING;      /* refused and said already */
+    u->refused = mm_per_unit;
+    return HG_FK_SAY_REFUSED;
+}
+
+/* (x * mm_per_unit) / 1000 and (x * 1000) / mm_per_unit: with mm_per_unit 1
+ * the same roundings as x / 1000 and x * 1000. */
+void hg_pose_from_machine(const double user[6], double mm_per_unit, double pose[6])
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        pose[k] = user[k] * mm_per_unit / HG_MM_PER_M;
+        pose[k + 3] = user[k + 3] / HG_DEG_PER_RAD;
+    }
+}
+
+void hg_pose_to_machine(const double pose[6], double mm_per_unit, double user[6])
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        user[k] = pose[k] * HG_MM_PER_M / mm_per_unit;
+        user[k + 3] = pose[k + 3] * HG_DEG_PER_RAD;
+    }
+}
+
+void hg_joints_from_machine(const double joints[6], double mm_per_unit, double z[6])
+{
+    int k;
+    for (k = 0; k < 6; k++)
+        z[k] = joints[k] * mm_per_unit / HG_MM_PER_M;
+}
+
+void hg_joints_to_machine(const double z[6], double mm_per_unit, double joints[6])
+{
+    int k;
+    for (k = 0; k < 6; k++)
+        joints[k] = z[k] * HG_MM_PER_M / mm_per_unit;
 }
 
 void hg_tool_tip(const double pose[6], double tool_d_m, double tip[3])

@@ -89,6 +89,44 @@ int hg_fk_session_settings(hg_fk_session *s, int max_iterations, double toleranc
  * at the first success after one, else HG_FK_SAY_NOTHING. */
 int hg_fk_session_result(hg_fk_session *s, int rc);
 
+/* Machine units. LinuxCNC exchanges X Y Z and the joints (carriage
+ * heights) with a kinematics module in the machine's linear units
+ * ([TRAJ]LINEAR_UNITS: mm, or inch); the geometry stays in mm (the
+ * machine's own facts, [HEXAGLIDE]) and A B C in degrees. mm_per_unit is
+ * the mm in one machine unit: 1 for mm, 25.4 for inch. With 1 the
+ * conversions below round exactly as a plain mm <-> m conversion does
+ * (x * 1 is x): an mm machine's numbers are unchanged. */
+#define HG_MM_PER_UNIT_DEFAULT 1.0
+#define HG_MM_PER_UNIT_MIN 0.001   /* a micrometre per unit */
+#define HG_MM_PER_UNIT_MAX 1000.0  /* a metre per unit */
+
+/* HG_OK when mm_per_unit is finite and within [HG_MM_PER_UNIT_MIN,
+ * HG_MM_PER_UNIT_MAX], else HG_ERR_BAD_PARAM (0, negative, NaN, inf, absurd). */
+int hg_mm_per_unit_check(double mm_per_unit);
+
+/* The machine-units setting of a kinematics module: the value in force
+ * and the last one refused (said once, as hg_fk_session's settings). */
+typedef struct {
+    double in_force;           /* the last valid mm_per_unit */
+    double refused;            /* the last value given, as given (bitwise) */
+} hg_units_setting;
+
+/* in_force HG_MM_PER_UNIT_DEFAULT, nothing refused. */
+void hg_units_init(hg_units_setting *u);
+
+/* Take mm_per_unit into u->in_force if hg_mm_per_unit_check accepts it;
+ * else keep in_force and return HG_FK_SAY_REFUSED when this value differs
+ * from the one given before (bitwise: a NaN equals itself), else
+ * HG_FK_SAY_NOTHING. */
+int hg_units_take(hg_units_setting *u, double mm_per_unit);
+
+/* Machine pose (X Y Z in machine units, A B C deg) <-> core pose (m, rad). */
+void hg_pose_from_machine(const double user[6], double mm_per_unit, double pose[6]);
+void hg_pose_to_machine(const double pose[6], double mm_per_unit, double user[6]);
+/* Machine joints (carriage heights in machine units) <-> core joints (m). */
+void hg_joints_from_machine(const double joints[6], double mm_per_unit, double z[6]);
+void hg_joints_to_machine(const double z[6], double mm_per_unit, double joints[6]);
+
 /* Base point of guide k at height 0: Rz(alpha_i)(lb, s_j e, 0). */
 void hg_guide_point(const hg_geometry *g, int k, double out[3]);
 

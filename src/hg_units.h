@@ -1,5 +1,7 @@
-/* hg_units.h - conversions between the SI/radian core and LinuxCNC's
- * machine units (mm, degrees). One place for the factors. */
+/* hg_units.h - conversions between the SI/radian core and the project's
+ * user units (mm, degrees). One place for the factors; a LinuxCNC machine
+ * in other linear units (inch) goes through hg_kinematics.h's
+ * hg_pose_from_machine and friends, which with 1 mm per unit round as these. */
 #ifndef HG_UNITS_H
 #define HG_UNITS_H
 

@@ -7,6 +7,7 @@
 #include "hg_errors.h"
 #include "hg_kinematics.h"
 #include "hg_guard.h"
+#include "hg_units.h"
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -560,6 +561,62 @@ static void test_fk_session_solve(const hg_params *p)
           "%.1e m from the corner)", rep.iterations, bar_error_independent(&p->geo, zc, pose), d);
 }
 
+/* Machine units (hexaglidekins.mm-per-unit): the range and the refusals
+ * said once; 25.4 turns inches into the metres of the same length (an inch
+ * is 0.0254 m by definition); 1 rounds exactly as the plain mm conversion
+ * hg_pose_from_user / a division by 1000 did (an mm machine's numbers are
+ * unchanged to the bit). */
+static void test_machine_units(void)
+{
+    hg_units_setting u;
+    const double in[6] = {0.4, -0.2, -0.8, 3.0, -2.0, 5.0};
+    const double joints[6] = {-0.49, -0.56, -1.16, -0.64, -1.10, -0.91};
+    double pose[6], back[6], z[6], jb[6], ref[6], worst = 0.0;
+    const double bad[] = {0.0, -25.4, NAN, INFINITY, -INFINITY, 1e6, 1e-4, 1000.0001};
+    int k, same = 1, refused = 1;
+    CHECK(hg_mm_per_unit_check(1.0) == HG_OK && hg_mm_per_unit_check(25.4) == HG_OK &&
+              hg_mm_per_unit_check(HG_MM_PER_UNIT_MIN) == HG_OK && hg_mm_per_unit_check(HG_MM_PER_UNIT_MAX) == HG_OK,
+          "mm-per-unit 1, 25.4 and the bounds 0.001, 1000 are valid");
+    for (k = 0; k < (int)(sizeof bad / sizeof bad[0]); k++)
+        refused &= hg_mm_per_unit_check(bad[k]) == HG_ERR_BAD_PARAM;
+    CHECK(refused, "0, -25.4, NaN, +-inf, 1e6, 1e-4, 1000.0001 are refused");
+    hg_units_init(&u);
+    CHECK(u.in_force == 1.0, "the default is 1 (mm)");
+    CHECK(hg_units_take(&u, 25.4) == HG_FK_SAY_NOTHING && u.in_force == 25.4, "25.4 taken");
+    CHECK(hg_units_take(&u, NAN) == HG_FK_SAY_REFUSED && u.in_force == 25.4, "NaN refused, 25.4 kept");
+    CHECK(hg_units_take(&u, NAN) == HG_FK_SAY_NOTHING && u.in_force == 25.4, "NaN again: said already");
+    CHECK(hg_units_take(&u, 0.0) == HG_FK_SAY_REFUSED && u.in_force == 25.4, "0 refused (a new value), 25.4 kept");
+    CHECK(hg_units_take(&u, 25.4) == HG_FK_SAY_NOTHING && hg_units_take(&u, 0.0) == HG_FK_SAY_REFUSED,
+          "after a valid value the same refusal is said again");
+    hg_pose_from_machine(in, 25.4, pose);
+    for (k = 0; k < 3; k++)
+        worst = fmax(worst, fabs(pose[k] - in[k] * 0.0254));
+    CHECK(worst < 1e-17, "inch pose -> m: X Y Z times 0.0254 (worst %.1e m)", worst);
+    CHECK(fabs(pose[3] - 3.0 * DEG) < 1e-16 && fabs(pose[5] - 5.0 * DEG) < 1e-16, "A B C stay degrees, whatever the unit");
+    hg_pose_to_machine(pose, 25.4, back);
+    worst = 0.0;
+    for (k = 0; k < 6; k++)
+        worst = fmax(worst, fabs(back[k] - in[k]));
+    CHECK(worst < 1e-15, "inch pose round trip (worst %.1e)", worst);
+    hg_joints_from_machine(joints, 25.4, z);
+    hg_joints_to_machine(z, 25.4, jb);
+    worst = 0.0;
+    for (k = 0; k < 6; k++)
+        worst = fmax(worst, fmax(fabs(z[k] - joints[k] * 0.0254), fabs(jb[k] - joints[k])));
+    CHECK(worst < 1e-15, "inch joints -> m (times 0.0254) and back (worst %.1e)", worst);
+    hg_pose_from_machine(in, 1.0, pose);
+    hg_pose_from_user(in, ref);
+    hg_joints_from_machine(joints, 1.0, z);
+    for (k = 0; k < 6; k++)
+        same &= memcmp(&pose[k], &ref[k], sizeof ref[k]) == 0 && z[k] == joints[k] / 1000.0;
+    hg_pose_to_machine(ref, 1.0, pose);
+    hg_pose_to_user(ref, back);
+    hg_joints_to_machine(z, 1.0, jb);
+    for (k = 0; k < 6; k++)
+        same &= memcmp(&pose[k], &back[k], sizeof back[k]) == 0 && jb[k] == z[k] * 1000.0;
+    CHECK(same, "mm-per-unit 1: bit-identical to the mm conversions (hg_pose_from_user, x / 1000)");
+}
+
 int main(void)
 {
     hg_params p, wide;
@@ -582,5 +639,6 @@ int main(void)
     test_ik_guarded(&p);
     test_fk_session();
     test_fk_session_solve(&p);
+    test_machine_units();
     return hg_test_exit();
 }
