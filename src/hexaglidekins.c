@@ -75,8 +75,9 @@ static int current_geometry(hg_geometry *g)
     hg_params_default(&p);
     for (i = 0; i < n; i++)
         if (hg_param_is_geometry(i)) {
-            *hg_params_at(&p, i) = hd->geo[i] / t[i].hal_scale;
-            same = same && hd->geo[i] == hd->checked[i];
+            double now = hd->geo[i], was = hd->checked[i];
+            *hg_params_at(&p, i) = now / t[i].hal_scale;
+            same = same && (now == was || (now != now && was != was));   /* a NaN kept is unchanged too */
             hd->checked[i] = hd->geo[i];
         }
     *g = p.geo;
