@@ -254,6 +254,7 @@ def model_start(cmd, params=None):
         C.memmove(mech.buf, params.buf, C.sizeof(mech.buf))
     mech["f_coulomb"] = mech["f_static"] = 0.0
     mech["k_axial"] = 0.0     # the trains' low-frequency limit: rotor and carriage one body (the rigid mass)
+    mech["backlash"] = 0.0    # (lost motion belongs to the flexible train: the rigid one refuses it)
     m = hg.Model("reduced-cartesian", mech)
     fpv = m.params["ka"] * m.params["kt"] * 2 * np.pi / m.params["lead"]
     idx = np.linspace(0, len(cmd) - 1, 12).astype(int)
@@ -861,14 +862,21 @@ def main(argv=None):
                 given, _ = hg.read_gains(a.gains)
             except (OSError, ValueError) as ex:
                 raise BadInput("--gains %s: %s" % (a.gains, getattr(ex, "strerror", None) or ex))
+        cur = [dict(pid_keys(g), **sets) for g in joints]
+        ferror_limit = min(g["FERROR"] for g in joints)
+        for what, gains in (("--set %s" % " ".join(a.set), cur if a.set else None),
+                            ("--gains %s" % a.gains, [dict(c, **g) for c, g in zip(cur, given)] if given else None)):
+            try:                           # the loop's rules (hg_loop_config_check) now, not as a traceback later
+                if gains:
+                    hg.loop_config(gains, ferror_limit_mm=ferror_limit)
+            except ValueError as ex:
+                raise BadInput("%s: %s" % (what, ex))
         if a.output:
             hg_output.target(a.output)         # a missing directory now, not after the search
     except (BadInput, hg_output.OutputError) as ex:
         log(ex)
         return 2
     log("trajectory: %s, %d samples (%.1f s)" % (source, len(cmd), len(cmd) * PERIOD_S))
-    cur = [dict(pid_keys(g), **sets) for g in joints]
-    ferror_limit = min(g["FERROR"] for g in joints)
     threads = a.jobs or hg.cores()
     prob = {"cmd": cmd, "ferror_limit": ferror_limit, "max_overshoot": a.max_overshoot,
             "search_settles": [SETTLE + 137 * i for i in range(max(1, a.runs))],
