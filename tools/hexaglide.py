@@ -673,14 +673,15 @@ def _gain_dict(name, g):
     return g
 
 
-def read_gains(path):
-    """Gains of a tune output or INI: ([six {KEY: value}], {joint: predicted peak mm} or {}).
+def read_gains(path, joints=JOINTS):
+    """Gains of a tune output or INI: ([{KEY: value}] of joints 0..joints-1 (the Hexaglide's six),
+    {joint: predicted peak mm} or {}).
     [JOINT_N] sections with KEY = value (only pid keys kept, other sections skipped) and
     tune's "# joint N: peak |f-error| X mm" lines; ValueError naming file and line. Read as
     LinuxCNC reads an INI: '#' and ';' comment lines; what LinuxCNC would resolve silently (a
     key given twice: it takes the first; a second [JOINT_N]: it reads the first) refused, as
     the CLI's reader (src/cli/cli_ini.c) refuses it."""
-    gains = [dict() for _ in range(6)]
+    gains = [dict() for _ in range(joints)]
     pred = {}
     sec = None
     seen, heads = {}, {}                       # (joint, key) -> line; joint -> line of its header
@@ -696,8 +697,8 @@ def read_gains(path):
             m = re.match(r"\[JOINT_(\d+)\]$", s)
             if m:
                 sec = int(m.group(1))
-                if sec > 5:
-                    raise ValueError("%s line %d: [JOINT_%d]: the Hexaglide has joints 0..5" % (path, no, sec))
+                if sec >= joints:
+                    raise ValueError("%s line %d: [JOINT_%d]: the machine has joints 0..%d" % (path, no, sec, joints - 1))
                 if sec in heads:
                     raise ValueError("%s line %d: a second [JOINT_%d] section (the first on line %d); LinuxCNC "
                                      "reads only the first one: merge them" % (path, no, sec, heads[sec]))
@@ -725,7 +726,7 @@ def read_gains(path):
                 seen[sec, k] = no
                 gains[sec][k] = val
     if not all(gains):
-        raise ValueError("%s: needs [JOINT_0]..[JOINT_5] with gains" % path)
+        raise ValueError("%s: needs [JOINT_0]..[JOINT_%d] with gains" % (path, joints - 1))
     return gains, pred
 
 
