@@ -1620,6 +1620,8 @@ def main(argv=None):
         if a.commands and not os.path.isfile(a.commands):
             raise BadInput("--commands %s: %s" % (a.commands, "a directory; give a file" if os.path.isdir(a.commands)
                                                   else "no such file"))
+        hg_output.refuse_inputs([("--output", a.output)], [("", r) for r in a.records] + [
+            ("--validate", a.validate), ("--ini", a.ini), ("--commands", a.commands)])
         runs = [read_run(p, a.ini) for p in a.records]
         if a.cutoff * 2 * runs[0].dt >= 0.5:
             raise BadInput("--cutoff %g Hz: must be below a quarter of the sampling rate (%g Hz)"

@@ -342,6 +342,7 @@ def main(argv):
         if rest:
             raise BadInput("%s: not an option of identify for the serial plant (it takes RECORD... --set "
                            "--output)" % " ".join(rest))
+        hg_output.refuse_inputs([("--output", a.output)], [("", r) for r in a.records])
         recs = [read_record(p) for p in a.records]
         if len({(r.n, tuple(r.names)) for r in recs}) > 1:
             raise BadInput("the records are of different models")

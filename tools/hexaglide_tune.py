@@ -873,6 +873,8 @@ def main(argv=None):
                 raise BadInput("%s: %s" % (what, ex))
         if a.output:
             hg_output.target(a.output)         # a missing directory now, not after the search
+            hg_output.refuse_inputs([("--output", a.output)], [("--ini", a.ini), ("--trajectory", a.trajectory),
+                                                               ("--gains", a.gains)])
     except (BadInput, hg_output.OutputError) as ex:
         log(ex)
         return 2

@@ -260,4 +260,8 @@ int cli_out_close(const char *cmd, cli_out *o, int keep);
 /* 1 if outputs a and b would write the same file (symlinks followed). */
 int cli_out_same(const char *a, const char *b);
 
+/* 1, after saying so, if output out (of option opt) would overwrite the input in (of option
+ * in_opt, "" for a positional file) the command reads; 0 otherwise or when either is 0. */
+int cli_out_is_input(const char *cmd, const char *opt, const char *out, const char *in_opt, const char *in);
+
 #endif

@@ -756,6 +756,8 @@ int cmd_replay(int argc, char **argv)
                 o.plot);
         return 2;
     }
+    if (cli_out_is_input("replay", "--csv", o.csv, "", o.file) || cli_out_is_input("replay", "--plot", o.plot, "", o.file))
+        return 2;
     if (cli_read_file("replay", o.file, "a record file (tools/hg_record.py); split larger recordings", REPLAY_MAX_BYTES, &buf, &len))
         return 1;
     rc = hg_record_open(&r, buf, len, &e);

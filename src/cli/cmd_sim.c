@@ -219,6 +219,8 @@ int cmd_sim(int argc, char **argv)
                 record);
         return 2;
     }
+    if (cli_out_is_input("sim", "--csv", csv_path, "--ini", ini) || cli_out_is_input("sim", "--record", record, "--ini", ini))
+        return 2;
     pl = hg_plant_at(plant);
     if ((variant = cli_variant("sim", plant, model)) < 0)
         return 2;
