@@ -59,8 +59,10 @@ static int limits(const cli_ini *ini, const char *sec, const char *what, const c
     if (bad)
         return -1;
     if (got[0] && got[1] && !(v[0] < v[1])) {
-        fprintf(stderr, "hexaglide config: %s: [%s] MIN_LIMIT = %g (line %d) is not below MAX_LIMIT = %g (line %d): "
-                "the range is empty; give MIN_LIMIT < MAX_LIMIT\n", ini->path, sec, v[0], line[0], v[1], line[1]);
+        char lo[CLI_NUM_LEN], hi[CLI_NUM_LEN];
+        fprintf(stderr, "hexaglide config: %s: [%s] MIN_LIMIT = %s (line %d) is not below MAX_LIMIT = %s (line %d): "
+                "the range is empty; give MIN_LIMIT < MAX_LIMIT\n", ini->path, sec, cli_num(v[0], lo), line[0],
+                cli_num(v[1], hi), line[1]);
         bad = 1;
     }
     for (k = 2; k < n; k++)

@@ -270,8 +270,9 @@ int cmd_sim(int argc, char **argv)
     }
     for (k = 0; k < b->sense.channels; k++)
         if (!(fabs(volts[k]) <= HG_DAC_VOLTS_MAX)) {  /* the DAC would clamp it: say so instead */
-            fprintf(stderr, "hexaglide sim: --volts: %s = %g V is outside the DAC's range of -%g to %g V\n",
-                    volt_names[k], volts[k], HG_DAC_VOLTS_MAX, HG_DAC_VOLTS_MAX);
+            char num[CLI_NUM_LEN];
+            fprintf(stderr, "hexaglide sim: --volts: %s = %s V is outside the DAC's range of -%g to %g V\n",
+                    volt_names[k], cli_num(volts[k], num), HG_DAC_VOLTS_MAX, HG_DAC_VOLTS_MAX);
             free(b);
             return 2;
         }
