@@ -22,6 +22,8 @@ import re
 
 import numpy as np
 
+import hg_csv  # (numbers as the C tools read them; pure Python, imports no tool)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_INI = os.path.normpath(os.path.join(HERE, "..", "configs", "hexaglide.ini"))
 LIB_PATH = os.environ.get("HEXAGLIDE_LIB", os.path.join(HERE, "..", "build", "libhexaglide.so"))
@@ -715,7 +717,7 @@ def read_gains(path, joints=JOINTS):
                 raise ValueError("%s line %d: not KEY = value: %r" % (path, no, s))
             if k in GAIN_KEYS:
                 try:
-                    val = float(v)
+                    val = hg_csv.number(v)
                 except ValueError:
                     raise ValueError("%s line %d: %s = %r is not a number" % (path, no, k, v.strip()))
                 if not np.isfinite(val):

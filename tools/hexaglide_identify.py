@@ -25,6 +25,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hexaglide_trainid as trainid  # noqa: E402
+import hg_csv  # noqa: E402
 import hg_output  # noqa: E402
 from hg_identify_base import (COLUMNS, NAMES, NCOL, NIN, REC_BYTES, REC_MAGICS, RecErr,  # noqa: E402
                               RecEvent, Settings, _dp, autocorr_time, butter_lp, clamped_periods,
@@ -414,7 +415,7 @@ def read_sampler(path, ini):
         for i, x in enumerate(fields):
             col = s.index(x, col) if x else col
             try:
-                v = float(x)
+                v = hg_csv.number(x)
             except ValueError:
                 v = None
             if v is None or not np.isfinite(v):

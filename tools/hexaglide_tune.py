@@ -28,6 +28,7 @@ except ImportError as _ex:  # a message, not a traceback: which interpreter is n
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
+import hg_csv  # noqa: E402
 import hg_config  # noqa: E402
 import hg_margins as hgm  # noqa: E402
 from hg_program import LEAD_IN, PERIOD_S, program_rows, s_curve  # noqa: E402
@@ -120,7 +121,7 @@ def load_trajectory(path):
             header = s.split(",")
             continue
         try:
-            vals = [float(x) for x in fields]
+            vals = [hg_csv.number(x) for x in fields]
         except ValueError:
             if header is None and not rows and "," in s and not any(c.isdigit() for c in fields[0][:1]):
                 raise BadInput("%s line %d is a header without joint.N.motor-pos-cmd columns: record "

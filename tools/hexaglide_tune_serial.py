@@ -34,6 +34,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hg_config  # noqa: E402
+import hg_csv  # noqa: E402
 import hg_output  # noqa: E402
 import hg_program  # noqa: E402
 
@@ -162,7 +163,7 @@ def load_trajectory(path, n):
                 header = fields
                 continue
             try:
-                vals = [float(x) for x in fields]
+                vals = [hg_csv.number(x) for x in fields]
             except ValueError:
                 raise BadInput("%s line %d does not parse as numbers: %r" % (path, no, s[:80]))
             if not np.all(np.isfinite(vals)):
