@@ -25,6 +25,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hexaglide_trainid as trainid  # noqa: E402
+import hg_config  # noqa: E402
 import hg_csv  # noqa: E402
 import hg_output  # noqa: E402
 from hg_identify_base import (COLUMNS, NAMES, NCOL, NIN, REC_BYTES, REC_MAGICS, RecErr,  # noqa: E402
@@ -438,7 +439,10 @@ def read_sampler(path, ini):
             raise BadInput("%s: line %d, column 1 (the header): no encoder column for joint %d: record "
                            "motenc.0.enc-%02d-count (docs/identification.md: the pin set)" % (path, hdr_no, j, j))
     a = np.array(rows).reshape(-1, len(header))
-    joints = hg.read_ini(ini)[0] if ini else [{}] * 6
+    try:                                # the scales as LinuxCNC and sim read them (the C reader)
+        joints = hg_config.read(ini, loop=True, cmd="identify").joints if ini else [{}] * 6
+    except hg_config.ConfigError as ex:
+        raise BadInput(str(ex))
     run = Run(path, "sampler")
     run.last_line = hdr_no + len(a)
     for key in ("sample", "t_s"):
