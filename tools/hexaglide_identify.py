@@ -115,7 +115,7 @@ def params_with(sets, base=None):
     for s in sets:
         k, eq, v = s.partition("=")
         try:
-            val = float(v)
+            val = hg_csv.number(v)
         except ValueError:
             val = None
         if not eq or val is None or not np.isfinite(val):
@@ -945,7 +945,7 @@ class SlowData:
             for k in range(6):
                 self.states[k] += [np.r_[mot["z"][e[1]], mot["v"][e[1]]] for e in evs[k]]
             steps = sorted({q for k in range(6) for _, p0, L, _, _, _ in evs[k] for q in range(p0 + 1, p0 + 1 + L)})
-            steps = np.array(steps, dtype=int)
+            steps = np.array(steps, dtype=hg_csv.integer)
             d = {"steps": steps, "index": {q: i for i, q in enumerate(steps)},
                  "m_rotor": 0.0 if getattr(run, "deflection", None) is None else trainid.rotor_mass(params)}
             if len(steps):
@@ -1058,7 +1058,7 @@ def same_motions(blocks, states, s):
             root[i] = root[root[i]]
             i = root[i]
         return i
-    x = np.asarray(states, dtype=float).reshape(len(blocks), 12)
+    x = np.asarray(states, dtype=hg_csv.number).reshape(len(blocks), 12)
     tol = np.r_[np.full(6, s.same_motion_m), np.full(6, s.same_motion_mps)]
     for a in range(len(blocks)):
         near = np.flatnonzero((np.abs(x[a + 1:] - x[a]) <= tol).all(1)) + a + 1
@@ -1604,7 +1604,7 @@ def main(argv=None):
     ap.add_argument("--source", choices=["counts", "state"], default="counts",
                     help="counts: encoder counts, as on a real machine (default); state: a board record's "
                     "exact carriage positions and velocities")
-    ap.add_argument("--cutoff", type=float, default=Settings.cutoff_hz, help="low-pass cutoff, Hz (default %(default)s)")
+    ap.add_argument("--cutoff", type=hg_csv.number, default=Settings.cutoff_hz, help="low-pass cutoff, Hz (default %(default)s)")
     ap.add_argument("--timing", choices=["auto", "start", "mid"], default="auto",
                     help="when a period's volts act: start (the virtual board's improved Euler), mid (a real "
                     "machine, Heun, RK4); auto: the board record's integrator, mid for sampler recordings")

@@ -791,25 +791,25 @@ def main(argv=None):
                     help="no search: predict and plot these gains (a tune output or INI) against the INI's")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=V",
                     help="with --evaluate: override a gain on all joints, e.g. P=20")
-    ap.add_argument("--max-volts", type=float, default=None,
+    ap.add_argument("--max-volts", type=hg_csv.number, default=None,
                     help="peak output allowed on the trajectory in every search run, in (0, MAX_OUTPUT] V "
                     "(10 V, the DAC's range, when MAX_OUTPUT is 0); default: the current gains' median peak "
                     "over the prediction's runs, at most MAX_OUTPUT")
-    ap.add_argument("--runs", type=int, default=3,
+    ap.add_argument("--runs", type=hg_csv.integer, default=3,
                     help="closed-loop runs per candidate in the search (different settling), %d..%d; default 3"
                     % RANGES["--runs"][:2])
-    ap.add_argument("--max-overshoot", type=float, default=0.15,
+    ap.add_argument("--max-overshoot", type=hg_csv.number, default=0.15,
                     help="step overshoot allowed (fraction), 0..1; default 0.15")
-    ap.add_argument("--bandwidth", type=float, default=25.0,
+    ap.add_argument("--bandwidth", type=hg_csv.number, default=25.0,
                     help="start bandwidth, in (0, %g] Hz (a quarter of the 1 kHz servo rate); default 25"
                     % RANGES["--bandwidth"][1])
-    ap.add_argument("--damping", type=float, default=0.7,
+    ap.add_argument("--damping", type=hg_csv.number, default=0.7,
                     help="start damping ratio, in (0, %g]; default 0.7" % RANGES["--damping"][1])
-    ap.add_argument("--maxiter", type=int, default=25,
+    ap.add_argument("--maxiter", type=hg_csv.integer, default=25,
                     help="generations of differential evolution, %d..%d; default 25" % RANGES["--maxiter"][:2])
-    ap.add_argument("--popsize", type=int, default=8,
+    ap.add_argument("--popsize", type=hg_csv.integer, default=8,
                     help="population per search variable, %d..%d; default 8" % RANGES["--popsize"][:2])
-    ap.add_argument("--jobs", type=int, default=0,
+    ap.add_argument("--jobs", type=hg_csv.integer, default=0,
                     help="threads the closed-loop runs share (hg_batch; default 0: every core; at most %d); "
                     "the answer is the same for any number" % RANGES["--jobs"][1])
     ap.add_argument("--no-stop-early", action="store_true",
@@ -820,7 +820,7 @@ def main(argv=None):
                     "for rigid drive trains; default the board's defaults (flexible trains)")
     ap.add_argument("--no-notch", action="store_true",
                     help="do not try a biquad notch at the drive trains' resonance")
-    ap.add_argument("--seed", type=int, default=1, help="the search's random seed, 0..2^32-1; default 1")
+    ap.add_argument("--seed", type=hg_csv.integer, default=1, help="the search's random seed, 0..2^32-1; default 1")
     ap.add_argument("--output", help="also write the suggestion to this file")
     ap.add_argument("--plots", help="directory for tune_step.png, tune_ferror.png, tune_bode.png")
     a = ap.parse_args(argv)
@@ -833,7 +833,7 @@ def main(argv=None):
             if k not in hg.GAIN_KEYS:
                 raise BadInput("--set %s: unknown gain (one of %s)" % (s, " ".join(hg.GAIN_KEYS)))
             try:
-                sets[k] = float(v)
+                sets[k] = hg_csv.number(v)
             except ValueError:
                 raise BadInput("--set %s: not a number" % s)
             if not np.isfinite(sets[k]):
@@ -841,7 +841,7 @@ def main(argv=None):
         for s in a.param:                  # the names and numbers here; the values the C reader checks
             k, _, v = s.partition("=")
             try:
-                hg.Params()[k] = float(v)
+                hg.Params()[k] = hg_csv.number(v)
             except (KeyError, ValueError):
                 raise BadInput("--param %s: not a model parameter with a number it accepts (names: docs/model.md)"
                                % s)

@@ -20,6 +20,14 @@ class CsvError(Exception):
     """A CSV that cannot be used: the message names the file, the line and the cause."""
 
 
+def integer(text):
+    """int(text) for a whole number as the C tools read one (ASCII digits, no '_': Python's int()
+    takes "1_0"); ValueError else. argparse's type for integer options."""
+    if not isinstance(text, str) or not re.match(r"\s*[+-]?\d+\s*\Z", text, re.ASCII):
+        raise ValueError("not a whole number: %r" % (text,))
+    return int(text)
+
+
 def number(text):
     """float(text) for a decimal number as the C tools read it (NaN and inf too: the caller
     says they are not finite); ValueError for anything else, "1_000" and non-ASCII digits too."""
