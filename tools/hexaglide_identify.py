@@ -945,7 +945,7 @@ class SlowData:
             for k in range(6):
                 self.states[k] += [np.r_[mot["z"][e[1]], mot["v"][e[1]]] for e in evs[k]]
             steps = sorted({q for k in range(6) for _, p0, L, _, _, _ in evs[k] for q in range(p0 + 1, p0 + 1 + L)})
-            steps = np.array(steps, dtype=hg_csv.integer)
+            steps = np.array(steps, dtype=int)
             d = {"steps": steps, "index": {q: i for i, q in enumerate(steps)},
                  "m_rotor": 0.0 if getattr(run, "deflection", None) is None else trainid.rotor_mass(params)}
             if len(steps):
@@ -1058,7 +1058,7 @@ def same_motions(blocks, states, s):
             root[i] = root[root[i]]
             i = root[i]
         return i
-    x = np.asarray(states, dtype=hg_csv.number).reshape(len(blocks), 12)
+    x = np.asarray(states, dtype=float).reshape(len(blocks), 12)
     tol = np.r_[np.full(6, s.same_motion_m), np.full(6, s.same_motion_mps)]
     for a in range(len(blocks)):
         near = np.flatnonzero((np.abs(x[a + 1:] - x[a]) <= tol).all(1)) + a + 1
