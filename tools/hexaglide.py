@@ -22,6 +22,8 @@ import re
 
 import numpy as np
 
+import hg_csv  # (numbers as the C tools read them; pure Python, imports no tool)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_INI = os.path.normpath(os.path.join(HERE, "..", "configs", "hexaglide.ini"))
 LIB_PATH = os.environ.get("HEXAGLIDE_LIB", os.path.join(HERE, "..", "build", "libhexaglide.so"))
@@ -673,13 +675,18 @@ def _gain_dict(name, g):
     return g
 
 
-def read_gains(path):
-    """Gains of a tune output or INI: ([six {KEY: value}], {joint: predicted peak mm} or {}).
+def read_gains(path, joints=JOINTS):
+    """Gains of a tune output or INI: ([{KEY: value}] of joints 0..joints-1 (the Hexaglide's six),
+    {joint: predicted peak mm} or {}).
     [JOINT_N] sections with KEY = value (only pid keys kept, other sections skipped) and
-    tune's "# joint N: peak |f-error| X mm" lines; ValueError naming file and line."""
-    gains = [dict() for _ in range(6)]
+    tune's "# joint N: peak |f-error| X mm" lines; ValueError naming file and line. Read as
+    LinuxCNC reads an INI: '#' and ';' comment lines; what LinuxCNC would resolve silently (a
+    key given twice: it takes the first; a second [JOINT_N]: it reads the first) refused, as
+    the CLI's reader (src/cli/cli_ini.c) refuses it."""
+    gains = [dict() for _ in range(joints)]
     pred = {}
     sec = None
+    seen, heads = {}, {}                       # (joint, key) -> line; joint -> line of its header
     with open(path) as f:
         for no, line in enumerate(f, 1):
             s = line.strip()
@@ -687,13 +694,17 @@ def read_gains(path):
             if m:
                 pred[int(m.group(1))] = float(m.group(2))
                 continue
-            if not s or s.startswith("#"):
+            if not s or s.startswith("#") or s.startswith(";"):
                 continue
             m = re.match(r"\[JOINT_(\d+)\]$", s)
             if m:
                 sec = int(m.group(1))
-                if sec > 5:
-                    raise ValueError("%s line %d: [JOINT_%d]: the Hexaglide has joints 0..5" % (path, no, sec))
+                if sec >= joints:
+                    raise ValueError("%s line %d: [JOINT_%d]: the machine has joints 0..%d" % (path, no, sec, joints - 1))
+                if sec in heads:
+                    raise ValueError("%s line %d: a second [JOINT_%d] section (the first on line %d); LinuxCNC "
+                                     "reads only the first one: merge them" % (path, no, sec, heads[sec]))
+                heads[sec] = no
                 continue
             if s.startswith("["):
                 sec = None
@@ -706,14 +717,18 @@ def read_gains(path):
                 raise ValueError("%s line %d: not KEY = value: %r" % (path, no, s))
             if k in GAIN_KEYS:
                 try:
-                    val = float(v)
+                    val = hg_csv.number(v)
                 except ValueError:
                     raise ValueError("%s line %d: %s = %r is not a number" % (path, no, k, v.strip()))
                 if not np.isfinite(val):
                     raise ValueError("%s line %d: %s is not finite" % (path, no, k))
+                if (sec, k) in seen:
+                    raise ValueError("%s: [JOINT_%d]%s is given twice (lines %d and %d); LinuxCNC would use the "
+                                     "first: remove one" % (path, sec, k, seen[sec, k], no))
+                seen[sec, k] = no
                 gains[sec][k] = val
     if not all(gains):
-        raise ValueError("%s: needs [JOINT_0]..[JOINT_5] with gains" % path)
+        raise ValueError("%s: needs [JOINT_0]..[JOINT_%d] with gains" % (path, joints - 1))
     return gains, pred
 
 

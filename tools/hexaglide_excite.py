@@ -24,6 +24,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hexaglide_identify as hid  # noqa: E402
 import hg_config  # noqa: E402
+import hg_csv  # noqa: E402
 import hg_output  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -391,40 +392,40 @@ def main(argv=None):
                     "(default configs/hexaglide.ini)")
     ap.add_argument("--output", help="write the G-code here (default: stdout)")
     r = RANGES
-    ap.add_argument("--period", type=float, default=8.0, help="period of the series, s, in (0, %g] (default 8)"
+    ap.add_argument("--period", type=hg_csv.number, default=8.0, help="period of the series, s, in (0, %g] (default 8)"
                     % r["--period"][1])
-    ap.add_argument("--periods", type=int, default=3, help="periods run, %d..%d, at most %g s in all (default 3)"
+    ap.add_argument("--periods", type=hg_csv.integer, default=3, help="periods run, %d..%d, at most %g s in all (default 3)"
                     % (r["--periods"][0], r["--periods"][1], MAX_RUN_S))
-    ap.add_argument("--harmonics", type=int, default=5, help="harmonics per axis, %d..%d (default 5)"
+    ap.add_argument("--harmonics", type=hg_csv.integer, default=5, help="harmonics per axis, %d..%d (default 5)"
                     % r["--harmonics"][:2])
-    ap.add_argument("--margin", type=float, default=0.8,
+    ap.add_argument("--margin", type=hg_csv.number, default=0.8,
                     help="fraction of every range, speed and acceleration limit used, in (0, 1] (default 0.8)")
-    ap.add_argument("--max-volts", type=float, default=4.0,
+    ap.add_argument("--max-volts", type=hg_csv.number, default=4.0,
                     help="peak drive volts the prior model may need, in (0, 10] (default 4 of the DAC's 10)")
-    ap.add_argument("--segment", type=float, default=0.2,
+    ap.add_argument("--segment", type=hg_csv.number, default=0.2,
                     help="G1 segment duration, s, in [%g, period/10] (default 0.2; speeds are held below "
                     "0.5 a_max x segment)" % r["--segment"][0])
-    ap.add_argument("--starts", type=int, default=4, help="optimisation starts, %d..%d (default 4)"
+    ap.add_argument("--starts", type=hg_csv.integer, default=4, help="optimisation starts, %d..%d (default 4)"
                     % r["--starts"][:2])
-    ap.add_argument("--maxiter", type=int, default=200, help="SLSQP iterations per start, %d..%d (default 200)"
+    ap.add_argument("--maxiter", type=hg_csv.integer, default=200, help="SLSQP iterations per start, %d..%d (default 200)"
                     % r["--maxiter"][:2])
-    ap.add_argument("--grid", type=int, default=160, help="time points per period in the optimisation, %d..%d "
+    ap.add_argument("--grid", type=hg_csv.integer, default=160, help="time points per period in the optimisation, %d..%d "
                     "(default 160)" % r["--grid"][:2])
-    ap.add_argument("--seed", type=int, default=1, help="random seed of the starts, 0..2^32-1 (default 1)")
+    ap.add_argument("--seed", type=hg_csv.integer, default=1, help="random seed of the starts, 0..2^32-1 (default 1)")
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                     help="prior parameter (spec name, SI unit as sim --list-params), e.g. m_head=8; after "
                     "the config's [HEXAGLIDE]")
     ap.add_argument("--trains", action="store_true",
                     help="the drive trains' program instead: vertical strokes (with --dither's HAL snippet)")
-    ap.add_argument("--stroke", type=float, default=TRAIN_STROKE_MM, help="--trains: stroke, mm (default %(default)s)")
-    ap.add_argument("--seconds", type=float, default=30.0, help="--trains: run time, s, in (0, %g] (default "
+    ap.add_argument("--stroke", type=hg_csv.number, default=TRAIN_STROKE_MM, help="--trains: stroke, mm (default %(default)s)")
+    ap.add_argument("--seconds", type=hg_csv.number, default=30.0, help="--trains: run time, s, in (0, %g] (default "
                     "%%(default)s)" % r["--seconds"][1])
     ap.add_argument("--dither", metavar="FILE",
                     help="write the trains' dither as a HAL snippet (stock siggen, scale, sum2 between pid.N.output "
                     "and the DACs) to FILE")
-    ap.add_argument("--dither-volts", type=float, default=DITHER_V,
+    ap.add_argument("--dither-volts", type=hg_csv.number, default=DITHER_V,
                     help="the dither's amplitude, V, in (0, %g] (default %%(default)s)" % DITHER_V_MAX)
-    ap.add_argument("--dither-band", type=float, nargs=2, default=DITHER_BAND_HZ, metavar=("LO", "HI"),
+    ap.add_argument("--dither-band", type=hg_csv.number, nargs=2, default=DITHER_BAND_HZ, metavar=("LO", "HI"),
                     help="the chirps' band, Hz, 0 < LO < HI < 500 (default %g %g: about the trains' axial mode)"
                     % DITHER_BAND_HZ)
     a = ap.parse_args(argv)
@@ -433,6 +434,7 @@ def main(argv=None):
         for p in (a.output, a.dither):
             if p:
                 hg_output.target(p)            # a missing directory now, not after the design
+        hg_output.refuse_inputs([("--output", a.output), ("--dither", a.dither)], [("--ini", a.ini)])
         if a.output and a.dither and hg_output.same(a.output, a.dither):
             raise hg_output.OutputError("--output %s and --dither %s name the same file; give two files"
                                         % (a.output, a.dither))

@@ -25,6 +25,8 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hexaglide_trainid as trainid  # noqa: E402
+import hg_config  # noqa: E402
+import hg_csv  # noqa: E402
 import hg_output  # noqa: E402
 from hg_identify_base import (COLUMNS, NAMES, NCOL, NIN, REC_BYTES, REC_MAGICS, RecErr,  # noqa: E402
                               RecEvent, Settings, _dp, autocorr_time, butter_lp, clamped_periods,
@@ -113,7 +115,7 @@ def params_with(sets, base=None):
     for s in sets:
         k, eq, v = s.partition("=")
         try:
-            val = float(v)
+            val = hg_csv.number(v)
         except ValueError:
             val = None
         if not eq or val is None or not np.isfinite(val):
@@ -414,7 +416,7 @@ def read_sampler(path, ini):
         for i, x in enumerate(fields):
             col = s.index(x, col) if x else col
             try:
-                v = float(x)
+                v = hg_csv.number(x)
             except ValueError:
                 v = None
             if v is None or not np.isfinite(v):
@@ -437,7 +439,10 @@ def read_sampler(path, ini):
             raise BadInput("%s: line %d, column 1 (the header): no encoder column for joint %d: record "
                            "motenc.0.enc-%02d-count (docs/identification.md: the pin set)" % (path, hdr_no, j, j))
     a = np.array(rows).reshape(-1, len(header))
-    joints = hg.read_ini(ini)[0] if ini else [{}] * 6
+    try:                                # the scales as LinuxCNC and sim read them (the C reader)
+        joints = hg_config.read(ini, loop=True, cmd="identify").joints if ini else [{}] * 6
+    except hg_config.ConfigError as ex:
+        raise BadInput(str(ex))
     run = Run(path, "sampler")
     run.last_line = hdr_no + len(a)
     for key in ("sample", "t_s"):
@@ -1599,7 +1604,7 @@ def main(argv=None):
     ap.add_argument("--source", choices=["counts", "state"], default="counts",
                     help="counts: encoder counts, as on a real machine (default); state: a board record's "
                     "exact carriage positions and velocities")
-    ap.add_argument("--cutoff", type=float, default=Settings.cutoff_hz, help="low-pass cutoff, Hz (default %(default)s)")
+    ap.add_argument("--cutoff", type=hg_csv.number, default=Settings.cutoff_hz, help="low-pass cutoff, Hz (default %(default)s)")
     ap.add_argument("--timing", choices=["auto", "start", "mid"], default="auto",
                     help="when a period's volts act: start (the virtual board's improved Euler), mid (a real "
                     "machine, Heun, RK4); auto: the board record's integrator, mid for sampler recordings")
@@ -1620,6 +1625,8 @@ def main(argv=None):
         if a.commands and not os.path.isfile(a.commands):
             raise BadInput("--commands %s: %s" % (a.commands, "a directory; give a file" if os.path.isdir(a.commands)
                                                   else "no such file"))
+        hg_output.refuse_inputs([("--output", a.output)], [("", r) for r in a.records] + [
+            ("--validate", a.validate), ("--ini", a.ini), ("--commands", a.commands)])
         runs = [read_run(p, a.ini) for p in a.records]
         if a.cutoff * 2 * runs[0].dt >= 0.5:
             raise BadInput("--cutoff %g Hz: must be below a quarter of the sampling rate (%g Hz)"

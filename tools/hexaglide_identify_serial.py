@@ -33,6 +33,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
+import hg_csv  # noqa: E402
 import hg_identify_base as ib  # noqa: E402
 import hg_output  # noqa: E402
 
@@ -213,7 +214,7 @@ def known(rec, sets):
             raise BadInput("--set %s: not a known-beforehand parameter of this record (%s, per axis _K)"
                            % (s, ", ".join(KNOWN)))
         try:
-            kn[k] = float(v)
+            kn[k] = hg_csv.number(v)
         except ValueError:
             raise BadInput("--set %s: not a number" % s)
     pp = record_params(rec, rec_told_index(rec))
@@ -342,6 +343,7 @@ def main(argv):
         if rest:
             raise BadInput("%s: not an option of identify for the serial plant (it takes RECORD... --set "
                            "--output)" % " ".join(rest))
+        hg_output.refuse_inputs([("--output", a.output)], [("", r) for r in a.records])
         recs = [read_record(p) for p in a.records]
         if len({(r.n, tuple(r.names)) for r in recs}) > 1:
             raise BadInput("the records are of different models")

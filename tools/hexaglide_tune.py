@@ -28,6 +28,7 @@ except ImportError as _ex:  # a message, not a traceback: which interpreter is n
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
+import hg_csv  # noqa: E402
 import hg_config  # noqa: E402
 import hg_margins as hgm  # noqa: E402
 from hg_program import LEAD_IN, PERIOD_S, program_rows, s_curve  # noqa: E402
@@ -120,7 +121,7 @@ def load_trajectory(path):
             header = s.split(",")
             continue
         try:
-            vals = [float(x) for x in fields]
+            vals = [hg_csv.number(x) for x in fields]
         except ValueError:
             if header is None and not rows and "," in s and not any(c.isdigit() for c in fields[0][:1]):
                 raise BadInput("%s line %d is a header without joint.N.motor-pos-cmd columns: record "
@@ -254,6 +255,7 @@ def model_start(cmd, params=None):
         C.memmove(mech.buf, params.buf, C.sizeof(mech.buf))
     mech["f_coulomb"] = mech["f_static"] = 0.0
     mech["k_axial"] = 0.0     # the trains' low-frequency limit: rotor and carriage one body (the rigid mass)
+    mech["backlash"] = 0.0    # (lost motion belongs to the flexible train: the rigid one refuses it)
     m = hg.Model("reduced-cartesian", mech)
     fpv = m.params["ka"] * m.params["kt"] * 2 * np.pi / m.params["lead"]
     idx = np.linspace(0, len(cmd) - 1, 12).astype(int)
@@ -789,25 +791,25 @@ def main(argv=None):
                     help="no search: predict and plot these gains (a tune output or INI) against the INI's")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=V",
                     help="with --evaluate: override a gain on all joints, e.g. P=20")
-    ap.add_argument("--max-volts", type=float, default=None,
+    ap.add_argument("--max-volts", type=hg_csv.number, default=None,
                     help="peak output allowed on the trajectory in every search run, in (0, MAX_OUTPUT] V "
                     "(10 V, the DAC's range, when MAX_OUTPUT is 0); default: the current gains' median peak "
                     "over the prediction's runs, at most MAX_OUTPUT")
-    ap.add_argument("--runs", type=int, default=3,
+    ap.add_argument("--runs", type=hg_csv.integer, default=3,
                     help="closed-loop runs per candidate in the search (different settling), %d..%d; default 3"
                     % RANGES["--runs"][:2])
-    ap.add_argument("--max-overshoot", type=float, default=0.15,
+    ap.add_argument("--max-overshoot", type=hg_csv.number, default=0.15,
                     help="step overshoot allowed (fraction), 0..1; default 0.15")
-    ap.add_argument("--bandwidth", type=float, default=25.0,
+    ap.add_argument("--bandwidth", type=hg_csv.number, default=25.0,
                     help="start bandwidth, in (0, %g] Hz (a quarter of the 1 kHz servo rate); default 25"
                     % RANGES["--bandwidth"][1])
-    ap.add_argument("--damping", type=float, default=0.7,
+    ap.add_argument("--damping", type=hg_csv.number, default=0.7,
                     help="start damping ratio, in (0, %g]; default 0.7" % RANGES["--damping"][1])
-    ap.add_argument("--maxiter", type=int, default=25,
+    ap.add_argument("--maxiter", type=hg_csv.integer, default=25,
                     help="generations of differential evolution, %d..%d; default 25" % RANGES["--maxiter"][:2])
-    ap.add_argument("--popsize", type=int, default=8,
+    ap.add_argument("--popsize", type=hg_csv.integer, default=8,
                     help="population per search variable, %d..%d; default 8" % RANGES["--popsize"][:2])
-    ap.add_argument("--jobs", type=int, default=0,
+    ap.add_argument("--jobs", type=hg_csv.integer, default=0,
                     help="threads the closed-loop runs share (hg_batch; default 0: every core; at most %d); "
                     "the answer is the same for any number" % RANGES["--jobs"][1])
     ap.add_argument("--no-stop-early", action="store_true",
@@ -818,7 +820,7 @@ def main(argv=None):
                     "for rigid drive trains; default the board's defaults (flexible trains)")
     ap.add_argument("--no-notch", action="store_true",
                     help="do not try a biquad notch at the drive trains' resonance")
-    ap.add_argument("--seed", type=int, default=1, help="the search's random seed, 0..2^32-1; default 1")
+    ap.add_argument("--seed", type=hg_csv.integer, default=1, help="the search's random seed, 0..2^32-1; default 1")
     ap.add_argument("--output", help="also write the suggestion to this file")
     ap.add_argument("--plots", help="directory for tune_step.png, tune_ferror.png, tune_bode.png")
     a = ap.parse_args(argv)
@@ -831,7 +833,7 @@ def main(argv=None):
             if k not in hg.GAIN_KEYS:
                 raise BadInput("--set %s: unknown gain (one of %s)" % (s, " ".join(hg.GAIN_KEYS)))
             try:
-                sets[k] = float(v)
+                sets[k] = hg_csv.number(v)
             except ValueError:
                 raise BadInput("--set %s: not a number" % s)
             if not np.isfinite(sets[k]):
@@ -839,7 +841,7 @@ def main(argv=None):
         for s in a.param:                  # the names and numbers here; the values the C reader checks
             k, _, v = s.partition("=")
             try:
-                hg.Params()[k] = float(v)
+                hg.Params()[k] = hg_csv.number(v)
             except (KeyError, ValueError):
                 raise BadInput("--param %s: not a model parameter with a number it accepts (names: docs/model.md)"
                                % s)
@@ -861,14 +863,23 @@ def main(argv=None):
                 given, _ = hg.read_gains(a.gains)
             except (OSError, ValueError) as ex:
                 raise BadInput("--gains %s: %s" % (a.gains, getattr(ex, "strerror", None) or ex))
+        cur = [dict(pid_keys(g), **sets) for g in joints]
+        ferror_limit = min(g["FERROR"] for g in joints)
+        for what, gains in (("--set %s" % " ".join(a.set), cur if a.set else None),
+                            ("--gains %s" % a.gains, [dict(c, **g) for c, g in zip(cur, given)] if given else None)):
+            try:                           # the loop's rules (hg_loop_config_check) now, not as a traceback later
+                if gains:
+                    hg.loop_config(gains, ferror_limit_mm=ferror_limit)
+            except ValueError as ex:
+                raise BadInput("%s: %s" % (what, ex))
         if a.output:
             hg_output.target(a.output)         # a missing directory now, not after the search
+            hg_output.refuse_inputs([("--output", a.output)], [("--ini", a.ini), ("--trajectory", a.trajectory),
+                                                               ("--gains", a.gains)])
     except (BadInput, hg_output.OutputError) as ex:
         log(ex)
         return 2
     log("trajectory: %s, %d samples (%.1f s)" % (source, len(cmd), len(cmd) * PERIOD_S))
-    cur = [dict(pid_keys(g), **sets) for g in joints]
-    ferror_limit = min(g["FERROR"] for g in joints)
     threads = a.jobs or hg.cores()
     prob = {"cmd": cmd, "ferror_limit": ferror_limit, "max_overshoot": a.max_overshoot,
             "search_settles": [SETTLE + 137 * i for i in range(max(1, a.runs))],

@@ -33,6 +33,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
+import hg_config  # noqa: E402
+import hg_csv  # noqa: E402
 import hg_output  # noqa: E402
 import hg_program  # noqa: E402
 
@@ -40,6 +42,11 @@ PERIOD_S = 0.001
 MIN_SAMPLES = 200
 SETTLE = 500                      # periods at rest before the trajectory
 SEARCH_KEYS = ["P", "FF1", "FF2"]
+# [JOINT_N] keys LinuxCNC's stock MOTENC HAL file (motenc_motion.hal, tests/linuxcnc/vitalsystems) sets, and where
+HAL_KEYS = {"P": "pid.%d.Pgain", "I": "pid.%d.Igain", "D": "pid.%d.Dgain", "FF0": "pid.%d.FF0", "FF1": "pid.%d.FF1",
+            "FF2": "pid.%d.FF2", "BIAS": "pid.%d.bias", "DEADBAND": "pid.%d.deadband", "MAX_OUTPUT": "pid.%d.maxoutput",
+            "INPUT_SCALE": "motenc.0.enc-%02d-scale", "OUTPUT_SCALE": "motenc.0.dac-%02d-gain",
+            "OUTPUT_OFFSET": "motenc.0.dac-%02d-offset"}
 OUT_KEYS = ["P", "I", "D", "FF0", "FF1", "FF2", "DEADBAND"]
 SKIPPED = ("# not run for the serial plant: the margins at HOME (tools/hg_margins.py linearizes the "
            "Hexaglide's coupled joints), the tool-path error (the Hexaglide's pose from its kinematics; with "
@@ -97,13 +104,17 @@ class Machine:
                                "give --model (the axes, e.g. XYZ)" % (ini, coords, joints))
             model = coords.upper()
         self.model = model
-        try:
-            self.params = hg.plant_params_from_ini(ini, "serial", model)
-            self.n = self.params.channels
-            self.joints, _ = hg.read_ini(ini, self.n)
-        except ValueError as ex:
+        try:                           # [SERIAL] and [JOINT_N] as sim and LinuxCNC read them (the C reader)
+            cfg = hg_config.read(ini, loop=True, cmd="tune", plant="serial", model=model)
+        except ValueError as ex:       # (hg_config.ConfigError, an unknown model)
             raise BadInput(str(ex))
+        self.params, self.joints, self.n = cfg.params, cfg.joints, len(cfg.joints)
         for j, g in enumerate(self.joints):
+            for k in HAL_KEYS:         # halcmd stops at a setp of a missing key; the tune would run pid.c's default
+                if k not in g:
+                    raise BadInput("%s: [JOINT_%d]%s is missing: LinuxCNC's MOTENC HAL file sets %s from it (LinuxCNC "
+                                   "stops there: \"Ini variable '[JOINT_%d]%s' not found\"); add it"
+                                   % (ini, j, k, HAL_KEYS[k] % j, j, k))
             for k in ("INPUT_SCALE", "OUTPUT_SCALE"):
                 if not g.get(k):
                     raise BadInput("%s [JOINT_%d] needs a nonzero %s (the HAL file's enc/dac scale)" % (ini, j, k))
@@ -152,7 +163,7 @@ def load_trajectory(path, n):
                 header = fields
                 continue
             try:
-                vals = [float(x) for x in fields]
+                vals = [hg_csv.number(x) for x in fields]
             except ValueError:
                 raise BadInput("%s line %d does not parse as numbers: %r" % (path, no, s[:80]))
             if not np.all(np.isfinite(vals)):
@@ -288,24 +299,13 @@ def ini_text(m, gains, pred, stock, source):
 
 
 def read_gain_file(path, n):
-    """[JOINT_N] gain keys of a file (tune's output or an INI)."""
-    cp = read_ini_file(path, "gains")
-    out = []
-    for j in range(n):
-        sec = "JOINT_%d" % j
-        if not cp.has_section(sec):
-            raise BadInput("%s: no [%s] section (the model has joints 0..%d)" % (path, sec, n - 1))
-        g = {}
-        for k, v in cp.items(sec):
-            if k in hg.GAIN_KEYS:
-                try:
-                    g[k] = float(v)
-                except ValueError:
-                    raise BadInput("%s [%s] %s = %r is not a number" % (path, sec, k, v))
-                if not np.isfinite(g[k]):
-                    raise BadInput("%s [%s] %s is not finite" % (path, sec, k))
-        out.append(g)
-    return out
+    """[JOINT_N] gain keys of a file (tune's output or an INI): hg.read_gains, LinuxCNC's reading."""
+    try:
+        return hg.read_gains(path, n)[0]
+    except OSError as ex:
+        raise BadInput("--gains %s: %s" % (path, ex.strerror or ex))
+    except ValueError as ex:
+        raise BadInput("--gains %s" % ex)
 
 
 def main(argv=None):
@@ -316,10 +316,10 @@ def main(argv=None):
     ap.add_argument("--trajectory", help="joint.N.motor-pos-cmd samples (CSV); default a generated move")
     ap.add_argument("--evaluate", action="store_true", help="predict the INI's (or --gains') gains only")
     ap.add_argument("--gains", metavar="FILE", help="gains to evaluate ([JOINT_N] sections)")
-    ap.add_argument("--max-overshoot", type=float, default=0.15)
-    ap.add_argument("--maxiter", type=int, default=12)
-    ap.add_argument("--popsize", type=int, default=6)
-    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--max-overshoot", type=hg_csv.number, default=0.15)
+    ap.add_argument("--maxiter", type=hg_csv.integer, default=12)
+    ap.add_argument("--popsize", type=hg_csv.integer, default=6)
+    ap.add_argument("--seed", type=hg_csv.integer, default=1)
     ap.add_argument("--output", help="also write the suggestion to this file")
     a, rest = ap.parse_known_args(argv)
     try:
@@ -340,6 +340,8 @@ def main(argv=None):
             stock_g = m.gains(read_gain_file(a.gains, m.n))
         if a.output:
             hg_output.target(a.output)         # a missing directory now, not after the search
+            hg_output.refuse_inputs([("--output", a.output)], [("--ini", a.ini), ("--trajectory", a.trajectory),
+                                                               ("--gains", a.gains)])
     except (BadInput, hg_output.OutputError) as ex:
         log(ex)
         return 2

@@ -35,21 +35,24 @@ def cli_path():
 
 
 class Config:
-    """What `hexaglide config` printed: params (hg.Params), joints ([{KEY: float}] of the six
-    [JOINT_N]), axes ({axis: {KEY: float}}), servo_period_ns (None when not given)."""
+    """What `hexaglide config` printed: params (hg.Params; another plant's: hg.PlantParams),
+    joints ([{KEY: float}] of the plant's [JOINT_N], six for the Hexaglide), axes ({axis: {KEY:
+    float}}), servo_period_ns (None when not given)."""
 
-    def __init__(self, path):
+    def __init__(self, path, plant=None, model=None):
         self.path = path
-        self.params = hg.Params()
-        self.joints = [dict() for _ in range(hg.JOINTS)]
+        self.params = hg.Params() if plant is None else hg.PlantParams(plant, model)
+        n = hg.JOINTS if plant is None else self.params.channels
+        self.joints = [dict() for _ in range(n)]
         self.axes = {a: {} for a in "XYZABC"}
         self.servo_period_ns = None
 
 
-def read(path, sets=(), loop=False, cmd="tune", set_option="--set"):
+def read(path, sets=(), loop=False, cmd="tune", set_option="--set", plant=None, model=None):
     """Config of the INI file path with the model parameters of sets ("name=value", SI) after it;
     loop: also the servo loops ([JOINT_0..5] as soak reads them, every key the HAL file sets
-    required). ConfigError with the C reader's messages, one a line, every line after the first
+    required; another plant's: the keys given); plant, model: another plant than the
+    Hexaglide (its section, e.g. [SERIAL], and its model's joints). ConfigError with the C reader's messages, one a line, every line after the first
     starting "hexaglide CMD: " (the caller prints the first with its prefix), naming
     set_option where the C side says --set."""
     exe = cli_path()
@@ -57,6 +60,8 @@ def read(path, sets=(), loop=False, cmd="tune", set_option="--set"):
         raise ConfigError("%s is not there: the INI is read by build/hexaglide; build it with make host "
                           "(or set HEXAGLIDE_CLI)" % exe)
     args = [exe, "config", "--ini", path] + [x for s in sets for x in ("--set", s)] + (["--loop"] if loop else [])
+    if plant is not None:
+        args += ["--plant", plant] + (["--model", model] if model else [])
     try:
         r = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
     except OSError as ex:
@@ -68,7 +73,7 @@ def read(path, sets=(), loop=False, cmd="tune", set_option="--set"):
         if set_option != "--set":
             text = text.replace("(--set ", "(%s " % set_option).replace("--set: ", "%s: " % set_option)
         raise ConfigError(text)
-    cfg = Config(path)
+    cfg = Config(path, plant, model)
     for line in r.stdout.splitlines():
         w = line.split()
         if w[0] == "param":

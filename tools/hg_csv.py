@@ -7,12 +7,33 @@ empty one, a header only, a row with too many or too few fields (a file cut
 short), a field that is not a number, NaN or inf, a column the tool needs.
 """
 import math
+import re
 
 import numpy as np
+
+# a number as the C tools read one (strtod: ASCII digits, no '_'); Python's float() also takes
+# "1_000" (1000) and other scripts' digits ("١٢": 12), which build/hexaglide and LinuxCNC refuse
+_NUMBER = re.compile(r"\s*[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|nan|inf|infinity)\s*\Z", re.ASCII | re.I)
 
 
 class CsvError(Exception):
     """A CSV that cannot be used: the message names the file, the line and the cause."""
+
+
+def integer(text):
+    """int(text) for a whole number as the C tools read one (ASCII digits, no '_': Python's int()
+    takes "1_0"); ValueError else. argparse's type for integer options."""
+    if not isinstance(text, str) or not re.match(r"\s*[+-]?\d+\s*\Z", text, re.ASCII):
+        raise ValueError("not a whole number: %r" % (text,))
+    return int(text)
+
+
+def number(text):
+    """float(text) for a decimal number as the C tools read it (NaN and inf too: the caller
+    says they are not finite); ValueError for anything else, "1_000" and non-ASCII digits too."""
+    if not isinstance(text, str) or not _NUMBER.match(text):
+        raise ValueError("not a number: %r" % (text,))
+    return float(text)
 
 
 def read(path, need=(), what="the CSV this tool reads"):
@@ -45,7 +66,7 @@ def read(path, need=(), what="the CSV this tool reads"):
         vals = []
         for i, x in enumerate(fields):
             try:
-                v = float(x)
+                v = number(x)
             except ValueError:
                 v = None
             if v is None or not math.isfinite(v):

@@ -41,6 +41,19 @@ def same(a, b):
             and os.path.samefile(os.path.dirname(ta), os.path.dirname(tb)))
 
 
+def refuse_inputs(outputs, inputs):
+    """OutputError if an output would overwrite a file the command reads (cli_out_is_input's rule):
+    outputs and inputs are (option, path) pairs, "" for a positional input, None paths skipped."""
+    for oo, op in outputs:
+        if not op:
+            continue
+        t = os.path.abspath(target(op))
+        for io, ip in inputs:
+            if ip and os.path.isfile(ip) and os.path.exists(t) and os.path.samefile(t, ip):
+                raise OutputError("%s %s names the file the command reads (%s%s): it would be overwritten; give "
+                                  "another file" % (oo, op, io + " " if io else "", ip))
+
+
 def atomic_write(path, write):
     """write(file) into path (binary) by the rules above: a regular file through a
     temporary and a rename, never half written; OutputError when anything fails."""

@@ -52,6 +52,10 @@ def main():
         if window is None or not 0 <= window[0] <= window[1]:
             return fail("FROM TO '%s %s': give two sample numbers, 0 <= FROM <= TO" % (sys.argv[3], sys.argv[4]), 2)
     try:
+        hg_output.refuse_inputs([("OUT.png", png)], [("REPLAY.csv", src)])
+    except hg_output.OutputError as ex:
+        return fail(str(ex), 2)
+    try:
         names, col = hg_csv.read(src, ("sample", "t_s"), WHAT)
         # the channels: the Hexaglide's six joints, a serial machine's axes (replay writes one column
         # each, named in the channel's machine unit: z0_rec_mm, or z0_rec_deg for a rotary axis)

@@ -31,6 +31,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, ".."))
 sys.path.insert(0, HERE)
 import hexaglide as hg  # noqa: E402
+import hg_csv  # noqa: E402
 import hexaglide_tune as tune  # noqa: E402
 
 
@@ -54,19 +55,23 @@ def run_linuxcnc(gains, program, out, tag):
 def measured(csv):
     """Peak |f-error| (mm) and peak |pid output| (V) per joint while the program ran,
     and the peak tool-path error (mm; the board's tool-error, None when not sampled)."""
-    names = open(csv).readline().strip().split(",")
-    d = np.loadtxt(csv, delimiter=",", skiprows=1, ndmin=2)
-    cmd = d[:, [names.index("joint.%d.motor-pos-cmd" % j) for j in range(6)]]
-    span = tune.program_rows(d[:, names.index("halui.program.is-running")] > 0.5, cmd)
+    need = (["joint.%d.motor-pos-cmd" % j for j in range(6)] + ["halui.program.is-running"] +
+            ["joint.%d.f-error" % j for j in range(6)] + ["pid.%d.output" % j for j in range(6)])
+    try:                               # (a missing column, a NaN, a cut row: named, not a traceback)
+        names, col = hg_csv.read(csv, need, "a run sampled by the headless front end (tools/headless)")
+    except hg_csv.CsvError as ex:
+        raise RuntimeError(str(ex))
+    cmd = np.column_stack([col["joint.%d.motor-pos-cmd" % j] for j in range(6)])
+    span = tune.program_rows(col["halui.program.is-running"] > 0.5, cmd)
     if span is None:
         raise RuntimeError("%s: the program never ran" % csv)
-    run = np.zeros(len(d), bool)
+    run = np.zeros(len(cmd), bool)
     run[span[0]:span[1]] = True
-    fe = np.array([np.abs(d[run, names.index("joint.%d.f-error" % j)]).max() for j in range(6)])
-    v = np.array([np.abs(d[run, names.index("pid.%d.output" % j)]).max() for j in range(6)])
+    fe = np.array([np.abs(col["joint.%d.f-error" % j][run]).max() for j in range(6)])
+    v = np.array([np.abs(col["pid.%d.output" % j][run]).max() for j in range(6)])
     tool = None
     if "motenc-hexaglide.0.tool-error" in names:
-        te = d[run, names.index("motenc-hexaglide.0.tool-error")]
+        te = col["motenc-hexaglide.0.tool-error"][run]
         tool = te.max() if (te >= 0).all() else -1.0      # -1: some period without a pose
     return fe, v, tool
 
@@ -95,7 +100,11 @@ def main():
         print("verify_gains: %s" % ex, file=sys.stderr)
         return 2
     # as in the LinuxCNC run: the INI's pid settings, the file's gains set over them
-    ini = [tune.pid_keys(g) for g in hg.read_ini(a.ini)[0]]
+    try:                               # the INI as LinuxCNC and sim read it (the C reader)
+        ini = [tune.pid_keys(g) for g in tune.read_ini(a.ini, cmd="verify_gains")[0]]
+    except tune.BadInput as ex:
+        print("verify_gains: %s" % ex, file=sys.stderr)
+        return 2
     gains = [dict(i, **g) for i, g in zip(ini, gains)]
     cmd = tune.load_trajectory(csv)
     prob = {"cmd": cmd, "ferror_limit": 2.0}

@@ -83,6 +83,12 @@ int cli_strtod(const char *text, double *out);
 /* Parse a finite double; 0 on success, -1 (and a message naming what) otherwise. */
 int cli_parse_double(const char *text, const char *what, double *out);
 
+/* v as %g writes it, with more significant digits where %g's 6 do not read back as v (a
+ * message's number: 10.0000001, not %g's 10 beside a bound of 10); buf of CLI_NUM_LEN chars,
+ * returned. */
+#define CLI_NUM_LEN 32
+const char *cli_num(double v, char buf[CLI_NUM_LEN]);
+
 /* Parse exactly n comma-separated finite numbers ("1,-2,3") for option opt,
  * element k named names[k] in messages; 0 or -1 with a message. */
 int cli_parse_list(const char *cmd, const char *opt, const char *text, const char *const names[], int n,
@@ -259,5 +265,9 @@ int cli_out_close(const char *cmd, cli_out *o, int keep);
 
 /* 1 if outputs a and b would write the same file (symlinks followed). */
 int cli_out_same(const char *a, const char *b);
+
+/* 1, after saying so, if output out (of option opt) would overwrite the input in (of option
+ * in_opt, "" for a positional file) the command reads; 0 otherwise or when either is 0. */
+int cli_out_is_input(const char *cmd, const char *opt, const char *out, const char *in_opt, const char *in);
 
 #endif

@@ -289,7 +289,7 @@ int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int vari
     const hg_plant *pl = hg_plant_at(plant);
     const char *sec = pl->ini_section;
     static hg_param_info t[HG_PLANT_PARAMS_MAX];
-    int i, n = pl->nparams(variant), bad = 0;
+    int i, n = pl->nparams(variant), bad = 0, listed = 0;
     char keys[4096];
     for (i = 0; i < n; i++)
         pl->param(variant, i, &t[i]);
@@ -311,10 +311,11 @@ int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int vari
             fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s: %s\n", cmd, ini->path, e->line, sec,
                     e->key, gone_keys[k].instead);
             bad = 1;
-        } else if (!known_key(t, n, e->key)) {
-            fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s is not a key of this section; it takes %s\n",
-                    cmd, ini->path, e->line, sec, e->key, keys);
-            bad = 1;
+        } else if (!known_key(t, n, e->key)) {   /* the keys it takes listed once, at the first */
+            fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s is not a key of this section; %s%s\n",
+                    cmd, ini->path, e->line, sec, e->key, listed ? "(the keys it takes: above)" : "it takes ",
+                    listed ? "" : keys);
+            bad = listed = 1;
         }
     }
     for (k = 0; k < N_OF(other_keys); k++) {   /* keys that are no parameter: given once */

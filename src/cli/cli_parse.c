@@ -89,6 +89,18 @@ int cli_strtod(const char *text, double *out)
     return 0;
 }
 
+const char *cli_num(double v, char buf[CLI_NUM_LEN])
+{
+    int p;
+    for (p = 6; p < 17; p++) {         /* %g's 6 digits where they read back, more where not */
+        snprintf(buf, CLI_NUM_LEN, "%.*g", p, v);
+        if (strtod(buf, 0) == v)
+            return buf;
+    }
+    snprintf(buf, CLI_NUM_LEN, "%.17g", v);
+    return buf;
+}
+
 int cli_parse_double(const char *text, const char *what, double *out)
 {
     int rc = cli_strtod(text, out);

@@ -241,6 +241,15 @@ static const char *base_of(const char *path)
     return slash ? slash + 1 : path;
 }
 
+int cli_out_is_input(const char *cmd, const char *opt, const char *out, const char *in_opt, const char *in)
+{
+    if (!out || !in || !cli_out_same(out, in))
+        return 0;
+    fprintf(stderr, "hexaglide %s: %s %s names the file the command reads (%s%s%s): it would be overwritten; "
+            "give another file\n", cmd, opt, out, in_opt, in_opt[0] ? " " : "", in);
+    return 1;
+}
+
 int cli_out_same(const char *a, const char *b)
 {
     char ta[PATH_MAX], tb[PATH_MAX], da[PATH_MAX], db[PATH_MAX];

@@ -20,7 +20,7 @@
 #include "cli.h"
 
 const char cli_usage_config[] =
-    "usage: hexaglide config [--ini FILE] [--set name=value]... [--loop]\n"
+    "usage: hexaglide config [--plant NAME] [--model M] [--ini FILE] [--set name=value]... [--loop]\n"
     "  the config as build/hexaglide reads it (src/cli/cli_ini.c), one value a line, as tune and\n"
     "  excite take it (tools/hg_config.py): 'param NAME VALUE' for every model parameter (spec\n"
     "  name, SI) after the defaults, [HEXAGLIDE] and --set, checked as soak checks them;\n"
@@ -33,10 +33,15 @@ const char cli_usage_config[] =
     "  Default --ini: configs/hexaglide.ini of the source tree this hexaglide was built in.\n"
     "  A value that is not a finite number, a key given twice, MIN_LIMIT >= MAX_LIMIT or a\n"
     "  MAX_VELOCITY or MAX_ACCELERATION <= 0: named with its line, exit 2.\n"
+    "  --plant NAME, --model M  another plant's parameters (its INI section, e.g. [SERIAL] of\n"
+    "              plant serial, the model's axes; docs/serial.md) and its joints' limits; with\n"
+    "              --loop its joints' servo-loop keys where given (its HAL file is not ours: none\n"
+    "              required). Default: the hexaglide.\n"
     CLI_USAGE_MODEL;
 
-enum { OPT_INI, OPT_SET, OPT_LOOP };
-static const cli_opt config_opts[] = {{"--ini", 1}, {"--set", 1}, {"--loop", 0}, {0, 0}};
+enum { OPT_INI, OPT_SET, OPT_LOOP, OPT_PLANT, OPT_MODEL };
+static const cli_opt config_opts[] = {{"--ini", 1}, {"--set", 1}, {"--loop", 0}, {"--plant", 1}, {"--model", 1},
+                                      {0, 0}};
 
 static const char *const limit_keys[] = {"MIN_LIMIT", "MAX_LIMIT", "MAX_VELOCITY", "MAX_ACCELERATION"};
 
@@ -54,8 +59,10 @@ static int limits(const cli_ini *ini, const char *sec, const char *what, const c
     if (bad)
         return -1;
     if (got[0] && got[1] && !(v[0] < v[1])) {
-        fprintf(stderr, "hexaglide config: %s: [%s] MIN_LIMIT = %g (line %d) is not below MAX_LIMIT = %g (line %d): "
-                "the range is empty; give MIN_LIMIT < MAX_LIMIT\n", ini->path, sec, v[0], line[0], v[1], line[1]);
+        char lo[CLI_NUM_LEN], hi[CLI_NUM_LEN];
+        fprintf(stderr, "hexaglide config: %s: [%s] MIN_LIMIT = %s (line %d) is not below MAX_LIMIT = %s (line %d): "
+                "the range is empty; give MIN_LIMIT < MAX_LIMIT\n", ini->path, sec, cli_num(v[0], lo), line[0],
+                cli_num(v[1], hi), line[1]);
         bad = 1;
     }
     for (k = 2; k < n; k++)
@@ -78,8 +85,8 @@ int cmd_config(int argc, char **argv)
     hg_loop_config c;
     cli_ferror_rule rule[HG_LOOP_JOINTS];
     char default_ini[4096], *sets[argc > 0 ? argc : 1], buf[1 << 15];
-    const char *path = 0, *v;
-    const int variant = hg_plant_at(0)->default_variant;
+    const char *path = 0, *v, *model = 0;
+    int plant = 0, variant, joints;
     int o, nset = 0, loop = 0, bad = 0, i, j, n;
     double servo_ns;
     FILE *out;
@@ -105,7 +112,14 @@ int cmd_config(int argc, char **argv)
             sets[nset++] = (char *)v;
         if (o == OPT_LOOP)
             loop = 1;
+        if (o == OPT_PLANT && (plant = cli_plant("config", v)) < 0)
+            return 2;
+        if (o == OPT_MODEL)
+            model = v;
     }
+    if ((variant = cli_variant("config", plant, model)) < 0)
+        return 2;
+    joints = hg_plant_at(plant)->channels(variant);
     if (!path) {
         if (cli_tree_path("configs/hexaglide.ini", default_ini, sizeof default_ini)) {
             fprintf(stderr, "hexaglide config: no config beside this program (../configs/hexaglide.ini): give "
@@ -114,8 +128,8 @@ int cmd_config(int argc, char **argv)
         }
         path = default_ini;
     }
-    if (cli_params_build("config", 0, variant, path, sets, nset, &p) ||
-        cli_params_check_from("config", 0, variant, &p, path, sets, nset))
+    if (cli_params_build("config", plant, variant, path, sets, nset, &p) ||
+        cli_params_check_from("config", plant, variant, &p, path, sets, nset))
         return 2;
     if (cli_ini_read("config", path, &ini))
         return 2;
@@ -125,13 +139,38 @@ int cmd_config(int argc, char **argv)
         fprintf(stderr, "hexaglide config: out of memory\n");
         return 1;
     }
-    n = hg_plant_at(0)->nparams(variant);
+    n = hg_plant_at(plant)->nparams(variant);
     for (i = 0; i < n; i++) {
         hg_param_info e;
-        hg_plant_param_at(0, variant, i, &e);
+        hg_plant_param_at(plant, variant, i, &e);
         fprintf(out, "param %s %.17g\n", e.name, p.v[i]);
     }
-    if (loop) {                        /* the servo loops as soak reads them */
+    if (loop && plant != 0) {          /* another plant's loops: the keys given, each read as LinuxCNC reads it */
+        static const char *const rule_keys[] = {"FERROR", "MIN_FERROR", "MAX_VELOCITY"};
+        for (j = 0; j < joints; j++) {
+            char sec[24];
+            double x;
+            snprintf(sec, sizeof sec, "JOINT_%d", j);
+            if (!cli_ini_has_section(&ini, sec)) {
+                fprintf(stderr, "hexaglide config: %s has no [%s] section (joint %d of model %s: its servo "
+                        "loop's gains and scales)\n", path, sec, j, model ? model : "(default)");
+                bad = 1;
+                continue;
+            }
+            for (i = 0; cli_ini_joint_key(i); i++) {
+                int rc = cli_ini_optional("config", &ini, sec, cli_ini_joint_key(i), &x, 0);
+                bad |= rc < 0;
+                if (rc == 0)
+                    fprintf(out, "joint %d %s %.17g\n", j, cli_ini_joint_key(i), x);
+            }
+            for (i = 0; i < 2; i++) {  /* (MAX_VELOCITY: a limit, printed below) */
+                int rc = cli_ini_optional("config", &ini, sec, rule_keys[i], &x, 0);
+                bad |= rc < 0;
+                if (rc == 0)
+                    fprintf(out, "joint %d %s %.17g\n", j, rule_keys[i], x);
+            }
+        }
+    } else if (loop) {                 /* the servo loops as soak reads them */
         hg_loop_config_default(&c);
         if (cli_ini_loop("config", &ini, 6, &c, rule))
             bad = 1;
@@ -147,8 +186,8 @@ int cmd_config(int argc, char **argv)
                     rule[j].min_ferror);
         }
     }
-    for (j = 0; j < 6 && !bad; j++) {  /* (after a refused loop: its keys are named already) */
-        char sec[16], id[4];
+    for (j = 0; j < joints && !bad; j++) {  /* (after a refused loop: its keys are named already) */
+        char sec[24], id[12];
         snprintf(sec, sizeof sec, "JOINT_%d", j);
         snprintf(id, sizeof id, "%d", j);
         bad |= limits(&ini, sec, "joint", id, out) != 0;

@@ -756,6 +756,8 @@ int cmd_replay(int argc, char **argv)
                 o.plot);
         return 2;
     }
+    if (cli_out_is_input("replay", "--csv", o.csv, "", o.file) || cli_out_is_input("replay", "--plot", o.plot, "", o.file))
+        return 2;
     if (cli_read_file("replay", o.file, "a record file (tools/hg_record.py); split larger recordings", REPLAY_MAX_BYTES, &buf, &len))
         return 1;
     rc = hg_record_open(&r, buf, len, &e);
@@ -1107,6 +1109,9 @@ int cmd_replay(int argc, char **argv)
     else if (has_cmd)
         fprintf(stderr, "hexaglide replay: note: no joint's amplifier was enabled%s: no f-error statistics\n",
                 o.from >= 0 ? " from --from on" : " in the window");
+    else if (o.from >= 0)              /* (an option that selects nothing is said, not dropped) */
+        fprintf(stderr, "hexaglide replay: note: --from %ld does nothing here: %s has no joint commands "
+                "(joint.N.motor-pos-cmd), so no f-error statistics are taken\n", o.from, o.file);
     if (closed && o.spread > 1 && hold_at < 0)
         fprintf(stderr, "hexaglide replay: note: --spread: no idle after an index latch (homing) in %s: "
                 "the %ld loops ran the same periods\n", o.file, o.spread);

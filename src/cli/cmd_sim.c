@@ -219,6 +219,8 @@ int cmd_sim(int argc, char **argv)
                 record);
         return 2;
     }
+    if (cli_out_is_input("sim", "--csv", csv_path, "--ini", ini) || cli_out_is_input("sim", "--record", record, "--ini", ini))
+        return 2;
     pl = hg_plant_at(plant);
     if ((variant = cli_variant("sim", plant, model)) < 0)
         return 2;
@@ -268,8 +270,9 @@ int cmd_sim(int argc, char **argv)
     }
     for (k = 0; k < b->sense.channels; k++)
         if (!(fabs(volts[k]) <= HG_DAC_VOLTS_MAX)) {  /* the DAC would clamp it: say so instead */
-            fprintf(stderr, "hexaglide sim: --volts: %s = %g V is outside the DAC's range of -%g to %g V\n",
-                    volt_names[k], volts[k], HG_DAC_VOLTS_MAX, HG_DAC_VOLTS_MAX);
+            char num[CLI_NUM_LEN];
+            fprintf(stderr, "hexaglide sim: --volts: %s = %s V is outside the DAC's range of -%g to %g V\n",
+                    volt_names[k], cli_num(volts[k], num), HG_DAC_VOLTS_MAX, HG_DAC_VOLTS_MAX);
             free(b);
             return 2;
         }
