@@ -131,6 +131,14 @@ const char *cli_machine_unit_name(unsigned rotary, int k);
 /* The board's parameter block of plant as HAL loads it (spec defaults, substeps, integrator). */
 void cli_board_defaults(int plant, int variant, hg_board_params *bp);
 
+/* A board fault in one line for sim's and soak's messages: for parameters
+ * the step cannot integrate (HG_FAULT_STIFF), the parameter and its bound,
+ * the error, and what to change (a softer value, another --integrator or a
+ * shorter --dt; the mode's damping when no step is short enough); for any
+ * other fault, the error and the plant's report of what struck. */
+void cli_fault_text(const hg_board *b, const hg_board_outputs *o, long period_ns,
+                    char buf[HG_PLANT_TEXT_LEN + 2 * HG_BOARD_TEXT_LEN]);
+
 /* 0 if v is a valid machine of plant, else 1 after one message per invalid field. */
 int cli_params_check(const char *cmd, int plant, int variant, const hg_plant_params *v);
 

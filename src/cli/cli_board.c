@@ -79,6 +79,23 @@ const char *cli_machine_unit_name(unsigned rotary, int k)
     return (rotary >> k) & 1u ? "deg" : "mm";
 }
 
+void cli_fault_text(const hg_board *b, const hg_board_outputs *o, long period_ns,
+                    char buf[HG_PLANT_TEXT_LEN + 2 * HG_BOARD_TEXT_LEN])
+{
+    char what[HG_PLANT_TEXT_LEN + HG_BOARD_TEXT_LEN]; /* room for either text */
+    size_t n = HG_PLANT_TEXT_LEN + 2 * HG_BOARD_TEXT_LEN;
+    if (o->fault_cause == HG_FAULT_STIFF) {
+        hg_board_describe_stiffness(b, o, period_ns, 0, what);
+        snprintf(buf, n, "%s: %s even with %u substeps (code %d); give %s", what, hg_strerror(o->fault_code),
+                 HG_SUBSTEPS_MAX, o->fault_code,
+                 o->stiff_dt_max_s > 0.0 ? "a softer value, another --integrator or a shorter --dt"
+                                         : "the mode damping or another --integrator (no step is short enough)");
+        return;
+    }
+    hg_board_plant(b)->describe(&o->fault_report, 0, what);
+    snprintf(buf, n, "%s (code %d)%s%s", hg_strerror(o->fault_code), o->fault_code, what[0] ? ": " : "", what);
+}
+
 void cli_board_defaults(int plant, int variant, hg_board_params *bp)
 {
     hg_board_params_default(plant, variant, bp);

@@ -303,23 +303,11 @@ int cmd_sim(int argc, char **argv)
             fprintf(stderr, "hexaglide sim: %s: running %u substeps per period instead of %u\n", why,
                     out.substeps_run, out.params.substeps);
         }
-        if (out.fault && out.fault_cause == HG_FAULT_STIFF) {
-            char why[HG_BOARD_TEXT_LEN];
-            hg_board_describe_stiffness(b, &out, period_ns, 0, why);
-            fprintf(stderr, "hexaglide sim: %s: %s even with %u substeps; give %s\n", why,
-                    hg_strerror(out.fault_code), HG_SUBSTEPS_MAX,
-                    out.stiff_dt_max_s > 0.0 ? "a softer value, another --integrator or a shorter --dt"
-                                             : "the mode damping or another --integrator (no step is short enough)");
-            rc = out.fault_code;
-            break;
-        }
         if (out.fault) {
-            char what[HG_PLANT_TEXT_LEN];
-            pl->describe(&out.fault_report, 0, what);
-            fprintf(stderr, "hexaglide sim: the step from t = %.6f s to %.6f s failed: %s (code %d)%s%s; "
-                            "the CSV stops at t = %.6f s\n",
-                    s * dt, (s + 1) * dt, hg_strerror(out.fault_code), out.fault_code, what[0] ? ": " : "",
-                    what, s * dt);
+            char what[HG_PLANT_TEXT_LEN + 2 * HG_BOARD_TEXT_LEN];
+            cli_fault_text(b, &out, period_ns, what);
+            fprintf(stderr, "hexaglide sim: the step from t = %.6f s to %.6f s failed: %s; the CSV stops at "
+                            "t = %.6f s\n", s * dt, (s + 1) * dt, what, s * dt);
             rc = out.fault_code;
             break;
         }

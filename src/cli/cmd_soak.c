@@ -293,20 +293,10 @@ int cmd_soak(int argc, char **argv)
         /* viscous friction and stops alone: the smooth carriage forces without the drives */
         hg_carriage_forces(hm, hd->z_m, hd->zd_mps, no_drive, f_passive);
         if (hg_loop_step(L, cmd, &smp)) {
-            char what[HG_PLANT_TEXT_LEN + HG_BOARD_TEXT_LEN]; /* room for either text */
+            char what[HG_PLANT_TEXT_LEN + 2 * HG_BOARD_TEXT_LEN];
             faults++;
-            if (L->out.fault_cause == HG_FAULT_STIFF) {  /* the parameter and the bound, as sim says them */
-                hg_board_describe_stiffness(&L->board, &L->out, cfg.period_ns, 0, what);
-                fprintf(stderr, "hexaglide soak: step failed at t = %.3f s: %s: %s even with %u substeps (code %d); "
-                        "give %s\n", t, what, hg_strerror(L->out.fault_code), HG_SUBSTEPS_MAX, L->out.fault_code,
-                        L->out.stiff_dt_max_s > 0.0 ? "a softer value, another --integrator or a shorter --dt"
-                                                    : "the mode damping or another --integrator (no step is short "
-                                                      "enough)");
-            } else {
-                hg_board_plant(&L->board)->describe(&L->out.fault_report, 0, what);
-                fprintf(stderr, "hexaglide soak: step failed at t = %.3f s: %s (code %d)%s%s\n", t,
-                        hg_strerror(L->out.fault_code), L->out.fault_code, what[0] ? ": " : "", what);
-            }
+            cli_fault_text(&L->board, &L->out, cfg.period_ns, what);
+            fprintf(stderr, "hexaglide soak: step failed at t = %.3f s: %s\n", t, what);
             break;
         }
         for (k = 0; k < 6; k++) {
