@@ -13,7 +13,12 @@
  *   BENCH dyn_<model> median_us=<x> p99_us=<y> flops=<n> iters=<n>
  *   BENCH board_<model> median_us=<x> p99_us=<y> iters=<n>
  *   BENCH change_<model> median_us=<x> p99_us=<y> max_us=<z> iters=<n>
- * bench_dynamics board MODEL prints the board line of that model alone. */
+ * bench_dynamics board MODEL prints the board line of that model alone;
+ * bench_dynamics N times N steps instead of BENCH_STEPS (a smoke run:
+ * tests/check/test_bench_builds). The hg_step lines run rigid trains
+ * (k_axial 0, the machine of bench_baseline and make profile): a single
+ * 1 ms step cannot integrate the flexible default's axial mode, which the
+ * board runs in substeps (the board_ lines). Exit 1 if any run failed. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -27,6 +32,7 @@
 
 #define BENCH_STEPS 200000
 #define WARMUP 2000
+static int steps = BENCH_STEPS;         /* timed steps per measurement (fewer in a smoke run) */
 #define DT_S 1e-3
 #define PI 3.14159265358979323846
 
@@ -43,7 +49,7 @@ static void servo(const hg_model *m, double t, const double z[6], double v[6])
     }
 }
 
-/* Median and p99 (us) of BENCH_STEPS timed steps of one parametrization. */
+/* Median and p99 (us) of `steps` timed steps of one parametrization. */
 static int bench(hg_model_kind kind, double *ns, double *median, double *p99)
 {
     hg_params p;
@@ -51,9 +57,10 @@ static int bench(hg_model_kind kind, double *ns, double *median, double *p99)
     hg_data d;
     int s, rc;
     hg_params_default(&p);
+    p.k_axial_n_per_m = 0.0;            /* rigid trains: one step per period (see the top) */
     if ((rc = hg_model_init(&m, &p, kind, 0, 0)) || (rc = hg_data_reset(&m, &d)))
         return rc;
-    for (s = 0; s < WARMUP + BENCH_STEPS; s++) {
+    for (s = 0; s < WARMUP + steps; s++) {
         double v[6], t0, t1;
         servo(&m, d.t_s, d.z_m, v);
         t0 = bench_now_us();
@@ -64,11 +71,11 @@ static int bench(hg_model_kind kind, double *ns, double *median, double *p99)
         if (s >= WARMUP)
             ns[s - WARMUP] = t1 - t0;
     }
-    bench_percentiles(ns, BENCH_STEPS, median, p99);
+    bench_percentiles(ns, steps, median, p99);
     return 0;
 }
 
-/* Median and p99 (us) of BENCH_STEPS hg_board_step calls with the drives
+/* Median and p99 (us) of `steps` hg_board_step calls with the drives
  * off (E-STOP loop open): the machine sinks from HOME; a reset every 3000
  * periods keeps it far from the stops. */
 static int bench_board(hg_model_kind kind, double *ns, double *median, double *p99)
@@ -81,7 +88,7 @@ static int bench_board(hg_model_kind kind, double *ns, double *median, double *p
         return rc;
     hg_board_inputs_default(&b, &in);
     in.dac_written = 1;
-    for (s = 0; s < WARMUP + BENCH_STEPS; s++) {
+    for (s = 0; s < WARMUP + steps; s++) {
         double t0, t1;
         in.reset = s % 3000 == 0;
         t0 = bench_now_us();
@@ -92,7 +99,7 @@ static int bench_board(hg_model_kind kind, double *ns, double *median, double *p
         if (s >= WARMUP)
             ns[s - WARMUP] = t1 - t0;
     }
-    bench_percentiles(ns, BENCH_STEPS, median, p99);
+    bench_percentiles(ns, steps, median, p99);
     return 0;
 }
 
@@ -151,7 +158,7 @@ static int board_only(const char *name)
         printf("%-18s failed: %s\n", name, hg_strerror(rc));
         return 1;
     }
-    printf("BENCH board_%s median_us=%.3f p99_us=%.3f iters=%d\n", name, bm, bp, BENCH_STEPS);
+    printf("BENCH board_%s median_us=%.3f p99_us=%.3f iters=%d\n", name, bm, bp, steps);
     return 0;
 }
 
@@ -170,15 +177,19 @@ int main(int argc, char **argv)
     int kind, i, failed = 0;
     if (argc == 3 && strcmp(argv[1], "board") == 0)
         return board_only(argv[2]);
+    if (argc == 2 && ((steps = atoi(argv[1])) < 10 || steps > BENCH_STEPS)) {
+        fprintf(stderr, "usage: bench_dynamics [STEPS: 10..%d] | board MODEL\n", BENCH_STEPS);
+        return 2;
+    }
     {   /* the cost of the two clock reads around each step */
         double t0 = bench_now_us(), t1;
         for (i = 0; i < 1000000; i++)
             t1 = bench_now_us();
         timer = (t1 - t0) / 1e6;
     }
-    printf("one hg_step at dt = 1 ms, %d timed steps per model after %d warm-up steps\n"
+    printf("one hg_step at dt = 1 ms (rigid trains), %d timed steps per model after %d warm-up steps\n"
            "(each step timed alone; one clock_gettime costs %.3f us and is included)\n\n",
-           BENCH_STEPS, WARMUP, timer);
+           steps, WARMUP, timer);
     printf("%-18s %10s %10s %14s %11s %11s\n", "model", "median us", "p99 us",
            "paper 2011 us", "paper/ours", "gen. flops");
     for (kind = 0; kind < HG_MODEL_COUNT; kind++) {
@@ -202,9 +213,9 @@ int main(int argc, char **argv)
     }
     for (kind = 0; kind < HG_MODEL_COUNT && !failed; kind++)
         printf("BENCH dyn_%s median_us=%.3f p99_us=%.3f flops=%d iters=%d\n",
-               hg_model_name((hg_model_kind)kind), med[kind], p99[kind], flops[kind], BENCH_STEPS);
+               hg_model_name((hg_model_kind)kind), med[kind], p99[kind], flops[kind], steps);
     printf("\none hg_board_step (the whole board: drives off, the machine sinking), %d timed periods\n",
-           BENCH_STEPS);
+           steps);
     for (kind = 0; kind < HG_MODEL_COUNT; kind++) {
         double bm = 0.0, bp = 0.0;
         int rc = bench_board((hg_model_kind)kind, ns, &bm, &bp);
@@ -215,7 +226,7 @@ int main(int argc, char **argv)
         }
         printf("%-18s %10.3f %10.3f\n", hg_model_name((hg_model_kind)kind), bm, bp);
         printf("BENCH board_%s median_us=%.3f p99_us=%.3f iters=%d\n", hg_model_name((hg_model_kind)kind),
-               bm, bp, BENCH_STEPS);
+               bm, bp, steps);
     }
     printf("\none hg_board_step that applies a new geometry (l by 1 mm, a restart at HOME), %d periods\n",
            BENCH_CHANGES);

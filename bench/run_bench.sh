@@ -6,11 +6,14 @@
 cd "$(dirname "$0")/.." || exit 1
 out=build/bench/results.txt
 : > "$out"
+failed=""
 for b in build/bench/bench_*; do
     [ -x "$b" ] || continue
     echo "== $(basename "$b")"
-    "$b" | tee -a "$out" | grep -v '^BENCH '
+    { "$b"; echo "exit $?" >"$out.rc"; } | tee -a "$out" | grep -v '^BENCH '
+    [ "$(cat "$out.rc")" = "exit 0" ] || failed="$failed $(basename "$b") ($(cat "$out.rc"))"
 done
+rm -f "$out.rc"
 # the default board step inside HAL (uspace, a 1 ms thread; sampled in the
 # thread by LinuxCNC's sampler, read by halsampler after the thread stops)
 # against the same step hot (bench_dynamics board MODEL) measured just
@@ -44,3 +47,7 @@ fi
 echo
 echo "== summary (microseconds per call on this machine; see docs/benchmarks.md)"
 grep '^BENCH ' "$out" | sed 's/^BENCH //' | column -t
+if [ -n "$failed" ]; then
+    echo "run_bench.sh: failed:$failed (their reports above say what failed)"
+    exit 1
+fi
