@@ -135,7 +135,7 @@ int hg_board_init(hg_board *b, int plant, int variant, const hg_board_params *p)
         b->last_in = *p;
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         b->enc_scale[k] = b->enc_scale_in[k] = 1.0;
-    b->estop_loop_out = b->estop_loop_out_in = 7;   /* out-07, as motenc_io.hal wires it */
+    b->estop_loop_out = b->estop_loop_out_in = HG_BOARD_ESTOP_LOOP_OUT;
     hg_watchdog_init(&b->wd);
     reinit_at_home(b, 0);
     return b->fault ? b->fault_code : HG_OK;
@@ -145,7 +145,7 @@ void hg_board_inputs_default(const hg_board *b, hg_board_inputs *in)
 {
     int k;
     memset(in, 0, sizeof *in);
-    in->estop_loop_out = 7;
+    in->estop_loop_out = HG_BOARD_ESTOP_LOOP_OUT;
     in->adc_volts_per_amp = 0.5;
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         in->enc_scale[k] = 1.0;
@@ -469,8 +469,9 @@ static int reset_blocked(const hg_board *b, const hg_board_inputs *in, int *whic
 /* The servo thread's addf order: a step whose volts were written before
  * the encoders were read (dynamics between encoder-read and dac-write)
  * twice in a row, or steps with no dac-write at all for
- * HG_BOARD_UNWRITTEN_NS (dac-write missing): said once per load or reset. The first period of a thread that
- * runs dynamics first is not a fault (two in a row), nor is dynamics in a
+ * HG_BOARD_UNWRITTEN_NS (dac-write missing): said once per load or reset.
+ * The first period of a thread that runs dynamics first is not a fault
+ * (two in a row), nor is dynamics in a
  * faster thread of its own (a finer plant step: each period's volts are
  * held for several steps, as a DAC holds them). */
 static void addf_order(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out, long period_ns)
@@ -586,25 +587,29 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     publish(b, in, out, volts);
 }
 
-int hg_board_unstepped(long long *since_ns, long period_ns)
+int hg_board_rate_read(hg_board_rate *r, long period_ns)
 {
-    long long before = *since_ns;
-    if (period_ns <= 0 || before >= HG_BOARD_UNSTEPPED_NS)
+    if (r->reads < HG_BOARD_RATE_READS_MAX)
+        r->reads++;
+    if (period_ns <= 0 || r->unstepped_ns >= HG_BOARD_UNSTEPPED_NS)
         return 0;
-    *since_ns = before + period_ns;
-    return *since_ns >= HG_BOARD_UNSTEPPED_NS;
+    r->unstepped_ns += period_ns;
+    return r->unstepped_ns >= HG_BOARD_UNSTEPPED_NS;
 }
 
-int hg_board_slow_step(hg_board_rate *r, unsigned reads)
+int hg_board_rate_step(hg_board_rate *r)
 {
     int slow;
+    unsigned reads = r->reads;
+    r->unstepped_ns = 0;
+    r->reads = 0;
     if (r->said)
         return 0;
-    r->reads += reads < 1000u ? reads : 1000u;
+    r->window_reads += reads;
     if (++r->steps < HG_BOARD_RATE_WINDOW)
         return 0;
-    slow = 2u * r->reads >= 3u * r->steps;  /* at least 1.5 reads per step */
-    r->steps = r->reads = 0;
+    slow = 2u * r->window_reads >= 3u * r->steps;  /* at least 1.5 reads per step */
+    r->steps = r->window_reads = 0;
     r->said = slow;
     return slow;
 }

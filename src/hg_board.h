@@ -28,6 +28,7 @@
 
 #define HG_SUBSTEPS_MAX 64u           /* substeps param: 1..HG_SUBSTEPS_MAX */
 #define HG_PERIOD_MAX_NS 10000000L    /* the longest period integrated (10 ms) */
+#define HG_BOARD_ESTOP_LOOP_OUT 7     /* the E-STOP loop's output at load: out-07, as motenc_io.hal wires it */
 #define HG_BOARD_UNWRITTEN_NS 100000000LL /* steps' time without a dac-write before ADDF_ORDER (100 ms:
                                          a faster plant thread is fine, and so is a servo thread the
                                          host stalls a few ms on a loaded non-realtime machine) */
@@ -297,31 +298,35 @@ int hg_board_params_check(const hg_board *b, const hg_board_params *p, hg_bitset
  * function) before the glue says the step is in no running thread: 1 s,
  * a hundred of the longest period a step integrates (HG_PERIOD_MAX_NS). */
 #define HG_BOARD_UNSTEPPED_NS 1000000000LL
+#define HG_BOARD_RATE_WINDOW 16u      /* steps per window of hg_board_rate_step */
+#define HG_BOARD_RATE_READS_MAX 1000u /* reads counted between two steps (more: a step that never runs) */
 
-/* Called by the glue's encoder-read with its thread's period: *since_ns
- * (the glue's, 0 at load and set to 0 by every step) adds the period; 1
- * exactly once, when it first reaches HG_BOARD_UNSTEPPED_NS: the counters
- * stand still because nothing integrates the machine (motenc.N.dynamics
- * never added to a thread). A period <= 0 adds nothing. */
-int hg_board_unstepped(long long *since_ns, long period_ns);
-
-/* The glue's count of encoder-read calls per step (hg_board_slow_step); all 0 at load. */
+/* The glue's watch on the rates of its two functions, encoder-read and
+ * dynamics; all 0 at load (zero it to have each said again). */
 typedef struct {
-    unsigned steps, reads;            /* in the window so far */
-    int said;
+    long long unstepped_ns;           /* thread time encoder-read ran since the last step */
+    unsigned reads;                   /* encoder-read calls since the last step (up to HG_BOARD_RATE_READS_MAX) */
+    unsigned steps, window_reads;     /* steps and their reads in the window so far */
+    int said;                         /* the slow step was said */
 } hg_board_rate;
-#define HG_BOARD_RATE_WINDOW 16u      /* steps per window */
 
-/* Called by the glue's dynamics with the encoder-read calls since the
- * previous step (reads; the glue counts them and sets them back to 0): 1
- * exactly once, at the end of a window of HG_BOARD_RATE_WINDOW steps that
- * followed at least 1.5 reads per step: the step's thread is slower than
- * encoder-read's (dynamics in a 2 ms thread beside a 1 ms servo thread),
- * so the counters move only at every n-th read and the PIDs' volts of the
- * periods between are never applied: a loop tuned for the servo period
- * trips on following error. A window, not a single step: the two threads
- * of a non-realtime host wake in either order. Zero *r to have it said again. */
-int hg_board_slow_step(hg_board_rate *r, unsigned reads);
+/* Called by the glue's encoder-read with its thread's period: counts the
+ * read and adds the period (a period <= 0 adds nothing); 1 exactly once,
+ * when the time since the last step first reaches HG_BOARD_UNSTEPPED_NS:
+ * the counters stand still because nothing integrates the machine
+ * (motenc.N.dynamics never added to a thread). */
+int hg_board_rate_read(hg_board_rate *r, long period_ns);
+
+/* Called by the glue's dynamics: the time without a step starts again, and
+ * the reads since the previous step join the window; 1 exactly once, at
+ * the end of a window of HG_BOARD_RATE_WINDOW steps that followed at least
+ * 1.5 reads per step: the step's thread is slower than encoder-read's
+ * (dynamics in a 2 ms thread beside a 1 ms servo thread), so the counters
+ * move only at every n-th read and the PIDs' volts of the periods between
+ * are never applied: a loop tuned for the servo period trips on following
+ * error. A window, not a single step: the two threads of a non-realtime
+ * host wake in either order. */
+int hg_board_rate_step(hg_board_rate *r);
 
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
                                  char buf[HG_BOARD_TEXT_LEN]);

@@ -88,9 +88,7 @@ typedef struct {
     int nrec;
     hg_board_rec_stream stream;       /* the parameters' events on the rec pins */
     int recording;                    /* record was TRUE in the last period */
-    long long unstepped_ns;           /* thread time encoder-read ran since the last dynamics call */
-    unsigned reads;                   /* encoder-read calls since the last dynamics call */
-    hg_board_rate rate;               /* encoder-reads per dynamics call (hg_board_slow_step) */
+    hg_board_rate rate;               /* encoder-read's and dynamics' calls (hg_board_rate_read, _step) */
     const char *why[HG_BOARD_WHY_LEN]; /* a refusal's reasons (too large for the stack) */
     int nparams;                      /* entries of the plant's parameter table */
     hg_param_info info[HG_PLANT_PARAMS_MAX]; /* that table as the loaded model has it (units) */
@@ -105,9 +103,7 @@ static void encoder_read(void *arg, long period)
     board_t *b = arg;
     int ch;
     b->ins.dac_stale |= b->ins.dac_written;   /* read after the volts were written: wrong addf order */
-    if (b->reads < 1000u)
-        b->reads++;
-    if (hg_board_unstepped(&b->unstepped_ns, period)) { /* two messages: LinuxCNC's error channel keeps
+    if (hg_board_rate_read(&b->rate, period)) { /* two messages: LinuxCNC's error channel keeps
                                                             255 characters of each (EMCMOT_ERROR_LEN) */
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics has not run for 1 s while "
                         "motenc.%d.encoder-read runs: nothing moves the machine, the encoders stand still and "
@@ -402,8 +398,7 @@ static void dynamics(void *arg, long period)
     hg_board_inputs *in = &b->ins;
     long long t0 = rtapi_get_time(), dt_ns;
     int k, changed;
-    b->unstepped_ns = 0;              /* the machine is integrated (encoder-read's check) */
-    if (hg_board_slow_step(&b->rate, b->reads)) { /* two messages: LinuxCNC's error channel keeps 255
+    if (hg_board_rate_step(&b->rate)) { /* two messages: LinuxCNC's error channel keeps 255
                                                           characters of each (EMCMOT_ERROR_LEN) */
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics runs less often than "
                         "motenc.%d.encoder-read (its thread is slower): the encoders move every few periods and "
@@ -413,7 +408,6 @@ static void dynamics(void *arg, long period)
                         "after motenc.%d.dac-write (a thread of its own may be faster, not slower)\n",
                         b->id, b->id, b->id);
     }
-    b->reads = 0;
     in->dout_values = in->dout_inverts = 0;
     for (k = 0; k < HG_BOARD_OUTPUTS; k++) {
         in->dout_values |= (*b->out[k] ? 1u : 0u) << k;

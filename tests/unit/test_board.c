@@ -720,22 +720,31 @@ static void test_geometry_rounding(void)
  * thread time with no step, the count starts again at each step. */
 static void test_unstepped(void)
 {
-    long long since = 0;
+    hg_board_rate r;
     int i, said = 0, first = -1;
+    memset(&r, 0, sizeof r);
     for (i = 1; i <= 3000; i++)
-        if (hg_board_unstepped(&since, PERIOD)) {
+        if (hg_board_rate_read(&r, PERIOD)) {
             said++;
             if (first < 0)
                 first = i;
         }
     CHECK(said == 1 && first == 1000, "no step: said once, at the 1000th period of 1 ms (%d times, first %d)", said,
           first);
-    since = 0;                        /* a step ran */
+    hg_board_rate_step(&r);           /* a step ran */
     for (i = 0, said = 0; i < 999; i++)
-        said += hg_board_unstepped(&since, PERIOD);
-    CHECK(said == 0 && hg_board_unstepped(&since, 0) == 0 && hg_board_unstepped(&since, -5) == 0 &&
-              hg_board_unstepped(&since, PERIOD) == 1,
+        said += hg_board_rate_read(&r, PERIOD);
+    CHECK(said == 0 && hg_board_rate_read(&r, 0) == 0 && hg_board_rate_read(&r, -5) == 0 &&
+              hg_board_rate_read(&r, PERIOD) == 1,
           "after a step: quiet for 999 ms, a period <= 0 counts nothing, said at 1 s");
+}
+
+/* One step of dynamics after `reads` calls of encoder-read (1 ms thread). */
+static int step_after_reads(hg_board_rate *r, unsigned reads)
+{
+    while (reads--)
+        hg_board_rate_read(r, PERIOD);
+    return hg_board_rate_step(r);
 }
 
 /* dynamics' check that its thread is not slower than encoder-read's: said
@@ -748,10 +757,10 @@ static void test_slow_step(void)
     int i, said = 0, at = -1;
     memset(&r, 0, sizeof r);
     for (i = 0; i < 200; i++)           /* LinuxCNC's start: the load's read and the first: 2, then 1 or 0/2 */
-        said += hg_board_slow_step(&r, i == 0 ? 2u : i < 100 ? 1u : (unsigned)(i % 2) * 2u);
+        said += step_after_reads(&r, i == 0 ? 2u : i < 100 ? 1u : (unsigned)(i % 2) * 2u);
     CHECK(said == 0, "one read per step, 0/2 alternating, one 2 at the start: quiet");
     for (i = 0, said = 0; i < 100; i++)
-        if (hg_board_slow_step(&r, 2)) {
+        if (step_after_reads(&r, 2)) {
             said++;
             at = i;
         }
@@ -759,7 +768,7 @@ static void test_slow_step(void)
           "two windows (%d times, at step %d)", said, at);
     memset(&r, 0, sizeof r);
     for (i = 0, said = 0; i < 100; i++)
-        said += hg_board_slow_step(&r, i % 2 ? 3u : 1u);
+        said += step_after_reads(&r, i % 2 ? 3u : 1u);
     CHECK(said == 1, "zeroed, the two threads waking in either order (1, 3, 1, 3 reads): said again (%d)", said);
 }
 
