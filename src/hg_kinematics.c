@@ -108,23 +108,22 @@ int hg_units_take(hg_units_setting *u, double mm_per_unit)
 }
 
 /* (x * mm_per_unit) / 1000 and (x * 1000) / mm_per_unit: with mm_per_unit 1
- * the same roundings as x / 1000 and x * 1000. */
+ * the same roundings as x / 1000 and x * 1000; the angles as hg_units.h's. */
 void hg_pose_from_machine(const double user[6], double mm_per_unit, double pose[6])
 {
+    double mm[6];
     int k;
-    for (k = 0; k < 3; k++) {
-        pose[k] = user[k] * mm_per_unit / HG_MM_PER_M;
-        pose[k + 3] = user[k + 3] / HG_DEG_PER_RAD;
-    }
+    for (k = 0; k < 6; k++)
+        mm[k] = k < 3 ? user[k] * mm_per_unit : user[k];
+    hg_pose_from_user(mm, pose);
 }
 
 void hg_pose_to_machine(const double pose[6], double mm_per_unit, double user[6])
 {
     int k;
-    for (k = 0; k < 3; k++) {
-        user[k] = pose[k] * HG_MM_PER_M / mm_per_unit;
-        user[k + 3] = pose[k + 3] * HG_DEG_PER_RAD;
-    }
+    hg_pose_to_user(pose, user);
+    for (k = 0; k < 3; k++)
+        user[k] /= mm_per_unit;
 }
 
 void hg_joints_from_machine(const double joints[6], double mm_per_unit, double z[6])
