@@ -487,7 +487,7 @@ static void addf_order(hg_board *b, const hg_board_inputs *in, hg_board_outputs 
     if (in->dac_written) {
         b->unwritten_ns = 0;
     } else if (b->unwritten_ns < HG_BOARD_UNWRITTEN_NS && period_ns > 0) {
-        b->unwritten_ns += period_ns;
+        b->unwritten_ns += period_ns < HG_BOARD_UNWRITTEN_NS ? period_ns : HG_BOARD_UNWRITTEN_NS; /* no overflow */
         bad |= b->unwritten_ns >= HG_BOARD_UNWRITTEN_NS;
     }
     if (bad && !b->order_reported) {
@@ -593,7 +593,7 @@ int hg_board_rate_read(hg_board_rate *r, long period_ns)
         r->reads++;
     if (period_ns <= 0 || r->unstepped_ns >= HG_BOARD_UNSTEPPED_NS)
         return 0;
-    r->unstepped_ns += period_ns;
+    r->unstepped_ns += period_ns < HG_BOARD_UNSTEPPED_NS ? period_ns : HG_BOARD_UNSTEPPED_NS; /* no overflow */
     return r->unstepped_ns >= HG_BOARD_UNSTEPPED_NS;
 }
 

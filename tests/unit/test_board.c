@@ -6,6 +6,7 @@
  * scale, determinism. Facts come from the MOTENC-100 (8 ms watchdog, 13-bit
  * DAC), the spec (1000 counts/mm, 10 mm lead) and hg_step itself called
  * independently of the board. */
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 #include "hg_test.h"
@@ -737,6 +738,11 @@ static void test_unstepped(void)
     CHECK(said == 0 && hg_board_rate_read(&r, 0) == 0 && hg_board_rate_read(&r, -5) == 0 &&
               hg_board_rate_read(&r, PERIOD) == 1,
           "after a step: quiet for 999 ms, a period <= 0 counts nothing, said at 1 s");
+    memset(&r, 0, sizeof r);
+    said = hg_board_rate_read(&r, PERIOD);
+    said += hg_board_rate_read(&r, LONG_MAX);   /* a hostile period: no signed overflow (UBSan) */
+    CHECK(said == 1 && r.unstepped_ns == HG_BOARD_UNSTEPPED_NS + PERIOD,
+          "a period of LONG_MAX ns after 1 ms: said once, the time capped (%lld ns)", r.unstepped_ns);
 }
 
 /* One step of dynamics after `reads` calls of encoder-read (1 ms thread). */
