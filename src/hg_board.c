@@ -599,11 +599,12 @@ int hg_board_rate_read(hg_board_rate *r, long period_ns)
 
 int hg_board_rate_step(hg_board_rate *r)
 {
-    int slow;
+    int slow, gap = !r->stepped || r->unstepped_ns >= HG_BOARD_UNSTEPPED_NS;
     unsigned reads = r->reads;
     r->unstepped_ns = 0;
     r->reads = 0;
-    if (r->said)
+    r->stepped = 1;
+    if (r->said || gap)               /* a window starts at the step after a gap */
         return 0;
     r->window_reads += reads;
     if (++r->steps < HG_BOARD_RATE_WINDOW)

@@ -307,6 +307,7 @@ typedef struct {
     long long unstepped_ns;           /* thread time encoder-read ran since the last step */
     unsigned reads;                   /* encoder-read calls since the last step (up to HG_BOARD_RATE_READS_MAX) */
     unsigned steps, window_reads;     /* steps and their reads in the window so far */
+    int stepped;                      /* a step ran since load (the reads before the first are not counted) */
     int said;                         /* the slow step was said */
 } hg_board_rate;
 
@@ -318,7 +319,9 @@ typedef struct {
 int hg_board_rate_read(hg_board_rate *r, long period_ns);
 
 /* Called by the glue's dynamics: the time without a step starts again, and
- * the reads since the previous step join the window; 1 exactly once, at
+ * the reads since the previous step join the window (not those before the
+ * first step, nor those of a gap that hg_board_rate_read said: dynamics
+ * added to its thread late, or a thread stopped, is not a slower thread); 1 exactly once, at
  * the end of a window of HG_BOARD_RATE_WINDOW steps that followed at least
  * 1.5 reads per step: the step's thread is slower than encoder-read's
  * (dynamics in a 2 ms thread beside a 1 ms servo thread), so the counters

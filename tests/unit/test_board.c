@@ -776,6 +776,20 @@ static void test_slow_step(void)
     for (i = 0, said = 0; i < 100; i++)
         said += step_after_reads(&r, i % 2 ? 3u : 1u);
     CHECK(said == 1, "zeroed, the two threads waking in either order (1, 3, 1, 3 reads): said again (%d)", said);
+    for (int late = 0; late < 2; late++) {   /* dynamics added 0.3 s or 2 s after encoder-read */
+        memset(&r, 0, sizeof r);
+        for (i = 0, said = 0; i < 100; i++)
+            said += step_after_reads(&r, i == 0 ? (late ? 2000u : 300u) : 1u);
+        CHECK(said == 0, "dynamics added %s s late, then one read per step: not a slower thread (said %d)",
+              late ? "2" : "0.3", said);
+    }
+    memset(&r, 0, sizeof r);
+    for (i = 0, said = 0; i < 100; i++)     /* a 1.5 s pause of the plant thread alone, then one read per step */
+        said += step_after_reads(&r, i == 50 ? 1500u : 1u);
+    CHECK(said == 0, "one gap of 1.5 s without a step (said by encoder-read) is not a slower thread (said %d)", said);
+    for (i = 0, said = 0; i < 100; i++)     /* and after it the check still works */
+        said += step_after_reads(&r, 2);
+    CHECK(said == 1, "after the gap, two reads per step: said (%d)", said);
 }
 
 int main(void)
