@@ -249,6 +249,7 @@ class Sampler:
 ERROR_KINDS = (linuxcnc.NML_ERROR, linuxcnc.OPERATOR_ERROR)
 
 
+COMMAND_S = 30.0  # wall seconds task may take to answer a command (wait_complete; LinuxCNC's default is 5)
 STALL_S = 2.0   # simulated seconds a program may stand on the spindle before it is aborted
 
 
@@ -320,6 +321,18 @@ class Machine:
             time.sleep(0.05)
         raise TimeoutError("%s: not reached within %.0f s" % (what, timeout))
 
+    def done(self, what, timeout=COMMAND_S):
+        """Wait until LinuxCNC's task has taken the command just sent (what: what it was, for
+        the message). A command task does not answer is raised, not passed over: under a host
+        too loaded for LinuxCNC (its log then says "USRMOT: ERROR: command timeout") a lost
+        mode change or program start would otherwise end in a verdict of ok for a program that
+        never moved the machine. A command task refuses (RCS_ERROR) is said on the error
+        channel, which poll() reads, as before."""
+        if self.c.wait_complete(timeout) == -1:
+            raise RuntimeError("%s: LinuxCNC's task did not take the command within %.0f s (a host too loaded "
+                               "for LinuxCNC? its log may say 'USRMOT: ERROR: command timeout'): this run "
+                               "proves nothing; run it again on a quieter host" % (what, timeout))
+
     def on(self):
         self.c.state(linuxcnc.STATE_ESTOP_RESET)
         self.wait(lambda s: s.task_state == linuxcnc.STATE_ESTOP_RESET, 10, "estop reset")
@@ -328,9 +341,9 @@ class Machine:
 
     def home(self, timeout=120):
         self.c.mode(linuxcnc.MODE_MANUAL)
-        self.c.wait_complete()
+        self.done("manual mode")
         self.c.teleop_enable(0)
-        self.c.wait_complete()
+        self.done("joint mode (teleop off)")
         self.poll()
         if any(self.s.homed[j] for j in range(6)):  # homing again: forget the old home
             self.c.unhome(-1)
@@ -341,13 +354,14 @@ class Machine:
 
     def run_program(self, path):
         self.c.mode(linuxcnc.MODE_AUTO)
-        self.c.wait_complete()
+        self.done("auto mode")
         if os.environ.get("HG_FEED_OVERRIDE"):
             self.c.feedrate(float(os.environ["HG_FEED_OVERRIDE"]))
-            self.c.wait_complete()
+            self.done("feed override")
         self.c.program_open(path)
-        self.c.wait_complete()
+        self.done("open " + path)
         self.c.auto(linuxcnc.AUTO_RUN, 0)
+        self.done("run " + path)
 
     def run_to_end(self, timeout, on_pause="resume"):
         """Wait until the program has ended (or was refused or aborted).
@@ -392,7 +406,7 @@ class Machine:
 
     def mdi(self, line, timeout=30):
         self.c.mode(linuxcnc.MODE_MDI)
-        self.c.wait_complete()
+        self.done("MDI mode")
         self.c.mdi(line)
         time.sleep(0.3)
         self.wait(lambda s: s.interp_state == linuxcnc.INTERP_IDLE and s.queue == 0
@@ -449,9 +463,9 @@ def fault_scenario(m, program, res):
         # the operator presses machine on with the fault still there
         n_err = len(m.errors)
         m.c.state(linuxcnc.STATE_ESTOP_RESET)
-        m.c.wait_complete()
+        m.done("E-STOP reset")
         m.c.state(linuxcnc.STATE_ON)
-        m.c.wait_complete()
+        m.done("machine on")
         time.sleep(1.0)
         m.poll()
         res["on_with_fault_errors"] = m.errors[n_err:]
