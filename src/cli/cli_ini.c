@@ -207,6 +207,17 @@ int cli_ini_has_section(const cli_ini *ini, const char *section)
     return section_first_line(ini, section) > 0;
 }
 
+const char *cli_ini_other_plant(const cli_ini *ini, int plant)
+{
+    int i;
+    if (!hg_plant_at(plant) || cli_ini_has_section(ini, hg_plant_at(plant)->ini_section))
+        return 0;
+    for (i = 0; hg_plant_at(i); i++)
+        if (i != plant && hg_plant_at(i)->ini_section && cli_ini_has_section(ini, hg_plant_at(i)->ini_section))
+            return hg_plant_at(i)->name;
+    return 0;
+}
+
 int cli_ini_get(const char *cmd, const cli_ini *ini, const char *section, const char *key,
                 const cli_ini_entry **out)
 {
@@ -319,8 +330,15 @@ int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int vari
     size_t k;
     key_list(t, n, keys, sizeof keys);
     if (!cli_ini_has_section(ini, sec)) {   /* --ini names the file of this plant's parameters */
-        fprintf(stderr, "hexaglide %s: %s has no [%s] section (the parameters of plant %s, keys %s ...): add it, "
-                "or drop --ini to run the defaults\n", cmd, ini->path, sec, pl->name, t[0].ini_key ? t[0].ini_key : "");
+        const char *other = cli_ini_other_plant(ini, plant);
+        if (other)
+            fprintf(stderr, "hexaglide %s: %s has no [%s] section but [%s]: it is a config of plant %s, not of "
+                    "the %s: give --plant %s\n", cmd, ini->path, sec, hg_plant_at(hg_plant_find(other))->ini_section,
+                    other, pl->name, other);
+        else
+            fprintf(stderr, "hexaglide %s: %s has no [%s] section (the parameters of plant %s, keys %s ...): add "
+                    "it, or drop --ini to run the defaults\n", cmd, ini->path, sec, pl->name,
+                    t[0].ini_key ? t[0].ini_key : "");
         return -1;
     }
     if (joints_match(cmd, ini, pl, variant))
