@@ -344,7 +344,7 @@ class PlantParams:
         self.plant = _plant_find(plant.encode())
         if self.plant < 0:
             raise ValueError("unknown plant %r; one of %s" % (plant, plant_names()))
-        self.variant = _plant_variant_named(self.plant, model.encode() if model else None)
+        self.variant = _plant_variant_named(self.plant, model.encode() if model is not None else None)
         if self.variant < 0:
             raise ValueError("unknown model %r of plant %s" % (model, plant))
         self.names = [e.name.decode() for e in params_table(self.plant, self.variant)]
@@ -544,6 +544,12 @@ class Board:
             if not isinstance(self.params, PlantParams) or plant_names()[self.params.plant] != plant:
                 raise ValueError("params of plant %s: give PlantParams(%r, model)" % (plant, plant))
             pi, k = self.params.plant, self.params.variant
+            kv = _plant_variant_named(pi, kind.encode()) if kind is not None else k
+            if kv < 0:
+                raise ValueError("unknown model %r of plant %s" % (kind, plant))
+            if kv != k:
+                raise ValueError("kind %r is not the model of params (PlantParams(%r, model) of another model): "
+                                 "give kind=None, or params of model %r" % (kind, plant, kind))
         self.plant, self.variant = pi, k
         self.buf = C.create_string_buffer(_sizeof(8))
         self.board_params = self.params.board_params(substeps, integrator)
@@ -735,27 +741,12 @@ def read_gains(path, joints=JOINTS):
 def plant_params_from_ini(path, plant="serial", model=None):
     """PlantParams of `plant` and `model` from the INI's plant section ([SERIAL]: keys in the HAL
     unit, as the CLI's --ini and the HAL file's setp lines read them; the rest the defaults).
-    ValueError naming the file, section and key for a missing section, an unknown key or a
-    value that is not a number."""
-    pp = PlantParams(plant, model)
-    sec = _plant_ini_section(pp.plant).decode()
-    cp = configparser.ConfigParser(strict=False, interpolation=None, comment_prefixes=("#", ";"))
-    cp.optionxform = str.upper
-    with open(path) as f:
-        cp.read_string("".join(l for l in f if not l.startswith("#INCLUDE")))
-    if not cp.has_section(sec):
-        raise ValueError("%s has no [%s] section (the parameters of plant %s)" % (path, sec, plant))
-    table = params_table(pp.plant, pp.variant)
-    keys = {e.ini_key.decode(): e for e in table if e.ini_key}
-    for k, v in cp.items(sec):
-        if k not in keys:
-            raise ValueError("%s: [%s]%s is not a key of this section for model %s" % (path, sec, k, model))
-        try:
-            x = float(v)
-        except ValueError:
-            raise ValueError("%s: [%s]%s = %r is not a number" % (path, sec, k, v))
-        pp[keys[k].name.decode()] = x / keys[k].hal_scale
-    return pp
+    Read by the CLI's one INI reader (hg_config.read, `hexaglide config`): ValueError with its
+    message naming the file, line, section and key for a missing section, an unknown key, a key
+    in lower case or given twice, a value that is not a finite number, a refused parameter."""
+    PlantParams(plant, model)          # an unknown plant or model: ValueError naming it
+    import hg_config                   # (here: it imports this module)
+    return hg_config.read(path, cmd="plant_params_from_ini", plant=plant, model=model).params
 
 
 def loop_config(gains=None, ferror_limit_mm=0.0, period_ns=1000000, model="reduced-cartesian", notch=None,

@@ -180,6 +180,9 @@ void cli_ini_free(cli_ini *ini);
 
 /* 1 if the file has a [section] header. */
 int cli_ini_has_section(const cli_ini *ini, const char *section);
+/* The name of a plant other than plant whose section ini has while it
+ * lacks plant's ([SERIAL] read as the Hexaglide's config), or 0. */
+const char *cli_ini_other_plant(const cli_ini *ini, int plant);
 
 /* [section]key: 0 and *out, 1 if absent, -1 (message) if given twice or in
  * a repeated section (LinuxCNC would silently take the first). */

@@ -585,6 +585,21 @@ static void spread_step(hg_loop *L, int *ie, long *lag, int l, long n, long hold
             pk[k] = fabs(smp.ferror_mm[k]);
 }
 
+/* 1 if variants a and b of plant p have the same channels and parameter
+ * table (names in order): a what-if --model then reads the recorded
+ * block and DAC volts as the record meant them. */
+static int same_params_layout(const hg_plant *p, int a, int b)
+{
+    hg_param_info x, y;
+    int i, n = p->nparams(a);
+    if (p->channels(a) != p->channels(b) || p->nparams(b) != n)
+        return 0;
+    for (i = 0; i < n; i++)
+        if (p->param(a, i, &x) || p->param(b, i, &y) || strcmp(x.name, y.name) != 0)
+            return 0;
+    return 1;
+}
+
 /* The record's plant and model variant (in.plant and in.model of its
  * first row; format 1: the Hexaglide) and, for format 2, its parameter
  * events in the order they took effect (*ev malloc'd; free() it): one
@@ -782,6 +797,16 @@ int cmd_replay(int argc, char **argv)
     }
     if (!status && o.model && (variant_w = cli_variant("replay", plant, o.model)) < 0)
         status = 2;
+    if (!status && variant_w >= 0 && !same_params_layout(pl, variant, variant_w)) {
+        char rec_name[HG_PLANT_TEXT_LEN];
+        if (pl->variant_name(variant, rec_name, (int)sizeof rec_name))
+            strcpy(rec_name, "?");
+        fprintf(stderr, "hexaglide replay: --model %s: the record's model is %s (%d channels, %d parameters); a "
+                "what-if --model runs the recorded DAC volts and parameters, so its model needs the same channels "
+                "with the same parameters (a serial machine: as many axes, each linear or rotary as recorded)\n",
+                o.model, rec_name, pl->channels(variant), np);
+        status = 2;
+    }
     if (!status && parse_sets(&o, plant, variant_w >= 0 ? variant_w : variant, set_idx, set_val))
         status = 2;
     if (status) {

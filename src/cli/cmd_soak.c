@@ -132,6 +132,13 @@ static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_conf
     int bad = 0;
     if (cli_ini_read("soak", ini_path, &ini))
         return 2;
+    if (cli_ini_other_plant(&ini, 0)) {   /* its [JOINT_N] are another machine's */
+        fprintf(stderr, "hexaglide soak: %s is a config of plant %s (no [HEXAGLIDE] section): soak runs the "
+                "Hexaglide only; run that machine with sim --plant %s, or give a Hexaglide config\n", ini_path,
+                cli_ini_other_plant(&ini, 0), cli_ini_other_plant(&ini, 0));
+        cli_ini_free(&ini);
+        return 2;
+    }
     hg_loop_config_default(c);
     c->variant = kind;
     bad |= cli_ini_loop("soak", &ini, 6, c, r) != 0;
