@@ -20,6 +20,7 @@
  * format, token, layout, size, checksum), and a deserialized block's
  * content is checked before it is taken. No file-scope mutable state:
  * instances share nothing. */
+#include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -281,6 +282,14 @@ const char *fmi3GetVersion(void)
     return fmi3Version;
 }
 
+/* 1 if text has no character other than white space (FMI 3.0 refuses such an instanceName). */
+static int blank(const char *text)
+{
+    while (*text && isspace((unsigned char)*text))
+        text++;
+    return !*text;
+}
+
 /* A new instance at the start values, Instantiated; 0 after a message when refused. */
 fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String instantiationToken,
                                          fmi3String resourcePath, fmi3Boolean visible, fmi3Boolean loggingOn,
@@ -306,6 +315,9 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
         why = "out of memory";
     else if (!instanceName)
         why = "instanceName is NULL; give the instance a name";
+    else if (blank(instanceName))
+        why = "instanceName is empty or white space only; give the instance a name with at least one other "
+              "character (FMI 3.0 requires it: messages name the instance by it)";
     else if (!instantiationToken || strcmp(instantiationToken, tmp.token) != 0)
         why = "the instantiation token is not this binary's: the modelDescription.xml belongs to another build "
               "of the FMU; rebuild build/hexaglide.fmu (make fmu) and use its modelDescription.xml";

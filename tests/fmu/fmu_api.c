@@ -791,6 +791,30 @@ static void test_fault_time(void)
     fmi3FreeInstance(s);
 }
 
+/* What FMI 3.0 asks of the instantiation, and a message for every fmi3Error. */
+static void test_fmi_rules(void)
+{
+    logbook b = {0};
+    char token[FMU_TOKEN_LEN];
+    fmi3Instance s;
+    int e;
+    b.quiet = 1;
+    fmu_vars_token(token);
+    e = b.n[fmi3Error];
+    s = fmi3InstantiateCoSimulation("", token, "", 0, 0, 0, 0, 0, 0, &b, log_cb, 0);
+    check(!s && b.n[fmi3Error] > e && strstr(b.last, "instanceName"), "an empty instanceName is refused (%s)", b.last);
+    fmi3FreeInstance(s);
+    e = b.n[fmi3Error];
+    s = fmi3InstantiateCoSimulation(" \t", token, "", 0, 0, 0, 0, 0, 0, &b, log_cb, 0);
+    check(!s && b.n[fmi3Error] > e && strstr(b.last, "instanceName"), "a white-space instanceName is refused (%s)",
+          b.last);
+    fmi3FreeInstance(s);
+    s = fmi3InstantiateCoSimulation("no logger", token, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    check(s && step_at(s, 0, PERIOD) == fmi3Error, "no logger and no resourcePath: instantiated, and a refused "
+          "call is only refused");
+    fmi3FreeInstance(s);
+}
+
 int main(void)
 {
     test_state();
@@ -805,5 +829,6 @@ int main(void)
     test_forged();
     test_forged_memo();
     test_fault_time();
+    test_fmi_rules();
     return test_failures ? 1 : 0;
 }
