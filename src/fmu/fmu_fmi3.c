@@ -800,8 +800,13 @@ fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
 {
     instance_t *s = inst_of(instance);
     saved_t *p;
-    if (!s || !FMUState)
+    if (!s)
         return fmi3Error;
+    if (!FMUState) {
+        say(s, FMU_SAY_ERROR, "%s: fmi3FreeFMUState: FMUState is NULL; pass the address of the fmi3FMUState to free",
+            s->name);
+        return fmi3Error;
+    }
     if (!*FMUState)
         return fmi3OK;
     p = saved_of(s, "fmi3FreeFMUState", *FMUState);

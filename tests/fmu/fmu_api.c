@@ -813,6 +813,14 @@ static void test_fmi_rules(void)
     check(s && step_at(s, 0, PERIOD) == fmi3Error, "no logger and no resourcePath: instantiated, and a refused "
           "call is only refused");
     fmi3FreeInstance(s);
+    s = instantiate("rules", &b);
+    if (!s) {
+        check(0, "rules: instance");
+        return;
+    }
+    e = b.n[fmi3Error];
+    refused(fmi3FreeFMUState(s, 0), &b, e, "FMUState is NULL", "fmi3FreeFMUState of a NULL pointer");
+    fmi3FreeInstance(s);
 }
 
 int main(void)
