@@ -270,6 +270,7 @@ static int restart(instance_t *s)
 {
     memset(s->blob, 0, s->blob_size);
     st(s)->mode = MODE_INSTANTIATED;
+    st(s)->stop_time = INFINITY;
     st(s)->period_s = fmu_plant_period_default_s();
     return fmu_vars_start(vals(s));
 }
@@ -431,7 +432,7 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
                                        fmi3Float64 startTime, fmi3Boolean stopTimeDefined, fmi3Float64 stopTime)
 {
     instance_t *s = inst_of(instance);
-    (void)toleranceDefined, (void)tolerance, (void)stopTimeDefined, (void)stopTime;
+    (void)toleranceDefined, (void)tolerance;
     if (!s || !allowed(s, "fmi3EnterInitializationMode", MODE_INSTANTIATED, "after instantiation or fmi3Reset"))
         return fmi3Error;
     if (!isfinite(startTime)) {
@@ -439,9 +440,16 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
             s->name, startTime);
         return fmi3Error;
     }
+    if (stopTimeDefined && !(stopTime >= startTime)) {
+        say(s, FMU_SAY_ERROR, "%s: fmi3EnterInitializationMode: stopTime %.17g s is %s startTime %.17g s; give a "
+            "stopTime at or after startTime, or stopTimeDefined = false", s->name, stopTime,
+            isnan(stopTime) ? "not a number, not after" : "before", startTime);
+        return fmi3Error;
+    }
     if (time_fits(s, "fmi3EnterInitializationMode", startTime, period_param(s)))
         return fmi3Error;
     st(s)->start_time = startTime;
+    st(s)->stop_time = stopTimeDefined ? stopTime : INFINITY;
     st(s)->periods = 0;
     st(s)->steps = 0;
     vals(s)[fmu_var_vr(FMU_G_TIME, 0)] = startTime;
@@ -547,6 +555,12 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
         say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: the step would end at %.17g s: from |t| = %s s on a double resolves "
             "time only to %.3g s, more than %g of the period %s s, so the FMU's time stops short of it", s->name,
             end_fmu, fmu_num(a, time_limit(period)), ulp_of(time_limit(period)), TIME_RESOLUTION, fmu_num(c, period));
+        return fmi3Error;
+    }
+    if (end_fmu > st(s)->stop_time && !same_time(end_fmu, st(s)->stop_time, st(s)->steps + 1, period)) {
+        say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: the step from %.17g s to %.17g s would end past stopTime %.17g s "
+            "(fmi3EnterInitializationMode's stopTimeDefined); the FMU computes nothing past it (FMI 3.0): stop "
+            "there, or fmi3Reset and initialize with a later stopTime", s->name, t, end_fmu, st(s)->stop_time);
         return fmi3Error;
     }
     v = vals(s);
@@ -901,9 +915,9 @@ static int block_wrong(const instance_t *s, const unsigned char *blob, char *why
           t->period_s <= fmu_plant_period_max_s()) || !isfinite(t->start_time) || !(fabs(t->start_time) < limit) ||
         !is_count(t->periods) || !is_count(t->steps) || t->steps > t->periods ||
         (!(t->mode & (MODE_STEP | MODE_TERMINATED)) && (t->periods || t->steps)) ||
-        !(fabs(t->start_time + t->periods * t->period_s) < limit)) {
-        snprintf(why, len, "not at a time of this FMU (start %.17g s, %.17g periods of %.17g s, %.17g steps)",
-                 t->start_time, t->periods, t->period_s, t->steps);
+        !(fabs(t->start_time + t->periods * t->period_s) < limit) || !(t->stop_time >= t->start_time)) {
+        snprintf(why, len, "not at a time of this FMU (start %.17g s, %.17g periods of %.17g s, %.17g steps, "
+                 "stop %.17g s)", t->start_time, t->periods, t->period_s, t->steps, t->stop_time);
         return -1;
     }
     for (vr = 0; vr < s->nvars; vr++) {

@@ -637,6 +637,7 @@ static void test_forged(void)
         {"the board's plant index 1000000", BOARD, offsetof(hg_board, plant), &huge, sizeof huge, "plant index"},
         {"the board's variant 1000000", BOARD, offsetof(hg_board, variant), &huge, sizeof huge, "parametrization"},
         {"a NaN count of periods", STATUS, offsetof(fmu_status, periods), &nan, sizeof nan, "not at a time"},
+        {"a NaN stopTime", STATUS, offsetof(fmu_status, stop_time), &nan, sizeof nan, "not at a time"},
         {"more steps than periods", STATUS, offsetof(fmu_status, steps), &seven, 0, "not at a time"},
         {"mode 99", STATUS, offsetof(fmu_status, mode), &ninety_nine, sizeof(int), "no mode"},
         {"Step Mode with no machine built", STATUS, offsetof(fmu_status, built), &zero, sizeof zero, "no mode"},
@@ -791,12 +792,18 @@ static void test_fault_time(void)
     fmi3FreeInstance(s);
 }
 
-/* What FMI 3.0 asks of the instantiation, and a message for every fmi3Error. */
+/* What FMI 3.0 asks of the instantiation and of fmi3EnterInitializationMode's stopTime (2.3: "the FMU has to
+ * return fmi3Error" past it), and a message for every fmi3Error. */
 static void test_fmi_rules(void)
 {
     logbook b = {0};
     char token[FMU_TOKEN_LEN];
+    fmi3FMUState st = 0, st2 = 0;
     fmi3Instance s;
+    fmi3Byte *bytes = 0;
+    size_t size = 0;
+    double t = 0, t_stop = 0.0105;
+    long n = 0;
     int e;
     b.quiet = 1;
     fmu_vars_token(token);
@@ -820,6 +827,41 @@ static void test_fmi_rules(void)
     }
     e = b.n[fmi3Error];
     refused(fmi3FreeFMUState(s, 0), &b, e, "FMUState is NULL", "fmi3FreeFMUState of a NULL pointer");
+    e = b.n[fmi3Error];
+    refused(fmi3EnterInitializationMode(s, 0, 0, 1.0, fmi3True, 0.5), &b, e, "stopTime", "stopTime before startTime");
+    e = b.n[fmi3Error];
+    refused(fmi3EnterInitializationMode(s, 0, 0, 0.0, fmi3True, NAN), &b, e, "stopTime", "a NaN stopTime");
+    check(fmi3EnterInitializationMode(s, 0, 0, 0.0, fmi3True, t_stop) == fmi3OK &&
+          fmi3ExitInitializationMode(s) == fmi3OK, "initialized with stopTime %g s", t_stop);
+    while (n < 20 && step_at(s, t, PERIOD) == fmi3OK)
+        t += PERIOD, n++;
+    check(n == 10 && get_f64(s, "time") == 10 * PERIOD && strstr(b.last, "stopTime"), "stepping by 1 ms: the 10 "
+          "steps to 0.01 s run, the one past stopTime 0.0105 s is refused, the time stays (%s)", b.last);
+    /* the stop time is part of the FMU state: restored, serialized and deserialized into another instance */
+    fmi3GetFMUState(s, &st);
+    fmi3Reset(s);
+    fmi3SetFMUState(s, st);
+    fmi3SerializedFMUStateSize(s, st, &size);
+    bytes = malloc(size);
+    e = b.n[fmi3Error];
+    check(step_at(s, t, PERIOD) == fmi3Error && b.n[fmi3Error] > e && strstr(b.last, "stopTime"), "restored after "
+          "fmi3Reset, the state keeps its stopTime");
+    fmi3FreeInstance(s);
+    s = instantiate("rules 2", &b);
+    e = b.n[fmi3Error];
+    check(s && bytes && fmi3SerializeFMUState(s, st, bytes, size) == fmi3OK &&
+          fmi3DeserializeFMUState(s, bytes, size, &st2) == fmi3OK && fmi3SetFMUState(s, st2) == fmi3OK &&
+          step_at(s, t, PERIOD) == fmi3Error && b.n[fmi3Error] > e && strstr(b.last, "stopTime"),
+          "serialized and taken by another instance, the state keeps its stopTime");
+    fmi3FreeFMUState(s, &st2);
+    fmi3Reset(s);
+    t = 0, n = 0;
+    if (fmi3EnterInitializationMode(s, 0, 0, 0.0, fmi3True, 0.003) == fmi3OK && fmi3ExitInitializationMode(s) == fmi3OK)
+        while (n < 5 && step_at(s, t, PERIOD) == fmi3OK)
+            t += PERIOD, n++;
+    check(n == 3, "stopTime 0.003 s reached by t += 0.001 s (t = %.17g s): 3 steps run", t);
+    free(bytes);
+    fmi3FreeFMUState(s, &st);
     fmi3FreeInstance(s);
 }
 
