@@ -305,11 +305,13 @@ static int write_description(FILE *f)
         write_variable(f, vr, &v, start[vr]);
     }
     fprintf(f, "  </ModelVariables>\n\n  <ModelStructure>\n");
+    /* no output depends on an input at the same communication point (the step's outputs are of the inputs
+       held from its start: one period of delay); without dependencies="" an importer must assume it does */
     for (vr = 0; vr < n; vr++) {
         fmu_var v;
         fmu_var_get(vr, &v);
         if (v.causality == FMU_OUTPUT)
-            fprintf(f, "    <Output valueReference=\"%u\"/>\n", vr);
+            fprintf(f, "    <Output valueReference=\"%u\" dependencies=\"\"/>\n", vr);
     }
     for (vr = 0; vr < n; vr++) {
         fmu_var v;

@@ -865,6 +865,31 @@ static void test_fmi_rules(void)
     fmi3FreeInstance(s);
 }
 
+/* No output depends on an input at the same communication point (modelDescription.xml's dependencies=""):
+ * setting every input changes no output until the next step. */
+static void test_no_feedthrough(void)
+{
+    logbook b = {0};
+    fmi3Instance s = started("feedthrough", &b, 0);
+    static const double tens[6] = {10, -10, 10, -10, 10, -10};
+    static double before[MAX_OUT], after[MAX_OUT];
+    fmi3ValueReference vr[3] = {vr_of("estop"), vr_of("reset"), vr_of("amp_enable")};
+    const fmi3Boolean flip[3] = {fmi3True, fmi3True, fmi3False};
+    int m;
+    if (!s || run(s, 0, 20, 1, 0)) {
+        check(0, "feedthrough: instance and 20 steps");
+        fmi3FreeInstance(s);
+        return;
+    }
+    m = outputs(s, before);
+    set_volts(s, tens);
+    fmi3SetBoolean(s, vr, 3, flip, 3);
+    outputs(s, after);
+    check(memcmp(before, after, (size_t)m * sizeof *before) == 0, "every input set (+-10 V, estop, reset, "  // NOLINT(bugprone-suspicious-memory-comparison): bitwise on purpose
+          "amp_enable off): no output changes before the next step (no direct feedthrough)");
+    fmi3FreeInstance(s);
+}
+
 int main(void)
 {
     test_state();
@@ -880,5 +905,6 @@ int main(void)
     test_forged_memo();
     test_fault_time();
     test_fmi_rules();
+    test_no_feedthrough();
     return test_failures ? 1 : 0;
 }
