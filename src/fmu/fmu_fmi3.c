@@ -51,6 +51,9 @@ enum {
 #define TIME_SLACK_MAX 0.25
 #define TIME_RESOLUTION 1e-6
 
+/* The log categories of modelDescription.xml, by FMU_SAY_* level: errors, warnings, events. */
+static const char *const log_categories[] = {"logStatusError", "logStatusWarning", "logEvents"};
+
 typedef fmu_status status_t;
 typedef fmu_serial_header serial_t;
 
@@ -60,7 +63,7 @@ typedef struct {
     char *name;
     fmi3InstanceEnvironment env;
     fmi3LogMessageCallback log;
-    int logging_on;                   /* logEvents messages too */
+    unsigned log_on;                  /* the categories logged: bit i for log_categories[i] */
     unsigned nvars;
     size_t off_values, off_plant, blob_size;
     unsigned char *blob;              /* status_t, double values[nvars], the plant */
@@ -109,14 +112,14 @@ static void say(instance_t *s, int level, const char *fmt, ...)
 {
     char text[768];
     va_list ap;
-    if (!s->log || (level == FMU_SAY_INFO && !s->logging_on))
+    int category = level == FMU_SAY_ERROR ? 0 : level == FMU_SAY_WARNING ? 1 : 2;
+    if (!s->log || !(s->log_on & 1u << category))
         return;
     va_start(ap, fmt);
     vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
     s->log(s->env, level == FMU_SAY_ERROR ? fmi3Error : level == FMU_SAY_WARNING ? fmi3Warning : fmi3OK,
-           level == FMU_SAY_ERROR ? "logStatusError" : level == FMU_SAY_WARNING ? "logStatusWarning" : "logEvents",
-           text);
+           log_categories[category], text);
 }
 
 /* The plant's messages (fmu_say_fn), prefixed with the instance name. */
@@ -335,7 +338,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     if (s) {
         *s = tmp;
         s->name = malloc(strlen(instanceName) + 1);
-        s->logging_on = loggingOn;
+        s->log_on = loggingOn ? 7u : 3u;      /* errors and warnings, and events with loggingOn */
         s->nvars = fmu_var_count();
         s->off_values = align16(sizeof(status_t));
         s->off_plant = align16(s->off_values + s->nvars * sizeof(double));
@@ -400,12 +403,22 @@ void fmi3FreeInstance(fmi3Instance instance)
     free(s);
 }
 
-/* loggingOn also sends the logEvents messages; the categories must be known. */
+/* The index of log category name in log_categories, or -1. */
+static int category_of(const char *name)
+{
+    int c;
+    for (c = 0; c < 3; c++)
+        if (name && strcmp(name, log_categories[c]) == 0)
+            return c;
+    return -1;
+}
+
+/* Turn the listed categories (all when none is listed) on or off; every one must be known. */
 fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, size_t nCategories,
                                const fmi3String categories[])
 {
-    static const char *const known[] = {"logStatusError", "logStatusWarning", "logEvents"};
     instance_t *s = inst_of(instance);
+    unsigned bits = nCategories ? 0u : 7u;
     size_t i;
     if (!s)
         return fmi3Error;
@@ -414,14 +427,16 @@ fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, siz
             nCategories);
         return fmi3Error;
     }
-    for (i = 0; i < nCategories; i++)
-        if (!categories[i] || (strcmp(categories[i], known[0]) != 0 && strcmp(categories[i], known[1]) != 0 &&
-                               strcmp(categories[i], known[2]) != 0)) {
+    for (i = 0; i < nCategories; i++) {
+        int c = category_of(categories[i]);
+        if (c < 0) {
             say(s, FMU_SAY_ERROR, "%s: fmi3SetDebugLogging: unknown category '%s' (logStatusError, "
                 "logStatusWarning, logEvents)", s->name, categories[i] ? categories[i] : "(NULL)");
             return fmi3Error;
         }
-    s->logging_on = loggingOn;
+        bits |= 1u << c;
+    }
+    s->log_on = loggingOn ? s->log_on | bits : s->log_on & ~bits;
     return fmi3OK;
 }
 

@@ -292,8 +292,10 @@ static int write_description(FILE *f)
     write_units(f, units, nunits);
     write_types(f);
     fprintf(f, "  <LogCategories>\n"
-               "    <Category name=\"logStatusError\" description=\"refused calls and parameters (always on)\"/>\n"
-               "    <Category name=\"logStatusWarning\" description=\"faults of the machine, NaN volts (always on)\"/>\n"
+               "    <Category name=\"logStatusError\" description=\"refused calls and parameters (on unless "
+               "fmi3SetDebugLogging turns it off)\"/>\n"
+               "    <Category name=\"logStatusWarning\" description=\"faults of the machine, NaN volts (on unless "
+               "fmi3SetDebugLogging turns it off)\"/>\n"
                "    <Category name=\"logEvents\" description=\"the board's other events: substeps raised, reset "
                "done (with loggingOn)\"/>\n  </LogCategories>\n\n");
     fprintf(f, "  <DefaultExperiment startTime=\"0\" stopTime=\"1\" stepSize=\"%s\"/>\n\n",

@@ -890,6 +890,50 @@ static void test_no_feedthrough(void)
     fmi3FreeInstance(s);
 }
 
+/* fmi3SetDebugLogging turns each listed category on or off, all of them when none is listed: the FMU logs only
+ * in categories that are on (FMI 3.0 2.3). A reset's rising edge is a logEvents message. */
+static void test_log_categories(void)
+{
+    logbook b = {0};
+    fmi3Instance s = started("categories", &b, 0);
+    fmi3ValueReference vr = vr_of("reset");
+    fmi3Boolean on = fmi3True, off = fmi3False;
+    int n_ok, n_err;
+    b.quiet = 1;
+    if (!s) {
+        check(0, "categories: instance");
+        return;
+    }
+    check(fmi3SetDebugLogging(s, fmi3True, 1, (const fmi3String[]){"logStatusError"}) == fmi3OK, "logStatusError on");
+    n_ok = b.n[fmi3OK];
+    fmi3SetBoolean(s, &vr, 1, &on, 1);
+    step_at(s, 0, PERIOD);
+    check(b.n[fmi3OK] == n_ok, "... turns no other category on: the reset's event is not logged (%d messages)",
+          b.n[fmi3OK] - n_ok);
+    fmi3SetBoolean(s, &vr, 1, &off, 1);
+    step_at(s, PERIOD, PERIOD);
+    check(fmi3SetDebugLogging(s, fmi3True, 1, (const fmi3String[]){"logEvents"}) == fmi3OK, "logEvents on");
+    n_ok = b.n[fmi3OK];
+    fmi3SetBoolean(s, &vr, 1, &on, 1);
+    step_at(s, 2 * PERIOD, PERIOD);
+    check(b.n[fmi3OK] > n_ok, "... the reset's event is logged (%s)", b.last);
+    check(fmi3SetDebugLogging(s, fmi3False, 1, (const fmi3String[]){"logStatusError"}) == fmi3OK, "logStatusError off");
+    n_err = b.n[fmi3Error];
+    check(step_at(s, 0.5, PERIOD) == fmi3Error && b.n[fmi3Error] == n_err, "... a refused step returns fmi3Error "
+          "and logs nothing");
+    check(fmi3SetDebugLogging(s, fmi3True, 0, 0) == fmi3OK && step_at(s, 0.5, PERIOD) == fmi3Error &&
+          b.n[fmi3Error] == n_err + 1, "all categories on (none listed): the refused step is logged");
+    check(fmi3SetDebugLogging(s, fmi3False, 0, 0) == fmi3OK, "all categories off");
+    n_ok = b.n[fmi3OK], n_err = b.n[fmi3Error];
+    fmi3SetBoolean(s, &vr, 1, &off, 1);
+    step_at(s, 3 * PERIOD, PERIOD);
+    fmi3SetBoolean(s, &vr, 1, &on, 1);
+    step_at(s, 4 * PERIOD, PERIOD);
+    check(step_at(s, 0.5, PERIOD) == fmi3Error && b.n[fmi3Error] == n_err && b.n[fmi3OK] == n_ok,
+          "... nothing is logged: neither the reset's event nor the refused step");
+    fmi3FreeInstance(s);
+}
+
 int main(void)
 {
     test_state();
@@ -906,5 +950,6 @@ int main(void)
     test_fault_time();
     test_fmi_rules();
     test_no_feedthrough();
+    test_log_categories();
     return test_failures ? 1 : 0;
 }
