@@ -20,6 +20,7 @@
  * format, token, layout, size, checksum), and a deserialized block's
  * content is checked before it is taken. No file-scope mutable state:
  * instances share nothing. */
+#include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -50,6 +51,9 @@ enum {
 #define TIME_SLACK_MAX 0.25
 #define TIME_RESOLUTION 1e-6
 
+/* The log categories of modelDescription.xml, by FMU_SAY_* level: errors, warnings, events. */
+static const char *const log_categories[] = {"logStatusError", "logStatusWarning", "logEvents"};
+
 typedef fmu_status status_t;
 typedef fmu_serial_header serial_t;
 
@@ -59,7 +63,7 @@ typedef struct {
     char *name;
     fmi3InstanceEnvironment env;
     fmi3LogMessageCallback log;
-    int logging_on;                   /* logEvents messages too */
+    unsigned log_on;                  /* the categories logged: bit i for log_categories[i] */
     unsigned nvars;
     size_t off_values, off_plant, blob_size;
     unsigned char *blob;              /* status_t, double values[nvars], the plant */
@@ -108,14 +112,14 @@ static void say(instance_t *s, int level, const char *fmt, ...)
 {
     char text[768];
     va_list ap;
-    if (!s->log || (level == FMU_SAY_INFO && !s->logging_on))
+    int category = level == FMU_SAY_ERROR ? 0 : level == FMU_SAY_WARNING ? 1 : 2;
+    if (!s->log || !(s->log_on & 1u << category))
         return;
     va_start(ap, fmt);
     vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
     s->log(s->env, level == FMU_SAY_ERROR ? fmi3Error : level == FMU_SAY_WARNING ? fmi3Warning : fmi3OK,
-           level == FMU_SAY_ERROR ? "logStatusError" : level == FMU_SAY_WARNING ? "logStatusWarning" : "logEvents",
-           text);
+           log_categories[category], text);
 }
 
 /* The plant's messages (fmu_say_fn), prefixed with the instance name. */
@@ -269,6 +273,7 @@ static int restart(instance_t *s)
 {
     memset(s->blob, 0, s->blob_size);
     st(s)->mode = MODE_INSTANTIATED;
+    st(s)->stop_time = INFINITY;
     st(s)->period_s = fmu_plant_period_default_s();
     return fmu_vars_start(vals(s));
 }
@@ -279,6 +284,14 @@ static int restart(instance_t *s)
 const char *fmi3GetVersion(void)
 {
     return fmi3Version;
+}
+
+/* 1 if text has no character other than white space (FMI 3.0 refuses such an instanceName). */
+static int blank(const char *text)
+{
+    while (*text && isspace((unsigned char)*text))
+        text++;
+    return !*text;
 }
 
 /* A new instance at the start values, Instantiated; 0 after a message when refused. */
@@ -306,6 +319,9 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
         why = "out of memory";
     else if (!instanceName)
         why = "instanceName is NULL; give the instance a name";
+    else if (blank(instanceName))
+        why = "instanceName is empty or white space only; give the instance a name with at least one other "
+              "character (FMI 3.0 requires it: messages name the instance by it)";
     else if (!instantiationToken || strcmp(instantiationToken, tmp.token) != 0)
         why = "the instantiation token is not this binary's: the modelDescription.xml belongs to another build "
               "of the FMU; rebuild build/hexaglide.fmu (make fmu) and use its modelDescription.xml";
@@ -322,7 +338,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     if (s) {
         *s = tmp;
         s->name = malloc(strlen(instanceName) + 1);
-        s->logging_on = loggingOn;
+        s->log_on = loggingOn ? 7u : 3u;      /* errors and warnings, and events with loggingOn */
         s->nvars = fmu_var_count();
         s->off_values = align16(sizeof(status_t));
         s->off_plant = align16(s->off_values + s->nvars * sizeof(double));
@@ -387,12 +403,22 @@ void fmi3FreeInstance(fmi3Instance instance)
     free(s);
 }
 
-/* loggingOn also sends the logEvents messages; the categories must be known. */
+/* The index of log category name in log_categories, or -1. */
+static int category_of(const char *name)
+{
+    int c;
+    for (c = 0; c < 3; c++)
+        if (name && strcmp(name, log_categories[c]) == 0)
+            return c;
+    return -1;
+}
+
+/* Turn the listed categories (all when none is listed) on or off; every one must be known. */
 fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, size_t nCategories,
                                const fmi3String categories[])
 {
-    static const char *const known[] = {"logStatusError", "logStatusWarning", "logEvents"};
     instance_t *s = inst_of(instance);
+    unsigned bits = nCategories ? 0u : 7u;
     size_t i;
     if (!s)
         return fmi3Error;
@@ -401,14 +427,16 @@ fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, siz
             nCategories);
         return fmi3Error;
     }
-    for (i = 0; i < nCategories; i++)
-        if (!categories[i] || (strcmp(categories[i], known[0]) != 0 && strcmp(categories[i], known[1]) != 0 &&
-                               strcmp(categories[i], known[2]) != 0)) {
+    for (i = 0; i < nCategories; i++) {
+        int c = category_of(categories[i]);
+        if (c < 0) {
             say(s, FMU_SAY_ERROR, "%s: fmi3SetDebugLogging: unknown category '%s' (logStatusError, "
                 "logStatusWarning, logEvents)", s->name, categories[i] ? categories[i] : "(NULL)");
             return fmi3Error;
         }
-    s->logging_on = loggingOn;
+        bits |= 1u << c;
+    }
+    s->log_on = loggingOn ? s->log_on | bits : s->log_on & ~bits;
     return fmi3OK;
 }
 
@@ -419,7 +447,7 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
                                        fmi3Float64 startTime, fmi3Boolean stopTimeDefined, fmi3Float64 stopTime)
 {
     instance_t *s = inst_of(instance);
-    (void)toleranceDefined, (void)tolerance, (void)stopTimeDefined, (void)stopTime;
+    (void)toleranceDefined, (void)tolerance;
     if (!s || !allowed(s, "fmi3EnterInitializationMode", MODE_INSTANTIATED, "after instantiation or fmi3Reset"))
         return fmi3Error;
     if (!isfinite(startTime)) {
@@ -427,9 +455,16 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
             s->name, startTime);
         return fmi3Error;
     }
+    if (stopTimeDefined && !(stopTime >= startTime)) {
+        say(s, FMU_SAY_ERROR, "%s: fmi3EnterInitializationMode: stopTime %.17g s is %s startTime %.17g s; give a "
+            "stopTime at or after startTime, or stopTimeDefined = false", s->name, stopTime,
+            isnan(stopTime) ? "not a number, not after" : "before", startTime);
+        return fmi3Error;
+    }
     if (time_fits(s, "fmi3EnterInitializationMode", startTime, period_param(s)))
         return fmi3Error;
     st(s)->start_time = startTime;
+    st(s)->stop_time = stopTimeDefined ? stopTime : INFINITY;
     st(s)->periods = 0;
     st(s)->steps = 0;
     vals(s)[fmu_var_vr(FMU_G_TIME, 0)] = startTime;
@@ -535,6 +570,12 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
         say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: the step would end at %.17g s: from |t| = %s s on a double resolves "
             "time only to %.3g s, more than %g of the period %s s, so the FMU's time stops short of it", s->name,
             end_fmu, fmu_num(a, time_limit(period)), ulp_of(time_limit(period)), TIME_RESOLUTION, fmu_num(c, period));
+        return fmi3Error;
+    }
+    if (end_fmu > st(s)->stop_time && !same_time(end_fmu, st(s)->stop_time, st(s)->steps + 1, period)) {
+        say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: the step from %.17g s to %.17g s would end past stopTime %.17g s "
+            "(fmi3EnterInitializationMode's stopTimeDefined); the FMU computes nothing past it (FMI 3.0): stop "
+            "there, or fmi3Reset and initialize with a later stopTime", s->name, t, end_fmu, st(s)->stop_time);
         return fmi3Error;
     }
     v = vals(s);
@@ -788,8 +829,13 @@ fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
 {
     instance_t *s = inst_of(instance);
     saved_t *p;
-    if (!s || !FMUState)
+    if (!s)
         return fmi3Error;
+    if (!FMUState) {
+        say(s, FMU_SAY_ERROR, "%s: fmi3FreeFMUState: FMUState is NULL; pass the address of the fmi3FMUState to free",
+            s->name);
+        return fmi3Error;
+    }
     if (!*FMUState)
         return fmi3OK;
     p = saved_of(s, "fmi3FreeFMUState", *FMUState);
@@ -884,9 +930,9 @@ static int block_wrong(const instance_t *s, const unsigned char *blob, char *why
           t->period_s <= fmu_plant_period_max_s()) || !isfinite(t->start_time) || !(fabs(t->start_time) < limit) ||
         !is_count(t->periods) || !is_count(t->steps) || t->steps > t->periods ||
         (!(t->mode & (MODE_STEP | MODE_TERMINATED)) && (t->periods || t->steps)) ||
-        !(fabs(t->start_time + t->periods * t->period_s) < limit)) {
-        snprintf(why, len, "not at a time of this FMU (start %.17g s, %.17g periods of %.17g s, %.17g steps)",
-                 t->start_time, t->periods, t->period_s, t->steps);
+        !(fabs(t->start_time + t->periods * t->period_s) < limit) || !(t->stop_time >= t->start_time)) {
+        snprintf(why, len, "not at a time of this FMU (start %.17g s, %.17g periods of %.17g s, %.17g steps, "
+                 "stop %.17g s)", t->start_time, t->periods, t->period_s, t->steps, t->stop_time);
         return -1;
     }
     for (vr = 0; vr < s->nvars; vr++) {

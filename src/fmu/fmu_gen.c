@@ -292,8 +292,10 @@ static int write_description(FILE *f)
     write_units(f, units, nunits);
     write_types(f);
     fprintf(f, "  <LogCategories>\n"
-               "    <Category name=\"logStatusError\" description=\"refused calls and parameters (always on)\"/>\n"
-               "    <Category name=\"logStatusWarning\" description=\"faults of the machine, NaN volts (always on)\"/>\n"
+               "    <Category name=\"logStatusError\" description=\"refused calls and parameters (on unless "
+               "fmi3SetDebugLogging turns it off)\"/>\n"
+               "    <Category name=\"logStatusWarning\" description=\"faults of the machine, NaN volts (on unless "
+               "fmi3SetDebugLogging turns it off)\"/>\n"
                "    <Category name=\"logEvents\" description=\"the board's other events: substeps raised, reset "
                "done (with loggingOn)\"/>\n  </LogCategories>\n\n");
     fprintf(f, "  <DefaultExperiment startTime=\"0\" stopTime=\"1\" stepSize=\"%s\"/>\n\n",
@@ -305,11 +307,13 @@ static int write_description(FILE *f)
         write_variable(f, vr, &v, start[vr]);
     }
     fprintf(f, "  </ModelVariables>\n\n  <ModelStructure>\n");
+    /* no output depends on an input at the same communication point (the step's outputs are of the inputs
+       held from its start: one period of delay); without dependencies="" an importer must assume it does */
     for (vr = 0; vr < n; vr++) {
         fmu_var v;
         fmu_var_get(vr, &v);
         if (v.causality == FMU_OUTPUT)
-            fprintf(f, "    <Output valueReference=\"%u\"/>\n", vr);
+            fprintf(f, "    <Output valueReference=\"%u\" dependencies=\"\"/>\n", vr);
     }
     for (vr = 0; vr < n; vr++) {
         fmu_var v;

@@ -20,15 +20,17 @@ typedef struct {
     double steps;                     /* fmi3DoStep calls that ran since (a whole number): the additions
                                          an importer keeping its time as t += h has rounded */
     double period_s;                  /* the FMU's time step: the period in whole ns as a double */
+    double stop_time;                 /* fmi3EnterInitializationMode's stopTime, +inf when not defined:
+                                         no step may end past it */
 } fmu_status;
 
 /* The serialized state: this header, then the block. "HGXFMU" and the
  * format's two digits open it; the token, the layout (sizes and offsets,
  * the board's layout hash) and the size must be this build's, the
  * checksum (fmu_hash) the block's; then the content is checked. */
-#define FMU_SERIAL_FORMAT 2
+#define FMU_SERIAL_FORMAT 3
 typedef struct {
-    char magic[8];                    /* "HGXFMU02" */
+    char magic[8];                    /* "HGXFMU03" */
     char token[FMU_TOKEN_LEN];        /* the instantiation token */
     uint32_t status_bytes;            /* sizeof(fmu_status) */
     uint32_t nvars;                   /* values in the block (doubles) */

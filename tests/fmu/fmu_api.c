@@ -637,6 +637,7 @@ static void test_forged(void)
         {"the board's plant index 1000000", BOARD, offsetof(hg_board, plant), &huge, sizeof huge, "plant index"},
         {"the board's variant 1000000", BOARD, offsetof(hg_board, variant), &huge, sizeof huge, "parametrization"},
         {"a NaN count of periods", STATUS, offsetof(fmu_status, periods), &nan, sizeof nan, "not at a time"},
+        {"a NaN stopTime", STATUS, offsetof(fmu_status, stop_time), &nan, sizeof nan, "not at a time"},
         {"more steps than periods", STATUS, offsetof(fmu_status, steps), &seven, 0, "not at a time"},
         {"mode 99", STATUS, offsetof(fmu_status, mode), &ninety_nine, sizeof(int), "no mode"},
         {"Step Mode with no machine built", STATUS, offsetof(fmu_status, built), &zero, sizeof zero, "no mode"},
@@ -791,6 +792,148 @@ static void test_fault_time(void)
     fmi3FreeInstance(s);
 }
 
+/* What FMI 3.0 asks of the instantiation and of fmi3EnterInitializationMode's stopTime (2.3: "the FMU has to
+ * return fmi3Error" past it), and a message for every fmi3Error. */
+static void test_fmi_rules(void)
+{
+    logbook b = {0};
+    char token[FMU_TOKEN_LEN];
+    fmi3FMUState st = 0, st2 = 0;
+    fmi3Instance s;
+    fmi3Byte *bytes = 0;
+    size_t size = 0;
+    double t = 0, t_stop = 0.0105;
+    long n = 0;
+    int e;
+    b.quiet = 1;
+    fmu_vars_token(token);
+    e = b.n[fmi3Error];
+    s = fmi3InstantiateCoSimulation("", token, "", 0, 0, 0, 0, 0, 0, &b, log_cb, 0);
+    check(!s && b.n[fmi3Error] > e && strstr(b.last, "instanceName"), "an empty instanceName is refused (%s)", b.last);
+    fmi3FreeInstance(s);
+    e = b.n[fmi3Error];
+    s = fmi3InstantiateCoSimulation(" \t", token, "", 0, 0, 0, 0, 0, 0, &b, log_cb, 0);
+    check(!s && b.n[fmi3Error] > e && strstr(b.last, "instanceName"), "a white-space instanceName is refused (%s)",
+          b.last);
+    fmi3FreeInstance(s);
+    s = fmi3InstantiateCoSimulation("no logger", token, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
+    check(s && step_at(s, 0, PERIOD) == fmi3Error, "no logger and no resourcePath: instantiated, and a refused "
+          "call is only refused");
+    fmi3FreeInstance(s);
+    s = instantiate("rules", &b);
+    if (!s) {
+        check(0, "rules: instance");
+        return;
+    }
+    e = b.n[fmi3Error];
+    refused(fmi3FreeFMUState(s, 0), &b, e, "FMUState is NULL", "fmi3FreeFMUState of a NULL pointer");
+    e = b.n[fmi3Error];
+    refused(fmi3EnterInitializationMode(s, 0, 0, 1.0, fmi3True, 0.5), &b, e, "stopTime", "stopTime before startTime");
+    e = b.n[fmi3Error];
+    refused(fmi3EnterInitializationMode(s, 0, 0, 0.0, fmi3True, NAN), &b, e, "stopTime", "a NaN stopTime");
+    check(fmi3EnterInitializationMode(s, 0, 0, 0.0, fmi3True, t_stop) == fmi3OK &&
+          fmi3ExitInitializationMode(s) == fmi3OK, "initialized with stopTime %g s", t_stop);
+    while (n < 20 && step_at(s, t, PERIOD) == fmi3OK)
+        t += PERIOD, n++;
+    check(n == 10 && get_f64(s, "time") == 10 * PERIOD && strstr(b.last, "stopTime"), "stepping by 1 ms: the 10 "
+          "steps to 0.01 s run, the one past stopTime 0.0105 s is refused, the time stays (%s)", b.last);
+    /* the stop time is part of the FMU state: restored, serialized and deserialized into another instance */
+    fmi3GetFMUState(s, &st);
+    fmi3Reset(s);
+    fmi3SetFMUState(s, st);
+    fmi3SerializedFMUStateSize(s, st, &size);
+    bytes = malloc(size);
+    e = b.n[fmi3Error];
+    check(step_at(s, t, PERIOD) == fmi3Error && b.n[fmi3Error] > e && strstr(b.last, "stopTime"), "restored after "
+          "fmi3Reset, the state keeps its stopTime");
+    fmi3FreeInstance(s);
+    s = instantiate("rules 2", &b);
+    e = b.n[fmi3Error];
+    check(s && bytes && fmi3SerializeFMUState(s, st, bytes, size) == fmi3OK &&
+          fmi3DeserializeFMUState(s, bytes, size, &st2) == fmi3OK && fmi3SetFMUState(s, st2) == fmi3OK &&
+          step_at(s, t, PERIOD) == fmi3Error && b.n[fmi3Error] > e && strstr(b.last, "stopTime"),
+          "serialized and taken by another instance, the state keeps its stopTime");
+    fmi3FreeFMUState(s, &st2);
+    fmi3Reset(s);
+    t = 0, n = 0;
+    if (fmi3EnterInitializationMode(s, 0, 0, 0.0, fmi3True, 0.003) == fmi3OK && fmi3ExitInitializationMode(s) == fmi3OK)
+        while (n < 5 && step_at(s, t, PERIOD) == fmi3OK)
+            t += PERIOD, n++;
+    check(n == 3, "stopTime 0.003 s reached by t += 0.001 s (t = %.17g s): 3 steps run", t);
+    free(bytes);
+    fmi3FreeFMUState(s, &st);
+    fmi3FreeInstance(s);
+}
+
+/* No output depends on an input at the same communication point (modelDescription.xml's dependencies=""):
+ * setting every input changes no output until the next step. */
+static void test_no_feedthrough(void)
+{
+    logbook b = {0};
+    fmi3Instance s = started("feedthrough", &b, 0);
+    static const double tens[6] = {10, -10, 10, -10, 10, -10};
+    static double before[MAX_OUT], after[MAX_OUT];
+    fmi3ValueReference vr[3] = {vr_of("estop"), vr_of("reset"), vr_of("amp_enable")};
+    const fmi3Boolean flip[3] = {fmi3True, fmi3True, fmi3False};
+    int m;
+    if (!s || run(s, 0, 20, 1, 0)) {
+        check(0, "feedthrough: instance and 20 steps");
+        fmi3FreeInstance(s);
+        return;
+    }
+    m = outputs(s, before);
+    set_volts(s, tens);
+    fmi3SetBoolean(s, vr, 3, flip, 3);
+    outputs(s, after);
+    check(memcmp(before, after, (size_t)m * sizeof *before) == 0, "every input set (+-10 V, estop, reset, "  // NOLINT(bugprone-suspicious-memory-comparison): bitwise on purpose
+          "amp_enable off): no output changes before the next step (no direct feedthrough)");
+    fmi3FreeInstance(s);
+}
+
+/* fmi3SetDebugLogging turns each listed category on or off, all of them when none is listed: the FMU logs only
+ * in categories that are on (FMI 3.0 2.3). A reset's rising edge is a logEvents message. */
+static void test_log_categories(void)
+{
+    logbook b = {0};
+    fmi3Instance s = started("categories", &b, 0);
+    fmi3ValueReference vr = vr_of("reset");
+    fmi3Boolean on = fmi3True, off = fmi3False;
+    int n_ok, n_err;
+    b.quiet = 1;
+    if (!s) {
+        check(0, "categories: instance");
+        return;
+    }
+    check(fmi3SetDebugLogging(s, fmi3True, 1, (const fmi3String[]){"logStatusError"}) == fmi3OK, "logStatusError on");
+    n_ok = b.n[fmi3OK];
+    fmi3SetBoolean(s, &vr, 1, &on, 1);
+    step_at(s, 0, PERIOD);
+    check(b.n[fmi3OK] == n_ok, "... turns no other category on: the reset's event is not logged (%d messages)",
+          b.n[fmi3OK] - n_ok);
+    fmi3SetBoolean(s, &vr, 1, &off, 1);
+    step_at(s, PERIOD, PERIOD);
+    check(fmi3SetDebugLogging(s, fmi3True, 1, (const fmi3String[]){"logEvents"}) == fmi3OK, "logEvents on");
+    n_ok = b.n[fmi3OK];
+    fmi3SetBoolean(s, &vr, 1, &on, 1);
+    step_at(s, 2 * PERIOD, PERIOD);
+    check(b.n[fmi3OK] > n_ok, "... the reset's event is logged (%s)", b.last);
+    check(fmi3SetDebugLogging(s, fmi3False, 1, (const fmi3String[]){"logStatusError"}) == fmi3OK, "logStatusError off");
+    n_err = b.n[fmi3Error];
+    check(step_at(s, 0.5, PERIOD) == fmi3Error && b.n[fmi3Error] == n_err, "... a refused step returns fmi3Error "
+          "and logs nothing");
+    check(fmi3SetDebugLogging(s, fmi3True, 0, 0) == fmi3OK && step_at(s, 0.5, PERIOD) == fmi3Error &&
+          b.n[fmi3Error] == n_err + 1, "all categories on (none listed): the refused step is logged");
+    check(fmi3SetDebugLogging(s, fmi3False, 0, 0) == fmi3OK, "all categories off");
+    n_ok = b.n[fmi3OK], n_err = b.n[fmi3Error];
+    fmi3SetBoolean(s, &vr, 1, &off, 1);
+    step_at(s, 3 * PERIOD, PERIOD);
+    fmi3SetBoolean(s, &vr, 1, &on, 1);
+    step_at(s, 4 * PERIOD, PERIOD);
+    check(step_at(s, 0.5, PERIOD) == fmi3Error && b.n[fmi3Error] == n_err && b.n[fmi3OK] == n_ok,
+          "... nothing is logged: neither the reset's event nor the refused step");
+    fmi3FreeInstance(s);
+}
+
 int main(void)
 {
     test_state();
@@ -805,5 +948,8 @@ int main(void)
     test_forged();
     test_forged_memo();
     test_fault_time();
+    test_fmi_rules();
+    test_no_feedthrough();
+    test_log_categories();
     return test_failures ? 1 : 0;
 }

@@ -253,6 +253,8 @@ static void one_call(fmi3Instance s, logbook *b, uint64_t *r, tally *t, fmi3FMUS
     case 22: {
         const fmi3String cats[] = {"logEvents", next(r) & 1 ? "logStatusError" : "bogus"};
         rc = fmi3SetDebugLogging(s, next(r) & 1, next(r) % 3, cats);
+        if (rc == fmi3OK)             /* it may have turned logStatusError off: on again, errors must say why */
+            fmi3SetDebugLogging(s, fmi3True, 1, (const fmi3String[]){"logStatusError"});
         break;
     }
     default:
