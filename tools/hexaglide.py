@@ -307,8 +307,22 @@ def params_table(plant=0, variant=None):
     return out
 
 
-class Params:
+class _ByName:
+    """A parameter set is set by name, p["c_visc"] = value. An attribute set, p.c_visc = value,
+    would be kept by Python beside the parameters and never reach the machine: it raises
+    (only the class's own attributes, _own, are set as attributes)."""
+    _own = ()
+
+    def __setattr__(self, name, value):
+        if name not in self._own:
+            raise AttributeError("%s has no attribute %r: a parameter is set by name, p[%r] = %r (an attribute "
+                                 "would never reach the machine)" % (type(self).__name__, name, name, value))
+        object.__setattr__(self, name, value)
+
+
+class Params(_ByName):
     """hg_params: the machine's parameter set, by spec name (SI), e.g. p["c_visc"]."""
+    _own = ("buf",)
 
     def __init__(self, **values):
         self.buf = C.create_string_buffer(_sizeof(6))
@@ -335,10 +349,11 @@ class Params:
         return bp
 
 
-class PlantParams:
+class PlantParams(_ByName):
     """Any plant's parameter block by spec name (SI), from its defaults:
     PlantParams("serial", "XYZ", mass_0=60)["lead_0"]. Unknown plants,
     models and names raise, naming what there is."""
+    _own = ("plant", "variant", "names", "v")
 
     def __init__(self, plant="hexaglide", model=None, **values):
         self.plant = _plant_find(plant.encode())
