@@ -142,6 +142,93 @@ int cli_parse_list(const char *cmd, const char *opt, const char *text, const cha
     return 0;
 }
 
+/* Edits (insert, delete, replace one character) from a to b, at most 64 characters each. */
+static int edit_distance(const char *a, const char *b)
+{
+    int row[65], i, j, la = (int)strlen(a), lb = (int)strlen(b);
+    if (la > 64 || lb > 64)
+        return 65;
+    for (j = 0; j <= lb; j++)
+        row[j] = j;
+    for (i = 1; i <= la; i++) {
+        int diag = row[0];
+        row[0] = i;
+        for (j = 1; j <= lb; j++) {
+            int up = row[j], best = diag + (a[i - 1] != b[j - 1]);
+            if (up + 1 < best)
+                best = up + 1;
+            if (row[j - 1] + 1 < best)
+                best = row[j - 1] + 1;
+            diag = up;
+            row[j] = best;
+        }
+    }
+    return row[lb];
+}
+
+/* The number after NAME's last '_' (NAME_N: channel N's parameter), or -1. */
+static int channel_suffix(const char *name)
+{
+    const char *us = strrchr(name, '_'), *q;
+    if (!us || !us[1])
+        return -1;
+    for (q = us + 1; *q; q++)
+        if (*q < '0' || *q > '9' || q - us > 3)
+            return -1;
+    return atoi(us + 1);
+}
+
+/* What to say after "unknown parameter NAME" of the plant's model: for
+ * NAME_N, where the model's parameters have channel numbers, the name of
+ * channel N a typo explains (at most 2 edits), else channel N's names
+ * (serial XYZA: mass_3 -> axis 3 is rotary: inertia_3, ...), or that
+ * there is no channel N; for another name, the closest name a typo
+ * explains (2 edits, 3 for names of 9 characters or more). */
+static void unknown_param_hint(const hg_plant *pl, int variant, const char *name, char *buf, size_t len)
+{
+    hg_param_info e;
+    int i, n = channel_suffix(name), numbered = 0, in_channel = 0, best = -1;
+    int best_d = (int)strlen(name) >= 9 ? 4 : 3;
+    size_t used = 0;
+    buf[0] = '\0';
+    for (i = 0; hg_plant_param(pl, variant, i, &e) == 0; i++) {
+        numbered |= channel_suffix(e.name) >= 0;
+        in_channel |= n >= 0 && channel_suffix(e.name) == n;
+    }
+    for (i = 0; hg_plant_param(pl, variant, i, &e) == 0; i++) {
+        int d = edit_distance(name, e.name);
+        if (d < best_d && (!in_channel || channel_suffix(e.name) == n)) {
+            best_d = d;
+            best = i;
+        }
+    }
+    if (n >= 0 && numbered && !in_channel) {
+        snprintf(buf, len, "; the model has no channel %d", n);
+    } else if (best >= 0 && hg_plant_param(pl, variant, best, &e) == 0) {
+        snprintf(buf, len, "; did you mean '%s'?", e.name);
+    } else if (in_channel) {       /* another channel m has NAME's base: say channel n's own names */
+        size_t base = (size_t)(strrchr(name, '_') - name);
+        int m = -1;
+        for (i = 0; m < 0 && hg_plant_param(pl, variant, i, &e) == 0; i++)
+            if (strncmp(e.name, name, base) == 0 && e.name[base] == '_' && channel_suffix(e.name) >= 0)
+                m = channel_suffix(e.name);
+        for (i = 0; m >= 0 && hg_plant_param(pl, variant, i, &e) == 0 && used + 1 < len; i++) {
+            char other[64];
+            if (channel_suffix(e.name) != n)
+                continue;
+            snprintf(other, sizeof other, "%.*s_%d", (int)(strrchr(e.name, '_') - e.name), e.name, m);
+            if (hg_plant_param_find(pl, variant, other) >= 0)
+                continue;                                  /* channel m has it too: not n's kind */
+            if (used)
+                used += (size_t)snprintf(buf + used, len - used, ", %s", e.name);
+            else
+                used = (size_t)snprintf(buf, len, "; channel %d has %s", n, e.name);
+        }
+        if (used)
+            snprintf(buf + used, len - used, " instead (an axis of another kind than channel %d)", m);
+    }
+}
+
 int cli_parse_set(const char *cmd, const char *text, int plant, int variant, hg_plant_params *p)
 {
     char name[64];
@@ -156,8 +243,13 @@ int cli_parse_set(const char *cmd, const char *text, int plant, int variant, hg_
     name[eq - text] = '\0';
     i = hg_plant_param_find(hg_plant_at(plant), variant, name);
     if (i < 0) {
-        fprintf(stderr, "hexaglide %s: --set: unknown parameter '%s' of the %s (hexaglide sim --list-params "
-                "lists them)\n", cmd, name, hg_plant_name_at(plant));
+        char model[HG_PLANT_TEXT_LEN], hint[512];
+        const hg_plant *pl = hg_plant_at(plant);
+        if (pl->variant_name(variant, model, (int)sizeof model))
+            strcpy(model, "?");
+        unknown_param_hint(pl, variant, name, hint, sizeof hint);
+        fprintf(stderr, "hexaglide %s: --set: unknown parameter '%s' of plant %s, model %s%s (hexaglide sim "
+                "--list-params lists them)\n", cmd, name, pl->name, model, hint);
         return -1;
     }
     if (cli_parse_double(eq + 1, name, &v))
