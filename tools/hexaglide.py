@@ -307,6 +307,14 @@ def params_table(plant=0, variant=None):
     return out
 
 
+def _unknown(name, names):
+    """The message for a parameter name not in names: the closest one a typo explains (difflib)."""
+    import difflib
+    close = difflib.get_close_matches(str(name), names, 1, 0.8)
+    return "%s: not a parameter of this plant and model%s (params_table lists them)" % (
+        name, "; did you mean %r?" % close[0] if close else "")
+
+
 class _ByName:
     """A parameter set is set by name, p["c_visc"] = value. An attribute set, p.c_visc = value,
     would be kept by Python beside the parameters and never reach the machine: it raises
@@ -333,12 +341,14 @@ class Params(_ByName):
     def __getitem__(self, name):
         f = _params_field(self.buf, name.encode())
         if not f:
-            raise KeyError(name)
+            raise KeyError(_unknown(name, [e.name.decode() for e in params_table()]))
         return f[0]
 
     def __setitem__(self, name, value):
+        if not _params_field(self.buf, name.encode()):
+            raise KeyError(_unknown(name, [e.name.decode() for e in params_table()]))
         if _params_set(self.buf, name.encode(), float(value)):
-            raise KeyError("unknown parameter or bad value: %s=%r" % (name, value))
+            raise KeyError("bad value: %s=%r" % (name, value))
 
     def board_params(self, substeps=1, integrator=DEFAULT_INTEGRATOR):
         """hg_board_params: these model parameters (by table entry) + the board's substeps and integrator."""
@@ -372,7 +382,7 @@ class PlantParams(_ByName):
         try:
             return self.names.index(name)
         except ValueError:
-            raise KeyError("%s: not a parameter of this plant and model (params_table lists them)" % name)
+            raise KeyError(_unknown(name, self.names))
 
     def __getitem__(self, name):
         return self.v[self._index(name)]
