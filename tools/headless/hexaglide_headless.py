@@ -283,6 +283,13 @@ def spindle_wait_text(kind, s):
                               else "not connected, this machine has no spindle encoder"))
 
 
+def not_taken(what, timeout):
+    """The error for a command LinuxCNC's task did not take within timeout s."""
+    return RuntimeError("%s: LinuxCNC's task did not take the command within %.0f s (a host too loaded for "
+                        "LinuxCNC? its log may say 'USRMOT: ERROR: command timeout'): this run proves nothing; "
+                        "run it again on a quieter host" % (what, timeout))
+
+
 class Machine:
     def __init__(self):
         self.s = linuxcnc.stat()
@@ -329,9 +336,17 @@ class Machine:
         never moved the machine. A command task refuses (RCS_ERROR) is said on the error
         channel, which poll() reads, as before."""
         if self.c.wait_complete(timeout) == -1:
-            raise RuntimeError("%s: LinuxCNC's task did not take the command within %.0f s (a host too loaded "
-                               "for LinuxCNC? its log may say 'USRMOT: ERROR: command timeout'): this run "
-                               "proves nothing; run it again on a quieter host" % (what, timeout))
+            raise not_taken(what, timeout)
+
+    def taken(self, what, before, timeout=None):
+        """Wait until task has received the command sent after its echo serial number was
+        `before` (AUTO_RUN: wait_complete would wait for the program's end, the command runs
+        as long as the program); raised as done() raises when it does not."""
+        t0, timeout = time.time(), COMMAND_S if timeout is None else timeout
+        while self.poll().echo_serial_number == before:
+            if time.time() - t0 > timeout:
+                raise not_taken(what, timeout)
+            time.sleep(0.01)
 
     def on(self):
         self.c.state(linuxcnc.STATE_ESTOP_RESET)
@@ -360,8 +375,9 @@ class Machine:
             self.done("feed override")
         self.c.program_open(path)
         self.done("open " + path)
+        before = self.poll().echo_serial_number
         self.c.auto(linuxcnc.AUTO_RUN, 0)
-        self.done("run " + path)
+        self.taken("run " + path, before)
 
     def run_to_end(self, timeout, on_pause="resume"):
         """Wait until the program has ended (or was refused or aborted).
