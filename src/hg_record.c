@@ -417,9 +417,13 @@ int hg_record_next(hg_record *r, double *row, hg_record_error *e)
         return fail(r, e, HG_REC_ERR_FIELDS, r->line, (long)n + 1, field, text);
     }
     if (row[0] != (double)r->rows) {
-        snprintf(text, sizeof text, "sample %.0f where %ld was due: periods are missing (the "
-                 "sampler FIFO overran?); record again with a deeper FIFO (docs/replay.md)",
-                 row[0], r->rows);
+        if (row[0] < (double)r->rows)   /* back in time: rows repeated or out of order, not lost */
+            snprintf(text, sizeof text, "sample %.0f where %ld was due: the samples go back (rows "
+                     "repeated or out of order: records joined or edited?); record again", row[0], r->rows);
+        else
+            snprintf(text, sizeof text, "sample %.0f where %ld was due: periods are missing (the "
+                     "sampler FIFO overran?); record again with a deeper FIFO (docs/replay.md)",
+                     row[0], r->rows);
         return fail(r, e, HG_REC_ERR_SAMPLE, r->line, 1, 0, text);
     }
     r->rows++;

@@ -228,6 +228,7 @@ def log(*a):
 MIN_SAMPLES = 2000            # usable servo periods (2 s at 1 ms) a recording must have
 # what a user must know beforehand: read from the record (in.param-*) or
 # --set; everything else is unknown to identify (its prior: the defaults)
+GEOMETRY = ["l", "lb", "e", "lp"]   # what the regressor takes of the machine's shape ([HEXAGLIDE] L LB E LP)
 KNOWN = ["l", "lb", "e", "lp", "g", "ka", "kt", "lead", "j_rotor", "i_max", "counts_per_rev", "v_stribeck",
          "r_winding", "l_winding", "v_bus", "amp_mode"]
 
@@ -327,7 +328,9 @@ def read_board_record(path):
     jump = np.zeros(len(a), bool)
     if len(a) > 1:
         jump[1:] = (np.abs(np.diff(run.counts, axis=0)) > 0.5 * run.count_scale * run.dt).any(1)
+    run.jumps = int((jump & run.ok).sum())         # counted apart from the amplifiers off or a fault
     run.ok &= ~jump
+    run.hdr_no = hdr_no
     run.known = {name: recorded[name] for name in KNOWN if name in recorded}
     run.recorded = recorded
     names = list(t)
@@ -376,6 +379,9 @@ def read_sampler(path, ini):
             raw = f.read()
     except OSError as ex:
         raise BadInput("%s: %s" % (path, ex.strerror))
+    if raw[:2] == b"\x1f\x8b":
+        raise BadInput("%s: line 1: gzip-compressed; unpack it first (gunzip -k %s) and give the unpacked file"
+                       % (path, path))
     if b"\0" in raw:
         no = raw[:raw.index(b"\0")].count(b"\n") + 1
         raise BadInput("%s: line %d: binary data: not a recording (docs/identification.md)" % (path, no))
@@ -440,10 +446,13 @@ def read_sampler(path, ini):
                            "motenc.0.enc-%02d-count (docs/identification.md: the pin set)" % (path, hdr_no, j, j))
     a = np.array(rows).reshape(-1, len(header))
     try:                                # the scales as LinuxCNC and sim read them (the C reader)
-        joints = hg_config.read(ini, loop=True, cmd="identify").joints if ini else [{}] * 6
+        cfg = hg_config.read(ini, loop=True, cmd="identify") if ini else None
     except hg_config.ConfigError as ex:
         raise BadInput(str(ex))
+    joints = cfg.joints if cfg else [{}] * 6
     run = Run(path, "sampler")
+    run.hdr_no = hdr_no
+    run.known = {n: cfg.params[n] for n in GEOMETRY} if cfg else {}   # the machine's geometry: the config's
     run.last_line = hdr_no + len(a)
     for key in ("sample", "t_s"):
         if key in header and len(a) > 1:
@@ -1146,6 +1155,14 @@ def breakaway(est, base, runs, reg, params, s, pi0):
         if nblk < MIN_BLOCKS:
             row["why"] = "%d slow stretches with a stick (at least %d)" % (nblk, MIN_BLOCKS)
             continue
+        # a carriage slides with the mass the other estimates give it: without one (the least
+        # squares' masses not determined by these data, e.g. a cutoff too near the sampling rate) no fit
+        m_low = min([float(m[:, k].min()) for f in [forces, held] + [f for _, f in draws]
+                     for _, m in f if m is not None and len(m)] or [1.0])
+        if not m_low > 0:
+            row["why"] = ("the other estimates give carriage %d a moving mass of %.3g kg at its events: the least "
+                          "squares' masses are not determined well enough (a lower --cutoff?)" % (k, m_low))
+            continue
         fc = theta[base.base.index(fric_col("f_coulomb", k))]
         top = 3 * max(fc, 10.0) + 2 * prior_fb
         low = -0.5 * max(fc, 0.0)           # f_static below f_coulomb: the curve extends there, and an
@@ -1539,9 +1556,30 @@ def plots(outdir, eqs, est, base, pi0, vdata):
 
 
 # ====================================================================== main
-def known_params(runs, sets):
+def known_params(runs, sets, ini=None):
     """The prior parameter set: defaults, then what the first record says of the
-    known quantities (KNOWN), then --set."""
+    known quantities (KNOWN; a sampler recording's geometry: its --ini's), then
+    --set. The records' geometries, and an --ini given for board records, must
+    agree (one machine) where --set does not override them."""
+    setk = {x.split("=")[0].strip() for x in sets}
+    ini_geo = None
+    if ini and any(r.kind == "record" for r in runs):
+        try:
+            ini_geo = hg_config.read(ini, cmd="identify").params
+        except hg_config.ConfigError as ex:
+            raise BadInput(str(ex))
+    for name in KNOWN:
+        if name in setk:
+            continue
+        have = [(r.known[name], "%s (%s)" % (r.path, "its in.param events" if r.kind == "record" else
+                                             "--ini's [HEXAGLIDE]")) for r in runs if name in r.known]
+        if ini_geo is not None and name in GEOMETRY:
+            have.append((ini_geo[name], "--ini %s's [HEXAGLIDE]" % ini))
+        for v, where in have[1:]:
+            if abs(v - have[0][0]) > 1e-9 * max(1.0, abs(v)):
+                raise BadInput("%s: %s = %.9g, but %s has %.9g (SI units): records of one machine are fitted together; "
+                               "give the config the records were made with, or --set %s=VALUE (SI) to say which"
+                               % (where, name, v, have[0][1], have[0][0], name))
     p = hg.Params()
     for name, v in runs[0].known.items():
         try:
@@ -1596,9 +1634,7 @@ def main(argv=None):
     ap.add_argument("--output", help="write ready-to-paste setp lines (HAL units) to this file")
     ap.add_argument("--plots", metavar="DIR", help="write identify_fit.png, identify_estimates.png (and "
                     "validate_*.png) there")
-    ap.add_argument("--ini", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "configs",
-                                                  "hexaglide.ini"),
-                    help="config: scales of sampler recordings, gains of the closed-loop validation")
+    ap.add_argument("--ini", help="config: scales of sampler recordings, gains of the closed-loop validation")
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                     help="a known or prior parameter (spec name, SI), e.g. ka=0.8 (overrides the record)")
     ap.add_argument("--source", choices=["counts", "state"], default="counts",
@@ -1611,6 +1647,8 @@ def main(argv=None):
     ap.add_argument("--commands", metavar="FILE",
                     help="joint commands for the closed-loop validation (the validation recording's own if it has them)")
     a = ap.parse_args(argv)
+    ini_given = a.ini is not None
+    a.ini = a.ini or os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "configs", "hexaglide.ini")
     s = Settings()
     s.source, s.cutoff_hz, s.timing = a.source, a.cutoff, a.timing
     try:
@@ -1628,12 +1666,24 @@ def main(argv=None):
         hg_output.refuse_inputs([("--output", a.output)], [("", r) for r in a.records] + [
             ("--validate", a.validate), ("--ini", a.ini), ("--commands", a.commands)])
         runs = [read_run(p, a.ini) for p in a.records]
-        if a.cutoff * 2 * runs[0].dt >= 0.5:
-            raise BadInput("--cutoff %g Hz: must be below a quarter of the sampling rate (%g Hz)"
-                           % (a.cutoff, 0.25 / runs[0].dt))
+        if a.cutoff * s.second_cutoff * 2 * runs[0].dt >= 0.5:     # the cutoff's cost needs the second fit
+            raise BadInput("--cutoff %g Hz: must be below %.4g Hz (%g x the cutoff, the second fit that says what "
+                           "the cutoff costs, below a quarter of the sampling rate, %g Hz)"
+                           % (a.cutoff, 0.25 / runs[0].dt / s.second_cutoff, s.second_cutoff, 0.25 / runs[0].dt))
         vrun = read_run(a.validate, a.ini) if a.validate else None
-        params = known_params(runs, a.set)
+        params = known_params(runs + ([vrun] if vrun else []), a.set, a.ini if ini_given else None)
         reg = Regressor(params)
+        cpm = params["counts_per_rev"] / params["lead"]     # the encoder's counts per m of carriage
+        for r in runs + ([vrun] if vrun else []):
+            bad = [j for j in range(6) if r.kind == "record" and abs(r.count_scale[j] / cpm - 1) > 1e-6]
+            if bad:
+                j = bad[0]
+                raise BadInput("%s: line %d (the first row), column in.enc-scale-%02d: %g counts per mm, but the "
+                               "encoder gives counts_per_rev / lead = %g: the counts would read as other lengths; "
+                               "record with motenc.0.enc-%02d-scale set to [JOINT_%d]INPUT_SCALE = %g (as "
+                               "configs/hexaglide.hal sets it; hexaglide sim --record leaves it 1), or --set "
+                               "counts_per_rev / lead if the record's are not the machine's"
+                               % (r.path, r.hdr_no + 1, j, r.count_scale[j] * 1e-3, cpm * 1e-3, j, j, cpm * 1e-3))
         # the drive trains: stiffness and backlash first (the rigid equations take the carriages' motion)
         ts = trainid.Settings()
         pieces = [usable_stretches(r, Settings()) for r in runs]
@@ -1653,12 +1703,26 @@ def main(argv=None):
             e = equations(r, reg, params, s)
             n = 0 if e is None else int(e["use"].sum() * e["dec"] / 6)
             if n < MIN_SAMPLES:
+                # why: the periods left out before the speed (each counted once, in this order)
+                off = ~r.ok
+                jumps = getattr(r, "jumps", 0)
+                clamp = clamped_periods(r, params).any(1) & r.ok
                 raise BadInput("%s: line %d: %d usable servo periods (amplifiers on, no fault, faster than %.3g "
                                "mm/s: %g v_stribeck, below which a carriage may stick and slip; inside the "
                                "filter's margins); identify needs at least %d (%.0f s): a faster program "
-                               "(hexaglide excite)" % (r.path, r.last_line, n, 1e3 * slow_speed(params, s),
-                                                       s.stribeck_band, MIN_SAMPLES, MIN_SAMPLES * r.dt))
+                               "(hexaglide excite). Of its %d periods %d had the amplifiers off or the fault "
+                               "latched (E-STOP, a fault), %d an encoder jump (homing), %d a drive at the "
+                               "amplifier's current limit (i_max %g A)"
+                               % (r.path, r.last_line, n, 1e3 * slow_speed(params, s), s.stribeck_band,
+                                  MIN_SAMPLES, MIN_SAMPLES * r.dt, len(r.ok), int(off.sum()) - jumps, jumps,
+                                  int(clamp.sum()), params["i_max"]))
             eqs.append(e)
+            off = int((~r.ok).sum())
+            if off:     # left out, and said: a fault or E-STOP half-way, a homing
+                first = int(np.argmax(~r.ok))
+                log("%s: %d of %d periods left out (the first at line %d): the amplifiers off, the fault latched "
+                    "or an encoder jump; the fit takes the rest" % (r.path, off, len(r.ok),
+                                                                  r.hdr_no + 1 + first))
         if a.output:
             hg_output.target(a.output)         # a missing directory now, not after the fit
     except (BadInput, ValueError, hg_output.OutputError) as ex:

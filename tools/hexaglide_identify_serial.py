@@ -49,6 +49,7 @@ KNOWN = ("kt", "lead", "ratio", "counts_per_rev", "j_rotor", "g", "v_stribeck",
 DEFAULTED = ("amp_mode", "kp_vel", "ki_vel", "v_rated", "k_axial")   # of KNOWN: the plant's default if not told
 DAC_VOLTS_MAX = 10.0   # the drives' command range, +-10 V (src/hg_analog.h HG_DAC_VOLTS_MAX)
 MC_FITS = 20        # fits at most while M settles (period_mean_current); the stock config takes 8
+RANK_TOL = 1e-4     # a column within this (relative, columns scaled to unit norm) of the others' span: not identifiable
 MIN_BREAKAWAY = 300  # sliding periods with exp(-(v/v_s)^2) > 0.05 that make the breakaway identifiable
 
 
@@ -137,7 +138,7 @@ def read_record(path):
     if np.ptp(a[:, 0]) > 0 or np.ptp(a[:, 1]) > 0:
         raise BadInput("%s: the servo period or the model changes within the record" % path)
     rec = Record()
-    rec.path, rec.n, rec.dt = path, n, a[0, 0] * 1e-9
+    rec.path, rec.n, rec.dt, rec.hdr_no = path, n, a[0, 0] * 1e-9, hdr_no
     plant = hg.plant_names().index("serial")
     rec.variant = int(a[0, 1])
     rec.names = [x.name.decode() for x in hg.params_table(plant, rec.variant)]
@@ -306,6 +307,14 @@ def fit_axis(recs, k, kns):
                            "identify needs %d: a longer or faster excitation" % (k, len(y), slow_vs, MIN_SAMPLES))
         Xk = X[:, keep]
         scale = np.sqrt((Xk ** 2).sum(0))
+        scale = np.where(scale > 0, scale, 1.0)
+        sv, vt = np.linalg.svd(Xk / scale, full_matrices=False)[1:]
+        if not sv[-1] > RANK_TOL * sv[0]:         # a combination these data cannot see: no estimate of it
+            null = vt[-1]
+            raise BadInput("%s: axis %d: these data cannot separate %s (they move the force alike: the axis never "
+                           "accelerates or never reverses in its %d usable periods); identify needs an excitation "
+                           "that speeds up, slows down and reverses (docs/serial.md)"
+                           % (", ".join(r.path for r in recs), k, ", ".join(names[keep[i]] for i in np.flatnonzero(np.abs(null) > 0.1)), len(y)))
         theta, *_ = np.linalg.lstsq(Xk / scale, y, rcond=None)
         theta /= scale
         if not (theta[0] > 0):
@@ -364,6 +373,10 @@ def main(argv):
            "f_breakaway exp(-(v/v_stribeck)^2) sgn v [+ net_weight]; zero-phase low-pass %g Hz (Butterworth "
            "order %d); periods slower than %g v_stribeck left out (%g without the breakaway)"
            % (CUTOFF_HZ, ORDER, SLOW, SLOW_NO_BREAKAWAY)]
+    for r in recs:              # left out, and said: an E-STOP or a fault on the way
+        if not r.ok.all():
+            out.append("# %s: %d of %d periods with the amplifiers off or the fault latched (the first at line %d): "
+                       "left out" % (r.path, int((~r.ok).sum()), len(r.ok), r.hdr_no + 1 + int(np.argmax(~r.ok))))
     spec = {}
     for k, (est, info) in enumerate(fits):
         rot = recs[0].rotary[k]
