@@ -919,6 +919,9 @@ def main(argv=None):
         if a.plots and os.path.exists(a.plots) and not os.path.isdir(a.plots):
             raise BadInput("--plots %s is a file: give a directory (tune writes tune_step.png, tune_ferror.png "
                            "and tune_bode.png into it)" % a.plots)
+        if a.plots and a.evaluate:
+            raise BadInput("--plots %s with --evaluate: --evaluate draws no plots; for plots of given gains "
+                           "against the INI's use --gains FILE --plots DIR (docs/tuning.md)" % a.plots)
     except (BadInput, hg_output.OutputError) as ex:
         log(ex)
         return 2
