@@ -200,22 +200,23 @@ def check_reach(source, cmd, joints):
                            % (source, j, cmd[out[0], j], out[0] + 1, j, lo, hi))
 
 
-def check_followable(source, cmd, start, joints):
-    """BadInput when the trajectory needs more than a drive gives: per joint the model's volts for it
-    (FF1 v + FF2 a + BIAS, friction aside: a lower bound) above MAX_OUTPUT (0: the DAC's 10 V)."""
+def beyond_drive(cmd, start, joints):
+    """Where the trajectory asks more than a drive gives, or None: per joint the model's volts for
+    it (FF1 v + FF2 a + BIAS, friction aside: a lower bound) above MAX_OUTPUT (0: the DAC's 10 V),
+    said for the first such sample. Not a refusal: a LinuxCNC run may saturate a drive for a few
+    periods and still stay within FERROR, which the closed-loop runs decide."""
     v = np.diff(cmd, axis=0) / PERIOD_S
     acc = np.diff(cmd, 2, axis=0) / PERIOD_S ** 2
     need = start["FF1"] * v[1:] + start["FF2"] * acc + start["BIAS"]
     vmax = np.array([g["MAX_OUTPUT"] or 10.0 for g in joints])
     over = np.argwhere(np.abs(need) > vmax)
-    if len(over):
-        i, j = over[0]
-        raise BadInput("%s: the machine cannot follow this trajectory: joint %d at sample %d (%.4g mm/s, %.4g mm/s^2) "
-                       "needs %.4g V of its drive by the model (FF1 v + FF2 a + BIAS, friction aside), beyond "
-                       "[JOINT_%d]MAX_OUTPUT %g V: give a slower trajectory (a LinuxCNC run within the INI's "
-                       "MAX_VELOCITY and MAX_ACCELERATION)" % (source, j, i + 2, v[i + 1, j], acc[i, j],
-                                                                need[i, j], j, vmax[j]))
-
+    if not len(over):
+        return None
+    i, j = over[0]
+    return ("joint %d at sample %d (%.4g mm/s, %.4g mm/s^2) needs %.4g V of its drive by the model (FF1 v + FF2 a "
+            "+ BIAS, friction aside), beyond [JOINT_%d]MAX_OUTPUT %g V, at %d samples in all: the drive saturates "
+            "there and the loop lags the trajectory" % (j, i + 2, v[i + 1, j], acc[i, j], need[i, j], j, vmax[j],
+                                                       len(np.unique(over[:, 0]))))
 
 def load_record(path):
     """Joint commands (n, 6) in mm from a record of tools/hg_record.py
@@ -592,10 +593,13 @@ def predict(gains, prob, settles, notch=None):
     if not all(r.ok for r in runs):
         i, bad = next((i, r) for i, r in enumerate(runs) if not r.ok)
         at = (bad.tripped_at if bad.tripped_at >= 0 else bad.periods) - prob["seqs"][(settles[i], i)][1]
-        return None, "the loop is unstable: |f-error| exceeds %.3g mm (FERROR) %s%s" % (
+        return None, "the loop is unstable: |f-error| exceeds %.3g mm (FERROR) %s%s%s" % (
             prob["ferror_limit"], "%.3f s into the trajectory" % (at * PERIOD_S) if at >= 0 else
             "before the trajectory (on the move from HOME to its first row or settling there)",
-            "" if bad.rc == 0 else " (board: %s)" % hg.strerror(bad.rc))
+            "" if bad.rc == 0 else " (board: %s)" % hg.strerror(bad.rc),
+            "; the trajectory asks more than the drives give: %s (give a slower trajectory: a LinuxCNC run "
+            "within the INI's MAX_VELOCITY and MAX_ACCELERATION)" % prob["beyond_drive"]
+            if prob.get("beyond_drive") else "")
     fe = np.array([r.peak_ferror_mm for r in runs])
     v = np.array([r.peak_output_v for r in runs])
     return {"ferror": np.median(fe, 0), "ferror_lo": fe.min(0), "ferror_hi": fe.max(0),
@@ -937,10 +941,12 @@ def main(argv=None):
     settles = PREDICT_SETTLES
     try:
         start = setup(a, prob, joints, cmd)
-        check_followable(source, cmd, start, joints)
+        prob["beyond_drive"] = beyond_drive(cmd, start, joints)
     except BadInput as ex:
         log(ex)
         return 2
+    if prob["beyond_drive"]:
+        log("warning: the trajectory asks more than the drives give: %s" % prob["beyond_drive"])
     t0 = time.time()
     try:
         prob["frf_hz"], prob["frf"] = hgm.plant_frf(start, params, threads)
