@@ -168,6 +168,10 @@ def load_trajectory(path):
         if width == 7 and len(rows) > 1:
             n = np.array([v[0] for _, v in rows])
             step = n[1] - n[0]
+            if abs(step - 1) > 1e-6 and abs(step - PERIOD_S) > 1e-3 * PERIOD_S and step > 0:
+                raise BadInput("%s line %d: the first column advances by %g a line, neither a sample number (1) "
+                               "nor the time of a %g s servo period: tune takes one line per period; resample "
+                               "the trajectory to %g s" % (path, rows[1][0], step, PERIOD_S, PERIOD_S))
             bad = np.where(np.abs(np.diff(n) - step) > 0.25 * abs(step))[0] if step > 0 else [0]
             if len(bad):
                 raise BadInput("%s line %d: the first column (sample number or time) does not advance "
@@ -184,6 +188,35 @@ def check_trajectory(path, cmd):
         raise BadInput("%s: a joint command beyond 1000 mm: not joint commands in mm?" % path)
     return np.ascontiguousarray(cmd)
 
+
+def check_reach(source, cmd, joints):
+    """BadInput for a joint command outside its [JOINT_N]MIN_LIMIT..MAX_LIMIT: the machine cannot go there."""
+    for j, g in enumerate(joints):
+        lo, hi = g.get("MIN_LIMIT", -np.inf), g.get("MAX_LIMIT", np.inf)
+        out = np.where((cmd[:, j] < lo) | (cmd[:, j] > hi))[0]
+        if len(out):
+            raise BadInput("%s: joint %d is commanded to %.4g mm at sample %d, outside [JOINT_%d]MIN_LIMIT..MAX_LIMIT "
+                           "(%g..%g mm): the machine cannot go there (another machine's trajectory, or not in mm?)"
+                           % (source, j, cmd[out[0], j], out[0] + 1, j, lo, hi))
+
+
+def beyond_drive(cmd, start, joints):
+    """Where the trajectory asks more than a drive gives, or None: per joint the model's volts for
+    it (FF1 v + FF2 a + BIAS, friction aside: a lower bound) above MAX_OUTPUT (0: the DAC's 10 V),
+    said for the first such sample. Not a refusal: a LinuxCNC run may saturate a drive for a few
+    periods and still stay within FERROR, which the closed-loop runs decide."""
+    v = np.diff(cmd, axis=0) / PERIOD_S
+    acc = np.diff(cmd, 2, axis=0) / PERIOD_S ** 2
+    need = start["FF1"] * v[1:] + start["FF2"] * acc + start["BIAS"]
+    vmax = np.array([g["MAX_OUTPUT"] or 10.0 for g in joints])
+    over = np.argwhere(np.abs(need) > vmax)
+    if not len(over):
+        return None
+    i, j = over[0]
+    return ("joint %d at sample %d (%.4g mm/s, %.4g mm/s^2) needs %.4g V of its drive by the model (FF1 v + FF2 a "
+            "+ BIAS, friction aside), beyond [JOINT_%d]MAX_OUTPUT %g V, at %d samples in all: the drive saturates "
+            "there and the loop lags the trajectory" % (j, i + 2, v[i + 1, j], acc[i, j], need[i, j], j, vmax[j],
+                                                       len(np.unique(over[:, 0]))))
 
 def load_record(path):
     """Joint commands (n, 6) in mm from a record of tools/hg_record.py
@@ -558,11 +591,15 @@ def ini_text(gains, pred, source, notch=None, without=None):
 def predict(gains, prob, settles, notch=None):
     runs = trajectory_runs(gains, prob, settles, notch=notch)
     if not all(r.ok for r in runs):
-        bad = next(r for r in runs if not r.ok)
-        at = bad.tripped_at if bad.tripped_at >= 0 else bad.periods
-        return None, "the loop is unstable: |f-error| exceeds %.3g mm (FERROR) %.3f s into the trajectory%s" % (
-            prob["ferror_limit"], at * PERIOD_S,
-            "" if bad.rc == 0 else " (board: %s)" % hg.strerror(bad.rc))
+        i, bad = next((i, r) for i, r in enumerate(runs) if not r.ok)
+        at = (bad.tripped_at if bad.tripped_at >= 0 else bad.periods) - prob["seqs"][(settles[i], i)][1]
+        return None, "the loop is unstable: |f-error| exceeds %.3g mm (FERROR) %s%s%s" % (
+            prob["ferror_limit"], "%.3f s into the trajectory" % (at * PERIOD_S) if at >= 0 else
+            "before the trajectory (on the move from HOME to its first row or settling there)",
+            "" if bad.rc == 0 else " (board: %s)" % hg.strerror(bad.rc),
+            "; the trajectory asks more than the drives give: %s (give a slower trajectory: a LinuxCNC run "
+            "within the INI's MAX_VELOCITY and MAX_ACCELERATION)" % prob["beyond_drive"]
+            if prob.get("beyond_drive") else "")
     fe = np.array([r.peak_ferror_mm for r in runs])
     v = np.array([r.peak_output_v for r in runs])
     return {"ferror": np.median(fe, 0), "ferror_lo": fe.min(0), "ferror_hi": fe.max(0),
@@ -658,7 +695,10 @@ def plots(outdir, cur, sug, prob, source, notch=None):
 
 def setup(a, prob, joints, cmd):
     """The search's base: the model start's gains (prob["base"], ["fixed"])."""
-    start = model_start(cmd, prob["params"])
+    try:
+        start = model_start(cmd, prob["params"])
+    except hg.HexaglideError as ex:
+        raise BadInput("the model at the trajectory's poses: %s" % ex)
     P, I, D = pid_from_bandwidth(start, a.bandwidth, a.damping)
     prob["base"] = {"P": P, "I": I, "D": D, "FF1": start["FF1"], "FF2": start["FF2"], "BIAS": start["BIAS"]}
     prob["fixed"] = [{k: g[k] for k in ("DEADBAND", "MAX_OUTPUT", "MAX_ERROR_I", "INPUT_SCALE", "OUTPUT_SCALE",
@@ -854,6 +894,10 @@ def main(argv=None):
         if a.trajectory:
             cmd = load_trajectory(a.trajectory)
             source = a.trajectory
+            check_reach(source, cmd, joints)
+            if not a.evaluate and not a.gains and np.ptp(cmd, 0).max() < 1.0 / (max(abs(g.get("INPUT_SCALE", 0)) for g in joints) or 1000):
+                raise BadInput("%s: no joint moves by an encoder count: the search would tune the gains to standing "
+                               "still; give a recorded motion (or --evaluate the INI's gains on it)" % source)
         else:
             cmd = generated_move(axes, params, a.ini)
             source = "the generated move"
@@ -876,10 +920,20 @@ def main(argv=None):
             hg_output.target(a.output)         # a missing directory now, not after the search
             hg_output.refuse_inputs([("--output", a.output)], [("--ini", a.ini), ("--trajectory", a.trajectory),
                                                                ("--gains", a.gains)])
+        if a.plots and os.path.exists(a.plots) and not os.path.isdir(a.plots):
+            raise BadInput("--plots %s is a file: give a directory (tune writes tune_step.png, tune_ferror.png "
+                           "and tune_bode.png into it)" % a.plots)
+        if a.plots and a.evaluate:
+            raise BadInput("--plots %s with --evaluate: --evaluate draws no plots; for plots of given gains "
+                           "against the INI's use --gains FILE --plots DIR (docs/tuning.md)" % a.plots)
     except (BadInput, hg_output.OutputError) as ex:
         log(ex)
         return 2
     log("trajectory: %s, %d samples (%.1f s)" % (source, len(cmd), len(cmd) * PERIOD_S))
+    if len(cmd) * PERIOD_S > 60:
+        log("warning: a %.0f s trajectory: every closed-loop run is %d servo periods (15 runs per prediction, %d "
+            "per candidate of the search): this takes long; crop it to the motion that matters"
+            % (len(cmd) * PERIOD_S, len(cmd) + SETTLE + RAMP, max(1, a.runs)))
     threads = a.jobs or hg.cores()
     prob = {"cmd": cmd, "ferror_limit": ferror_limit, "max_overshoot": a.max_overshoot,
             "search_settles": [SETTLE + 137 * i for i in range(max(1, a.runs))],
@@ -887,9 +941,12 @@ def main(argv=None):
     settles = PREDICT_SETTLES
     try:
         start = setup(a, prob, joints, cmd)
+        prob["beyond_drive"] = beyond_drive(cmd, start, joints)
     except BadInput as ex:
         log(ex)
         return 2
+    if prob["beyond_drive"]:
+        log("warning: the trajectory asks more than the drives give: %s" % prob["beyond_drive"])
     t0 = time.time()
     try:
         prob["frf_hz"], prob["frf"] = hgm.plant_frf(start, params, threads)

@@ -152,23 +152,30 @@ def load_trajectory(path, n):
     the headless runners' CSV), comma or space separated; rows of n numbers without a header."""
     if not os.path.isfile(path):
         raise BadInput("no such trajectory file: %s" % path)
+    import gzip
+    import zlib
     header, rows = None, []
-    with open(path) as f:
-        for no, line in enumerate(f, 1):
-            s = line.strip()
-            if not s or s.startswith("#"):
-                continue
-            fields = s.replace(",", " ").split()
-            if header is None and not rows and not re.match(r"[-+0-9.]", fields[0]):
-                header = fields
-                continue
-            try:
-                vals = [hg_csv.number(x) for x in fields]
-            except ValueError:
-                raise BadInput("%s line %d does not parse as numbers: %r" % (path, no, s[:80]))
-            if not np.all(np.isfinite(vals)):
-                raise BadInput("%s line %d holds a NaN or infinite value" % (path, no))
-            rows.append(vals)
+    try:
+        with (gzip.open if path.endswith(".gz") else open)(path, "rt") as f:
+            lines = f.read().splitlines()
+    except (OSError, EOFError, zlib.error, UnicodeDecodeError) as ex:
+        raise BadInput("%s: cannot read it as %s: %s" % (path, "gzip'd text" if path.endswith(".gz") else "text",
+                                                         getattr(ex, "strerror", None) or ex))
+    for no, line in enumerate(lines, 1):
+        s = line.strip()
+        if not s or s.startswith("#"):
+            continue
+        fields = s.replace(",", " ").split()
+        if header is None and not rows and not re.match(r"[-+0-9.]", fields[0]):
+            header = fields
+            continue
+        try:
+            vals = [hg_csv.number(x) for x in fields]
+        except ValueError:
+            raise BadInput("%s line %d does not parse as numbers: %r" % (path, no, s[:80]))
+        if not np.all(np.isfinite(vals)):
+            raise BadInput("%s line %d holds a NaN or infinite value" % (path, no))
+        rows.append(vals)
     if not rows:
         raise BadInput("%s: no samples" % path)
     a = np.array(rows)
@@ -346,6 +353,14 @@ def main(argv=None):
         log(ex)
         return 2
     stock, _, ok = evaluate(m, stock_g, cmd)
+    for j in range(m.n):                   # the loop runs on past FERROR; LinuxCNC does not
+        fe = m.joints[j].get("FERROR")
+        if ok and fe and stock[j] > fe:
+            log("joint %d: peak |f-error| %.6g %s beyond [JOINT_%d]FERROR %g: LinuxCNC stops on a following error "
+                "here: the trajectory asks more than the machine follows with these gains"
+                % (j, stock[j], m.unit_of(j), j, fe))
+            if a.evaluate:
+                return 1
     if not ok:
         log("the given gains are unstable or fault the board on this trajectory (peak |f-error| %s)" % stock)
         if a.evaluate:
@@ -361,6 +376,13 @@ def main(argv=None):
     pred, _, ok = evaluate(m, gains, cmd)
     if not ok:
         log("no stable gains found")
+        return 1
+    over = [j for j in range(m.n) if m.joints[j].get("FERROR") and pred[j] > m.joints[j]["FERROR"]]
+    if over:
+        j = over[0]
+        log("joint %d: the best gains found leave a peak |f-error| of %.6g %s, beyond [JOINT_%d]FERROR %g: "
+            "LinuxCNC stops on a following error; the machine cannot follow this trajectory: nothing suggested"
+            % (j, pred[j], m.unit_of(j), j, m.joints[j]["FERROR"]))
         return 1
     text = ini_text(m, [{k: g[k] for k in OUT_KEYS if k in g} for g in gains], pred, stock, source)
     sys.stdout.write(text)
