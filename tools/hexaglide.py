@@ -763,17 +763,6 @@ def read_gains(path, joints=JOINTS):
     return gains, pred
 
 
-def plant_params_from_ini(path, plant="serial", model=None):
-    """PlantParams of `plant` and `model` from the INI's plant section ([SERIAL]: keys in the HAL
-    unit, as the CLI's --ini and the HAL file's setp lines read them; the rest the defaults).
-    Read by the CLI's one INI reader (hg_config.read, `hexaglide config`): ValueError with its
-    message naming the file, line, section and key for a missing section, an unknown key, a key
-    in lower case or given twice, a value that is not a finite number, a refused parameter."""
-    PlantParams(plant, model)          # an unknown plant or model: ValueError naming it
-    import hg_config                   # (here: it imports this module)
-    return hg_config.read(path, cmd="plant_params_from_ini", plant=plant, model=model).params
-
-
 def loop_config(gains=None, ferror_limit_mm=0.0, period_ns=1000000, model="reduced-cartesian", notch=None,
                 plant=None):
     """hg_loop_config of the plant's joints: gains a list of one dict per joint (six for the

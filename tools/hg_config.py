@@ -85,3 +85,13 @@ def read(path, sets=(), loop=False, cmd="tune", set_option="--set", plant=None, 
         elif w[0] == "servo_period_ns":
             cfg.servo_period_ns = float(w[1])
     return cfg
+
+
+def plant_params(path, plant="serial", model=None):
+    """hg.PlantParams of `plant` and `model` from the INI's plant section ([SERIAL]: keys in the HAL
+    unit, as the CLI's --ini and the HAL file's setp lines read them; the rest the defaults), by
+    read(): ValueError (ConfigError) with the C reader's message naming the file, line, section and
+    key for a missing section, an unknown key, a key in lower case or given twice, a value that is
+    not a finite number, a refused parameter."""
+    hg.PlantParams(plant, model)       # an unknown plant or model: ValueError naming it
+    return read(path, cmd="plant_params", plant=plant, model=model).params
