@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cli.h"
+#include "hg_text.h"
 
 void cli_args_init(cli_args *a, const char *cmd, const char *usage, const cli_opt *opts, int argc,
                    char **argv)
@@ -188,8 +189,7 @@ static void unknown_param_hint(const hg_plant *pl, int variant, const char *name
 {
     hg_param_info e;
     int i, n = channel_suffix(name), numbered = 0, in_channel = 0, best = -1;
-    int best_d = (int)strlen(name) >= 9 ? 4 : 3;
-    size_t used = 0;
+    int best_d = (int)strlen(name) >= 9 ? 4 : 3, found = 0;
     buf[0] = '\0';
     for (i = 0; hg_plant_param(pl, variant, i, &e) == 0; i++) {
         numbered |= channel_suffix(e.name) >= 0;
@@ -212,20 +212,22 @@ static void unknown_param_hint(const hg_plant *pl, int variant, const char *name
         for (i = 0; m < 0 && hg_plant_param(pl, variant, i, &e) == 0; i++)
             if (strncmp(e.name, name, base) == 0 && e.name[base] == '_' && channel_suffix(e.name) >= 0)
                 m = channel_suffix(e.name);
-        for (i = 0; m >= 0 && hg_plant_param(pl, variant, i, &e) == 0 && used + 1 < len; i++) {
-            char other[64];
+        for (i = 0; m >= 0 && hg_plant_param(pl, variant, i, &e) == 0; i++) {
+            char other[64], head[48];
             if (channel_suffix(e.name) != n)
                 continue;
             snprintf(other, sizeof other, "%.*s_%d", (int)(strrchr(e.name, '_') - e.name), e.name, m);
             if (hg_plant_param_find(pl, variant, other) >= 0)
                 continue;                                  /* channel m has it too: not n's kind */
-            if (used)
-                used += (size_t)snprintf(buf + used, len - used, ", %s", e.name);
-            else
-                used = (size_t)snprintf(buf, len, "; channel %d has %s", n, e.name);
+            snprintf(head, sizeof head, "; channel %d has ", n);
+            hg_text_add(buf, len, found++ ? ", " : head);  /* (hg_text_add truncates, never overruns) */
+            hg_text_add(buf, len, e.name);
         }
-        if (used)
-            snprintf(buf + used, len - used, " instead (an axis of another kind than channel %d)", m);
+        if (found) {
+            char tail[64];
+            snprintf(tail, sizeof tail, " instead (an axis of another kind than channel %d)", m);
+            hg_text_add(buf, len, tail);
+        }
     }
 }
 
