@@ -109,6 +109,10 @@ int cli_plant(const char *cmd, const char *name);
  * or -1 after a message naming the variants there are. */
 int cli_variant(const char *cmd, int plant, const char *name);
 
+/* The name of plant's model variant in buf (HG_PLANT_TEXT_LEN), "?" for
+ * one without a name; returns buf (for messages). */
+const char *cli_variant_name(int plant, int variant, char *buf);
+
 /* The model parameters of plant with model variant: the spec's defaults, then the plant's
  * section of the INI file ini (0: none; [HEXAGLIDE] for the Hexaglide),
  * then each of the nset "name=value" in sets (HOME is at pose 0 for any
@@ -180,9 +184,9 @@ void cli_ini_free(cli_ini *ini);
 
 /* 1 if the file has a [section] header. */
 int cli_ini_has_section(const cli_ini *ini, const char *section);
-/* The name of a plant other than plant whose section ini has while it
- * lacks plant's ([SERIAL] read as the Hexaglide's config), or 0. */
-const char *cli_ini_other_plant(const cli_ini *ini, int plant);
+/* A plant other than plant whose section ini has while it lacks plant's
+ * ([SERIAL] read as the Hexaglide's config), or 0. */
+const hg_plant *cli_ini_other_plant(const cli_ini *ini, int plant);
 
 /* [section]key: 0 and *out, 1 if absent, -1 (message) if given twice or in
  * a repeated section (LinuxCNC would silently take the first). */

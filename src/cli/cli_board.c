@@ -31,6 +31,13 @@ int cli_variant(const char *cmd, int plant, const char *name)
     return -1;
 }
 
+const char *cli_variant_name(int plant, int variant, char *buf)
+{
+    if (hg_plant_at(plant)->variant_name(variant, buf, HG_PLANT_TEXT_LEN))
+        snprintf(buf, HG_PLANT_TEXT_LEN, "?");
+    return buf;
+}
+
 int cli_params_build(const char *cmd, int plant, int variant, const char *ini, char *const *sets, int nset,
                      hg_plant_params *v)
 {

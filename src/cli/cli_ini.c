@@ -207,14 +207,15 @@ int cli_ini_has_section(const cli_ini *ini, const char *section)
     return section_first_line(ini, section) > 0;
 }
 
-const char *cli_ini_other_plant(const cli_ini *ini, int plant)
+const hg_plant *cli_ini_other_plant(const cli_ini *ini, int plant)
 {
+    const hg_plant *p;
     int i;
     if (!hg_plant_at(plant) || cli_ini_has_section(ini, hg_plant_at(plant)->ini_section))
         return 0;
-    for (i = 0; hg_plant_at(i); i++)
-        if (i != plant && hg_plant_at(i)->ini_section && cli_ini_has_section(ini, hg_plant_at(i)->ini_section))
-            return hg_plant_at(i)->name;
+    for (i = 0; (p = hg_plant_at(i)) != 0; i++)
+        if (i != plant && p->ini_section && cli_ini_has_section(ini, p->ini_section))
+            return p;
     return 0;
 }
 
@@ -298,8 +299,9 @@ static void key_list(const hg_param_info *t, int n, char *buf, size_t len)
 /* 0 if the INI's [KINS]JOINTS (when given) is the model's channels, one
  * joint each; else -1 with the cause named (a 3-joint INI read for model
  * XYZA would leave A on its defaults, or refuse every key of axis 2 of XY). */
-static int joints_match(const char *cmd, const cli_ini *ini, const hg_plant *pl, int variant)
+static int joints_match(const char *cmd, const cli_ini *ini, int plant, int variant)
 {
+    const hg_plant *pl = hg_plant_at(plant);
     const cli_ini_entry *e;
     char name[HG_PLANT_TEXT_LEN];
     double j;
@@ -310,11 +312,9 @@ static int joints_match(const char *cmd, const cli_ini *ini, const hg_plant *pl,
         return -1;
     if (j == n)
         return 0;
-    if (pl->variant_name(variant, name, (int)sizeof name))
-        strcpy(name, "?");
     fprintf(stderr, "hexaglide %s: %s line %d: [KINS]JOINTS = %s, but model %s of the %s drives %d channels, one "
             "per joint: give --model with one axis per joint (the INI's [TRAJ]COORDINATES), or fix JOINTS\n",
-            cmd, ini->path, e->line, e->value, name, pl->name, n);
+            cmd, ini->path, e->line, e->value, cli_variant_name(plant, variant, name), pl->name, n);
     return -1;
 }
 
@@ -330,18 +330,18 @@ int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int vari
     size_t k;
     key_list(t, n, keys, sizeof keys);
     if (!cli_ini_has_section(ini, sec)) {   /* --ini names the file of this plant's parameters */
-        const char *other = cli_ini_other_plant(ini, plant);
+        const hg_plant *other = cli_ini_other_plant(ini, plant);
         if (other)
             fprintf(stderr, "hexaglide %s: %s has no [%s] section but [%s]: it is a config of plant %s, not of "
-                    "the %s: give --plant %s\n", cmd, ini->path, sec, hg_plant_at(hg_plant_find(other))->ini_section,
-                    other, pl->name, other);
+                    "the %s: give --plant %s\n", cmd, ini->path, sec, other->ini_section, other->name, pl->name,
+                    other->name);
         else
             fprintf(stderr, "hexaglide %s: %s has no [%s] section (the parameters of plant %s, keys %s ...): add "
                     "it, or drop --ini to run the defaults\n", cmd, ini->path, sec, pl->name,
                     t[0].ini_key ? t[0].ini_key : "");
         return -1;
     }
-    if (joints_match(cmd, ini, pl, variant))
+    if (joints_match(cmd, ini, plant, variant))
         return -1;
     for (i = 0; i < ini->n; i++) {     /* every key of the section is one of ours */
         const cli_ini_entry *e = &ini->e[i];

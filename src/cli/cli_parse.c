@@ -247,11 +247,9 @@ int cli_parse_set(const char *cmd, const char *text, int plant, int variant, hg_
     if (i < 0) {
         char model[HG_PLANT_TEXT_LEN], hint[512];
         const hg_plant *pl = hg_plant_at(plant);
-        if (pl->variant_name(variant, model, (int)sizeof model))
-            strcpy(model, "?");
         unknown_param_hint(pl, variant, name, hint, sizeof hint);
         fprintf(stderr, "hexaglide %s: --set: unknown parameter '%s' of plant %s, model %s%s (hexaglide sim "
-                "--list-params lists them)\n", cmd, name, pl->name, model, hint);
+                "--list-params lists them)\n", cmd, name, pl->name, cli_variant_name(plant, variant, model), hint);
         return -1;
     }
     if (cli_parse_double(eq + 1, name, &v))

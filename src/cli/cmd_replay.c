@@ -799,12 +799,10 @@ int cmd_replay(int argc, char **argv)
         status = 2;
     if (!status && variant_w >= 0 && !same_params_layout(pl, variant, variant_w)) {
         char rec_name[HG_PLANT_TEXT_LEN];
-        if (pl->variant_name(variant, rec_name, (int)sizeof rec_name))
-            strcpy(rec_name, "?");
         fprintf(stderr, "hexaglide replay: --model %s: the record's model is %s (%d channels, %d parameters); a "
                 "what-if --model runs the recorded DAC volts and parameters, so its model needs the same channels "
                 "with the same parameters (a serial machine: as many axes, each linear or rotary as recorded)\n",
-                o.model, rec_name, pl->channels(variant), np);
+                o.model, cli_variant_name(plant, variant, rec_name), pl->channels(variant), np);
         status = 2;
     }
     if (!status && parse_sets(&o, plant, variant_w >= 0 ? variant_w : variant, set_idx, set_val))

@@ -129,13 +129,14 @@ static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_conf
 {
     cli_ini ini;
     double servo_ns = 1e6;
+    const hg_plant *other;
     int bad = 0;
     if (cli_ini_read("soak", ini_path, &ini))
         return 2;
-    if (cli_ini_other_plant(&ini, 0)) {   /* its [JOINT_N] are another machine's */
+    if ((other = cli_ini_other_plant(&ini, 0)) != 0) {   /* its [JOINT_N] are another machine's */
         fprintf(stderr, "hexaglide soak: %s is a config of plant %s (no [HEXAGLIDE] section): soak runs the "
                 "Hexaglide only; run that machine with sim --plant %s, or give a Hexaglide config\n", ini_path,
-                cli_ini_other_plant(&ini, 0), cli_ini_other_plant(&ini, 0));
+                other->name, other->name);
         cli_ini_free(&ini);
         return 2;
     }
