@@ -53,6 +53,9 @@ enum {
 
 /* The log categories of modelDescription.xml, by FMU_SAY_* level: errors, warnings, events. */
 static const char *const log_categories[] = {"logStatusError", "logStatusWarning", "logEvents"};
+#define LOG_CATEGORIES ((int)(sizeof log_categories / sizeof *log_categories))
+#define LOG_ALL ((1u << LOG_CATEGORIES) - 1u)      /* log_on with every category on */
+#define LOG_EVENTS (1u << 2)                        /* log_on's bit of logEvents */
 
 typedef fmu_status status_t;
 typedef fmu_serial_header serial_t;
@@ -338,7 +341,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     if (s) {
         *s = tmp;
         s->name = malloc(strlen(instanceName) + 1);
-        s->log_on = loggingOn ? 7u : 3u;      /* errors and warnings, and events with loggingOn */
+        s->log_on = loggingOn ? LOG_ALL : LOG_ALL & ~LOG_EVENTS;  /* errors and warnings; events with loggingOn */
         s->nvars = fmu_var_count();
         s->off_values = align16(sizeof(status_t));
         s->off_plant = align16(s->off_values + s->nvars * sizeof(double));
@@ -407,7 +410,7 @@ void fmi3FreeInstance(fmi3Instance instance)
 static int category_of(const char *name)
 {
     int c;
-    for (c = 0; c < 3; c++)
+    for (c = 0; c < LOG_CATEGORIES; c++)
         if (name && strcmp(name, log_categories[c]) == 0)
             return c;
     return -1;
@@ -418,7 +421,7 @@ fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, siz
                                const fmi3String categories[])
 {
     instance_t *s = inst_of(instance);
-    unsigned bits = nCategories ? 0u : 7u;
+    unsigned bits = nCategories ? 0u : LOG_ALL;
     size_t i;
     if (!s)
         return fmi3Error;
