@@ -93,20 +93,10 @@ def load_trajectory(path):
                 return check_trajectory(path, load_record(path))
     except OSError as ex:
         raise BadInput("%s: cannot read it: %s" % (path, ex.strerror or ex))
-    import gzip
-    import zlib
-    opener = gzip.open if path.endswith(".gz") else open
     try:
-        with opener(path, "rt") as f:
-            lines = f.read().splitlines()
-    except EOFError:
-        raise BadInput("%s: the compressed file ends before its end-of-stream marker (cut short?): "
-                       "copy or compress it again" % path)
-    except (OSError, zlib.error) as ex:
-        raise BadInput("%s: cannot read it%s: %s" % (path, " as gzip" if path.endswith(".gz") else "",
-                                                      getattr(ex, "strerror", None) or ex))
-    except UnicodeDecodeError as ex:
-        raise BadInput("%s: not text (%s): give joint commands as text, one line per servo period" % (path, ex))
+        lines = hg_csv.text_lines(path)
+    except hg_csv.CsvError as ex:
+        raise BadInput(str(ex))
     header = None
     rows = []
     for no, line in enumerate(lines, 1):

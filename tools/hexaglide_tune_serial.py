@@ -152,15 +152,11 @@ def load_trajectory(path, n):
     the headless runners' CSV), comma or space separated; rows of n numbers without a header."""
     if not os.path.isfile(path):
         raise BadInput("no such trajectory file: %s" % path)
-    import gzip
-    import zlib
     header, rows = None, []
     try:
-        with (gzip.open if path.endswith(".gz") else open)(path, "rt") as f:
-            lines = f.read().splitlines()
-    except (OSError, EOFError, zlib.error, UnicodeDecodeError) as ex:
-        raise BadInput("%s: cannot read it as %s: %s" % (path, "gzip'd text" if path.endswith(".gz") else "text",
-                                                         getattr(ex, "strerror", None) or ex))
+        lines = hg_csv.text_lines(path)
+    except hg_csv.CsvError as ex:
+        raise BadInput(str(ex))
     for no, line in enumerate(lines, 1):
         s = line.strip()
         if not s or s.startswith("#"):
@@ -315,6 +311,11 @@ def read_gain_file(path, n):
         raise BadInput("--gains %s" % ex)
 
 
+def beyond_ferror(m, peaks):
+    """The joints whose peak |f-error| exceeds their [JOINT_N]FERROR (where the INI gives one)."""
+    return [j for j in range(m.n) if m.joints[j].get("FERROR") and peaks[j] > m.joints[j]["FERROR"]]
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="hexaglide tune --plant serial", description=__doc__.split("\n\n")[0])
     ap.add_argument("--plant", default="serial")
@@ -353,14 +354,12 @@ def main(argv=None):
         log(ex)
         return 2
     stock, _, ok = evaluate(m, stock_g, cmd)
-    for j in range(m.n):                   # the loop runs on past FERROR; LinuxCNC does not
-        fe = m.joints[j].get("FERROR")
-        if ok and fe and stock[j] > fe:
-            log("joint %d: peak |f-error| %.6g %s beyond [JOINT_%d]FERROR %g: LinuxCNC stops on a following error "
-                "here: the trajectory asks more than the machine follows with these gains"
-                % (j, stock[j], m.unit_of(j), j, fe))
-            if a.evaluate:
-                return 1
+    for j in beyond_ferror(m, stock) if ok else []:   # the loop runs on past FERROR; LinuxCNC does not
+        log("joint %d: peak |f-error| %.6g %s beyond [JOINT_%d]FERROR %g: LinuxCNC stops on a following error "
+            "here: the trajectory asks more than the machine follows with these gains"
+            % (j, stock[j], m.unit_of(j), j, m.joints[j]["FERROR"]))
+        if a.evaluate:
+            return 1
     if not ok:
         log("the given gains are unstable or fault the board on this trajectory (peak |f-error| %s)" % stock)
         if a.evaluate:
@@ -377,7 +376,7 @@ def main(argv=None):
     if not ok:
         log("no stable gains found")
         return 1
-    over = [j for j in range(m.n) if m.joints[j].get("FERROR") and pred[j] > m.joints[j]["FERROR"]]
+    over = beyond_ferror(m, pred)
     if over:
         j = over[0]
         log("joint %d: the best gains found leave a peak |f-error| of %.6g %s, beyond [JOINT_%d]FERROR %g: "

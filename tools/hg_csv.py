@@ -36,6 +36,25 @@ def number(text):
     return float(text)
 
 
+def text_lines(path):
+    """The lines of the text file path (a .gz one unpacked); CsvError naming the file and the cause
+    for one that cannot be read, a .gz cut short, or bytes that are not text."""
+    import gzip
+    import zlib
+    gz = path.endswith(".gz")
+    try:
+        with (gzip.open if gz else open)(path, "rt") as f:
+            return f.read().splitlines()
+    except EOFError:
+        raise CsvError("%s: the compressed file ends before its end-of-stream marker (cut short?): "
+                       "copy or compress it again" % path)
+    except (OSError, zlib.error) as ex:
+        raise CsvError("%s: cannot read it%s: %s" % (path, " as gzip" if gz else "", getattr(ex, "strerror", None) or ex))
+    except UnicodeDecodeError as ex:
+        raise CsvError("%s: cannot read it as text (%s): give joint commands as text, one line per servo period"
+                       % (path, ex))
+
+
 def read(path, need=(), what="the CSV this tool reads"):
     """(names, columns): the header's names and a dict name -> float64 array
     of the rows; need: columns that must be there (else an error saying the
