@@ -229,7 +229,7 @@ MIN_SAMPLES = 2000            # usable servo periods (2 s at 1 ms) a recording m
 # what a user must know beforehand: read from the record (in.param-*) or
 # --set; everything else is unknown to identify (its prior: the defaults)
 GEOMETRY = ["l", "lb", "e", "lp"]   # what the regressor takes of the machine's shape ([HEXAGLIDE] L LB E LP)
-KNOWN = ["l", "lb", "e", "lp", "g", "ka", "kt", "lead", "j_rotor", "i_max", "counts_per_rev", "v_stribeck",
+KNOWN = GEOMETRY + ["g", "ka", "kt", "lead", "j_rotor", "i_max", "counts_per_rev", "v_stribeck",
          "r_winding", "l_winding", "v_bus", "amp_mode"]
 
 
@@ -1671,10 +1671,11 @@ def main(argv=None):
                            "the cutoff costs, below a quarter of the sampling rate, %g Hz)"
                            % (a.cutoff, 0.25 / runs[0].dt / s.second_cutoff, s.second_cutoff, 0.25 / runs[0].dt))
         vrun = read_run(a.validate, a.ini) if a.validate else None
-        params = known_params(runs + ([vrun] if vrun else []), a.set, a.ini if ini_given else None)
+        every = runs + ([vrun] if vrun else [])             # the fitted records and the validation's
+        params = known_params(every, a.set, a.ini if ini_given else None)
         reg = Regressor(params)
         cpm = params["counts_per_rev"] / params["lead"]     # the encoder's counts per m of carriage
-        for r in runs + ([vrun] if vrun else []):
+        for r in every:
             bad = [j for j in range(6) if r.kind == "record" and abs(r.count_scale[j] / cpm - 1) > 1e-6]
             if bad:
                 j = bad[0]
