@@ -322,6 +322,9 @@ pid_from_bandwidth = hgm.pid_from_bandwidth
 
 
 # ------------------------------------------------------------------ evaluation (runs in workers)
+X0 = (0.0, 0.0, 0.0, 1.0, 1.0)   # the search's start: the model start's gains
+
+
 def gains_from_x(x, prob):
     """Search vector -> six INI gain dicts: x = log10 of multipliers of the model's P, I, D,
     and multipliers of FF1, FF2."""
@@ -372,14 +375,15 @@ def board_params(prob):
     return prob["board_params"]
 
 
-def trajectory_jobs(cfg, prob, settles, keep=False, tool_error=True):
+def trajectory_jobs(cfg, prob, settles, keep=False, tool_error=True, windows=False):
     """The batch jobs of trajectory_runs: the trajectory after each settle and approach
-    (tool_error False: without the tool-path error, as the search needs only f-errors)."""
+    (tool_error False: without the tool-path error, as the search needs only f-errors;
+    windows: prob["windows"]'s chain of critical windows instead of the whole trajectory)."""
     jobs = []
     for i, settle in enumerate(settles):
-        key = (settle, i)
+        key = ("windows", settle, i) if windows else (settle, i)
         if key not in prob.setdefault("seqs", {}):
-            prob["seqs"][key] = lead_in(prob["cmd"], settle, approach_of(i))
+            prob["seqs"][key] = lead_in(prob["windows"][0] if windows else prob["cmd"], settle, approach_of(i))
         seq, s = prob["seqs"][key]
         jobs.append(hg.Job(cfg, board_params(prob), seq, start=s, keep=keep, tool_error=tool_error))
     return jobs
@@ -468,7 +472,114 @@ def run_cost(runs, prob):
     return peak + 0.2 * rms + 1.0 * max(0.0, volts - prob["vmax"])   # volts over: a hard limit in effect
 
 
-def costs(xs, prob, notch=None, beat=None):
+# ------------------------------------------------------------------ critical windows
+# A long trajectory's search runs only the rows where the model start's f-errors and outputs peak
+# (each joint's largest |f-error| and |output|), each with the trajectory's rows before it, joined
+# by smooth moves; the best candidates are then costed on the whole trajectory (search's verify).
+WINDOW_HALF = 60           # scored periods either side of a peak
+WINDOW_LEAD = 200          # the trajectory's periods run before a window's scored rows, not scored
+BRIDGE = 150               # periods of the smooth move from one window to the next one's lead
+WINDOW_SETTLE = 300        # periods at the first row before the chain (the search's whole runs: SETTLE)
+WINDOW_SHARE = 0.5         # windows only when their chain is at most this share of the trajectory
+VERIFY = 4                 # the search's best candidates costed on the whole trajectory
+
+
+def peak_rows(y, n, gap):
+    """The rows of y's n largest values, at least gap rows apart."""
+    y = np.array(y, float)
+    out = []
+    for _ in range(n):
+        i = int(np.argmax(y))
+        if not y[i] > 0:
+            break
+        out.append(i)
+        y[max(0, i - gap):i + gap + 1] = -np.inf
+    return out
+
+
+def hermite(p1, v1, p2, v2, n):
+    """The n - 1 rows of the cubic from row p1 (velocity v1 per row) to row p2 (velocity v2)
+    n rows later, both ends excluded: position and velocity continuous at both."""
+    u = (np.arange(1, n) / n)[:, None]
+    return ((2 * u ** 3 - 3 * u ** 2 + 1) * p1 + (u ** 3 - 2 * u ** 2 + u) * (v1 * n)
+            + (3 * u ** 2 - 2 * u ** 3) * p2 + (u ** 3 - u ** 2) * (v2 * n))
+
+
+def critical_spans(run, n):
+    """The scored row spans [a, b) of a trajectory of n rows around each joint's largest
+    |f-error| and |output| of run (kept traces from the trajectory's first row), merged where
+    the trajectory between them is no longer than a bridge."""
+    spans = sorted((max(0, i - WINDOW_HALF), min(n, i + WINDOW_HALF + 1))
+                   for y in (run.ferror_mm, run.output_v) for j in range(y.shape[1])
+                   for i in peak_rows(np.abs(y[:n, j]), 1, 0))
+    merged = []
+    for a, b in spans:
+        if merged and a - WINDOW_LEAD <= merged[-1][1] + BRIDGE:
+            merged[-1] = (merged[-1][0], max(merged[-1][1], b))
+        else:
+            merged.append((a, b))
+    return merged
+
+
+def window_chain(cmd, spans):
+    """(commands, scored): from cmd's first row, each span's rows with WINDOW_LEAD rows before,
+    the gaps between them a BRIDGE-row cubic (or the trajectory itself where that is no longer);
+    scored marks the spans' rows."""
+    vel = lambda i: cmd[i + 1] - cmd[i] if i + 1 < len(cmd) else cmd[i] - cmd[i - 1]
+    parts, scored, end = [], [], 0      # end: the row of cmd after the last one taken
+    for a, b in spans:
+        s = max(0, a - WINDOW_LEAD)
+        if s - end <= BRIDGE:
+            s = end
+        else:
+            if end == 0:                # from the first row at rest
+                br = np.vstack([cmd[:1], hermite(cmd[0], 0 * cmd[0], cmd[s], vel(s), BRIDGE)])
+            else:
+                br = hermite(cmd[end - 1], vel(end - 2), cmd[s], vel(s), BRIDGE)
+            parts.append(br)
+            scored.append(np.zeros(len(br), bool))
+        parts.append(cmd[s:b])
+        scored.append(np.arange(s, b) >= a)
+        end = b
+    return np.vstack(parts), np.concatenate(scored)
+
+
+def critical_windows(gains, prob):
+    """prob["windows"] = (chain, scored) of window_chain around the peaks of gains' run (the first
+    search run's settle and approach) when the chain is at most WINDOW_SHARE of the trajectory;
+    a line for the log either way."""
+    cmd = prob["cmd"]
+    run = trajectory_runs(gains, prob, prob["search_settles"][:1], keep=True)[0]
+    if not run.ok:
+        return "the search runs the whole trajectory (the model start's run trips, so it shows no peaks)"
+    spans = critical_spans(run, len(cmd))
+    chain, scored = window_chain(cmd, spans)
+    if len(chain) > WINDOW_SHARE * len(cmd):
+        return "the search runs the whole trajectory (its critical windows would be %d of its %d rows)" % (
+            len(chain), len(cmd))
+    lo, hi = cmd.min(0), cmd.max(0)
+    if np.any(chain < lo - 1e-9) or np.any(chain > hi + 1e-9):   # a bridge beyond the trajectory's reach
+        return "the search runs the whole trajectory (a smooth move between its windows leaves its range)"
+    prob["windows"] = chain, scored
+    prob["window_settles"] = [s - SETTLE + WINDOW_SETTLE for s in prob["search_settles"]]
+    return ("the search runs %d critical windows (%d scored rows around each joint's peak |f-error| and "
+            "|output| with the model's gains, %d rows a run against %d; --whole-search runs the whole "
+            "trajectory), then costs its best %d on the whole trajectory" % (
+                len(spans), scored.sum(), len(chain), len(cmd), VERIFY))
+
+
+class Scored:
+    """A run's summary over the scored rows of the window chain, as RunResult's (run_cost reads it)."""
+
+    def __init__(self, r, start, scored):
+        self.ok, self.periods = r.ok, r.periods
+        if r.ok:
+            fe, out = r.ferror_mm[start:][scored], r.output_v[start:][scored]
+            self.peak_ferror_mm, self.peak_output_v = np.abs(fe).max(0), np.abs(out).max(0)
+            self.rms_ferror_mm = np.sqrt(np.mean(fe ** 2, 0))
+
+
+def costs(xs, prob, notch=None, beat=None, whole=False):
     """What the search minimizes, for every candidate x of xs in batches (prob["threads"]
     threads, no Python per period): run_cost over the trajectory runs, plus penalties for
     step overshoot and the margins on the plant; 1 - 1e-9 per period run when a run trips.
@@ -477,14 +588,16 @@ def costs(xs, prob, notch=None, beat=None):
     then its trajectory runs one at a time: one whose cost is already above beat[i] after a
     stage (the step's settling and overshoot and the margins, then the runs' errors too)
     runs no further and gets that lower bound instead of its cost: it loses either way, so
-    the search's choices, and its answer, are the full costs'."""
-    settles = prob["search_settles"]
+    the search's choices, and its answer, are the full costs'. With prob["windows"] (and not
+    whole) the runs are of the window chain, their costs of its scored rows."""
+    windows = "windows" in prob and not whole
+    settles = prob["window_settles" if windows else "search_settles"]
     cands = []
     for x in xs:
         gains = gains_from_x(x, prob)
         cfg = loop_cfg(gains, prob, notch)
         cands.append((gains, step_job(cfg, prob, tool_error=False),
-                      trajectory_jobs(cfg, prob, settles, tool_error=False)))
+                      trajectory_jobs(cfg, prob, settles, keep=windows, tool_error=False, windows=windows)))
     jobs = [[sj] + tj for _g, sj, tj in cands]
     stages = [slice(None)] if beat is None else [slice(k, k + 1) for k in range(1 + len(settles))]
     done = [[] for _ in cands]                 # each candidate's results: step, then its runs
@@ -492,8 +605,8 @@ def costs(xs, prob, notch=None, beat=None):
     for n, part in enumerate(stages):
         todo = [(i, j) for i in live for j in jobs[i][part]]
         res = hg.batch([j for _i, j in todo], prob.get("threads", 1)) if todo else []
-        for (i, _j), r in zip(todo, res):
-            done[i].append(r)
+        for (i, j), r in zip(todo, res):
+            done[i].append(Scored(r, j.start, prob["windows"][1]) if windows and j is not cands[i][1] else r)
         ran += sum(r.periods for r in res)
         if n + 1 == len(stages):
             break
@@ -703,14 +816,14 @@ def setup(a, prob, joints, cmd):
 def search(a, prob, notch=None):
     """Differential evolution, every generation's candidates in one hg.batch over a.jobs
     threads; the best six gain dicts and their cost."""
-    x0 = np.array([0.0, 0.0, 0.0, 1.0, 1.0])
+    x0 = np.array(X0)
     log("model start%s: cost %.5f" % (" with the notch" if notch else "", costs([x0], prob, notch)[0]))
     # scipy's differential_evolution is this solver's solve(); holding the solver lets each
     # generation's trials see the energies of the members they compete with (costs' beat)
     from scipy.optimize._differentialevolution import DifferentialEvolutionSolver
     bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)]
     gen = [0]
-    best = {}
+    best, seen = {}, []
     solver = [None]
     t0, p0, s0 = time.time(), prob.get("periods_run", 0), list(prob.get("stopped_at", []))
 
@@ -734,6 +847,7 @@ def search(a, prob, notch=None):
         for x, c in zip(xs, cs):
             if not best or c < best["c"]:
                 best.update(c=c, x=np.array(x))
+            seen.append((c, tuple(x)))
         return cs
 
     def progress(xk, convergence):
@@ -755,7 +869,22 @@ def search(a, prob, notch=None):
         % (" with the notch" if notch else "", res.nfev, took, prob["threads"],
            "s" if prob["threads"] > 1 else "", res.nfev / max(took, 1e-9), prob.get("periods_run", 0) - p0,
            sum(stopped), " (%s)" % where if where else ""))
-    return gains_from_x(res.x, prob), float(res.fun)
+    if "windows" not in prob:
+        return gains_from_x(res.x, prob), float(res.fun)
+    return verify(prob, notch, seen)
+
+
+def verify(prob, notch, seen):
+    """The best of the window search's VERIFY best candidates (seen: (window cost, x)) by their
+    cost on the whole trajectory: (gains, that cost)."""
+    top = sorted(set(seen))[:VERIFY]
+    t0 = time.time()
+    whole = costs([np.array(x) for _c, x in top], prob, notch, whole=True)
+    k = int(np.argmin(whole))
+    log("the search's best %d on the whole trajectory (%.1f s): cost %s (on the windows %s): kept number %d"
+        % (len(top), time.time() - t0, " ".join("%.5f" % c for c in whole),
+           " ".join("%.5f" % c for c, _x in top), k + 1))
+    return gains_from_x(np.array(top[k][1]), prob), float(whole[k])
 
 
 # ------------------------------------------------------------------ main
@@ -848,6 +977,9 @@ def main(argv=None):
     ap.add_argument("--param", action="append", default=[], metavar="NAME=V",
                     help="a model parameter of the machine tuned on (SI, docs/model.md), e.g. k_axial=0 "
                     "for rigid drive trains; default the board's defaults (flexible trains)")
+    ap.add_argument("--whole-search", action="store_true",
+                    help="run every candidate of the search on the whole trajectory, not on its critical "
+                         "windows (docs/tuning.md; slower on a long trajectory, the same on a short one)")
     ap.add_argument("--no-notch", action="store_true",
                     help="do not try a biquad notch at the drive trains' resonance")
     ap.add_argument("--seed", type=hg_csv.integer, default=1, help="the search's random seed, 0..2^32-1; default 1")
@@ -976,6 +1108,8 @@ def main(argv=None):
         log("gains of %s (no search)" % a.gains)
         notch, without = None, None
     else:
+        if not a.whole_search:
+            log(critical_windows(gains_from_x(np.array(X0), prob), prob))
         sug, c_plain = search(a, prob)
         notch, without = None, None
         if prob["mode_hz"] and not a.no_notch:
