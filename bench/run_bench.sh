@@ -45,6 +45,10 @@ else
             echo "BENCH hal_$model median_us=$(awk -v m="$med" 'BEGIN { printf "%.3f", m / 1000 }') p99_us=$(awk -v m="$p99" 'BEGIN { printf "%.3f", m / 1000 }') hot_us=$(awk -v a="$hot1" -v b="$hot2" 'BEGIN { printf "%.3f", (a + b) / 2 }') in_hal_over_hot=$(awk -v m="$med" -v a="$hot1" -v b="$hot2" 'BEGIN { printf "%.2f", m / 1000 / ((a + b) / 2) }')" | tee -a "$out"
     done
 fi
+echo "== tune on a 29 s trajectory: bench/bench_tune.sh (BENCH_TUNE=0 skips it)"
+{ bench/bench_tune.sh; echo "exit $?" >"$out.rc"; } | tee -a "$out" | grep -v '^BENCH '
+[ "$(cat "$out.rc")" = "exit 0" ] || failed="$failed bench_tune.sh ($(cat "$out.rc"))"
+rm -f "$out.rc"
 echo
 echo "== summary (microseconds per call on this machine; see docs/benchmarks.md)"
 grep '^BENCH ' "$out" | sed 's/^BENCH //' | column -t

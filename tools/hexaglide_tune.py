@@ -544,12 +544,14 @@ def window_chain(cmd, spans):
     return np.vstack(parts), np.concatenate(scored)
 
 
-def critical_windows(gains, prob):
-    """prob["windows"] = (chain, scored) of window_chain around the peaks of gains' run (the first
-    search run's settle and approach) when the chain is at most WINDOW_SHARE of the trajectory;
-    a line for the log either way."""
+def critical_windows(gains, prob, notch=None):
+    """prob["windows"] = (chain, scored) of window_chain around the peaks of the run of gains
+    (and notch) with the first search run's settle and approach, when the chain is at most
+    WINDOW_SHARE of the trajectory (else no prob["windows"]); a line for the log either way."""
     cmd = prob["cmd"]
-    run = trajectory_runs(gains, prob, prob["search_settles"][:1], keep=True)[0]
+    prob.pop("windows", None)
+    prob["seqs"] = {k: v for k, v in prob.get("seqs", {}).items() if k[0] != "windows"}
+    run = trajectory_runs(gains, prob, prob["search_settles"][:1], keep=True, notch=notch)[0]
     if not run.ok:
         return "the search runs the whole trajectory (the model start's run trips, so it shows no peaks)"
     spans = critical_spans(run, len(cmd))
@@ -563,9 +565,9 @@ def critical_windows(gains, prob):
     prob["windows"] = chain, scored
     prob["window_settles"] = [s - SETTLE + WINDOW_SETTLE for s in prob["search_settles"]]
     return ("the search runs %d critical windows (%d scored rows around each joint's peak |f-error| and "
-            "|output| with the model's gains, %d rows a run against %d; --whole-search runs the whole "
+            "|output| with the model's gains%s, %d rows a run against %d; --whole-search runs the whole "
             "trajectory), then costs its best %d on the whole trajectory" % (
-                len(spans), scored.sum(), len(chain), len(cmd), VERIFY))
+                len(spans), scored.sum(), " and the notch" if notch else "", len(chain), len(cmd), VERIFY))
 
 
 class Scored:
@@ -817,6 +819,8 @@ def search(a, prob, notch=None):
     """Differential evolution, every generation's candidates in one hg.batch over a.jobs
     threads; the best six gain dicts and their cost."""
     x0 = np.array(X0)
+    if not a.whole_search:
+        log(critical_windows(gains_from_x(x0, prob), prob, notch))
     log("model start%s: cost %.5f" % (" with the notch" if notch else "", costs([x0], prob, notch)[0]))
     # scipy's differential_evolution is this solver's solve(); holding the solver lets each
     # generation's trials see the energies of the members they compete with (costs' beat)
@@ -1108,8 +1112,6 @@ def main(argv=None):
         log("gains of %s (no search)" % a.gains)
         notch, without = None, None
     else:
-        if not a.whole_search:
-            log(critical_windows(gains_from_x(np.array(X0), prob), prob))
         sug, c_plain = search(a, prob)
         notch, without = None, None
         if prob["mode_hz"] and not a.no_notch:
