@@ -31,7 +31,7 @@ import hexaglide as hg  # noqa: E402
 import hg_csv  # noqa: E402
 import hg_config  # noqa: E402
 import hg_margins as hgm  # noqa: E402
-from hg_program import LEAD_IN, PERIOD_S, program_rows, s_curve  # noqa: E402
+from hg_program import LEAD_IN, PERIOD_S, beyond_limits, program_rows, s_curve, uneven_times  # noqa: E402
 import hg_output  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -137,10 +137,9 @@ def load_trajectory(path):
         data = np.array([v for _, v in rows]) if rows else np.zeros((0, len(header)))
         cmd = data[:, cols]
         if "t_s" in header and len(data) > 1:
-            gap = np.where(np.diff(data[:, header.index("t_s")]) > 1.5 * PERIOD_S)[0]
-            if len(gap):
-                raise BadInput("%s line %d: samples missing after t = %.3f s (a gap in the recording); "
-                               "record again" % (path, rows[gap[0] + 1][0], data[gap[0], header.index("t_s")]))
+            why = uneven_times(path, data[:, header.index("t_s")], [no for no, _ in rows])
+            if why:
+                raise BadInput(why)
         if "halui.program.is-running" in header and len(data):
             span = program_rows(data[:, header.index("halui.program.is-running")] > 0.5, cmd)
             if span:
@@ -181,13 +180,9 @@ def check_trajectory(path, cmd):
 
 def check_reach(source, cmd, joints):
     """BadInput for a joint command outside its [JOINT_N]MIN_LIMIT..MAX_LIMIT: the machine cannot go there."""
-    for j, g in enumerate(joints):
-        lo, hi = g.get("MIN_LIMIT", -np.inf), g.get("MAX_LIMIT", np.inf)
-        out = np.where((cmd[:, j] < lo) | (cmd[:, j] > hi))[0]
-        if len(out):
-            raise BadInput("%s: joint %d is commanded to %.4g mm at sample %d, outside [JOINT_%d]MIN_LIMIT..MAX_LIMIT "
-                           "(%g..%g mm): the machine cannot go there (another machine's trajectory, or not in mm?)"
-                           % (source, j, cmd[out[0], j], out[0] + 1, j, lo, hi))
+    why = beyond_limits(source, cmd, joints, lambda j: "mm")
+    if why:
+        raise BadInput(why)
 
 
 def beyond_drive(cmd, start, joints):

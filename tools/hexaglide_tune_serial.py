@@ -152,7 +152,7 @@ def load_trajectory(path, n):
     the headless runners' CSV), comma or space separated; rows of n numbers without a header."""
     if not os.path.isfile(path):
         raise BadInput("no such trajectory file: %s" % path)
-    header, rows = None, []
+    header, rows, lines_of = None, [], []
     try:
         lines = hg_csv.text_lines(path)
     except hg_csv.CsvError as ex:
@@ -172,6 +172,7 @@ def load_trajectory(path, n):
         if not np.all(np.isfinite(vals)):
             raise BadInput("%s line %d holds a NaN or infinite value" % (path, no))
         rows.append(vals)
+        lines_of.append(no)
     if not rows:
         raise BadInput("%s: no samples" % path)
     a = np.array(rows)
@@ -182,6 +183,10 @@ def load_trajectory(path, n):
             if name not in header:
                 raise BadInput("%s: column %s missing (the serial plant's model has joints 0..%d)" % (path, name, n - 1))
             cols.append(header.index(name))
+        if "t_s" in header and len(a) > 1:
+            why = hg_program.uneven_times(path, a[:, header.index("t_s")], lines_of)
+            if why:
+                raise BadInput(why)
         if "halui.program.is-running" in header:      # the program, with its lead-in and tail kept
             span = hg_program.program_rows(a[:, header.index("halui.program.is-running")] > 0.5, a[:, cols])
             if span:
@@ -342,6 +347,9 @@ def main(argv=None):
         m = Machine(a.ini, a.model)
         cmd = load_trajectory(a.trajectory, m.n) if a.trajectory else generated_move(m)
         source = a.trajectory or "generated (each joint out and back)"
+        why = hg_program.beyond_limits(source, cmd, m.joints, m.unit_of)
+        if why:
+            raise BadInput(why)
         cmd = with_settle(cmd)
         stock_g = m.gains()
         if a.gains:
