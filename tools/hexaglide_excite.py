@@ -433,7 +433,7 @@ def main(argv=None):
     try:
         for p in (a.output, a.dither):
             if p:
-                hg_output.target(p)            # a missing directory now, not after the design
+                hg_output.check_writable(p)            # a missing or unwritable directory now, not after the design
         hg_output.refuse_inputs([("--output", a.output), ("--dither", a.dither)], [("--ini", a.ini)])
         if a.output and a.dither and hg_output.same(a.output, a.dither):
             raise hg_output.OutputError("--output %s and --dither %s name the same file; give two files"

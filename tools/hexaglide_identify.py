@@ -1725,7 +1725,7 @@ def main(argv=None):
                     "or an encoder jump; the fit takes the rest" % (r.path, off, len(r.ok),
                                                                   r.hdr_no + 1 + first))
         if a.output:
-            hg_output.target(a.output)         # a missing directory now, not after the fit
+            hg_output.check_writable(a.output)         # a missing or unwritable directory now, not after the fit
     except (BadInput, ValueError, hg_output.OutputError) as ex:
         log(ex)
         return 2

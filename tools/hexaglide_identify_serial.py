@@ -364,7 +364,7 @@ def main(argv):
                     raise BadInput("%s: no %s_%d in the record: --set %s_%d=VALUE (SI)" % (a.records[0], nm, k, nm, k))
         fits = [fit_axis(recs, k, kns) for k in range(n)]
         if a.output:
-            hg_output.target(a.output)
+            hg_output.check_writable(a.output)
     except (BadInput, hg_output.OutputError) as ex:
         log(ex)
         return 2

@@ -1038,7 +1038,7 @@ def main(argv=None):
             except ValueError as ex:
                 raise BadInput("%s: %s" % (what, ex))
         if a.output:
-            hg_output.target(a.output)         # a missing directory now, not after the search
+            hg_output.check_writable(a.output)         # a missing or unwritable directory now, not after the search
             hg_output.refuse_inputs([("--output", a.output)], [("--ini", a.ini), ("--trajectory", a.trajectory),
                                                                ("--gains", a.gains)])
         if a.plots and os.path.exists(a.plots) and not os.path.isdir(a.plots):

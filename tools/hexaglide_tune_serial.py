@@ -355,7 +355,7 @@ def main(argv=None):
         if a.gains:
             stock_g = m.gains(read_gain_file(a.gains, m.n))
         if a.output:
-            hg_output.target(a.output)         # a missing directory now, not after the search
+            hg_output.check_writable(a.output)         # a missing or unwritable directory now, not after the search
             hg_output.refuse_inputs([("--output", a.output)], [("--ini", a.ini), ("--trajectory", a.trajectory),
                                                                ("--gains", a.gains)])
     except (BadInput, hg_output.OutputError) as ex:

@@ -32,6 +32,22 @@ def target(path):
     return p
 
 
+def check_writable(path):
+    """OutputError now, before the work, when path cannot be written as atomic_write will:
+    target's refusals, then a temporary file that its directory does not take (no permission,
+    a read-only file system). A FIFO or device is not probed (opening it could block)."""
+    p = target(path)
+    if os.path.exists(p) and not os.path.isfile(p):
+        return
+    d = os.path.dirname(p) or "."
+    try:
+        fd, tmp = tempfile.mkstemp(dir=d, prefix=".tmp-")
+        os.close(fd)
+        os.unlink(tmp)
+    except OSError as ex:
+        raise OutputError("cannot write %s: %s (a new file in %s)" % (path, ex.strerror or ex, d))
+
+
 def same(a, b):
     """True if outputs a and b would write the same file (symlinks followed)."""
     ta, tb = os.path.abspath(target(a)), os.path.abspath(target(b))
