@@ -479,19 +479,6 @@ WINDOW_SHARE = 0.5         # windows only when their chain is at most this share
 VERIFY = 4                 # the search's best candidates costed on the whole trajectory
 
 
-def peak_rows(y, n, gap):
-    """The rows of y's n largest values, at least gap rows apart."""
-    y = np.array(y, float)
-    out = []
-    for _ in range(n):
-        i = int(np.argmax(y))
-        if not y[i] > 0:
-            break
-        out.append(i)
-        y[max(0, i - gap):i + gap + 1] = -np.inf
-    return out
-
-
 def hermite(p1, v1, p2, v2, n):
     """The n - 1 rows of the cubic from row p1 (velocity v1 per row) to row p2 (velocity v2)
     n rows later, both ends excluded: position and velocity continuous at both."""
@@ -504,9 +491,11 @@ def critical_spans(run, n):
     """The scored row spans [a, b) of a trajectory of n rows around each joint's largest
     |f-error| and |output| of run (kept traces from the trajectory's first row), merged where
     the trajectory between them is no longer than a bridge."""
-    spans = sorted((max(0, i - WINDOW_HALF), min(n, i + WINDOW_HALF + 1))
-                   for y in (run.ferror_mm, run.output_v) for j in range(y.shape[1])
-                   for i in peak_rows(np.abs(y[:n, j]), 1, 0))
+    peaks = []
+    for y in (run.ferror_mm, run.output_v):
+        mag = np.abs(y[:n])
+        peaks += [int(np.argmax(mag[:, j])) for j in range(mag.shape[1]) if mag[:, j].max() > 0]   # at rest: none
+    spans = sorted((max(0, i - WINDOW_HALF), min(n, i + WINDOW_HALF + 1)) for i in peaks)
     merged = []
     for a, b in spans:
         if merged and a - WINDOW_LEAD <= merged[-1][1] + BRIDGE:
