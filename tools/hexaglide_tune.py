@@ -547,11 +547,15 @@ def critical_windows(gains, prob, notch=None):
     if np.any(chain < lo - 1e-9) or np.any(chain > hi + 1e-9):   # a bridge beyond the trajectory's reach
         return "the search runs the whole trajectory (a smooth move between its windows leaves its range)"
     prob["windows"] = chain, scored
-    prob["window_settles"] = [s - SETTLE + WINDOW_SETTLE for s in prob["search_settles"]]
     return ("the search runs %d critical windows (%d scored rows around each joint's peak |f-error| and "
             "|output| with the model's gains%s, %d rows a run against %d; --whole-search runs the whole "
             "trajectory), then costs its best %d on the whole trajectory" % (
                 len(spans), scored.sum(), " and the notch" if notch else "", len(chain), len(cmd), VERIFY))
+
+
+def window_settles(prob):
+    """The window chain's settles: the search runs' settles with WINDOW_SETTLE in place of SETTLE."""
+    return [s - SETTLE + WINDOW_SETTLE for s in prob["search_settles"]]
 
 
 class Scored:
@@ -577,7 +581,7 @@ def costs(xs, prob, notch=None, beat=None, whole=False):
     the search's choices, and its answer, are the full costs'. With prob["windows"] (and not
     whole) the runs are of the window chain, their costs of its scored rows."""
     windows = "windows" in prob and not whole
-    settles = prob["window_settles" if windows else "search_settles"]
+    settles = window_settles(prob) if windows else prob["search_settles"]
     cands = []
     for x in xs:
         gains = gains_from_x(x, prob)
