@@ -574,10 +574,10 @@ def costs(xs, prob, notch=None, beat=None, whole=False):
     threads, no Python per period): run_cost over the trajectory runs, plus penalties for
     step overshoot and the margins on the plant; 1 - 1e-9 per period run when a run trips.
     beat[i] (optional): the cost candidate i must not exceed to be kept (the population member
-    it competes with). Then the candidates run in stages, every candidate's step run first,
-    then its trajectory runs one at a time: one whose cost is already above beat[i] after a
-    stage (the step's settling and overshoot and the margins, then the runs' errors too)
-    runs no further and gets that lower bound instead of its cost: it loses either way, so
+    it competes with). Then the candidates go in stages, every candidate's margins first (no
+    run), then its step run, then its trajectory runs one at a time: one whose cost is already
+    above beat[i] after a stage (the margins, then the step's settling and overshoot, then the
+    runs' errors too) runs no further and gets that lower bound instead of its cost: it loses either way, so
     the search's choices, and its answer, are the full costs'. With prob["windows"] (and not
     whole) the runs are of the window chain, their costs of its scored rows."""
     windows = "windows" in prob and not whole
@@ -592,6 +592,11 @@ def costs(xs, prob, notch=None, beat=None, whole=False):
     stages = [slice(None)] if beat is None else [slice(k, k + 1) for k in range(1 + len(settles))]
     done = [[] for _ in cands]                 # each candidate's results: step, then its runs
     margin, out, live, ran = [None] * len(cands), [None] * len(cands), list(range(len(cands))), 0
+    stopped = prob.setdefault("stopped_at", [0] * (1 + len(settles)))   # on the margins, after the step, run 1, ...
+    if beat is not None:                       # the margins first: they need no run
+        for i in live:
+            margin[i] = margin_penalty(margins_of(cands[i][0], prob, notch))
+        live = stop_early(live, cands, done, prob, notch, margin, beat, out, stopped, 0)
     for n, part in enumerate(stages):
         todo = [(i, j) for i in live for j in jobs[i][part]]
         res = hg.batch([j for _i, j in todo], prob.get("threads", 1)) if todo else []
@@ -600,15 +605,7 @@ def costs(xs, prob, notch=None, beat=None, whole=False):
         ran += sum(r.periods for r in res)
         if n + 1 == len(stages):
             break
-        keep = []                              # (a stage before the last: runs are left)
-        for i in live:
-            lb = lower_bound(cands[i], done[i], prob, notch, margin, i, beat[i])
-            if lb > beat[i]:
-                out[i] = lb
-                prob.setdefault("stopped_at", [0] * len(settles))[n] += 1
-            else:
-                keep.append(i)
-        live = keep
+        live = stop_early(live, cands, done, prob, notch, margin, beat, out, stopped, n + 1)
     for i in live:
         g, sj, _tj = cands[i]
         out[i] = penalized(g, done[i][0], sj, done[i][1:], prob, notch, margin[i])
@@ -616,19 +613,31 @@ def costs(xs, prob, notch=None, beat=None, whole=False):
     return out
 
 
-def lower_bound(cand, done, prob, notch, margin, i, beat):
-    """A lower bound of candidate cand's cost from its results so far (done: the step run,
-    then some of its trajectory runs): penalized's with the runs so far, at most the cost of a
-    trip in a later run (1 - 1e-9 x every period); the margins (>= 0; margin[i], computed
-    once and kept) only when the rest does not already exceed beat."""
+def stop_early(live, cands, done, prob, notch, margin, beat, out, stopped, stage):
+    """The candidates of live that run on: one whose lower bound (lower_bound) is above beat[i]
+    gets it as out[i] and counts in stopped[stage]."""
+    keep = []
+    for i in live:
+        lb = lower_bound(cands[i], done[i], prob, notch, margin[i])
+        if lb > beat[i]:
+            out[i] = lb
+            stopped[stage] += 1
+        else:
+            keep.append(i)
+    return keep
+
+
+def lower_bound(cand, done, prob, notch, margin):
+    """A lower bound of candidate cand's cost from its margin penalty and its results so far
+    (done: none yet, or the step run, then some of its trajectory runs): penalized's with the
+    runs so far, at most the cost of a trip in a later run (1 - 1e-9 x every period); before
+    the step run at most 0.5 too (an unsettled step costs 0.5 plus the runs' errors, without
+    the margins)."""
     g, sj, tj = cand
     floor = 1.0 - 1e-9 * sum(j.cmd.shape[0] for j in tj)
-    lb = min(floor, penalized(g, done[0], sj, done[1:], prob, notch, 0.0))
-    if lb > beat:
-        return lb
-    if margin[i] is None:
-        margin[i] = margin_penalty(margins_of(g, prob, notch))
-    return min(floor, penalized(g, done[0], sj, done[1:], prob, notch, margin[i]))
+    if not done:
+        return min(floor, 0.5, margin)
+    return min(floor, penalized(g, done[0], sj, done[1:], prob, notch, margin))
 
 
 def penalized(gains, step, sj, runs, prob, notch, margin=None):
@@ -854,8 +863,8 @@ def search(a, prob, notch=None):
     took = time.time() - t0
     at = prob.get("stopped_at", [])
     stopped = [c - (s0[k] if k < len(s0) else 0) for k, c in enumerate(at)]
-    where = ", ".join("%d after %s" % (c, "their step run" if k == 0 else "trajectory run %d" % k)
-                      for k, c in enumerate(stopped))
+    where = ", ".join("%d %s" % (c, "on their margins" if k == 0 else "after their step run" if k == 1
+                                 else "after trajectory run %d" % (k - 1)) for k, c in enumerate(stopped))
     log("sweep%s: %d candidates in %.1f s, %d thread%s (hg.batch; %.1f per second), %d servo periods run, "
         "%d candidates stopped early%s"
         % (" with the notch" if notch else "", res.nfev, took, prob["threads"],

@@ -133,21 +133,28 @@ def notch_responses(notch, freqs, period_ns=1000000):
 
 def loci(gains, freqs, P, notch=None):
     """(nf, 6): the eigenvalues of L(f) = diag(C N) P(f), each column one locus (tracked by
-    nearest neighbour from one frequency to the next)."""
+    nearest neighbour from one frequency to the next: each previous eigenvalue in turn takes
+    the nearest one not yet taken, in |log| of their ratio)."""
     cn = pid_response(gains, freqs) * notch_responses(notch, freqs)
     evs = np.linalg.eigvals(cn[:, :, None] * P)      # every frequency's at once
-    lam = np.zeros((len(freqs), 6), complex)
-    lam[0] = evs[0]
+    dist = np.abs(np.log(evs[1:, None, :] / evs[:-1, :, None]))   # [i - 1][p][q]: ev_q(f_i) from ev_p(f_i-1)
+    near = np.argmin(dist, axis=2)
+    # where every previous eigenvalue's nearest is another one (and no NaN), taking them in turn
+    # gives each its nearest; elsewhere the turns are taken one by one
+    apart = (np.sort(near, axis=1) == np.arange(6)).all(1) & ~np.isnan(dist).any((1, 2))
+    order = [list(range(6))]                          # order[i][p]: locus p's eigenvalue at f_i
     for i in range(1, len(freqs)):
-        ev = evs[i]
-        dist = np.abs(np.log(ev[None, :] / lam[i - 1][:, None])).tolist()  # [p][q]: |log(ev_q / prev_p)|
-        order, left = [], list(range(6))
-        for p in range(6):                 # each previous eigenvalue in turn takes its nearest left
-            k = min(left, key=dist[p].__getitem__)
-            order.append(k)
+        prev = order[-1]
+        if apart[i - 1]:
+            order.append([int(near[i - 1, p]) for p in prev])
+            continue
+        d, o, left = dist[i - 1].tolist(), [], list(range(6))
+        for p in prev:
+            k = min(left, key=d[p].__getitem__)
+            o.append(k)
             left.remove(k)
-        lam[i] = ev[order]
-    return lam
+        order.append(o)
+    return np.take_along_axis(evs, np.array(order), axis=1)
 
 
 def margins_of_locus(freqs, l):
@@ -155,24 +162,30 @@ def margins_of_locus(freqs, l):
     (-180 mod 360) where |l| < 1 (the gain increase that reaches -1; crossings above 1 are
     the margins for a gain decrease),
     [(pm_deg, f)] at each gain crossover (|l| = 1), linear in log |l| and phase between
-    frequencies."""
+    frequencies; both in the order of frequency."""
     ph = np.degrees(np.unwrap(np.angle(l)))
     mag = np.log(np.abs(l))
-    gms, pms = [], []
-    for i in range(len(l) - 1):
-        a, b = ph[i] + 180.0, ph[i + 1] + 180.0
-        for m in range(int(np.floor(min(a, b) / 360.0)), int(np.floor(max(a, b) / 360.0)) + 1):
-            c = 360.0 * m                      # the phase crossing -180 + 360 m
-            if (a - c) * (b - c) <= 0 and a != b and not (b == c and i + 1 < len(l) - 1):
-                w = (c - a) / (b - a)
-                lm = mag[i] + w * (mag[i + 1] - mag[i])
-                if lm < 0:                     # |l| < 1: the factor up to -1 (a stable loop's margin)
-                    gms.append((-20 * np.log10(np.e) * lm, freqs[i] + w * (freqs[i + 1] - freqs[i])))
-        if (mag[i] >= 0) != (mag[i + 1] >= 0):
-            w = mag[i] / (mag[i] - mag[i + 1])
-            p = ph[i] + w * (ph[i + 1] - ph[i])
-            r = (p + 180.0) % 360.0
-            pms.append((r - 360.0 if r > 180.0 else r, freqs[i] + w * (freqs[i + 1] - freqs[i])))
+    a, b = ph[:-1] + 180.0, ph[1:] + 180.0        # between f_i and f_i+1, phase + 180
+    m0, m1 = np.floor(np.minimum(a, b) / 360.0), np.floor(np.maximum(a, b) / 360.0)
+    inner = np.arange(1, len(l)) < len(l) - 1       # f_i+1 is not the last frequency
+    rows, turns, ws = [], [], []
+    for k in range(int(np.nan_to_num(m1 - m0, nan=0.0).max(initial=0.0)) + 1):
+        c = 360.0 * (m0 + k)                          # the phase crossing -180 + 360 (m0 + k)
+        hit = (m0 + k <= m1) & ((a - c) * (b - c) <= 0) & (a != b) & ~((b == c) & inner)
+        i = np.nonzero(hit)[0]
+        rows.append(i)
+        turns.append(np.full(len(i), k))
+        ws.append((c[i] - a[i]) / (b[i] - a[i]))
+    o = np.lexsort((np.concatenate(turns), np.concatenate(rows)))
+    i, w = np.concatenate(rows)[o], np.concatenate(ws)[o]
+    lm = mag[i] + w * (mag[i + 1] - mag[i])
+    s = lm < 0                                        # |l| < 1: the factor up to -1 (a stable loop's margin)
+    i, w = i[s], w[s]
+    gms = list(zip((-20 * np.log10(np.e) * lm[s]).tolist(), (freqs[i] + w * (freqs[i + 1] - freqs[i])).tolist()))
+    i = np.nonzero((mag[:-1] >= 0) != (mag[1:] >= 0))[0]
+    w = mag[i] / (mag[i] - mag[i + 1])
+    r = (ph[i] + w * (ph[i + 1] - ph[i]) + 180.0) % 360.0
+    pms = list(zip(np.where(r > 180.0, r - 360.0, r).tolist(), (freqs[i] + w * (freqs[i + 1] - freqs[i])).tolist()))
     return gms, pms
 
 
