@@ -333,6 +333,12 @@ def gains_from_x(x, prob):
     return out
 
 
+def notch_of(x, prob):
+    """The notch of search vector x: prob["notch"] (f0, Q) on all six joints when x has the
+    notch switch (x[5], with prob["notch"]) on, else None."""
+    return [prob["notch"]] * 6 if len(x) > 5 and x[5] > 0.5 else None
+
+
 APPROACH_MM = 0.03         # the runs after the first come to the start from +-this per joint
 
 
@@ -473,10 +479,10 @@ def run_cost(runs, prob):
 # by smooth moves; the best candidates are then costed on the whole trajectory (search's verify).
 WINDOW_HALF = 60           # scored periods either side of a peak
 WINDOW_LEAD = 200          # the trajectory's periods run before a window's scored rows, not scored
-BRIDGE = 150               # periods of the smooth move from one window to the next one's lead
+BRIDGE = 150               # periods, at least, of the smooth move from one window to the next one's lead
 WINDOW_SETTLE = 300        # periods at the first row before the chain (the search's whole runs: SETTLE)
 WINDOW_SHARE = 0.5         # windows only when their chain is at most this share of the trajectory
-VERIFY = 4                 # the search's best candidates costed on the whole trajectory
+VERIFY = 4                 # the search's best candidates of each kind (without, with the notch) costed on the whole trajectory
 
 
 def hermite(p1, v1, p2, v2, n):
@@ -487,12 +493,12 @@ def hermite(p1, v1, p2, v2, n):
             + (3 * u ** 2 - 2 * u ** 3) * p2 + (u ** 3 - u ** 2) * (v2 * n))
 
 
-def critical_spans(run, n):
+def critical_spans(runs, n):
     """The scored row spans [a, b) of a trajectory of n rows around each joint's largest
-    |f-error| and |output| of run (kept traces from the trajectory's first row), merged where
-    the trajectory between them is no longer than a bridge."""
+    |f-error| and |output| in each of runs (kept traces from the trajectory's first row),
+    merged where the trajectory between them is no longer than a bridge."""
     peaks = []
-    for y in (run.ferror_mm, run.output_v):
+    for y in [r.ferror_mm for r in runs] + [r.output_v for r in runs]:
         mag = np.abs(y[:n])
         peaks += [int(np.argmax(mag[:, j])) for j in range(mag.shape[1]) if mag[:, j].max() > 0]   # at rest: none
     spans = sorted((max(0, i - WINDOW_HALF), min(n, i + WINDOW_HALF + 1)) for i in peaks)
@@ -505,21 +511,39 @@ def critical_spans(run, n):
     return merged
 
 
+def bridge(cmd, end, s):
+    """The rows that join cmd's row end - 1 (the first row at rest when end is 0) to row s: the
+    shortest cubic of BRIDGE x 1.5^k rows whose steps and second differences, the junctions'
+    included, are within the trajectory's own largest per joint (no faster and no harder than
+    LinuxCNC moved the joints there); None where that is no shorter than cmd[end:s] itself."""
+    vmax = np.abs(np.diff(cmd, axis=0)).max(0) + 1e-9
+    amax = np.abs(np.diff(cmd, 2, axis=0)).max(0) + 1e-9
+    vel = lambda i: cmd[i + 1] - cmd[i] if i + 1 < len(cmd) else cmd[i] - cmd[i - 1]
+    n = BRIDGE
+    while n < s - end:
+        if end == 0:                # from the first row at rest
+            br = np.vstack([cmd[:1], hermite(cmd[0], 0 * cmd[0], cmd[s], vel(s), n)])
+            seq = np.vstack([cmd[:1], br, cmd[s:s + 2]])
+        else:
+            br = hermite(cmd[end - 1], vel(end - 2), cmd[s], vel(s), n)
+            seq = np.vstack([cmd[max(0, end - 2):end], br, cmd[s:s + 2]])
+        if np.all(np.abs(np.diff(seq, axis=0)) <= vmax) and np.all(np.abs(np.diff(seq, 2, axis=0)) <= amax):
+            return br
+        n = int(np.ceil(1.5 * n))
+    return None
+
+
 def window_chain(cmd, spans):
     """(commands, scored): from cmd's first row, each span's rows with WINDOW_LEAD rows before,
-    the gaps between them a BRIDGE-row cubic (or the trajectory itself where that is no longer);
-    scored marks the spans' rows."""
-    vel = lambda i: cmd[i + 1] - cmd[i] if i + 1 < len(cmd) else cmd[i] - cmd[i - 1]
+    the gaps between them a bridge (or the trajectory itself where that is no longer); scored
+    marks the spans' rows."""
     parts, scored, end = [], [], 0      # end: the row of cmd after the last one taken
     for a, b in spans:
         s = max(0, a - WINDOW_LEAD)
-        if s - end <= BRIDGE:
+        br = bridge(cmd, end, s) if s > end else None
+        if br is None:
             s = end
         else:
-            if end == 0:                # from the first row at rest
-                br = np.vstack([cmd[:1], hermite(cmd[0], 0 * cmd[0], cmd[s], vel(s), BRIDGE)])
-            else:
-                br = hermite(cmd[end - 1], vel(end - 2), cmd[s], vel(s), BRIDGE)
             parts.append(br)
             scored.append(np.zeros(len(br), bool))
         parts.append(cmd[s:b])
@@ -528,17 +552,20 @@ def window_chain(cmd, spans):
     return np.vstack(parts), np.concatenate(scored)
 
 
-def critical_windows(gains, prob, notch=None):
-    """prob["windows"] = (chain, scored) of window_chain around the peaks of the run of gains
-    (and notch) with the first search run's settle and approach, when the chain is at most
-    WINDOW_SHARE of the trajectory (else no prob["windows"]); a line for the log either way."""
+def critical_windows(prob):
+    """prob["windows"] = (chain, scored) of window_chain around the peaks of the runs of the
+    model's gains (X0), without the notch and with prob["notch"] if there is one, with the first
+    search run's settle and approach, when the chain is at most WINDOW_SHARE of the trajectory
+    (else no prob["windows"]); a line for the log either way."""
     cmd = prob["cmd"]
     prob.pop("windows", None)
     prob["seqs"] = {k: v for k, v in prob.get("seqs", {}).items() if k[0] != "windows"}
-    run = trajectory_runs(gains, prob, prob["search_settles"][:1], keep=True, notch=notch)[0]
-    if not run.ok:
-        return "the search runs the whole trajectory (the model start's run trips, so it shows no peaks)"
-    spans = critical_spans(run, len(cmd))
+    g0 = gains_from_x(X0, prob)
+    notches = [None] + ([[prob["notch"]] * 6] if prob.get("notch") else [])
+    runs = [trajectory_runs(g0, prob, prob["search_settles"][:1], keep=True, notch=nf)[0] for nf in notches]
+    if not all(r.ok for r in runs):
+        return "the search runs the whole trajectory (a run of the model start trips, so it shows no peaks)"
+    spans = critical_spans(runs, len(cmd))
     chain, scored = window_chain(cmd, spans)
     if len(chain) > WINDOW_SHARE * len(cmd):
         return "the search runs the whole trajectory (its critical windows would be %d of its %d rows)" % (
@@ -547,10 +574,16 @@ def critical_windows(gains, prob, notch=None):
     if np.any(chain < lo - 1e-9) or np.any(chain > hi + 1e-9):   # a bridge beyond the trajectory's reach
         return "the search runs the whole trajectory (a smooth move between its windows leaves its range)"
     prob["windows"] = chain, scored
+    for nf in notches:              # the chain itself must not trip the model's gains (where the whole run did not)
+        job = trajectory_jobs(loop_cfg(g0, prob, nf), prob, window_settles(prob)[:1], windows=True)[0]
+        if not hg.batch([job], 1)[0].ok:
+            prob.pop("windows")
+            return "the search runs the whole trajectory (the model start trips on its critical windows' chain)"
     return ("the search runs %d critical windows (%d scored rows around each joint's peak |f-error| and "
             "|output| with the model's gains%s, %d rows a run against %d; --whole-search runs the whole "
-            "trajectory), then costs its best %d on the whole trajectory" % (
-                len(spans), scored.sum(), " and the notch" if notch else "", len(chain), len(cmd), VERIFY))
+            "trajectory), then costs its best %d%s on the whole trajectory" % (
+                len(spans), scored.sum(), ", without and with the notch" if len(notches) > 1 else "", len(chain),
+                len(cmd), VERIFY, " of each, without and with the notch," if len(notches) > 1 else ""))
 
 
 def window_settles(prob):
@@ -569,10 +602,11 @@ class Scored:
             self.rms_ferror_mm = np.sqrt(np.mean(fe ** 2, 0))
 
 
-def costs(xs, prob, notch=None, beat=None, whole=False):
+def costs(xs, prob, beat=None, whole=False):
     """What the search minimizes, for every candidate x of xs in batches (prob["threads"]
     threads, no Python per period): run_cost over the trajectory runs, plus penalties for
-    step overshoot and the margins on the plant; 1 - 1e-9 per period run when a run trips.
+    step overshoot and the margins on the plant; 1 - 1e-9 per period run when a run trips
+    (each candidate with its notch, notch_of).
     beat[i] (optional): the cost candidate i must not exceed to be kept (the population member
     it competes with). Then the candidates go in stages, every candidate's margins first (no
     run), then its step run, then its trajectory runs one at a time: one whose cost is already
@@ -584,41 +618,41 @@ def costs(xs, prob, notch=None, beat=None, whole=False):
     settles = window_settles(prob) if windows else prob["search_settles"]
     cands = []
     for x in xs:
-        gains = gains_from_x(x, prob)
+        gains, notch = gains_from_x(x, prob), notch_of(x, prob)
         cfg = loop_cfg(gains, prob, notch)
-        cands.append((gains, step_job(cfg, prob, tool_error=False),
+        cands.append((gains, notch, step_job(cfg, prob, tool_error=False),
                       trajectory_jobs(cfg, prob, settles, keep=windows, tool_error=False, windows=windows)))
-    jobs = [[sj] + tj for _g, sj, tj in cands]
+    jobs = [[sj] + tj for _g, _n, sj, tj in cands]
     stages = [slice(None)] if beat is None else [slice(k, k + 1) for k in range(1 + len(settles))]
     done = [[] for _ in cands]                 # each candidate's results: step, then its runs
     margin, out, live, ran = [None] * len(cands), [None] * len(cands), list(range(len(cands))), 0
     stopped = prob.setdefault("stopped_at", [0] * (1 + len(settles)))   # on the margins, after the step, run 1, ...
     if beat is not None:                       # the margins first: they need no run
         for i in live:
-            margin[i] = margin_penalty(margins_of(cands[i][0], prob, notch))
-        live = stop_early(live, cands, done, prob, notch, margin, beat, out, stopped, 0)
+            margin[i] = margin_penalty(margins_of(cands[i][0], prob, cands[i][1]))
+        live = stop_early(live, cands, done, prob, margin, beat, out, stopped, 0)
     for n, part in enumerate(stages):
         todo = [(i, j) for i in live for j in jobs[i][part]]
         res = hg.batch([j for _i, j in todo], prob.get("threads", 1)) if todo else []
         for (i, j), r in zip(todo, res):
-            done[i].append(Scored(r, j.start, prob["windows"][1]) if windows and j is not cands[i][1] else r)
+            done[i].append(Scored(r, j.start, prob["windows"][1]) if windows and j is not cands[i][2] else r)
         ran += sum(r.periods for r in res)
         if n + 1 == len(stages):
             break
-        live = stop_early(live, cands, done, prob, notch, margin, beat, out, stopped, n + 1)
+        live = stop_early(live, cands, done, prob, margin, beat, out, stopped, n + 1)
     for i in live:
-        g, sj, _tj = cands[i]
+        g, notch, sj, _tj = cands[i]
         out[i] = penalized(g, done[i][0], sj, done[i][1:], prob, notch, margin[i])
     prob["periods_run"] = prob.get("periods_run", 0) + ran
     return out
 
 
-def stop_early(live, cands, done, prob, notch, margin, beat, out, stopped, stage):
+def stop_early(live, cands, done, prob, margin, beat, out, stopped, stage):
     """The candidates of live that run on: one whose lower bound (lower_bound) is above beat[i]
     gets it as out[i] and counts in stopped[stage]."""
     keep = []
     for i in live:
-        lb = lower_bound(cands[i], done[i], prob, notch, margin[i])
+        lb = lower_bound(cands[i], done[i], prob, margin[i])
         if lb > beat[i]:
             out[i] = lb
             stopped[stage] += 1
@@ -627,13 +661,13 @@ def stop_early(live, cands, done, prob, notch, margin, beat, out, stopped, stage
     return keep
 
 
-def lower_bound(cand, done, prob, notch, margin):
+def lower_bound(cand, done, prob, margin):
     """A lower bound of candidate cand's cost from its margin penalty and its results so far
     (done: none yet, or the step run, then some of its trajectory runs): penalized's with the
     runs so far, at most the cost of a trip in a later run (1 - 1e-9 x every period); before
     the step run at most 0.5 too (an unsettled step costs 0.5 plus the runs' errors, without
     the margins)."""
-    g, sj, tj = cand
+    g, notch, sj, tj = cand
     floor = 1.0 - 1e-9 * sum(j.cmd.shape[0] for j in tj)
     if not done:
         return min(floor, 0.5, margin)
@@ -812,24 +846,26 @@ def setup(a, prob, joints, cmd):
     return start
 
 
-def search(a, prob, notch=None):
-    """Differential evolution, every generation's candidates in one hg.batch over a.jobs
-    threads; the best six gain dicts and their cost."""
-    x0 = np.array(X0)
+def search(a, prob):
+    """Differential evolution over the gains (x: gains_from_x) and, with prob["notch"], a sixth
+    variable, 0 or 1, that puts the notch in the loop (notch_of); every generation's candidates
+    in one hg.batch over a.jobs threads; verify's answer."""
+    x0 = np.array(X0 + ((0.0,) if prob.get("notch") else ()))
     if not a.whole_search:
-        log(critical_windows(gains_from_x(x0, prob), prob, notch))
-    log("model start%s: cost %.5f" % (" with the notch" if notch else "", costs([x0], prob, notch)[0]))
+        log(critical_windows(prob))
+    log("model start: cost %.5f" % costs([x0], prob)[0])
     # scipy's differential_evolution is this solver's solve(); holding the solver lets each
     # generation's trials see the energies of the members they compete with (costs' beat)
     from scipy.optimize._differentialevolution import DifferentialEvolutionSolver
-    bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)]
+    bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)] + [(0.0, 1.0)] * (len(x0) - 5)
+    switch = [False] * 5 + [True] * (len(x0) - 5)      # the notch switch takes whole values
     gen = [0]
     best, seen = {}, []
     solver = [None]
     t0, p0, s0 = time.time(), prob.get("periods_run", 0), list(prob.get("stopped_at", []))
 
     def cost(x):
-        return costs([x], prob, notch)[0]
+        return costs([x], prob)[0]
 
     def beat(n):
         """The energies trial 0..n-1 compete with: with updating="deferred" and no constraints,
@@ -844,7 +880,7 @@ def search(a, prob, notch=None):
 
     def batch_map(_func, xs):
         xs = list(xs)
-        cs = costs(xs, prob, notch, beat(len(xs)))
+        cs = costs(xs, prob, beat(len(xs)))
         for x, c in zip(xs, cs):
             if not best or c < best["c"]:
                 best.update(c=c, x=np.array(x))
@@ -857,7 +893,8 @@ def search(a, prob, notch=None):
 
     with DifferentialEvolutionSolver(cost, bounds, x0=x0, maxiter=a.maxiter, popsize=a.popsize,
                                      seed=a.seed, polish=False, tol=1e-3, updating="deferred",
-                                     workers=batch_map, callback=progress, init="sobol") as sv:
+                                     workers=batch_map, callback=progress, init="sobol",
+                                     integrality=switch if any(switch) else None) as sv:
         solver[0] = sv
         res = sv.solve()
     took = time.time() - t0
@@ -865,27 +902,35 @@ def search(a, prob, notch=None):
     stopped = [c - (s0[k] if k < len(s0) else 0) for k, c in enumerate(at)]
     where = ", ".join("%d %s" % (c, "on their margins" if k == 0 else "after their step run" if k == 1
                                  else "after trajectory run %d" % (k - 1)) for k, c in enumerate(stopped))
-    log("sweep%s: %d candidates in %.1f s, %d thread%s (hg.batch; %.1f per second), %d servo periods run, "
+    log("sweep: %d candidates%s in %.1f s, %d thread%s (hg.batch; %.1f per second), %d servo periods run, "
         "%d candidates stopped early%s"
-        % (" with the notch" if notch else "", res.nfev, took, prob["threads"],
-           "s" if prob["threads"] > 1 else "", res.nfev / max(took, 1e-9), prob.get("periods_run", 0) - p0,
-           sum(stopped), " (%s)" % where if where else ""))
-    if "windows" not in prob:
-        return gains_from_x(res.x, prob), float(res.fun)
-    return verify(prob, notch, seen)
+        % (res.nfev, " (%d with the notch)" % sum(notch_of(x, prob) is not None for _c, x in seen)
+           if any(switch) else "", took, prob["threads"], "s" if prob["threads"] > 1 else "",
+           res.nfev / max(took, 1e-9), prob.get("periods_run", 0) - p0, sum(stopped),
+           " (%s)" % where if where else ""))
+    if "windows" not in prob and not any(switch):
+        return res.x, float(res.fun), float(res.fun), None
+    return verify(prob, seen)
 
 
-def verify(prob, notch, seen):
-    """The best of the window search's VERIFY best candidates (seen: (window cost, x)) by their
-    cost on the whole trajectory: (gains, that cost)."""
-    top = sorted(set(seen))[:VERIFY]
+def verify(prob, seen):
+    """The search's answer from seen ((cost, x) of every candidate: on the windows, a lower
+    bound where it stopped early): its VERIFY cheapest without the notch and as many with it
+    (where the search has the switch) costed on the whole trajectory with every run; (x of the
+    cheapest, its cost, the cheapest cost without the notch, with it; None where none ran)."""
+    ranked = sorted(set(seen))
+    groups = [[(c, x) for c, x in ranked if (notch_of(x, prob) is not None) == on][:VERIFY] for on in (False, True)]
+    top = groups[0] + groups[1]
     t0 = time.time()
-    whole = costs([np.array(x) for _c, x in top], prob, notch, whole=True)
-    k = int(np.argmin(whole))
-    log("the search's best %d on the whole trajectory (%.1f s): cost %s (on the windows %s): kept number %d"
-        % (len(top), time.time() - t0, " ".join("%.5f" % c for c in whole),
-           " ".join("%.5f" % c for c, _x in top), k + 1))
-    return gains_from_x(np.array(top[k][1]), prob), float(whole[k])
+    whole = costs([np.array(x) for _c, x in top], prob, whole=True)
+    k = int(np.argmin(whole))                   # (a tie: the first, without the notch)
+    plain, notched = whole[:len(groups[0])], whole[len(groups[0]):]
+    log("the search's best %d%s costed on the whole trajectory with every run (%.1f s): cost %s (in the search %s): "
+        "kept number %d" % (len(top), " (%d without the notch, %d with it)" % tuple(map(len, groups))
+                            if prob.get("notch") else "", time.time() - t0, " ".join("%.5f" % c for c in whole),
+                            " ".join("%.5f" % c for c, _x in top), k + 1))
+    return (np.array(top[k][1]), float(whole[k]), float(min(plain)) if plain else None,
+            float(min(notched)) if notched else None)
 
 
 # ------------------------------------------------------------------ main
@@ -1109,18 +1154,20 @@ def main(argv=None):
         log("gains of %s (no search)" % a.gains)
         notch, without = None, None
     else:
-        sug, c_plain = search(a, prob)
-        notch, without = None, None
+        prob["notch"] = None
         if prob["mode_hz"] and not a.no_notch:
-            nf = hgm.notch_for(sug, prob["frf_hz"], prob["frf"], prob["mode_hz"])
-            log("trying LinuxCNC's biquad notch f0 %.0f Hz Q %.1f at the resonance (--no-notch skips it)" % nf)
-            sug_n, c_notch = search(a, prob, [nf] * 6)
-            if c_notch < c_plain:
-                without, _ = predict(sug_n, prob, settles)
-                sug, notch = sug_n, nf
-                log("the notch lets these gains work: cost %.5f against %.5f without it" % (c_notch, c_plain))
-            else:
-                log("the notch does not help (cost %.5f against %.5f without it): none proposed" % (c_notch, c_plain))
+            prob["notch"] = hgm.notch_for(gains_from_x(X0, prob), prob["frf_hz"], prob["frf"], prob["mode_hz"])
+            log("the search may put LinuxCNC's biquad notch f0 %.0f Hz Q %.1f (at the resonance, for the model "
+                "start's gains) in the loop: a sixth search variable (--no-notch leaves it out)" % prob["notch"])
+        x, _c, c_plain, c_notch = search(a, prob)
+        sug, notch, without = gains_from_x(x, prob), None, None
+        if notch_of(x, prob):
+            without, _ = predict(sug, prob, settles)
+            notch = prob["notch"]
+            log("the notch lets these gains work: cost %.5f against %.5f without it" % (c_notch, c_plain))
+        elif prob["notch"]:
+            log("the notch does not help (%s against %.5f without it): none proposed"
+                % ("cost %.5f" % c_notch if c_notch is not None else "the search's best had none", c_plain))
     pred, why = predict(sug, prob, settles, [notch] * 6 if notch else None)
     if pred is None:
         log("no stable gains found: %s" % why)
