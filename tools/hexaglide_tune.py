@@ -482,7 +482,7 @@ WINDOW_LEAD = 200          # the trajectory's periods run before a window's scor
 BRIDGE = 150               # periods, at least, of the smooth move from one window to the next one's lead
 WINDOW_SETTLE = 300        # periods at the first row before the chain (the search's whole runs: SETTLE)
 WINDOW_SHARE = 0.5         # windows only when their chain is at most this share of the trajectory
-VERIFY = 4                 # the search's best candidates of each kind (without, with the notch) costed on the whole trajectory
+VERIFY = 4                 # the search's best of each kind (without, with the notch) costed on the whole trajectory
 
 
 def hermite(p1, v1, p2, v2, n):
@@ -860,7 +860,7 @@ def search(a, prob):
     bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)] + [(0.0, 1.0)] * (len(x0) - 5)
     switch = [False] * 5 + [True] * (len(x0) - 5)      # the notch switch takes whole values
     gen = [0]
-    best, seen = {}, []
+    seen = []                                   # (cost, x) of every candidate, for verify and the log
     solver = [None]
     t0, p0, s0 = time.time(), prob.get("periods_run", 0), list(prob.get("stopped_at", []))
 
@@ -881,15 +881,12 @@ def search(a, prob):
     def batch_map(_func, xs):
         xs = list(xs)
         cs = costs(xs, prob, beat(len(xs)))
-        for x, c in zip(xs, cs):
-            if not best or c < best["c"]:
-                best.update(c=c, x=np.array(x))
-            seen.append((c, tuple(x)))
+        seen.extend((c, tuple(x)) for x, c in zip(xs, cs))
         return cs
 
     def progress(xk, convergence):
         gen[0] += 1
-        log("generation %d: best cost %.5f (%.0f s)" % (gen[0], best.get("c", np.nan), time.time() - t0))
+        log("generation %d: best cost %.5f (%.0f s)" % (gen[0], min(seen)[0] if seen else np.nan, time.time() - t0))
 
     with DifferentialEvolutionSolver(cost, bounds, x0=x0, maxiter=a.maxiter, popsize=a.popsize,
                                      seed=a.seed, polish=False, tol=1e-3, updating="deferred",
