@@ -511,22 +511,21 @@ def critical_spans(runs, n):
     return merged
 
 
-def bridge(cmd, end, s):
+def bridge(cmd, end, s, vmax, amax):
     """The rows that join cmd's row end - 1 (the first row at rest when end is 0) to row s: the
     shortest cubic of BRIDGE x 1.5^k rows whose steps and second differences, the junctions'
-    included, are within the trajectory's own largest per joint (no faster and no harder than
-    LinuxCNC moved the joints there); None where that is no shorter than cmd[end:s] itself."""
-    vmax = np.abs(np.diff(cmd, axis=0)).max(0) + 1e-9
-    amax = np.abs(np.diff(cmd, 2, axis=0)).max(0) + 1e-9
+    included, are within vmax and amax per joint (window_chain: the trajectory's own largest, no
+    faster and no harder than LinuxCNC moved the joints there); None where that is no shorter
+    than cmd[end:s] itself."""
     vel = lambda i: cmd[i + 1] - cmd[i] if i + 1 < len(cmd) else cmd[i] - cmd[i - 1]
+    if end == 0:                    # from the first row at rest: the chain starts with that row
+        p1, v1, head, before = cmd[0], 0 * cmd[0], cmd[:1], cmd[:1]
+    else:
+        p1, v1, head, before = cmd[end - 1], vel(end - 2), cmd[:0], cmd[max(0, end - 2):end]
     n = BRIDGE
     while n < s - end:
-        if end == 0:                # from the first row at rest
-            br = np.vstack([cmd[:1], hermite(cmd[0], 0 * cmd[0], cmd[s], vel(s), n)])
-            seq = np.vstack([cmd[:1], br, cmd[s:s + 2]])
-        else:
-            br = hermite(cmd[end - 1], vel(end - 2), cmd[s], vel(s), n)
-            seq = np.vstack([cmd[max(0, end - 2):end], br, cmd[s:s + 2]])
+        br = np.vstack([head, hermite(p1, v1, cmd[s], vel(s), n)])
+        seq = np.vstack([before, br, cmd[s:s + 2]])
         if np.all(np.abs(np.diff(seq, axis=0)) <= vmax) and np.all(np.abs(np.diff(seq, 2, axis=0)) <= amax):
             return br
         n = int(np.ceil(1.5 * n))
@@ -537,10 +536,12 @@ def window_chain(cmd, spans):
     """(commands, scored): from cmd's first row, each span's rows with WINDOW_LEAD rows before,
     the gaps between them a bridge (or the trajectory itself where that is no longer); scored
     marks the spans' rows."""
+    vmax = np.abs(np.diff(cmd, axis=0)).max(0) + 1e-9
+    amax = np.abs(np.diff(cmd, 2, axis=0)).max(0) + 1e-9
     parts, scored, end = [], [], 0      # end: the row of cmd after the last one taken
     for a, b in spans:
         s = max(0, a - WINDOW_LEAD)
-        br = bridge(cmd, end, s) if s > end else None
+        br = bridge(cmd, end, s, vmax, amax) if s > end else None
         if br is None:
             s = end
         else:
@@ -574,11 +575,10 @@ def critical_windows(prob):
     if np.any(chain < lo - 1e-9) or np.any(chain > hi + 1e-9):   # a bridge beyond the trajectory's reach
         return "the search runs the whole trajectory (a smooth move between its windows leaves its range)"
     prob["windows"] = chain, scored
-    for nf in notches:              # the chain itself must not trip the model's gains (where the whole run did not)
-        job = trajectory_jobs(loop_cfg(g0, prob, nf), prob, window_settles(prob)[:1], windows=True)[0]
-        if not hg.batch([job], 1)[0].ok:
-            prob.pop("windows")
-            return "the search runs the whole trajectory (the model start trips on its critical windows' chain)"
+    jobs = [trajectory_jobs(loop_cfg(g0, prob, nf), prob, window_settles(prob)[:1], windows=True)[0] for nf in notches]
+    if not all(r.ok for r in hg.batch(jobs, prob.get("threads", 1))):   # the chain must not trip them either
+        prob.pop("windows")
+        return "the search runs the whole trajectory (the model start trips on its critical windows' chain)"
     return ("the search runs %d critical windows (%d scored rows around each joint's peak |f-error| and "
             "|output| with the model's gains%s, %d rows a run against %d; --whole-search runs the whole "
             "trajectory), then costs its best %d%s on the whole trajectory" % (
@@ -891,7 +891,7 @@ def search(a, prob):
     with DifferentialEvolutionSolver(cost, bounds, x0=x0, maxiter=a.maxiter, popsize=a.popsize,
                                      seed=a.seed, polish=False, tol=1e-3, updating="deferred",
                                      workers=batch_map, callback=progress, init="sobol",
-                                     integrality=switch if any(switch) else None) as sv:
+                                     integrality=switch) as sv:
         solver[0] = sv
         res = sv.solve()
     took = time.time() - t0
@@ -906,7 +906,7 @@ def search(a, prob):
            res.nfev / max(took, 1e-9), prob.get("periods_run", 0) - p0, sum(stopped),
            " (%s)" % where if where else ""))
     if "windows" not in prob and not any(switch):
-        return res.x, float(res.fun), float(res.fun), None
+        return res.x, float(res.fun), None
     return verify(prob, seen)
 
 
@@ -914,7 +914,7 @@ def verify(prob, seen):
     """The search's answer from seen ((cost, x) of every candidate: on the windows, a lower
     bound where it stopped early): its VERIFY cheapest without the notch and as many with it
     (where the search has the switch) costed on the whole trajectory with every run; (x of the
-    cheapest, its cost, the cheapest cost without the notch, with it; None where none ran)."""
+    cheapest, the cheapest cost without the notch, with it; None where none ran)."""
     ranked = sorted(set(seen))
     groups = [[(c, x) for c, x in ranked if (notch_of(x, prob) is not None) == on][:VERIFY] for on in (False, True)]
     top = groups[0] + groups[1]
@@ -926,8 +926,7 @@ def verify(prob, seen):
         "kept number %d" % (len(top), " (%d without the notch, %d with it)" % tuple(map(len, groups))
                             if prob.get("notch") else "", time.time() - t0, " ".join("%.5f" % c for c in whole),
                             " ".join("%.5f" % c for c, _x in top), k + 1))
-    return (np.array(top[k][1]), float(whole[k]), float(min(plain)) if plain else None,
-            float(min(notched)) if notched else None)
+    return np.array(top[k][1]), float(min(plain)) if plain else None, float(min(notched)) if notched else None
 
 
 # ------------------------------------------------------------------ main
@@ -1156,7 +1155,7 @@ def main(argv=None):
             prob["notch"] = hgm.notch_for(gains_from_x(X0, prob), prob["frf_hz"], prob["frf"], prob["mode_hz"])
             log("the search may put LinuxCNC's biquad notch f0 %.0f Hz Q %.1f (at the resonance, for the model "
                 "start's gains) in the loop: a sixth search variable (--no-notch leaves it out)" % prob["notch"])
-        x, _c, c_plain, c_notch = search(a, prob)
+        x, c_plain, c_notch = search(a, prob)
         sug, notch, without = gains_from_x(x, prob), None, None
         if notch_of(x, prob):
             without, _ = predict(sug, prob, settles)
