@@ -445,6 +445,11 @@ def margins_of(gains, prob, notch=None):
     return hgm.margins(gains, prob["frf_hz"], prob["frf"], notch, prob["mode_hz"])
 
 
+def margins_many(gains, prob, notches):
+    """margins_of each of a list of gain sets with notches[i], in one go (hg_margins.margins_many)."""
+    return hgm.margins_many(gains, prob["frf_hz"], prob["frf"], notches, prob["mode_hz"])
+
+
 def margin_penalty(m):
     """What the search adds for margins short of what tune asks: 0.05 mm per criterion
     missed plus the shortfall (hg_margins.verdict's criteria)."""
@@ -625,11 +630,10 @@ def costs(xs, prob, beat=None, whole=False):
     jobs = [[sj] + tj for _g, _n, sj, tj in cands]
     stages = [slice(None)] if beat is None else [slice(k, k + 1) for k in range(1 + len(settles))]
     done = [[] for _ in cands]                 # each candidate's results: step, then its runs
-    margin, out, live, ran = [None] * len(cands), [None] * len(cands), list(range(len(cands))), 0
+    out, live, ran = [None] * len(cands), list(range(len(cands))), 0
     stopped = prob.setdefault("stopped_at", [0] * (1 + len(settles)))   # on the margins, after the step, run 1, ...
+    margin = [margin_penalty(m) for m in margins_many([c[0] for c in cands], prob, [c[1] for c in cands])]
     if beat is not None:                       # the margins first: they need no run
-        for i in live:
-            margin[i] = margin_penalty(margins_of(cands[i][0], prob, cands[i][1]))
         live = stop_early(live, cands, done, prob, margin, beat, out, stopped, 0)
     for n, part in enumerate(stages):
         todo = [(i, j) for i in live for j in jobs[i][part]]

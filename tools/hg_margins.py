@@ -23,6 +23,8 @@ f; generalized Nyquist): the gain margin is the factor on every P, I, D
 that brings a locus through -1, the phase margin the phase lag that does,
 the modulus margin min |1 + lambda| (1 / the peak sensitivity).
 """
+import functools
+
 import numpy as np
 
 import hexaglide as hg
@@ -127,34 +129,49 @@ def notch_responses(notch, freqs, period_ns=1000000):
     out = np.ones((len(freqs), 6), complex)
     for j, nf in enumerate(notch or []):
         if nf is not None:
-            out[:, j] = hg.notch_response(nf[0], nf[1], freqs, period_ns)[0]
+            out[:, j] = _notch_column(float(nf[0]), float(nf[1]), np.asarray(freqs, float).tobytes(), period_ns)
     return out
 
 
+@functools.lru_cache(maxsize=32)
+def _notch_column(f0, q, freqs_bytes, period_ns):
+    """hg.notch_response's values at the frequencies of freqs_bytes (a float64 buffer), kept: the
+    search asks the same notch for every candidate."""
+    h = hg.notch_response(f0, q, np.frombuffer(freqs_bytes), period_ns)[0]
+    h.flags.writeable = False
+    return h
+
+
 def loci(gains, freqs, P, notch=None):
-    """(nf, 6): the eigenvalues of L(f) = diag(C N) P(f), each column one locus (tracked by
-    nearest neighbour from one frequency to the next: each previous eigenvalue in turn takes
-    the nearest one not yet taken, in |log| of their ratio)."""
-    cn = pid_response(gains, freqs) * notch_responses(notch, freqs)
-    evs = np.linalg.eigvals(cn[:, :, None] * P)      # every frequency's at once
-    dist = np.abs(np.log(evs[1:, None, :] / evs[:-1, :, None]))   # [i - 1][p][q]: ev_q(f_i) from ev_p(f_i-1)
-    near = np.argmin(dist, axis=2)
-    # where every previous eigenvalue's nearest is another one (and no NaN), taking them in turn
-    # gives each its nearest; elsewhere the turns are taken one by one
-    apart = (np.sort(near, axis=1) == np.arange(6)).all(1) & ~np.isnan(dist).any((1, 2))
-    order = [list(range(6))]                          # order[i][p]: locus p's eigenvalue at f_i
-    for i in range(1, len(freqs)):
-        prev = order[-1]
-        if apart[i - 1]:
-            order.append([int(near[i - 1, p]) for p in prev])
-            continue
-        d, o, left = dist[i - 1].tolist(), [], list(range(6))
-        for p in prev:
-            k = min(left, key=d[p].__getitem__)
-            o.append(k)
-            left.remove(k)
-        order.append(o)
-    return np.take_along_axis(evs, np.array(order), axis=1)
+    """(nf, 6): the eigenvalues of L(f) = diag(C N) P(f), each column one locus (loci_many)."""
+    return loci_many([gains], freqs, P, [notch])[0]
+
+
+def loci_many(gains, freqs, P, notches):
+    """(m, nf, 6): loci of each of m gain sets (with notches[i]) on one plant, tracked by nearest
+    neighbour from one frequency to the next: each previous eigenvalue in turn takes the nearest
+    one not yet taken, in |log| of their ratio (a distance that is NaN counts as infinite; where
+    every one left is infinite, the first left). Every frequency's and gain set's eigenvalues in
+    one call, the tracking for every gain set at once."""
+    cn = np.array([pid_response(g, freqs) * notch_responses(nf, freqs) for g, nf in zip(gains, notches)])
+    evs = np.linalg.eigvals(cn[:, :, :, None] * P)       # (m, nf, 6)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        dist = np.abs(np.log(evs[:, 1:, None, :] / evs[:, :-1, :, None]))   # [c][i - 1][p][q]
+    dist[np.isnan(dist)] = np.inf
+    m, nf = evs.shape[:2]
+    rows = np.arange(m)
+    order = np.empty((m, nf, 6), int)                    # order[c][i][p]: locus p's eigenvalue at f_i
+    order[:, 0] = np.arange(6)
+    for i in range(1, nf):
+        taken = np.zeros((m, 6), bool)
+        for p in range(6):
+            d = dist[rows, i - 1, order[:, i - 1, p]]    # (m, 6): from locus p's previous eigenvalue
+            d[taken] = np.inf
+            k = np.argmin(d, axis=1)
+            k = np.where(taken[rows, k], np.argmin(taken, axis=1), k)   # all left infinite: the first left
+            order[:, i, p] = k
+            taken[rows, k] = True
+    return np.take_along_axis(evs, order, axis=2)
 
 
 def margins_of_locus(freqs, l):
@@ -209,7 +226,16 @@ def margins(gains, freqs, P, notch=None, mode_hz=None):
     +inf if none), pm_deg, pm_hz (the smallest over the gain crossovers), modulus, modulus_hz
     (min |1 + lambda| over every locus and frequency), mode_hz and mode_modulus, mode_at_hz
     (the same from MODE_BAND * mode_hz up; None without a mode)."""
-    lam = loci(gains, freqs, P, notch)
+    return margins_many([gains], freqs, P, [notch], mode_hz)[0]
+
+
+def margins_many(gains, freqs, P, notches, mode_hz=None):
+    """margins of each of a list of gain sets (with notches[i]) on one plant (loci_many)."""
+    return [margins_of_loci(lam, freqs, mode_hz) for lam in loci_many(gains, freqs, P, notches)]
+
+
+def margins_of_loci(lam, freqs, mode_hz=None):
+    """margins' dict from the loci lam (nf, 6)."""
     gm, pm = (np.inf, None), (np.inf, None)
     for c in range(6):
         g, p = margins_of_locus(freqs, lam[:, c])
