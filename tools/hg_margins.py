@@ -153,6 +153,8 @@ def loci_many(gains, freqs, P, notches):
     one not yet taken, in |log| of their ratio (a distance that is NaN counts as infinite; where
     every one left is infinite, the first left). Every frequency's and gain set's eigenvalues in
     one call, the tracking for every gain set at once."""
+    if not len(gains):
+        return np.zeros((0, len(freqs), 6), complex)
     cn = np.array([pid_response(g, freqs) * notch_responses(nf, freqs) for g, nf in zip(gains, notches)])
     evs = np.linalg.eigvals(cn[:, :, :, None] * P)       # (m, nf, 6)
     with np.errstate(divide="ignore", invalid="ignore"):
