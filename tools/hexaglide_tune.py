@@ -516,12 +516,13 @@ def critical_spans(runs, n):
     return merged
 
 
-def bridge(cmd, end, s, vmax, amax):
+def bridge(cmd, end, s, vmax, amax, lo, hi):
     """The rows that join cmd's row end - 1 (the first row at rest when end is 0) to row s: the
     shortest cubic of BRIDGE x 1.5^k rows whose steps and second differences, the junctions'
     included, are within vmax and amax per joint (window_chain: the trajectory's own largest, no
-    faster and no harder than LinuxCNC moved the joints there); None where that is no shorter
-    than cmd[end:s] itself."""
+    faster and no harder than LinuxCNC moved the joints there) and whose rows stay within lo..hi
+    per joint (the trajectory's own range: a cubic that meets a window moving away from the
+    trajectory's extreme can bulge past it); None where that is no shorter than cmd[end:s] itself."""
     vel = lambda i: cmd[i + 1] - cmd[i] if i + 1 < len(cmd) else cmd[i] - cmd[i - 1]
     if end == 0:                    # from the first row at rest: the chain starts with that row
         p1, v1, head, before = cmd[0], 0 * cmd[0], cmd[:1], cmd[:1]
@@ -531,7 +532,8 @@ def bridge(cmd, end, s, vmax, amax):
     while n < s - end:
         br = np.vstack([head, hermite(p1, v1, cmd[s], vel(s), n)])
         seq = np.vstack([before, br, cmd[s:s + 2]])
-        if np.all(np.abs(np.diff(seq, axis=0)) <= vmax) and np.all(np.abs(np.diff(seq, 2, axis=0)) <= amax):
+        if np.all(np.abs(np.diff(seq, axis=0)) <= vmax) and np.all(np.abs(np.diff(seq, 2, axis=0)) <= amax) \
+                and np.all(br >= lo - 1e-9) and np.all(br <= hi + 1e-9):
             return br
         n = int(np.ceil(1.5 * n))
     return None
@@ -539,14 +541,15 @@ def bridge(cmd, end, s, vmax, amax):
 
 def window_chain(cmd, spans):
     """(commands, scored): from cmd's first row, each span's rows with WINDOW_LEAD rows before,
-    the gaps between them a bridge (or the trajectory itself where that is no longer); scored
+    the gaps between them a bridge (or the trajectory itself where no bridge is shorter); scored
     marks the spans' rows."""
     vmax = np.abs(np.diff(cmd, axis=0)).max(0) + 1e-9
     amax = np.abs(np.diff(cmd, 2, axis=0)).max(0) + 1e-9
+    lo, hi = cmd.min(0), cmd.max(0)
     parts, scored, end = [], [], 0      # end: the row of cmd after the last one taken
     for a, b in spans:
         s = max(0, a - WINDOW_LEAD)
-        br = bridge(cmd, end, s, vmax, amax) if s > end else None
+        br = bridge(cmd, end, s, vmax, amax, lo, hi) if s > end else None
         if br is None:
             s = end
         else:
@@ -576,9 +579,6 @@ def critical_windows(prob):
     if len(chain) > WINDOW_SHARE * len(cmd):
         return "the search runs the whole trajectory (its critical windows would be %d of its %d rows)" % (
             len(chain), len(cmd))
-    lo, hi = cmd.min(0), cmd.max(0)
-    if np.any(chain < lo - 1e-9) or np.any(chain > hi + 1e-9):   # a bridge beyond the trajectory's reach
-        return "the search runs the whole trajectory (a smooth move between its windows leaves its range)"
     prob["windows"] = chain, scored
     jobs = [trajectory_jobs(loop_cfg(g0, prob, nf), prob, window_settles(prob)[:1], windows=True)[0] for nf in notches]
     if not all(r.ok for r in hg.batch(jobs, prob.get("threads", 1))):   # the chain must not trip them either
