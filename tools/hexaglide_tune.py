@@ -645,8 +645,8 @@ def costs(xs, prob, beat=None, whole=False):
             break
         live = stop_early(live, cands, done, prob, margin, beat, out, stopped, n + 1)
     for i in live:
-        g, notch, sj, _tj = cands[i]
-        out[i] = penalized(g, done[i][0], sj, done[i][1:], prob, notch, margin[i])
+        sj = cands[i][2]
+        out[i] = penalized(done[i][0], sj, done[i][1:], prob, margin[i])
     prob["periods_run"] = prob.get("periods_run", 0) + ran
     return out
 
@@ -671,17 +671,17 @@ def lower_bound(cand, done, prob, margin):
     runs so far, at most the cost of a trip in a later run (1 - 1e-9 x every period); before
     the step run at most 0.5 too (an unsettled step costs 0.5 plus the runs' errors, without
     the margins)."""
-    g, notch, sj, tj = cand
+    _g, _notch, sj, tj = cand
     floor = 1.0 - 1e-9 * sum(j.cmd.shape[0] for j in tj)
     if not done:
         return min(floor, 0.5, margin)
-    return min(floor, penalized(g, done[0], sj, done[1:], prob, notch, margin))
+    return min(floor, penalized(done[0], sj, done[1:], prob, margin))
 
 
-def penalized(gains, step, sj, runs, prob, notch, margin=None):
-    """costs' cost of one candidate from its step run and trajectory runs, with the margin
-    penalty `margin` (None: computed here); with fewer runs than the search's or margin 0, a
-    lower bound of its cost (every term of run_cost is a maximum over the runs)."""
+def penalized(step, sj, runs, prob, margin):
+    """costs' cost of one candidate from its step run (of job sj) and trajectory runs, with its
+    margin penalty `margin`; with fewer runs than the search's or margin 0, a lower bound of its
+    cost (every term of run_cost is a maximum over the runs)."""
     c = run_cost(runs, prob)
     if c is None:
         return 1.0 + np.sum([r.periods for r in runs]) * -1e-9
@@ -689,8 +689,7 @@ def penalized(gains, step, sj, runs, prob, notch, margin=None):
     if not settled:
         return 0.5 + c
     c += 1.0 * max(0.0, over - prob["max_overshoot"])  # 0.01 mm per % over: hard in effect
-    c += margin_penalty(margins_of(gains, prob, notch)) if margin is None else margin
-    return c
+    return c + margin
 
 
 # ------------------------------------------------------------------ output
