@@ -521,8 +521,8 @@ def bridge(cmd, end, s, vmax, amax, lo, hi):
     shortest cubic of BRIDGE x 1.5^k rows whose steps and second differences, the junctions'
     included, are within vmax and amax per joint (window_chain: the trajectory's own largest, no
     faster and no harder than LinuxCNC moved the joints there) and whose rows stay within lo..hi
-    per joint (the trajectory's own range: a cubic that meets a window moving away from the
-    trajectory's extreme can bulge past it); None where that is no shorter than cmd[end:s] itself."""
+    per joint (the trajectory's own range, which a cubic between two windows can bulge past);
+    None where that is no shorter than cmd[end:s] itself."""
     vel = lambda i: cmd[i + 1] - cmd[i] if i + 1 < len(cmd) else cmd[i] - cmd[i - 1]
     if end == 0:                    # from the first row at rest: the chain starts with that row
         p1, v1, head, before = cmd[0], 0 * cmd[0], cmd[:1], cmd[:1]
@@ -539,13 +539,18 @@ def bridge(cmd, end, s, vmax, amax, lo, hi):
     return None
 
 
+def bridge_limits(cmd):
+    """(vmax, amax, lo, hi) per joint a bridge keeps to: the trajectory's largest step and second
+    difference (+1e-9 mm), its smallest and largest row."""
+    return (np.abs(np.diff(cmd, axis=0)).max(0) + 1e-9, np.abs(np.diff(cmd, 2, axis=0)).max(0) + 1e-9,
+            cmd.min(0), cmd.max(0))
+
+
 def window_chain(cmd, spans):
     """(commands, scored): from cmd's first row, each span's rows with WINDOW_LEAD rows before,
     the gaps between them a bridge (or the trajectory itself where no bridge is shorter); scored
     marks the spans' rows."""
-    vmax = np.abs(np.diff(cmd, axis=0)).max(0) + 1e-9
-    amax = np.abs(np.diff(cmd, 2, axis=0)).max(0) + 1e-9
-    lo, hi = cmd.min(0), cmd.max(0)
+    vmax, amax, lo, hi = bridge_limits(cmd)
     parts, scored, end = [], [], 0      # end: the row of cmd after the last one taken
     for a, b in spans:
         s = max(0, a - WINDOW_LEAD)
