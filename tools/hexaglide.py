@@ -181,6 +181,46 @@ for _i, _s in ((1, LoopConfig), (2, LoopSummary), (3, PidGains), (5, Data), (12,
                           % (_s.__name__, C.sizeof(_s), _sizeof(_i)))
 
 DEFAULT_INTEGRATOR = _sig("hg_integrator_default", C.c_int)()  # the board's scheme at load
+_integrator_name = _sig("hg_integrator_name", C.c_char_p, C.c_int)
+_integrator_from_name = _sig("hg_integrator_from_name", C.c_int, C.c_char_p)
+_scheme_tableau = _sig("hg_scheme_tableau", C.c_int, C.c_int, C.POINTER(C.POINTER(C.c_double)),
+                       C.POINTER(C.POINTER(C.c_double)))
+
+
+def integrator_name(integrator):
+    """The board's name of a time integration scheme ("improved-euler", "heun", "rk4"), else ValueError."""
+    name = _integrator_name(_whole("integrator", integrator))
+    if name is None:
+        raise ValueError("integrator %r: not one of the board's schemes (src/hg_scheme.h)" % (integrator,))
+    return name.decode()
+
+
+def _integrators():
+    """The board's scheme names by number: hg_integrator_name's up to the first it has none for."""
+    names = []
+    while _integrator_name(len(names)) is not None:
+        names.append(_integrator_name(len(names)).decode())
+    return names
+
+
+INTEGRATORS = _integrators()
+
+
+def integrator_id(name):
+    """The board's number of the scheme named name (hg_integrator_from_name), else ValueError."""
+    i = _integrator_from_name(name.encode())
+    if i < 0:
+        raise ValueError("integrator %r: not one of the board's schemes (%s)"
+                         % (name, ", ".join(INTEGRATORS)))
+    return i
+
+
+def integrator_stages(integrator):
+    """The accelerations one step of the scheme evaluates: its Runge-Kutta stages
+    (hg_scheme_tableau), one for improved Euler."""
+    integrator_name(integrator)          # a scheme of the board's, else ValueError
+    c, b = C.POINTER(C.c_double)(), C.POINTER(C.c_double)()
+    return max(1, _scheme_tableau(integrator, C.byref(c), C.byref(b)))
 PLANT_PARAMS_MAX = 256      # HG_PLANT_PARAMS_MAX
 PLANT_EXTRA_MAX = 16        # HG_PLANT_EXTRA_MAX
 PLANT_INJECT_MAX = 4        # HG_PLANT_INJECT_MAX
@@ -604,6 +644,18 @@ class Board:
                 self.inputs.dac_v[i] = v
         _board_step(self.buf, C.byref(self.inputs), C.byref(self.outputs), self.period_ns)
         return self.outputs
+
+
+def substeps_run(params=None, integrator=DEFAULT_INTEGRATOR, substeps=1, period_ns=1000000):
+    """The steps a servo period the board runs for the Hexaglide of params (None: the defaults)
+    with this scheme: the substeps asked, raised as its stability check needs
+    (src/hg_board.c), read after one period at HOME; 0 when no count up to the board's
+    maximum integrates those parameters (the board refuses them)."""
+    try:
+        out = Board(params=params, substeps=substeps, integrator=integrator, period_ns=period_ns).step()
+    except HexaglideError:
+        return 0
+    return 0 if out.fault or out.param_error else int(out.substeps_run)
 
 
 class RunResult:

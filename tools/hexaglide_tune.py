@@ -376,17 +376,51 @@ def board_params(prob):
     return prob["board_params"]
 
 
-def trajectory_jobs(cfg, prob, settles, keep=False, tool_error=True, windows=False):
+def search_params(prob):
+    """The board parameters the search runs on: prob["search_params"] (search_scheme's
+    choice) if set, else the machine's (board_params)."""
+    return prob.get("search_params") or board_params(prob)
+
+
+def search_scheme(params, own_bp, choice):
+    """(the board parameters the search runs on, None for the machine's own_bp; a sentence for
+    the log). The machine's board runs own_bp's scheme on at least its substeps, as many as its
+    stability check asks (hg.substeps_run). choice "board": the search runs that too. "auto":
+    it runs RK4 instead when RK4 evaluates fewer accelerations a period (stages x substeps), so
+    also on fewer steps: the same machine by a scheme of higher order on fewer, longer steps,
+    where the flexible trains' axial mode sets the substeps (at the defaults RK4 2 a period,
+    Heun 5). The search's best are then costed on the machine's own scheme (verify)."""
+    own = own_bp.integrator
+    n_own = hg.substeps_run(params, own, own_bp.substeps)
+    rk4 = hg.integrator_id("rk4")
+    n_rk4 = hg.substeps_run(params, rk4, own_bp.substeps) if choice == "auto" and rk4 != own else 0
+    evals = lambda i, n: hg.integrator_stages(i) * n
+    name = hg.integrator_name(own)
+    steps = lambda n: "%d step%s a servo period" % (n, "" if n == 1 else "s")
+    if n_rk4 and n_own and evals(rk4, n_rk4) < evals(own, n_own):
+        return params.board_params(own_bp.substeps, rk4), (
+            "the search runs rk4 on %s (%d accelerations) instead of the board's %s on %d (%d): the same "
+            "machine, cheaper; its best are costed on %s (--search-integrator board: %s throughout)"
+            % (steps(n_rk4), evals(rk4, n_rk4), name, n_own, evals(own, n_own), name, name))
+    if not n_own:                        # the board refuses these parameters: its message comes with the runs
+        return None, "the search runs the board's %s" % name
+    return None, "the search runs the board's %s on %s%s" % (
+        name, steps(n_own), " (rk4 would evaluate no fewer accelerations: %d on %s)"
+        % (evals(rk4, n_rk4), steps(n_rk4)) if n_rk4 else "")
+
+
+def trajectory_jobs(cfg, prob, settles, keep=False, tool_error=True, windows=False, bp=None):
     """The batch jobs of trajectory_runs: the trajectory after each settle and approach
     (tool_error False: without the tool-path error, as the search needs only f-errors;
-    windows: prob["windows"]'s chain of critical windows instead of the whole trajectory)."""
+    windows: prob["windows"]'s chain of critical windows instead of the whole trajectory;
+    bp: the board parameters, None for the machine's)."""
     jobs = []
     for i, settle in enumerate(settles):
         key = ("windows", settle, i) if windows else (settle, i)
         if key not in prob.setdefault("seqs", {}):
             prob["seqs"][key] = lead_in(prob["windows"][0] if windows else prob["cmd"], settle, approach_of(i))
         seq, s = prob["seqs"][key]
-        jobs.append(hg.Job(cfg, board_params(prob), seq, start=s, keep=keep, tool_error=tool_error))
+        jobs.append(hg.Job(cfg, bp or board_params(prob), seq, start=s, keep=keep, tool_error=tool_error))
     return jobs
 
 
@@ -404,14 +438,15 @@ def trajectory_runs(gains, prob, settles, keep=False, notch=None):
     return res
 
 
-def step_job(cfg, prob, joint=0, step_mm=0.05, n=600, tool_error=True):
-    """The batch job of step_response: SETTLE periods at HOME, then a command step."""
+def step_job(cfg, prob, joint=0, step_mm=0.05, n=600, tool_error=True, bp=None):
+    """The batch job of step_response: SETTLE periods at HOME, then a command step (bp: the
+    board parameters, None for the machine's)."""
     key = ("step", joint, step_mm, n)
     if key not in prob.setdefault("seqs", {}):
         cmd = np.zeros((SETTLE + n, 6))
         cmd[SETTLE:, joint] = step_mm
         prob["seqs"][key] = cmd
-    return hg.Job(cfg, board_params(prob), prob["seqs"][key], keep=True, tool_error=tool_error)
+    return hg.Job(cfg, bp or board_params(prob), prob["seqs"][key], keep=True, tool_error=tool_error)
 
 
 def step_feedback(job, r, joint=0):
@@ -585,7 +620,8 @@ def critical_windows(prob):
         return "the search runs the whole trajectory (its critical windows would be %d of its %d rows)" % (
             len(chain), len(cmd))
     prob["windows"] = chain, scored
-    jobs = [trajectory_jobs(loop_cfg(g0, prob, nf), prob, window_settles(prob)[:1], windows=True)[0] for nf in notches]
+    jobs = [trajectory_jobs(loop_cfg(g0, prob, nf), prob, window_settles(prob)[:1], windows=True,
+                            bp=search_params(prob))[0] for nf in notches]
     if not all(r.ok for r in hg.batch(jobs, prob.get("threads", 1))):   # the chain must not trip them either
         prob.pop("windows")
         return "the search runs the whole trajectory (the model start trips on its critical windows' chain)"
@@ -623,15 +659,17 @@ def costs(xs, prob, beat=None, whole=False):
     above beat[i] after a stage (the margins, then the step's settling and overshoot, then the
     runs' errors too) runs no further and gets that lower bound instead of its cost: it loses either way, so
     the search's choices, and its answer, are the full costs'. With prob["windows"] (and not
-    whole) the runs are of the window chain, their costs of its scored rows."""
+    whole) the runs are of the window chain, their costs of its scored rows. The search's runs
+    are on search_params, whole's on the machine's board (board_params)."""
     windows = "windows" in prob and not whole
     settles = window_settles(prob) if windows else prob["search_settles"]
+    bp = board_params(prob) if whole else search_params(prob)
     cands = []
     for x in xs:
         gains, notch = gains_from_x(x, prob), notch_of(x, prob)
         cfg = loop_cfg(gains, prob, notch)
-        cands.append((gains, notch, step_job(cfg, prob, tool_error=False),
-                      trajectory_jobs(cfg, prob, settles, keep=windows, tool_error=False, windows=windows)))
+        cands.append((gains, notch, step_job(cfg, prob, tool_error=False, bp=bp),
+                      trajectory_jobs(cfg, prob, settles, keep=windows, tool_error=False, windows=windows, bp=bp)))
     jobs = [[sj] + tj for _g, _n, sj, tj in cands]
     stages = [slice(None)] if beat is None else [slice(k, k + 1) for k in range(1 + len(settles))]
     done = [[] for _ in cands]                 # each candidate's results: step, then its runs
@@ -913,7 +951,7 @@ def search(a, prob):
            if any(switch) else "", took, prob["threads"], "s" if prob["threads"] > 1 else "",
            res.nfev / max(took, 1e-9), prob.get("periods_run", 0) - p0, sum(stopped),
            " (%s)" % where if where else ""))
-    if "windows" not in prob and not any(switch):
+    if "windows" not in prob and not any(switch) and "search_params" not in prob:
         return res.x, float(res.fun), None
     return verify(prob, seen)
 
@@ -1030,6 +1068,10 @@ def main(argv=None):
     ap.add_argument("--whole-search", action="store_true",
                     help="run every candidate of the search on the whole trajectory, not on its critical "
                          "windows (docs/tuning.md; slower on a long trajectory, the same on a short one)")
+    ap.add_argument("--search-integrator", choices=["auto", "board"], default="auto",
+                    help="the scheme the search's runs integrate the machine with: auto (default) RK4 where it "
+                    "needs fewer accelerations a servo period than the board's scheme (the flexible trains), "
+                    "its best then costed on the board's; board: the board's throughout (docs/tuning.md)")
     ap.add_argument("--no-notch", action="store_true",
                     help="do not try a biquad notch at the drive trains' resonance")
     ap.add_argument("--seed", type=hg_csv.integer, default=1, help="the search's random seed, 0..2^32-1; default 1")
@@ -1163,6 +1205,10 @@ def main(argv=None):
             prob["notch"] = hgm.notch_for(gains_from_x(X0, prob), prob["frf_hz"], prob["frf"], prob["mode_hz"])
             log("the search may put LinuxCNC's biquad notch f0 %.0f Hz Q %.1f (at the resonance, for the model "
                 "start's gains) in the loop: a sixth search variable (--no-notch leaves it out)" % prob["notch"])
+        search_bp, line = search_scheme(params, board_params(prob), a.search_integrator)
+        if search_bp is not None:
+            prob["search_params"] = search_bp
+        log(line)
         x, c_plain, c_notch = search(a, prob)
         sug, notch, without = gains_from_x(x, prob), None, None
         if notch_of(x, prob):
