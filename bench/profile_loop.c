@@ -5,15 +5,18 @@
  * 2000) of a cosine move of every joint out 20..30 mm and back, from rest
  * at HOME, optionally after SETTLE periods at rest (tune's runs settle at
  * their first command), with gains about tune's (bench_loop.h: bench_batch's). TRAIN: flexible (the
- * default drive trains, the tool-path error skipped: tune's search),
- * flexible_tool (with it: replay's what-ifs, soak) or rigid (k_axial 0,
- * skipped). callgrind --toggle-collect=hg_loop_run_traced counts only the
- * runs; prints the runs' codes and a sum of their peaks.
- * Usage: profile_loop flexible|flexible_tool|rigid [PERIODS [SETTLE]] */
+ * default drive trains and Heun, the tool-path error skipped: tune's
+ * verification), flexible_rk4 (the same on RK4: tune's search,
+ * docs/tuning.md), flexible_tool (Heun with it: replay's what-ifs, soak)
+ * or rigid (k_axial 0, skipped). callgrind
+ * --toggle-collect=hg_loop_run_traced counts only the runs; prints the
+ * runs' codes and a sum of their peaks.
+ * Usage: profile_loop flexible|flexible_rk4|flexible_tool|rigid [PERIODS [SETTLE]] */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "hg_batch.h"
+#include "hg_scheme.h"
 #include "bench_loop.h"
 
 #define JOBS 2
@@ -30,10 +33,11 @@ int main(int argc, char **argv)
     long n = argc > 2 ? atol(argv[2]) : 2000, settle = argc > 3 ? atol(argv[3]) : 0;
     int j, tool = argc > 1 && strcmp(argv[1], "flexible_tool") == 0;
     int rigid = argc > 1 && strcmp(argv[1], "rigid") == 0;
+    int rk4 = argc > 1 && strcmp(argv[1], "flexible_rk4") == 0;
     double sum = 0.0;
-    if (argc < 2 || !(tool || rigid || strcmp(argv[1], "flexible") == 0) || n < 1 || settle < 0 ||
+    if (argc < 2 || !(tool || rigid || rk4 || strcmp(argv[1], "flexible") == 0) || n < 1 || settle < 0 ||
         n + settle > PERIODS_MAX) {
-        fprintf(stderr, "usage: profile_loop flexible|flexible_tool|rigid [PERIODS [SETTLE]] "
+        fprintf(stderr, "usage: profile_loop flexible|flexible_rk4|flexible_tool|rigid [PERIODS [SETTLE]] "
                         "(PERIODS + SETTLE <= %ld)\n", PERIODS_MAX);
         return 2;
     }
@@ -41,6 +45,8 @@ int main(int argc, char **argv)
     hg_board_params_default(0, pl->default_variant, &bp);
     if (rigid)
         bp.plant.v[hg_plant_param_find(pl, pl->default_variant, "k_axial")] = 0.0;
+    if (rk4)
+        bp.integrator = HG_INTEGRATOR_RK4;
     for (j = 0; j < JOBS; j++) {
         bench_loop_gains(&cfg[j], j);
         memset(&jobs[j], 0, sizeof jobs[j]);

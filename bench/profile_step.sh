@@ -34,7 +34,8 @@ done
 [ $tree = today ] || exit 0
 # the offline closed loop (hg_loop in hg_batch_run: pids and board), per period (bench/profile_loop.c)
 make -s build/bench/profile_loop || exit 1
-for w in "flexible 2000 0" "flexible_tool 2000 0" "rigid 2000 0" "flexible 2000 1500"; do
+for w in "flexible 2000 0" "flexible_tool 2000 0" "rigid 2000 0" "flexible 2000 1500" "flexible_rk4 2000 0" \
+    "flexible_rk4 2000 1500"; do
     set -- $w
     out=build/bench/callgrind.loop.$1.$3
     echo "== today: loop $1, 2 runs of $2 periods after $3 at rest (callgrind --toggle-collect=hg_loop_run_traced)"
