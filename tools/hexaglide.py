@@ -221,6 +221,8 @@ def integrator_stages(integrator):
     integrator_name(integrator)          # a scheme of the board's, else ValueError
     c, b = C.POINTER(C.c_double)(), C.POINTER(C.c_double)()
     return max(1, _scheme_tableau(integrator, C.byref(c), C.byref(b)))
+
+
 PLANT_PARAMS_MAX = 256      # HG_PLANT_PARAMS_MAX
 PLANT_EXTRA_MAX = 16        # HG_PLANT_EXTRA_MAX
 PLANT_INJECT_MAX = 4        # HG_PLANT_INJECT_MAX
