@@ -1032,9 +1032,10 @@ def batch(jobs, threads=0):
     traces = []
     for i, j in enumerate(jobs):
         n = j.cmd.shape[0]
-        fe = np.zeros((n, j.joints)) if j.keep else None
-        out = np.zeros((n, j.joints)) if j.keep else None
-        load = np.zeros((n, j.joints)) if j.load else None
+        # (hg_loop_run_traced writes every period it runs; the rows past them are cut below)
+        fe = np.empty((n, j.joints)) if j.keep else None
+        out = np.empty((n, j.joints)) if j.keep else None
+        load = np.empty((n, j.joints)) if j.load else None
         traces.append((fe, out, load))
         cj[i].cfg = C.pointer(j.cfg)
         cj[i].params = C.pointer(j.board_params)

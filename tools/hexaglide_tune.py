@@ -482,7 +482,7 @@ def margins_of(gains, prob, notch=None):
 
 def margins_many(gains, prob, notches):
     """margins_of each of a list of gain sets with notches[i], in one go (hg_margins.margins_many)."""
-    return hgm.margins_many(gains, prob["frf_hz"], prob["frf"], notches, prob["mode_hz"])
+    return hgm.margins_many(gains, prob["frf_hz"], prob["frf"], notches, prob["mode_hz"], prob.get("threads", 1))
 
 
 def margin_penalty(m):

@@ -24,6 +24,7 @@ that brings a locus through -1, the phase margin the phase lag that does,
 the modulus margin min |1 + lambda| (1 / the peak sensitivity).
 """
 import functools
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -147,16 +148,27 @@ def loci(gains, freqs, P, notch=None):
     return loci_many([gains], freqs, P, [notch])[0]
 
 
-def loci_many(gains, freqs, P, notches):
+def eigvals_threads(M, threads=1):
+    """np.linalg.eigvals of the stack of matrices M (m, ..., n, n), its first axis split over
+    `threads` Python threads: numpy's LAPACK loop releases the GIL, and each matrix's
+    eigenvalues are the same bits however the stack is split."""
+    parts = np.array_split(M, max(1, min(int(threads), len(M))))
+    if len(parts) == 1:
+        return np.linalg.eigvals(M)
+    with ThreadPoolExecutor(len(parts)) as ex:
+        return np.concatenate(list(ex.map(np.linalg.eigvals, parts)))
+
+
+def loci_many(gains, freqs, P, notches, threads=1):
     """(m, nf, 6): loci of each of m gain sets (with notches[i]) on one plant, tracked by nearest
     neighbour from one frequency to the next: each previous eigenvalue in turn takes the nearest
     one not yet taken, in |log| of their ratio (a distance that is NaN counts as infinite; where
     every one left is infinite, the first left). Every frequency's and gain set's eigenvalues in
-    one call, the tracking for every gain set at once."""
+    one go (eigvals_threads over `threads`), the tracking for every gain set at once."""
     if not len(gains):
         return np.zeros((0, len(freqs), 6), complex)
     cn = np.array([pid_response(g, freqs) * notch_responses(nf, freqs) for g, nf in zip(gains, notches)])
-    evs = np.linalg.eigvals(cn[:, :, :, None] * P)       # (m, nf, 6)
+    evs = eigvals_threads(cn[:, :, :, None] * P, threads)   # (m, nf, 6)
     with np.errstate(divide="ignore", invalid="ignore"):
         dist = np.abs(np.log(evs[:, 1:, None, :] / evs[:, :-1, :, None]))   # [c][i - 1][p][q]
     dist[np.isnan(dist)] = np.inf
@@ -231,9 +243,9 @@ def margins(gains, freqs, P, notch=None, mode_hz=None):
     return margins_many([gains], freqs, P, [notch], mode_hz)[0]
 
 
-def margins_many(gains, freqs, P, notches, mode_hz=None):
+def margins_many(gains, freqs, P, notches, mode_hz=None, threads=1):
     """margins of each of a list of gain sets (with notches[i]) on one plant (loci_many)."""
-    return [margins_of_loci(lam, freqs, mode_hz) for lam in loci_many(gains, freqs, P, notches)]
+    return [margins_of_loci(lam, freqs, mode_hz) for lam in loci_many(gains, freqs, P, notches, threads)]
 
 
 def margins_of_loci(lam, freqs, mode_hz=None):
