@@ -40,6 +40,7 @@ static long take(batch *b)
 /* One job, from HOME at rest, on the worker's loop. */
 static void run_job(hg_loop *L, const hg_batch_job *j, hg_batch_result *r)
 {
+    r->stop_bound = -1.0;
     r->rc = hg_loop_init(L, j->cfg, j->params);
     if (r->rc) {
         r->sum = (hg_loop_summary){0};
@@ -47,7 +48,7 @@ static void run_job(hg_loop *L, const hg_batch_job *j, hg_batch_result *r)
         return;
     }
     L->board.skip_tool_error = j->skip_tool_error;
-    r->rc = hg_loop_run_traced(L, j->cmd_mm, j->n, j->from, &j->trace, &r->sum);
+    r->rc = hg_loop_run_stop(L, j->cmd_mm, j->n, j->from, &j->trace, j->stop, &r->sum, &r->stop_bound);
 }
 
 /* A worker: jobs until none is left. */

@@ -24,12 +24,14 @@ typedef struct {
     int skip_tool_error;               /* 1: the run skips the tool-path error (the plant's forward
                                           solve; a search that reads only f-errors): the summary's
                                           peak_tool_error_mm is HG_TOOL_ERROR_SKIPPED, the rest the same bits */
+    const hg_loop_stop *stop;          /* the run's early stop (hg_loop_run_stop), 0: none */
 } hg_batch_job;
 
 /* One run's outcome. */
 typedef struct {
     hg_loop_summary sum;               /* as hg_loop_run's */
     int rc;                            /* hg_loop_init's code, or the run's (0 ok; a fault) */
+    double stop_bound;                 /* the job's stop: the bound that stopped the run, -1 if none did */
 } hg_batch_result;
 
 /* The online processors (at least 1): the default thread count. */

@@ -220,15 +220,39 @@ static void trace_store(const hg_loop_trace *tr, const hg_loop_sample *s, long i
     }
 }
 
-int hg_loop_run_traced(hg_loop *L, const double *cmd_mm, long n, long from, const hg_loop_trace *tr,
-                       hg_loop_summary *sum)
+/* The periods of a run that stop scores: its mask's nonzero entries, or those from `from` on. */
+static long scored_periods(const hg_loop_stop *stop, long n, long from)
+{
+    long i, c = 0;
+    if (!stop->scored)
+        return n > from ? n - (from > 0 ? from : 0) : 0;
+    for (i = 0; i < n; i++)
+        c += stop->scored[i] != 0;
+    return c;
+}
+
+/* stop's bound after a scored period (hg_loop_stop): peak, sq and volts over the scored periods so far. */
+static double stop_bound_now(const hg_loop_stop *stop, double peak, double sq_max, double volts, long n_scored)
+{
+    double rms = sqrt(sq_max / (double)n_scored), over;
+    peak = peak > stop->peak0 ? peak : stop->peak0;
+    rms = rms > stop->rms0 ? rms : stop->rms0;
+    volts = volts > stop->volts0 ? volts : stop->volts0;
+    over = volts - stop->volts_free;
+    return peak + stop->w_rms * rms + stop->w_volts * (over > 0.0 ? over : 0.0);
+}
+
+int hg_loop_run_stop(hg_loop *L, const double *cmd_mm, long n, long from, const hg_loop_trace *tr,
+                     const hg_loop_stop *stop, hg_loop_summary *sum, double *stop_bound)
 {
     hg_loop_sample s = {0};   /* zeroed: fields past the joints stay defined */
-    double sq[HG_LOOP_JOINTS] = {0};
-    long i, counted = 0;
+    double sq[HG_LOOP_JOINTS] = {0}, ssq[HG_LOOP_JOINTS] = {0}, speak = 0.0, svolts = 0.0;
+    long i, counted = 0, n_scored = stop ? scored_periods(stop, n, from) : 0;
     int k, rc = 0, J = L->joints;
     *sum = (hg_loop_summary){0};
     sum->tripped_at = -1;
+    if (stop_bound)
+        *stop_bound = -1.0;
     for (i = 0; i < n; i++) {
         rc = hg_loop_step(L, cmd_mm + J * i, &s);
         if (rc)
@@ -256,11 +280,34 @@ int hg_loop_run_traced(hg_loop *L, const double *cmd_mm, long n, long from, cons
             i++;
             break;
         }
+        if (stop && (stop->scored ? stop->scored[i] != 0 : i >= from)) {
+            double sq_max = 0.0, b;
+            for (k = 0; k < J; k++) {
+                double fe = fabs(s.ferror_mm[k]), v = fabs(stop->volts_dac ? s.dac_value_v[k] : s.output_v[k]);
+                speak = fe > speak ? fe : speak;
+                svolts = v > svolts ? v : svolts;
+                ssq[k] += fe * fe;
+                sq_max = ssq[k] > sq_max ? ssq[k] : sq_max;
+            }
+            b = stop_bound_now(stop, speak, sq_max, svolts, n_scored);
+            if (b > stop->above) {        /* (a NaN bound never stops: the run's own checks see it) */
+                if (stop_bound)
+                    *stop_bound = b;
+                i++;
+                break;
+            }
+        }
     }
     sum->periods = i;
     for (k = 0; k < J; k++)
         sum->rms_ferror_mm[k] = counted ? sqrt(sq[k] / counted) : 0.0;
     return rc;
+}
+
+int hg_loop_run_traced(hg_loop *L, const double *cmd_mm, long n, long from, const hg_loop_trace *tr,
+                       hg_loop_summary *sum)
+{
+    return hg_loop_run_stop(L, cmd_mm, n, from, tr, 0, sum, 0);
 }
 
 unsigned long hg_loop_sizeof(int which)

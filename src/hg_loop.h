@@ -149,6 +149,30 @@ int hg_loop_step_io(hg_loop *L, const double *cmd_mm, const int *enable,
 int hg_loop_run(hg_loop *L, const double *cmd_mm, long n, long from, double *ferror_mm,
                 double *output_v, hg_loop_summary *sum);
 
+/* A run's early stop, for a search that drops a candidate once it cannot
+ * win (hexaglide tune): after each scored period, the lower bound
+ *   max(peak0, max_k |f-error_k|) + w_rms max(rms0, max_k sqrt(S_k / N))
+ *     + w_volts max(0, max(volts0, max_k |v_k|) - volts_free)
+ * of the same sum over all the run's scored periods (S_k: f-error_k^2 summed
+ * over the scored periods so far, N: the run's scored periods, v_k:
+ * pid.N.output, or the DAC value with volts_dac; peak0, rms0, volts0: the
+ * terms' values from earlier runs, 0 for none). Every term only grows as
+ * periods come, so the whole run's sum is at least the bound at any period:
+ * the run stops after the first one at which the bound exceeds `above`. */
+typedef struct {
+    const unsigned char *scored;       /* per period, nonzero: scored; 0: every period from `from` on */
+    double above;                      /* stop once the bound exceeds this */
+    double w_rms, w_volts, volts_free;
+    double peak0, rms0, volts0;        /* floors of the three terms */
+    int volts_dac;                     /* 1: v_k is the DAC value (the summary's), 0: pid.N.output */
+} hg_loop_stop;
+
+/* hg_loop_run_traced with an early stop (stop may be 0: none): the bound
+ * that passed stop->above in *stop_bound, -1 when the run was not stopped
+ * (then the same run and bits as hg_loop_run_traced's). */
+int hg_loop_run_stop(hg_loop *L, const double *cmd_mm, long n, long from, const hg_loop_trace *tr,
+                     const hg_loop_stop *stop, hg_loop_summary *sum, double *stop_bound);
+
 /* hg_loop_run with the traces tr holds (tr may be 0). */
 int hg_loop_run_traced(hg_loop *L, const double *cmd_mm, long n, long from, const hg_loop_trace *tr,
                        hg_loop_summary *sum);

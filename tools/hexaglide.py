@@ -662,10 +662,12 @@ def substeps_run(params=None, integrator=DEFAULT_INTEGRATOR, substeps=1, period_
 
 class RunResult:
     """What Loop.run and batch return: per-period f-errors, pid outputs and load (carriage)
-    positions (n, 6) when kept, and the summary."""
+    positions (n, 6) when kept, and the summary; stop_bound: the bound that stopped a batch
+    job's run (its Stop), None if none did (then the run is whole or ended by a trip or fault)."""
 
-    def __init__(self, ferror, output, summ, rc, load=None, joints=JOINTS):
+    def __init__(self, ferror, output, summ, rc, load=None, joints=JOINTS, stop_bound=None):
         self.ferror_mm, self.output_v, self.load_mm, self.rc = ferror, output, load, rc
+        self.stop_bound = stop_bound
         self.peak_ferror_mm = np.array(summ.peak_ferror_mm[:joints])
         self.peak_output_v = np.array(summ.peak_output_v[:joints])
         self.rms_ferror_mm = np.array(summ.rms_ferror_mm[:joints])
@@ -977,13 +979,42 @@ class _Trace(C.Structure):
     _fields_ = [("ferror_mm", _P), ("output_v", _P), ("load_mm", _P)]
 
 
+class _LoopStop(C.Structure):
+    _fields_ = [("scored", C.POINTER(C.c_ubyte)), ("above", C.c_double), ("w_rms", C.c_double),
+                ("w_volts", C.c_double), ("volts_free", C.c_double), ("peak0", C.c_double),
+                ("rms0", C.c_double), ("volts0", C.c_double), ("volts_dac", C.c_int)]
+
+
 class _BatchJob(C.Structure):
     _fields_ = [("cfg", C.POINTER(LoopConfig)), ("params", C.POINTER(BoardParams)), ("cmd_mm", _P),
-                ("n", C.c_long), ("from_", C.c_long), ("trace", _Trace), ("skip_tool_error", C.c_int)]
+                ("n", C.c_long), ("from_", C.c_long), ("trace", _Trace), ("skip_tool_error", C.c_int),
+                ("stop", C.POINTER(_LoopStop))]
 
 
 class _BatchResult(C.Structure):
-    _fields_ = [("sum", LoopSummary), ("rc", C.c_int)]
+    _fields_ = [("sum", LoopSummary), ("rc", C.c_int), ("stop_bound", C.c_double)]
+
+
+class Stop:
+    """A batch Job's early stop (src/hg_loop.h's hg_loop_stop): the run stops after the first
+    scored period at which the lower bound max(peak0, peak |f-error|) + w_rms max(rms0, the
+    RMS's bound so far) + w_volts max(0, max(volts0, peak |volts|) - volts_free) of the same sum
+    over all its scored periods exceeds `above`; RunResult.stop_bound is that bound (None if
+    the run was not stopped). scored: a boolean per period (None: every period from the job's
+    start); volts: pid.N.output, or the DAC value (the summary's peak_output_v) with volts_dac."""
+
+    def __init__(self, above, scored=None, w_rms=0.0, w_volts=0.0, volts_free=0.0,
+                 peak0=0.0, rms0=0.0, volts0=0.0, volts_dac=False):
+        vals = dict(above=above, w_rms=w_rms, w_volts=w_volts, volts_free=volts_free, peak0=peak0,
+                    rms0=rms0, volts0=volts0)
+        for k, v in vals.items():
+            if not np.isfinite(v) or (k != "above" and v < 0):
+                raise ValueError("Stop: %s = %r: must be finite%s" % (k, v, "" if k == "above" else " and >= 0"))
+        self.scored = None if scored is None else np.ascontiguousarray(scored, dtype=np.uint8)
+        self.c = _LoopStop(None, *[float(vals[k]) for k in ("above", "w_rms", "w_volts", "volts_free",
+                                                             "peak0", "rms0", "volts0")], int(bool(volts_dac)))
+        if self.scored is not None:
+            self.c.scored = self.scored.ctypes.data_as(C.POINTER(C.c_ubyte))
 
 
 _batch_sizeof = _sig("hg_batch_sizeof", C.c_ulong, C.c_int)
@@ -1002,9 +1033,11 @@ class Job:
     peak_tool_error_mm is then -2 (src/hg_board.h's HG_TOOL_ERROR_SKIPPED), every other
     result the same bits. Jobs may share cfg, board_params and cmd."""
 
-    def __init__(self, cfg, board_params, cmd, start=0, keep=False, load=False, joints=None, tool_error=True):
+    def __init__(self, cfg, board_params, cmd, start=0, keep=False, load=False, joints=None, tool_error=True,
+                 stop=None):
         """joints: the plant's channels (cfg's plant: PlantParams.channels), the columns of cmd;
-        None: cfg's. cfg is checked as loop_config checks it (ValueError naming the field)."""
+        None: cfg's. cfg is checked as loop_config checks it (ValueError naming the field).
+        stop: a Stop (None: the run goes to its end, a trip or a fault)."""
         if not isinstance(cfg, LoopConfig):
             raise TypeError("cfg must be a LoopConfig (hexaglide.loop_config), got %r" % (cfg,))
         if not isinstance(board_params, BoardParams):
@@ -1017,6 +1050,13 @@ class Job:
         self.cfg, self.board_params, self.cmd = cfg, board_params, _commands(cmd, n)
         self.joints = n
         self.start, self.keep, self.load, self.tool_error = _whole("start", start), keep, load, tool_error
+        if stop is not None:
+            if not isinstance(stop, Stop):
+                raise TypeError("stop must be a hexaglide.Stop, got %r" % (stop,))
+            if stop.scored is not None and stop.scored.shape != (self.cmd.shape[0],):
+                raise ValueError("stop.scored: one entry per command row (%d), got shape %s"
+                                 % (self.cmd.shape[0], stop.scored.shape))
+        self.stop = stop
 
 
 def cores():
@@ -1042,6 +1082,7 @@ def batch(jobs, threads=0):
         cj[i].cmd_mm = j.cmd.ctypes.data_as(_P)
         cj[i].n, cj[i].from_ = n, j.start
         cj[i].skip_tool_error = 0 if j.tool_error else 1
+        cj[i].stop = C.pointer(j.stop.c) if j.stop is not None else None
         cj[i].trace = _Trace(*[a.ctypes.data_as(_P) if a is not None else None for a in (fe, out, load)])
     res = (_BatchResult * max(1, len(jobs)))()
     rc = _batch_run(cj, len(jobs), int(threads), res)
@@ -1051,7 +1092,8 @@ def batch(jobs, threads=0):
     for j, (fe, out, load), r in zip(jobs, traces, res):
         m = r.sum.periods
         cut = (lambda a: a[:m] if a is not None else None)
-        out_list.append(RunResult(cut(fe), cut(out), r.sum, r.rc, cut(load), j.joints))
+        out_list.append(RunResult(cut(fe), cut(out), r.sum, r.rc, cut(load), j.joints,
+                                  r.stop_bound if r.stop_bound >= 0 else None))
     return out_list
 
 

@@ -3,8 +3,10 @@
  * for bit, with 1, 2 and 5 threads (rigid and flexible trains, three gain
  * sets, a notch on two joints, a trip, a job whose config is refused);
  * skipping the tool-path error changes nothing else; the refused
- * arguments; and the notch in the loop is biquad.N between pid.N.output
- * and the DAC (its DAC values are a biquad fed the pid outputs). */
+ * arguments; the notch in the loop is biquad.N between pid.N.output
+ * and the DAC (its DAC values are a biquad fed the pid outputs); and a
+ * job's early stop ends the run where its bound, recomputed from the whole
+ * run's traces, first passes the limit, with the same bits before. */
 #include <string.h>
 #include "hg_batch.h"
 #include "hg_errors.h"
@@ -15,6 +17,53 @@
 #define JOBS 8
 
 static double cmd[N * 6];
+
+/* hg_loop_stop's bound after period i of a whole run's traces fe, out
+ * (J = 6), from the definition: running peak, sums of squares over the
+ * scored periods (mask, or from `from` on), over all nsc of them. */
+static double bound_at(const hg_loop_stop *st, const double *fe, const double *out, long i, long from)
+{
+    double peak = st->peak0, sq[6] = {0}, volts = st->volts0, rms = 0.0;
+    long r, nsc = 0;
+    int k;
+    for (r = 0; r < N; r++)
+        nsc += st->scored ? st->scored[r] != 0 : r >= from;
+    for (r = 0; r <= i; r++) {
+        if (st->scored ? !st->scored[r] : r < from)
+            continue;
+        for (k = 0; k < 6; k++) {
+            peak = fmax(peak, fabs(fe[6 * r + k]));
+            volts = fmax(volts, fabs(out[6 * r + k]));
+            sq[k] += fe[6 * r + k] * fe[6 * r + k];
+        }
+    }
+    for (k = 0; k < 6; k++)
+        rms = fmax(rms, sqrt(sq[k] / nsc));
+    return peak + st->w_rms * fmax(rms, st->rms0) + st->w_volts * fmax(0.0, volts - st->volts_free);
+}
+
+/* The early stop of job j (whole run: its traces fe, out): stopped where
+ * bound_at first passes st->above, that bound reported, the traces the
+ * same up to there; 1 when all holds (what failed printed). */
+static int stop_check(const char *what, hg_batch_job j, hg_loop_stop st, const double *fe, const double *out)
+{
+    static double fe2[N * 6], out2[N * 6];
+    hg_batch_result r;
+    long i, want = -1;
+    double b = -1.0;
+    for (i = 0; i < N && want < 0; i++)
+        if ((st.scored ? st.scored[i] != 0 : i >= j.from) && (b = bound_at(&st, fe, out, i, j.from)) > st.above)
+            want = i;
+    j.stop = &st;
+    j.trace = (hg_loop_trace){fe2, out2, 0};
+    hg_batch_run(&j, 1, 1, &r);
+    CHECK(want > 0 && r.sum.periods == want + 1 && fabs(r.stop_bound - b) <= 1e-12 * b &&
+              memcmp(fe2, fe, sizeof(double) * 6 * r.sum.periods) == 0 &&
+              memcmp(out2, out, sizeof(double) * 6 * r.sum.periods) == 0 && r.rc == 0 && r.sum.tripped_at < 0,
+          "stop, %s: after period %ld of %d (from the traces: %ld), bound %.9g (from the traces: %.9g), "
+          "the traces the same bits up to there", what, r.sum.periods - 1, N, want, r.stop_bound, b);
+    return want > 0;
+}
 
 /* Serial reference of one job: hg_loop_run on a loop of its own. */
 static int serial(const hg_batch_job *j, hg_loop_summary *sum, double *fe, double *out)
@@ -56,7 +105,7 @@ int main(void)
             cfg[i].pid[k].maxoutput = 10.0;
         }
         cfg[i].ferror_limit_mm = 2.0;
-        jobs[i] = (hg_batch_job){&cfg[i], i % 2 ? &rigid : &flex, cmd, N, 100, {fe[i], out[i], 0}, 0};
+        jobs[i] = (hg_batch_job){&cfg[i], i % 2 ? &rigid : &flex, cmd, N, 100, {fe[i], out[i], 0}, 0, 0};
     }
     hg_biquad_notch(&cfg[3].biquad[0], 352.75, 0.7);
     hg_biquad_notch(&cfg[3].biquad[2], 300, 2.0);
@@ -129,6 +178,37 @@ int main(void)
                   memcmp(out2, out[i], sizeof(double) * 6 * with.sum.periods) == 0,
               "%s train: without the tool error every other summary field and trace is the same bits",
               i ? "rigid" : "flexible");
+    }
+    /* the early stop, on the stable flexible job's whole run (fe[0], out[0]) */
+    {
+        static unsigned char every3[N];
+        hg_batch_job j = jobs[0];
+        hg_batch_result whole, none;
+        hg_loop_stop st = {0, 0.0, 0.2, 1.0, 0.0, 0.0, 0.0, 0.0, 0};
+        hg_batch_run(&j, 1, 1, &whole);
+        st.above = bound_at(&st, fe[0], out[0], N / 2, j.from);   /* passed in the second half */
+        stop_check("peak + RMS + volts from `from` on", j, st, fe[0], out[0]);
+        for (i = 0; i < N; i++)
+            every3[i] = i % 3 == 1 && i > 300;
+        st.scored = every3;
+        st.above = bound_at(&st, fe[0], out[0], 2 * N / 3, j.from);
+        stop_check("every third period after 300 scored", j, st, fe[0], out[0]);
+        st.scored = 0;
+        st.peak0 = 0.1;
+        st.rms0 = 0.01;
+        st.volts0 = 0.5;
+        st.volts_free = 0.3;
+        st.above = 0.5 * (bound_at(&st, fe[0], out[0], j.from, j.from) + bound_at(&st, fe[0], out[0], N / 2, j.from));
+        stop_check("floors from earlier runs, passed by the run's own terms", j, st, fe[0], out[0]);
+        st.peak0 = 5.0;
+        st.above = 5.0;
+        CHECK(stop_check("floors alone above the limit", j, st, fe[0], out[0]) && bound_at(&st, fe[0], out[0], j.from, j.from) > 5.0,
+              "... which stops the run at its first scored period (%ld)", j.from);
+        st = (hg_loop_stop){0, 1e9, 0.2, 1.0, 0.0, 0.0, 0.0, 0.0, 1};
+        j.stop = &st;
+        hg_batch_run(&j, 1, 1, &none);
+        CHECK(none.stop_bound == -1.0 && memcmp(&none.sum, &whole.sum, sizeof whole.sum) == 0 && whole.stop_bound == -1.0,
+              "stop: a bound that never passes its limit leaves the run whole, the summary the same bits");
     }
     CHECK(hg_batch_run(jobs, -1, 2, res) == HG_ERR_BAD_PARAM && hg_batch_run(0, 3, 2, res) == HG_ERR_BAD_PARAM &&
           hg_batch_run(jobs, 0, 2, 0) == 0, "njobs < 0 or no jobs array refused; an empty batch is 0");
