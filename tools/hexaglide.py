@@ -16,6 +16,7 @@ Units at this interface are the user's (mm, degrees, volts) except Model,
 which is the core's own (m, rad, s) as in src/hg_dynamics.h.
 """
 import configparser
+import copy
 import ctypes as C
 import os
 import re
@@ -1024,6 +1025,16 @@ for _i, _s in ((0, _BatchJob), (1, _BatchResult)):
 _batch_run = _sig("hg_batch_run", C.c_int, C.POINTER(_BatchJob), C.c_long, C.c_int, C.POINTER(_BatchResult))
 
 
+def _checked_stop(stop, n):
+    """stop (a Stop or None) for a job of n command rows, else TypeError or ValueError."""
+    if stop is not None:
+        if not isinstance(stop, Stop):
+            raise TypeError("stop must be a hexaglide.Stop, got %r" % (stop,))
+        if stop.scored is not None and stop.scored.shape != (n,):
+            raise ValueError("stop.scored: one entry per command row (%d), got shape %s" % (n, stop.scored.shape))
+    return stop
+
+
 class Job:
     """One closed-loop run for batch(): from HOME at rest, the commands cmd (n, 6) through the
     loop of cfg (loop_config) and board parameters board_params (Params.board_params);
@@ -1050,13 +1061,13 @@ class Job:
         self.cfg, self.board_params, self.cmd = cfg, board_params, _commands(cmd, n)
         self.joints = n
         self.start, self.keep, self.load, self.tool_error = _whole("start", start), keep, load, tool_error
-        if stop is not None:
-            if not isinstance(stop, Stop):
-                raise TypeError("stop must be a hexaglide.Stop, got %r" % (stop,))
-            if stop.scored is not None and stop.scored.shape != (self.cmd.shape[0],):
-                raise ValueError("stop.scored: one entry per command row (%d), got shape %s"
-                                 % (self.cmd.shape[0], stop.scored.shape))
-        self.stop = stop
+        self.stop = _checked_stop(stop, self.cmd.shape[0])
+
+    def with_stop(self, stop):
+        """This job with the early stop `stop` (a Stop, or None), the rest shared."""
+        j = copy.copy(self)
+        j.stop = _checked_stop(stop, self.cmd.shape[0])
+        return j
 
 
 def cores():

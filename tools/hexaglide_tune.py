@@ -498,11 +498,15 @@ def margin_penalty(m):
     return c
 
 
+W_RMS = 0.2                # run_cost: mm of cost per mm of the worst RMS f-error
+W_VOLTS = 1.0              # run_cost: mm of cost per volt above the limit (a hard limit in effect)
+
+
 def run_cost(runs, prob):
     """The trajectory runs' share of a candidate's cost: worst peak |f-error| over joints and
-    runs plus a fifth of the worst RMS (mm), plus 1 mm per volt above the limit; None when a
-    run tripped; 0 for no run (a lower bound: every term is a maximum over the runs, >= 0, so
-    a subset of them bounds it from below)."""
+    runs plus W_RMS times the worst RMS (mm), plus W_VOLTS mm per volt above the limit; None
+    when a run tripped; 0 for no run (a lower bound: every term is a maximum over the runs,
+    >= 0, so a subset of them bounds it from below)."""
     if not all(r.ok for r in runs):
         return None
     if not runs:
@@ -510,7 +514,7 @@ def run_cost(runs, prob):
     peak = max(r.peak_ferror_mm.max() for r in runs)
     rms = max(r.rms_ferror_mm.max() for r in runs)
     volts = max(r.peak_output_v.max() for r in runs)
-    return peak + 0.2 * rms + 1.0 * max(0.0, volts - prob["vmax"])   # volts over: a hard limit in effect
+    return peak + W_RMS * rms + W_VOLTS * max(0.0, volts - prob["vmax"])
 
 
 # ------------------------------------------------------------------ critical windows
@@ -648,7 +652,7 @@ class Scored:
             self.rms_ferror_mm = np.sqrt(np.mean(fe ** 2, 0))
 
 
-def costs(xs, prob, beat=None, whole=False):
+def costs(xs, prob, beat=None, whole=False, stop=True):
     """What the search minimizes, for every candidate x of xs in batches (prob["threads"]
     threads, no Python per period): run_cost over the trajectory runs, plus penalties for
     step overshoot and the margins on the plant; 1 - 1e-9 per period run when a run trips
@@ -658,7 +662,9 @@ def costs(xs, prob, beat=None, whole=False):
     run), then its step run, then its trajectory runs one at a time: one whose cost is already
     above beat[i] after a stage (the margins, then the step's settling and overshoot, then the
     runs' errors too) runs no further and gets that lower bound instead of its cost: it loses either way, so
-    the search's choices, and its answer, are the full costs'. With prob["windows"] (and not
+    the search's choices, and its answer, are the full costs'. A trajectory run itself stops at
+    the first scored period where the bound its rows so far give passes beat[i] (run_stop).
+    stop False: beat is only compared (every candidate runs all). With prob["windows"] (and not
     whole) the runs are of the window chain, their costs of its scored rows. The search's runs
     are on search_params, whole's on the machine's board (board_params)."""
     windows = "windows" in prob and not whole
@@ -671,18 +677,29 @@ def costs(xs, prob, beat=None, whole=False):
         cands.append((gains, notch, step_job(cfg, prob, tool_error=False, bp=bp),
                       trajectory_jobs(cfg, prob, settles, keep=windows, tool_error=False, windows=windows, bp=bp)))
     jobs = [[sj] + tj for _g, _n, sj, tj in cands]
+    if not stop:
+        beat = None
     stages = [slice(None)] if beat is None else [slice(k, k + 1) for k in range(1 + len(settles))]
     done = [[] for _ in cands]                 # each candidate's results: step, then its runs
     out, live, ran = [None] * len(cands), list(range(len(cands))), 0
-    stopped = prob.setdefault("stopped_at", [0] * (1 + len(settles)))   # on the margins, after the step, run 1, ...
+    stopped = prob.setdefault("stopped_at", [0] * (2 + len(settles)))   # on the margins, after the step, in or after run 1, ...
     margin = [margin_penalty(m) for m in margins_many([c[0] for c in cands], prob, [c[1] for c in cands])]
     if beat is not None:                       # the margins first: they need no run
         live = stop_early(live, cands, done, prob, margin, beat, out, stopped, 0)
     for n, part in enumerate(stages):
         todo = [(i, j) for i in live for j in jobs[i][part]]
+        if beat is not None and n > 0:         # a trajectory run: stopped once its candidate cannot win
+            todo = [(i, j.with_stop(run_stop(cands[i], done[i], prob, margin[i], beat[i], j, windows)))
+                    for i, j in todo]
         res = hg.batch([j for _i, j in todo], prob.get("threads", 1)) if todo else []
         for (i, j), r in zip(todo, res):
+            if r.stop_bound is not None:       # this run stopped: the candidate loses (run_stop)
+                out[i] = stopped_cost(cands[i], done[i], prob, margin[i], r.stop_bound)
+                stopped[n + 1] += 1
+                prob["stopped_in_run"] = prob.get("stopped_in_run", 0) + 1
+                continue
             done[i].append(Scored(r, j.start, prob["windows"][1]) if windows and j is not cands[i][2] else r)
+        live = [i for i in live if out[i] is None]
         ran += sum(r.periods for r in res)
         if n + 1 == len(stages):
             break
@@ -706,6 +723,45 @@ def stop_early(live, cands, done, prob, margin, beat, out, stopped, stage):
         else:
             keep.append(i)
     return keep
+
+
+def known_terms(cand, done, prob, margin):
+    """(the cost's terms that no further trajectory run changes: the margin penalty and the step
+    run's, the trajectory's floor (the cost of a trip in a later run), the runs so far or None
+    when one tripped) of candidate cand after its step run and the trajectory runs of done[1:]."""
+    _g, _notch, sj, tj = cand
+    floor = 1.0 - 1e-9 * sum(j.cmd.shape[0] for j in tj)
+    runs = done[1:]
+    return penalized(done[0], sj, [], prob, margin), floor, runs if all(r.ok for r in runs) else None
+
+
+def run_stop(cand, done, prob, margin, beat, job, windows):
+    """The hg.Stop of candidate cand's next trajectory run (job), after its step run and the runs
+    of done[1:]: it stops once the candidate's cost, whatever its later runs give, is above beat
+    (penalized's known terms plus run_cost's terms over the runs so far and this one's rows so
+    far, each a maximum that only grows; below the trip floor); None where no stop is sound (a
+    run tripped, or beat is at the floor)."""
+    known, floor, runs = known_terms(cand, done, prob, margin)
+    if runs is None or not beat < floor:
+        return None
+    scored = None
+    if windows:                                # the chain's scored rows, after the job's lead-in
+        key = ("scored", job.start)
+        if key not in prob:
+            prob[key] = np.r_[np.zeros(job.start, bool), prob["windows"][1]]
+        scored = prob[key]
+    mx = lambda f: max([float(f(r).max()) for r in runs], default=0.0)
+    # (the limit a hair above beat - known: the bound's RMS sums in order, numpy's pairwise; 1e-12 covers it)
+    return hg.Stop(beat - known + 1e-12 * max(1.0, abs(beat)), scored, W_RMS, W_VOLTS, prob["vmax"],
+                   mx(lambda r: r.peak_ferror_mm), mx(lambda r: r.rms_ferror_mm), mx(lambda r: r.peak_output_v),
+                   volts_dac=not windows)
+
+
+def stopped_cost(cand, done, prob, margin, bound):
+    """The lower bound a candidate gets whose next trajectory run after done (its step run and
+    runs so far) stopped at `bound` (run_stop's): above the beat it had to stay under."""
+    known, floor, _runs = known_terms(cand, done, prob, margin)
+    return min(floor, known + bound)
 
 
 def lower_bound(cand, done, prob, margin):
@@ -906,9 +962,10 @@ def search(a, prob):
     bounds = [(-1.0, 1.0), (-1.5, 1.0), (-1.0, 1.0), (0.8, 1.2), (0.6, 1.4)] + [(0.0, 1.0)] * (len(x0) - 5)
     switch = [False] * 5 + [True] * (len(x0) - 5)      # the notch switch takes whole values
     gen = [0]
-    seen = []                                   # (cost, x) of every candidate, for verify and the log
+    seen = []                                   # (cost, x, kept?) of every candidate, for verify and the log
     solver = [None]
     t0, p0, s0 = time.time(), prob.get("periods_run", 0), list(prob.get("stopped_at", []))
+    r0 = prob.get("stopped_in_run", 0)
 
     def cost(x):
         return costs([x], prob)[0]
@@ -916,18 +973,17 @@ def search(a, prob):
     def beat(n):
         """The energies trial 0..n-1 compete with: with updating="deferred" and no constraints,
         trial i is member i's and replaces it only if its cost is <= member i's. None for the
-        first population (no energies yet), with --no-stop-early, or if that does not hold."""
+        first population (no energies yet: every candidate is a member) or if that does not hold."""
         s = solver[0]
         e = getattr(s, "population_energies", None)
-        if a.no_stop_early or e is None or n > len(e) or not np.all(np.isfinite(e)) or \
-                not np.all(getattr(s, "feasible", False)):
+        if e is None or n > len(e) or not np.all(np.isfinite(e)) or not np.all(getattr(s, "feasible", False)):
             return None
         return list(e[:n])
 
     def batch_map(_func, xs):
-        xs = list(xs)
-        cs = costs(xs, prob, beat(len(xs)))
-        seen.extend((c, tuple(x)) for x, c in zip(xs, cs))
+        xs, b = list(xs), beat(len(xs))
+        cs = costs(xs, prob, b, stop=not a.no_stop_early)
+        seen.extend((c, tuple(x), b is None or c <= b[i]) for i, (x, c) in enumerate(zip(xs, cs)))
         return cs
 
     def progress(xk, convergence):
@@ -944,24 +1000,26 @@ def search(a, prob):
     at = prob.get("stopped_at", [])
     stopped = [c - (s0[k] if k < len(s0) else 0) for k, c in enumerate(at)]
     where = ", ".join("%d %s" % (c, "on their margins" if k == 0 else "after their step run" if k == 1
-                                 else "after trajectory run %d" % (k - 1)) for k, c in enumerate(stopped))
+                                 else "in or after trajectory run %d" % (k - 1)) for k, c in enumerate(stopped))
+    inrun = prob.get("stopped_in_run", 0) - r0
     log("sweep: %d candidates%s in %.1f s, %d thread%s (hg.batch; %.1f per second), %d servo periods run, "
-        "%d candidates stopped early%s"
-        % (res.nfev, " (%d with the notch)" % sum(notch_of(x, prob) is not None for _c, x in seen)
+        "%d candidates stopped early%s%s"
+        % (res.nfev, " (%d with the notch)" % sum(notch_of(x, prob) is not None for _c, x, _k in seen)
            if any(switch) else "", took, prob["threads"], "s" if prob["threads"] > 1 else "",
            res.nfev / max(took, 1e-9), prob.get("periods_run", 0) - p0, sum(stopped),
-           " (%s)" % where if where else ""))
+           " (%s)" % where if where else "", "; %d of them within a trajectory run" % inrun if inrun else ""))
     if "windows" not in prob and not any(switch) and "search_params" not in prob:
         return res.x, float(res.fun), None
     return verify(prob, seen)
 
 
 def verify(prob, seen):
-    """The search's answer from seen ((cost, x) of every candidate: on the windows, a lower
-    bound where it stopped early): its VERIFY cheapest without the notch and as many with it
-    (where the search has the switch) costed on the whole trajectory with every run; (x of the
-    cheapest, the cheapest cost without the notch, with it; None where none ran)."""
-    ranked = sorted(set(seen))
+    """The search's answer from seen ((cost, x, kept?) of every candidate): of those the search
+    kept (the population's members, whose costs are whole; a trial that lost may hold only a
+    lower bound, however early it stopped), the VERIFY cheapest without the notch and as many
+    with it (where the search has the switch) costed on the whole trajectory with every run;
+    (x of the cheapest, the cheapest cost without the notch, with it; None where none ran)."""
+    ranked = sorted(set((c, x) for c, x, kept in seen if kept))
     groups = [[(c, x) for c, x in ranked if (notch_of(x, prob) is not None) == on][:VERIFY] for on in (False, True)]
     top = groups[0] + groups[1]
     t0 = time.time()
