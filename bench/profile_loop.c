@@ -9,7 +9,7 @@
  * verification), flexible_rk4 (the same on RK4: tune's search,
  * docs/tuning.md), flexible_tool (Heun with it: replay's what-ifs, soak)
  * or rigid (k_axial 0, skipped). callgrind
- * --toggle-collect=hg_loop_run_traced counts only the runs; prints the
+ * --toggle-collect=hg_loop_run_stop counts only the runs; prints the
  * runs' codes and a sum of their peaks.
  * Usage: profile_loop flexible|flexible_rk4|flexible_tool|rigid [PERIODS [SETTLE]] */
 #include <stdio.h>

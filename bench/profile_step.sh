@@ -38,8 +38,8 @@ for w in "flexible 2000 0" "flexible_tool 2000 0" "rigid 2000 0" "flexible 2000 
     "flexible_rk4 2000 1500"; do
     set -- $w
     out=build/bench/callgrind.loop.$1.$3
-    echo "== today: loop $1, 2 runs of $2 periods after $3 at rest (callgrind --toggle-collect=hg_loop_run_traced)"
-    valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect=hg_loop_run_traced \
+    echo "== today: loop $1, 2 runs of $2 periods after $3 at rest (callgrind --toggle-collect=hg_loop_run_stop)"
+    valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect=hg_loop_run_stop \
         build/bench/profile_loop "$1" "$2" "$3" 2>/dev/null || exit 1
     awk -v w="$1_$3" -v n=$((2 * ($2 + $3))) '/^summary:/ { printf "BENCH profile_loop_%s instr_per_period=%d\n", w, $2 / n }' "$out"
 done
