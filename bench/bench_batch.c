@@ -53,7 +53,7 @@ int main(int argc, char **argv)
     for (train = 0; train < TRAINS; train++) {
         double us[3][REPS_MAX], med[3], p99;
         for (i = 0; i < JOBS; i++)
-            jobs[i] = (hg_batch_job){&cfg[i], &bp[params_of[train]], cmd, N, 0, {0, 0, 0}, skip_of[train]};
+            jobs[i] = (hg_batch_job){&cfg[i], &bp[params_of[train]], cmd, N, 0, {0, 0, 0}, skip_of[train], 0};
         time_batch(jobs, 1);           /* warm up */
         for (r = 0; r < reps; r++)
             for (t = 0; t < nt; t++)
