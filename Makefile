@@ -22,7 +22,25 @@ endif
 # (docs/replay.md); and the same -fno-builtin-sin/cos/sincos as the realtime
 # build (rtapi_math has no sincos), so both call the same libm functions
 RT_SAME_FLAGS := -ffp-contract=off -fno-builtin-sin -fno-builtin-cos -fno-builtin-sincos
-CFLAGS_HOST := -std=gnu99 -O2 -g $(RT_SAME_FLAGS) -Wall -Wextra -Werror -pthread -Isrc -Isrc/generated -MMD -MP $(SANFLAGS)
+# HOST_ARCH: the host code (CLI, library, tests, benchmarks) with AVX2's
+# instructions where the build machine has them (/proc/cpuinfo) and the
+# compiler takes -mavx2: three-operand and wider vector code, closed loops
+# 12-16 % faster on this project's VM (docs/benchmarks.md). The answers are
+# the same bits: -mavx2 brings no fused multiply-add (FMA is its own flag,
+# never given: GCC 12's vectorizer emits vfmaddsub despite -ffp-contract=off
+# under -march=native), and GCC reorders no floating-point sum without
+# -ffast-math (tests/unit/test_golden holds d20d9e5's states, test_shortcuts
+# each shortcut's reference, replay the realtime module's records, bit for
+# bit; tests/check/test_host_arch finds no FMA instruction). `make HOST_ARCH=`
+# builds code for any x86-64; the FMU and the realtime modules are always
+# built that way. A change of flags rebuilds every object ($(FLAGS_STAMP)).
+ifeq ($(origin HOST_ARCH),undefined)
+HOST_ARCH := $(shell grep -qw avx2 /proc/cpuinfo 2>/dev/null && $(CC) -mavx2 -E -x c /dev/null >/dev/null 2>&1 && echo -mavx2)
+endif
+CFLAGS_PORTABLE := -std=gnu99 -O2 -g $(RT_SAME_FLAGS) -Wall -Wextra -Werror -pthread -Isrc -Isrc/generated -MMD -MP $(SANFLAGS)
+CFLAGS_HOST := $(CFLAGS_PORTABLE) $(HOST_ARCH)
+FLAGS_STAMP := $(BUILD)/host-cflags
+$(shell mkdir -p $(BUILD) && { echo '$(CC) $(CFLAGS_HOST)' | cmp -s - $(FLAGS_STAMP) || echo '$(CC) $(CFLAGS_HOST)' >$(FLAGS_STAMP); })
 LDLIBS_HOST := -lm -pthread $(SANFLAGS)
 
 # pure math, no LinuxCNC dependency: every src/hg_*.c and src/generated/*.c
@@ -56,19 +74,19 @@ PIC_OBJS := $(patsubst src/%.c,$(BUILD)/pic/%.o,$(CORE_SRCS))
 lib: $(BUILD)/libhexaglide.so
 $(BUILD)/libhexaglide.so: $(PIC_OBJS)
 	$(CC) -shared -o $@ $^ $(LDLIBS_HOST)
-$(BUILD)/pic/%.o: src/%.c $(wildcard src/*.h src/generated/*.h)
+$(BUILD)/pic/%.o: src/%.c $(wildcard src/*.h src/generated/*.h) $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_HOST) -fPIC -c -o $@ $<
 
 # header dependencies from the compiler (-MMD): build/host/**/*.d
-$(BUILD)/host/%.o: src/%.c
+$(BUILD)/host/%.o: src/%.c $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_HOST) -c -o $@ $<
 
 $(BUILD)/hexaglide: $(CLI_OBJS) $(CORE_OBJS)
 	$(CC) -o $@ $^ $(LDLIBS_HOST)
 
-$(BUILD)/tests/%: tests/unit/%.c tests/unit/hg_test.h $(CORE_OBJS)
+$(BUILD)/tests/%: tests/unit/%.c tests/unit/hg_test.h $(CORE_OBJS) $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_HOST) -Itests/unit -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST)
 
@@ -117,7 +135,7 @@ bench: all
 	@bench/run_bench.sh
 
 # each bench/bench_*.c is one program; bench_mujoco* also links MuJoCo
-$(BUILD)/bench/%: bench/%.c bench/bench_timing.h bench/bench_loop.h $(CORE_OBJS)
+$(BUILD)/bench/%: bench/%.c bench/bench_timing.h bench/bench_loop.h $(CORE_OBJS) $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_HOST) -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST) $(if $(findstring mujoco,$*),-lmujoco)
 # ... and includes the MuJoCo model generator
@@ -139,8 +157,8 @@ $(BUILD)/bench/bench_baseline: bench/bench_baseline.c bench/engine_shim.c bench/
 # (bench/profile_step.sh; PROFILE_ARGS=--baseline profiles d20d9e5's step)
 profile: host
 	@tools/install-deps.sh bench
-	@bench/profile_step.sh $(PROFILE_ARGS)
-$(BUILD)/bench/profile_step $(BUILD)/bench/profile_loop: $(BUILD)/bench/%: bench/%.c bench/bench_loop.h $(CORE_OBJS)
+	@HOST_ARCH="$(HOST_ARCH)" bench/profile_step.sh $(PROFILE_ARGS)
+$(BUILD)/bench/profile_step $(BUILD)/bench/profile_loop: $(BUILD)/bench/%: bench/%.c bench/bench_loop.h $(CORE_OBJS) $(FLAGS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_HOST) -o $@ $< $(CORE_OBJS) $(LDLIBS_HOST)
 

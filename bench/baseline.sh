@@ -15,7 +15,9 @@ if ! git cat-file -e "$BASELINE^{commit}" 2>/dev/null; then
     exit 3
 fi
 out=$dir/engine_old.o
-[ -f "$out" ] && [ "$out" -nt bench/engine_shim.c ] && [ "$out" -nt bench/baseline.sh ] && exit 0
+flags="$cc $*"                  # (built again when the compiler or the flags change: HOST_ARCH)
+[ -f "$out" ] && [ "$out" -nt bench/engine_shim.c ] && [ "$out" -nt bench/baseline.sh ] &&
+    [ "$(cat "$dir/flags" 2>/dev/null)" = "$flags" ] && exit 0
 rm -rf "$dir/src" "$dir/obj" && mkdir -p "$dir/obj" || exit 1
 git archive "$BASELINE" src | tar -x -C "$dir" || exit 1
 objs=""
@@ -27,4 +29,5 @@ done
 # shellcheck disable=SC2086
 ld -r -o "$dir/engine_all.o" $objs &&
 objcopy -G old_engine_new -G old_engine_step -G old_engine_hold_volts -G old_engine_free \
-    "$dir/engine_all.o" "$out"
+    "$dir/engine_all.o" "$out" &&
+echo "$flags" >"$dir/flags"

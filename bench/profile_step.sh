@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.." || exit 1
 tree=today; bin=build/bench/profile_step
 if [ "$1" = --baseline ]; then
     tree=d20d9e5; shift
-    flags="-std=gnu99 -O2 -g -ffp-contract=off -fno-builtin-sin -fno-builtin-cos -fno-builtin-sincos"
+    flags="-std=gnu99 -O2 -g -ffp-contract=off -fno-builtin-sin -fno-builtin-cos -fno-builtin-sincos $HOST_ARCH"
     bench/baseline.sh build/baseline "${CC:-gcc}" $flags || exit 1
     bin=build/baseline/profile_step
     "${CC:-gcc}" $flags -Ibuild/baseline/src -Ibuild/baseline/src/generated -o "$bin" bench/profile_step.c \

@@ -14,7 +14,7 @@ FMU_TREE  := $(FMU_DIR)/hexaglide
 FMU_PLAT  := x86_64-linux
 FMI3_INC  := third_party/fmi-standard/headers
 REF       := third_party/reference-fmus
-FMU_CFLAGS := $(CFLAGS_HOST) -I$(FMI3_INC) -Isrc/fmu -fPIC
+FMU_CFLAGS := $(CFLAGS_PORTABLE) -I$(FMI3_INC) -Isrc/fmu -fPIC   # (an FMU runs on any x86-64: no HOST_ARCH)
 # the FMU's own sources (fmu_gen.c is the build-time generator, not in the FMU)
 FMU_GLUE  := src/fmu/fmu_fmi3.c src/fmu/fmu_vars.c src/fmu/fmu_plant.c
 FMU_HDRS  := $(wildcard src/fmu/*.h)
