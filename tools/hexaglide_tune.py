@@ -746,10 +746,10 @@ def run_stop(cand, done, prob, margin, beat, job, windows):
         return None
     scored = None
     if windows:                                # the chain's scored rows, after the job's lead-in
-        key = ("scored", job.start)
-        if key not in prob:
-            prob[key] = np.r_[np.zeros(job.start, bool), prob["windows"][1]]
-        scored = prob[key]
+        key = ("windows", "scored", job.start)   # (with the chain's sequences: critical_windows drops both)
+        if key not in prob["seqs"]:
+            prob["seqs"][key] = np.r_[np.zeros(job.start, bool), prob["windows"][1]]
+        scored = prob["seqs"][key]
     mx = lambda f: max([float(f(r).max()) for r in runs], default=0.0)
     # (the limit a hair above beat - known: the bound's RMS sums in order, numpy's pairwise; 1e-12 covers it)
     return hg.Stop(beat - known + 1e-12 * max(1.0, abs(beat)), scored, W_RMS, W_VOLTS, prob["vmax"],
