@@ -25,7 +25,7 @@ RT_SAME_FLAGS := -ffp-contract=off -fno-builtin-sin -fno-builtin-cos -fno-builti
 # HOST_ARCH: the host code (CLI, library, tests, benchmarks) with AVX2's
 # instructions where the build machine has them (/proc/cpuinfo) and the
 # compiler takes -mavx2: three-operand and wider vector code, closed loops
-# 12-16 % faster on this project's VM (docs/benchmarks.md). The answers are
+# 1.20-1.22 times faster on this project's VM (docs/benchmarks.md). The answers are
 # the same bits: -mavx2 brings no fused multiply-add (FMA is its own flag,
 # never given: GCC 12's vectorizer emits vfmaddsub despite -ffp-contract=off
 # under -march=native), and GCC reorders no floating-point sum without

@@ -1083,7 +1083,7 @@ def batch(jobs, threads=0):
     traces = []
     for i, j in enumerate(jobs):
         n = j.cmd.shape[0]
-        # (hg_loop_run_traced writes every period it runs; the rows past them are cut below)
+        # (hg_loop_run_stop writes every period it runs; the rows past them are cut below)
         fe = np.empty((n, j.joints)) if j.keep else None
         out = np.empty((n, j.joints)) if j.keep else None
         load = np.empty((n, j.joints)) if j.load else None
