@@ -854,8 +854,8 @@ def _put(base_vec, live, y):
 # stuck, it is moved alone as the machine moves it (hg_regressor_slide:
 # its stages, its friction solve), under the recorded drive force minus
 # what the rest of the machine takes (the least squares' parameters, the
-# others' filtered motion), and its simulated heights are compared with
-# its counts.
+# others' measured motion, unfiltered), and its simulated heights are
+# compared with its counts.
 _lp = np.ctypeslib.ndpointer(dtype=np.int64, flags="C_CONTIGUOUS")
 _slide = hg._sig("hg_regressor_slide", C.c_int, C.c_void_p, C.c_int, C.c_double, C.c_long, _lp,
                  _dp, _dp, _dp, _dp, _dp, _dp)
@@ -889,7 +889,7 @@ def stick_events(run, s, params, r):
     heights, speeds, accelerations)."""
     dt = run.dt
     nper = len(run.volts)
-    mot = {key: np.full((nper, 6), np.nan) for key in ("z", "v", "a", "zend", "dacc")}
+    mot = {key: np.full((nper, 6), np.nan) for key in ("z", "v", "a", "a_raw", "zend", "dacc")}
     counts = _load_counts(run)
     clamped = clamped_periods(run, params).any(1)
     L = max(2, int(round(s.stick_s / dt)))
@@ -902,6 +902,7 @@ def stick_events(run, s, params, r):
         n, z0, zm, v, acc = _counts_motion(run, s, i0, i1)
         p = n + 1
         mot["z"][p], mot["v"][p], mot["a"][p] = zm, v, acc
+        mot["a_raw"][p] = _counts_motion(run, s, i0, i1, raw=True)[4]     # (SlowData.forces: why)
         mot["zend"][p] = np.vstack([z0[1:], z0[-1:]])    # filtered height at the end of period p
         # on flexible trains the deflection's acceleration: the rotors' inertia beyond the
         # carriages' (as in equations(); SlowData). Unfiltered: the spring lets go at the
@@ -939,7 +940,8 @@ def stick_events(run, s, params, r):
 class SlowData:
     """What the stick-slip fit needs of the periods inside events: per run,
     the drive force, the known-force columns at zero acceleration and the
-    mass matrix columns (base parameters), the filtered accelerations."""
+    mass matrix columns (base parameters), the accelerations (filtered;
+    unfiltered for what the other carriages do to one)."""
 
     def __init__(self, runs, reg, params, s, base):
         self.runs, self.s, self.base = runs, s, base
@@ -969,7 +971,7 @@ class SlowData:
                     D[:, :, j, :] = (Yj[:, :, base.base] - Y0)[:, :, self.mcols]
                 # flexible trains: the drive's force less the rotors' inertia beyond the carriages'
                 # (m_rotor d'', d the deflection), the carriage and its rotor sliding as one
-                d.update(Y0=Y0[:, :, self.hcols], D=D, a=a,
+                d.update(Y0=Y0[:, :, self.hcols], D=D, a=a, a_raw=mot["a_raw"][steps],
                          F=force_per_volt(params) * dac_output(run.volts)[steps] - d["m_rotor"] * mot["dacc"][steps])
             d["integrator"] = 0 if _start_timing(run, s) else (run.integrator or hg.DEFAULT_INTEGRATOR)
             d["dt"] = run.dt
@@ -981,13 +983,20 @@ class SlowData:
 
     def forces(self, theta, held=False):
         """Per run: u (steps, 6), the force on each carriage from everything
-        but its own inertia and friction, with the others' filtered motion
-        given and their fast response to it free (so the inertia is 1/W_kk),
-        and m = 1/W_kk (steps, 6), for base parameters theta. held: the
-        others' fast response held (each other carriage stuck or too damped
-        to follow a slip of a few ms): the inertia is M_kk. The machine's
-        lies between the two (its other carriages stick or slide, each with
-        its viscous friction, which neither model has)."""
+        but its own inertia and friction, with the others' measured motion
+        given and their fast response to its slip free (so the inertia is
+        1/W_kk), and m = 1/W_kk (steps, 6), for base parameters theta. held:
+        the others' fast response held (each other carriage stuck or too
+        damped to follow a slip of a few ms): the inertia is M_kk. The
+        machine's lies between the two (its other carriages stick or slide,
+        each with its viscous friction, which neither model has).
+        The others' motion is unfiltered: their slips, and their trains'
+        knocks across the backlash, reach carriage k through the head within
+        a period, and a stuck carriage lets go at the peak of its force, not
+        at the filtered force (filtered, a carriage of a machine with 25 um
+        of backlash came out 12.7% low; docs/identification.md). Carriage
+        k's own acceleration, where its inertia is split between the two
+        models, stays filtered."""
         out = []
         for d in self.per:
             if not len(d["steps"]):
@@ -996,8 +1005,10 @@ class SlowData:
             h = d["Y0"] @ theta[self.hcols]
             M = d["D"] @ theta[self.mcols]
             m = np.diagonal(M, axis1=1, axis2=2) if held else 1.0 / np.diagonal(np.linalg.inv(M), axis1=1, axis2=2)
-            a = d["a"]
-            u = d["F"] - h - np.einsum("nkj,nj->nk", M, a) + a * m
+            a, a_raw = d["a"], d["a_raw"]
+            mkk = np.diagonal(M, axis1=1, axis2=2)
+            others = np.einsum("nkj,nj->nk", M, a_raw) - mkk * a_raw
+            u = d["F"] - h - others - (mkk - m) * a
             out.append((u, m.copy()))
         return out
 
