@@ -6,7 +6,10 @@ machine with the given parameters (hidden from identify), for the drive
 train's identification (tests/cli/test_identify_train).
 
 The program: `hexaglide excite --trains`' vertical strokes (excite.strokes:
-constant speed, reversals at the ends: the backlash's) and from the first
+constant speed, reversals at the ends: the backlash's), excite's design
+for the rigid parameters (fourier), or LinuxCNC's homing latch (latch: every
+joint 6 mm down at HOME_LATCH_VEL 2 mm/s and back, again and again, from
+rest at HOME); from the first
 second on the trains' dither added to the pids' outputs as excite's HAL
 snippet adds it (excite.dither: chirps over --band Hz of --dither-v volts). Columns: joint.N.motor-pos-cmd (mm),
 motenc.0.enc-NN-count, motenc.0.dac-NN-value (V),
@@ -30,9 +33,10 @@ def main():
     ap.add_argument("out")
     ap.add_argument("sets", nargs="*")
     ap.add_argument("--seconds", type=float, default=12.0)
-    ap.add_argument("--program", choices=["trains", "fourier"], default="trains",
+    ap.add_argument("--program", choices=["trains", "fourier", "latch"], default="trains",
                     help="trains: excite --trains' strokes; fourier: excite's design for the rigid parameters "
-                    "(one start, 15 iterations, as tests/cli/test_identify_cli)")
+                    "(one start, 15 iterations, as tests/cli/test_identify_cli); latch: every joint down 6 mm "
+                    "at 2 mm/s and back up at 10 mm/s, after 1 s at rest, repeated")
     ap.add_argument("--substeps", type=int, default=16)
     ap.add_argument("--integrator", type=int, default=2, help="0 improved Euler, 1 Heun, 2 RK4")
     ap.add_argument("--dither-v", type=float, default=ex.DITHER_V)
@@ -43,7 +47,11 @@ def main():
     dt = 0.001
     n = int(a.seconds / dt)
     t = np.arange(n) * dt
-    if a.program == "trains":     # the trains' program (hexaglide excite --trains): vertical strokes
+    if a.program == "latch":      # joint commands: 1 s at rest, 3 s down at 2 mm/s, 0.5 s, 0.6 s up
+        cycle = np.r_[np.zeros(1000), -0.002 * np.arange(1, 3001), np.full(500, -6.0), -6.0 + 0.01 * np.arange(1, 601)]
+        pose = None
+        cmd = np.repeat(np.resize(cycle, n)[:, None], 6, axis=1)
+    elif a.program == "trains":     # the trains' program (hexaglide excite --trains): vertical strokes
         pose = np.zeros((n, 6))
         pose[:, 2] = ex.strokes(n, dt)
     else:
@@ -52,7 +60,8 @@ def main():
         prob = ex.Problem(e, hg.Params())
         th, _ = ex.design(e, prob, np.random.default_rng(1))
         pose = prob.fourier.eval(th, t)[0]
-    cmd = np.array([hg.ik(x) for x in pose])
+    if pose is not None:
+        cmd = np.array([hg.ik(x) for x in pose])
     if a.program == "fourier":        # from HOME at rest to the program's start (tune's lead-in)
         import hexaglide_tune as tune
         cmd = tune.lead_in(cmd, 1000)[0][:n]
