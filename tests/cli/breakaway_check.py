@@ -9,7 +9,10 @@ during a slip, with identify's other estimates and with the truth's (a
 board record's in.param-* values, then --truth: spec names, SI), its RMS
 in counts, the block bootstrap over the slow stretches, the jackknife
 over the distinct motions (a program's repeats), the stretches and their
-own fits. --fine: counts of this many per metre from the record's exact
+own fits. --split S: besides, the free fit (truth's parameters) of the
+events that start before S seconds (LinuxCNC's homing) and of the rest,
+and how many events knock across the backlash (the encoder less the
+carriage spans more than half the truth's backlash). --fine: counts of this many per metre from the record's exact
 carriage positions (a board record's out.z, a sampler recording's scale
 column) instead of the encoder's: is it the counts' quantization?"""
 import argparse
@@ -29,6 +32,7 @@ def main():
     ap.add_argument("--set", action="append", default=[])
     ap.add_argument("--truth", action="append", default=[])
     ap.add_argument("--fine", type=float, default=0.0)
+    ap.add_argument("--split", type=float, default=None)
     ap.add_argument("--ini", default=os.path.join(HERE, "..", "..", "configs", "hexaglide.ini"))
     a = ap.parse_args()
     s = hi.Settings()
@@ -96,6 +100,18 @@ def main():
             e0 = evs[int(np.flatnonzero(sel)[0])]
             parts.append("%.1fs:%d:%.1f" % (e0[1] * runs[e0[0]].dt, sel.sum(), hi._vertex(g, L[:, sel].sum(1))))
         print("  stretches (start s:events:own fit N, truth's parameters): " + " ".join(parts))
+        if a.split is not None:
+            t0 = np.array([e[1] * runs[e[0]].dt for e in evs])
+            fits = ["%d events, %.2f N" % (sel.sum(), hi._vertex(g, L[:, sel].sum(1))) if sel.any() else "no events"
+                    for sel in (t0 < a.split, t0 >= a.split)]
+            line = "  before %g s: %s; after: %s" % (a.split, fits[0], fits[1])
+            if getattr(runs[0], "deflection", None) is not None and truth["backlash"] > 0:
+                span = np.array([np.ptp(runs[e[0]].deflection[e[1]:e[1] + e[2] + 2, k]) for e in evs])
+                knock = span > 0.5 * truth["backlash"]
+                line += "; knocking (the deflection spans > backlash/2): %d of %d before, %d of %d after" % (
+                    (knock & (t0 < a.split)).sum(), (t0 < a.split).sum(), (knock & (t0 >= a.split)).sum(),
+                    (t0 >= a.split).sum())
+            print(line)
 
 
 if __name__ == "__main__":
