@@ -983,20 +983,18 @@ class SlowData:
 
     def forces(self, theta, held=False):
         """Per run: u (steps, 6), the force on each carriage from everything
-        but its own inertia and friction, with the others' measured motion
-        given and their fast response to its slip free (so the inertia is
-        1/W_kk), and m = 1/W_kk (steps, 6), for base parameters theta. held:
-        the others' fast response held (each other carriage stuck or too
-        damped to follow a slip of a few ms): the inertia is M_kk. The
-        machine's lies between the two (its other carriages stick or slide,
-        each with its viscous friction, which neither model has).
+        but its own inertia and friction, given the others' measured motion,
+        and m (steps, 6) its inertia, for base parameters theta: 1/W_kk, as
+        if the others' fast response to its slip were free as well (it is in
+        their measured motion already, so this counts it twice), or with
+        held, M_kk (carriage k's own equation given the others' motion). The
+        estimate takes the middle (docs/identification.md: where each lies).
         The others' motion is unfiltered: their slips, and their trains'
         knocks across the backlash, reach carriage k through the head within
         a period, and a stuck carriage lets go at the peak of its force, not
         at the filtered force (filtered, a carriage of a machine with 25 um
-        of backlash came out 12.7% low; docs/identification.md). Carriage
-        k's own acceleration, where its inertia is split between the two
-        models, stays filtered."""
+        of backlash came out 12.7% low). Carriage k's own acceleration,
+        where the two inertias differ, stays filtered."""
         out = []
         for d in self.per:
             if not len(d["steps"]):
