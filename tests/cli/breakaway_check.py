@@ -12,8 +12,8 @@ over the distinct motions (a program's repeats), the stretches and their
 own fits. --split S: besides, the free fit (truth's parameters) of the
 events that start before S seconds (LinuxCNC's homing) and of the rest,
 and how many events knock across the backlash (the encoder less the
-carriage spans more than half the truth's backlash). --fine: counts of this many per metre from the record's exact
-carriage positions (a board record's out.z, a sampler recording's scale
+carriage spans more than half the truth's backlash). --fine: counts of
+this many per metre from the record's exact carriage positions (a board record's out.z, a sampler recording's scale
 column) instead of the encoder's: is it the counts' quantization?"""
 import argparse
 import os
