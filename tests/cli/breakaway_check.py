@@ -1,5 +1,6 @@
 #!/usr/bin/python3
 """breakaway_check.py RECORD... [--set NAME=VALUE]... [--truth NAME=VALUE]... [--fine COUNTS_PER_M]
+[--split S]
 
 What `hexaglide identify`'s stick-slip fit of f_breakaway[k] does on a
 record, per carriage, against the truth (not a test; the numbers of
@@ -13,8 +14,9 @@ own fits. --split S: besides, the free fit (truth's parameters) of the
 events that start before S seconds (LinuxCNC's homing) and of the rest,
 and how many events knock across the backlash (the encoder less the
 carriage spans more than half the truth's backlash). --fine: counts of
-this many per metre from the record's exact carriage positions (a board record's out.z, a sampler recording's scale
-column) instead of the encoder's: is it the counts' quantization?"""
+this many per metre from the record's exact carriage positions (a board
+record's out.z, a sampler recording's scale column) instead of the
+encoder's: is it the counts' quantization?"""
 import argparse
 import os
 import sys
