@@ -103,16 +103,15 @@ def main():
             parts.append("%.1fs:%d:%.1f" % (e0[1] * runs[e0[0]].dt, sel.sum(), hi._vertex(g, L[:, sel].sum(1))))
         print("  stretches (start s:events:own fit N, truth's parameters): " + " ".join(parts))
         if a.split is not None:
-            t0 = np.array([e[1] * runs[e[0]].dt for e in evs])
+            before = np.array([e[1] * runs[e[0]].dt < a.split for e in evs])
             fits = ["%d events, %.2f N" % (sel.sum(), hi._vertex(g, L[:, sel].sum(1))) if sel.any() else "no events"
-                    for sel in (t0 < a.split, t0 >= a.split)]
+                    for sel in (before, ~before)]
             line = "  before %g s: %s; after: %s" % (a.split, fits[0], fits[1])
-            if getattr(runs[0], "deflection", None) is not None and truth["backlash"] > 0:
+            if truth["backlash"] > 0 and all(getattr(r, "deflection", None) is not None for r in runs):
                 span = np.array([np.ptp(runs[e[0]].deflection[e[1]:e[1] + e[2] + 2, k]) for e in evs])
                 knock = span > 0.5 * truth["backlash"]
                 line += "; knocking (the deflection spans > backlash/2): %d of %d before, %d of %d after" % (
-                    (knock & (t0 < a.split)).sum(), (t0 < a.split).sum(), (knock & (t0 >= a.split)).sum(),
-                    (t0 >= a.split).sum())
+                    (knock & before).sum(), before.sum(), (knock & ~before).sum(), (~before).sum())
             print(line)
 
 
