@@ -41,9 +41,12 @@ enum {
 #define SERIAL_PREFIX "HGXFMU"                 /* a serialized state opens with it and the format's 2 digits */
 #define MAX_PERIODS_PER_STEP 1000000.0         /* longest communication step, in periods */
 /* The time rule (same_time): an importer's time x against the FMU's ref
- * after n additions (t += h) may be off by half an ulp of |x| per
- * addition (each sum rounds once) plus TIME_SLACK_ULPS ulps (the period's
- * decimal in binary, t0 + k h, the FMU's own start + periods x period),
+ * after n additions (t += h) may be off by half an ulp per addition (each
+ * sum rounds once) plus TIME_SLACK_ULPS ulps (the period's decimal in
+ * binary, t0 + k h, the FMU's own start + periods x period), the ulps of
+ * the largest magnitude on the way from the start time t0 (|t0|, |k h|,
+ * |x|: from a negative start the importer's time carries t0's rounding to
+ * zero, where the ulp of x alone is tiny),
  * at most TIME_SLACK_MAX of a period (never taking a time for the next
  * period's). TIME_RESOLUTION: the FMU keeps its time where a double
  * resolves 1e-6 of a period (time_limit). */
@@ -162,17 +165,18 @@ static double ulp_of(double x)
 }
 
 /* How far an importer's time x may lie from the FMU's ref after n
- * additions (the time rule above). */
-static double time_slack(double x, double ref, double n, double period)
+ * additions from the start time t0 (the time rule above). */
+static double time_slack(double x, double ref, double t0, double n, double period)
 {
-    double slack = (0.5 * n + TIME_SLACK_ULPS) * ulp_of(fabs(x) > fabs(ref) ? x : ref);
+    double big = fmax(fmax(fabs(x), fabs(ref)), fmax(fabs(t0), fabs(ref - t0)));
+    double slack = (0.5 * n + TIME_SLACK_ULPS) * ulp_of(big);
     return slack < TIME_SLACK_MAX * period ? slack : TIME_SLACK_MAX * period;
 }
 
 /* 1 if the importer's time x is the FMU's ref after n additions (the one rule of the time and a step's end). */
-static int same_time(double x, double ref, double n, double period)
+static int same_time(double x, double ref, double t0, double n, double period)
 {
-    return fabs(x - ref) <= time_slack(x, ref, n, period);
+    return fabs(x - ref) <= time_slack(x, ref, t0, n, period);
 }
 
 /* The first power of two from which a double resolves time more coarsely
@@ -535,34 +539,34 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     period = st(s)->period_s;
     t = now(s);
     n = floor(communicationStepSize / period + 0.5);
-    if (!same_time(currentCommunicationPoint, t, st(s)->steps, period)) {
+    if (!same_time(currentCommunicationPoint, t, st(s)->start_time, st(s)->steps, period)) {
         say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: currentCommunicationPoint %.17g s is not the FMU's time %.17g s (off "
             "by %.3g s, more than the %.3g s a time summed over %.0f steps in double may be off); step on from where "
             "the last step ended (or restore an FMU state)", s->name, currentCommunicationPoint, t,
-            currentCommunicationPoint - t, time_slack(currentCommunicationPoint, t, st(s)->steps, period),
+            currentCommunicationPoint - t, time_slack(currentCommunicationPoint, t, st(s)->start_time, st(s)->steps, period),
             st(s)->steps);
         return fmi3Error;
     }
     /* the step's end as the importer's next time t + h, against the FMU's after n periods: the same rule */
     end = currentCommunicationPoint + communicationStepSize;
     end_fmu = st(s)->start_time + (st(s)->periods + n) * period;
-    if (n >= 1 && n <= MAX_PERIODS_PER_STEP && !same_time(end, end_fmu, st(s)->steps + 1, period) &&
-        same_time(communicationStepSize, n * period, 1, period)) {
+    if (n >= 1 && n <= MAX_PERIODS_PER_STEP && !same_time(end, end_fmu, st(s)->start_time, st(s)->steps + 1, period) &&
+        same_time(communicationStepSize, n * period, 0.0, 1, period)) {
         /* n periods to the step's own rounding, from a time within the rule: the importer's sums drifted */
         say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: the step of %.17g s from %.17g s ends at %.17g s, %.3g s from the "
             "FMU's time after %.0f period%s, %.17g s: more than the %.3g s that %.0f sums in double may round by; "
             "the importer's time has drifted from the FMU's (keep it as startTime + k x step, not t += step)",
             s->name, communicationStepSize, currentCommunicationPoint, end, end - end_fmu, n, n == 1 ? "" : "s",
-            end_fmu, time_slack(end, end_fmu, st(s)->steps + 1, period), st(s)->steps + 1);
+            end_fmu, time_slack(end, end_fmu, st(s)->start_time, st(s)->steps + 1, period), st(s)->steps + 1);
         return fmi3Error;
     }
-    if (!(n >= 1 && n <= MAX_PERIODS_PER_STEP && same_time(end, end_fmu, st(s)->steps + 1, period))) {
+    if (!(n >= 1 && n <= MAX_PERIODS_PER_STEP && same_time(end, end_fmu, st(s)->start_time, st(s)->steps + 1, period))) {
         char off[240] = "";
         if (n >= 1 && n <= MAX_PERIODS_PER_STEP)
             snprintf(off, sizeof off, " (from %.17g s it ends at %.17g s, %.3g s from the FMU's time after %.0f "
                      "period%s, %.17g s: more than the %.3g s the rounding of a double allows)",
                      currentCommunicationPoint, end, end - end_fmu, n, n == 1 ? "" : "s", end_fmu,
-                     time_slack(end, end_fmu, st(s)->steps + 1, period));
+                     time_slack(end, end_fmu, st(s)->start_time, st(s)->steps + 1, period));
         say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: communication step %.17g s is not a whole number (1 to %.0f) of servo "
             "periods of %s s%s: this FMU steps in whole periods; use a fixed communication step of %s s (the "
             "parameter period) or a multiple of it", s->name, communicationStepSize, MAX_PERIODS_PER_STEP,
@@ -575,7 +579,7 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
             end_fmu, fmu_num(a, time_limit(period)), ulp_of(time_limit(period)), TIME_RESOLUTION, fmu_num(c, period));
         return fmi3Error;
     }
-    if (end_fmu > st(s)->stop_time && !same_time(end_fmu, st(s)->stop_time, st(s)->steps + 1, period)) {
+    if (end_fmu > st(s)->stop_time && !same_time(end_fmu, st(s)->stop_time, st(s)->start_time, st(s)->steps + 1, period)) {
         say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: the step from %.17g s to %.17g s would end past stopTime %.17g s "
             "(fmi3EnterInitializationMode's stopTimeDefined); the FMU computes nothing past it (FMI 3.0): stop "
             "there, or fmi3Reset and initialize with a later stopTime", s->name, t, end_fmu, st(s)->stop_time);

@@ -396,10 +396,11 @@ static fmi3Status step_at(fmi3Instance s, double t, double h)
     return fmi3DoStep(s, t, h, fmi3True, &ev, &term, &early, &last);
 }
 
-/* An importer keeping its time as t += h, the usual master loop: n steps of one period from t0. The
- * machine strikes first (+-10 V), so that the periods after are cheap (state frozen): the time is
- * the same. The step refused first (-1: none); *drift the importer's time less the FMU's at the end. */
-static long drift_run(double t0, double period, long n, double *drift)
+/* An importer keeping its time as t += h (sum 1), the usual master loop, or as t0 + k h (sum 0, as
+ * docs/fmu.md advises): n steps of one period from t0. The machine strikes first (+-10 V), so that
+ * the periods after are cheap (state frozen): the time is the same. The step refused first (-1:
+ * none); *drift the importer's time less the FMU's at the end. */
+static long drift_run(double t0, double period, long n, int sum, double *drift)
 {
     logbook b = {0};
     fmi3Instance s = instantiate("drift", &b);
@@ -422,7 +423,7 @@ static long drift_run(double t0, double period, long n, double *drift)
             printf("# step %ld from %.17g s: %s\n", i, t, b.last);
             break;
         }
-        t += period;
+        t = sum ? t + period : t0 + (double)(i + 1) * period;
     }
     *drift = t - get_f64(s, "time");
     fmi3FreeInstance(s);
@@ -437,19 +438,23 @@ static void test_time(void)
     static const struct {
         double t0, period;
         long n;
-    } runs[] = {{0, 1e-3, 400000}, {1e4, 1e-3, 20000}, {1e5, 1e-3, 20000}, {1e6, 1e-3, 20000}, {0, 5e-5, 400000}};
+        int sum;
+    } runs[] = {{0, 1e-3, 400000, 1}, {1e4, 1e-3, 20000, 1}, {1e5, 1e-3, 20000, 1}, {1e6, 1e-3, 20000, 1},
+                {0, 5e-5, 400000, 1}, {-0.5, 1e-3, 2000, 1}, {-0.5, 1e-3, 2000, 0}, {-0.3, 1e-3, 600, 0},
+                {-10, 1e-3, 20000, 1}, {-10, 1e-3, 20000, 0}};
     logbook b = {0};
     fmi3Instance s;
     double drift = 0, t;
     size_t k;
     int e;
     for (k = 0; k < sizeof runs / sizeof runs[0]; k++) {
-        long at = drift_run(runs[k].t0, runs[k].period, runs[k].n, &drift);
-        double t_end = runs[k].t0 + (double)runs[k].n * runs[k].period, ulp = nextafter(t_end, INFINITY) - t_end;
-        check(at < 0, "an importer with t += h: %ld steps of %g s from %g s all taken; its time ends %.3g s "
-              "(%.2g periods) off the FMU's, within the %.3g s that %ld sums may round by (half an ulp each, "
-              "+ 256 ulps)", runs[k].n, runs[k].period, runs[k].t0, drift, drift / runs[k].period,
-              (0.5 * (double)runs[k].n + 256) * ulp, runs[k].n);
+        long at = drift_run(runs[k].t0, runs[k].period, runs[k].n, runs[k].sum, &drift);
+        double t_end = runs[k].t0 + (double)runs[k].n * runs[k].period;
+        double big = fmax(fabs(runs[k].t0), fabs(t_end)), ulp = nextafter(big, INFINITY) - big;
+        check(at < 0, "an importer with %s: %ld steps of %g s from %g s%s all taken; its time ends %.3g s (%.2g periods) off the FMU's, within the %.3g s that %ld sums may "
+              "round by (half an ulp each, + 256 ulps)", runs[k].sum ? "t += h" : "t0 + k h", runs[k].n,
+              runs[k].period, runs[k].t0, runs[k].t0 < 0 ? " (through 0)" : "", drift, drift / runs[k].period, (0.5 * (double)runs[k].n + 256) * ulp,
+              runs[k].n);
     }
     b.quiet = 1;
     s = started("sync", &b, 0);
