@@ -28,10 +28,9 @@ import hexaglide_trainid as trainid  # noqa: E402
 import hg_config  # noqa: E402
 import hg_csv  # noqa: E402
 import hg_output  # noqa: E402
-from hg_identify_base import (COLUMNS, NAMES, NCOL, NIN, REC_BYTES, REC_MAGICS, RecErr,  # noqa: E402
-                              RecEvent, Settings, _dp, autocorr_time, butter_lp, clamped_periods,
-                              dac_output, dilate, force_per_volt, fric_col, params_copy, rec_event_of,
-                              rec_bind, rec_next, rec_open, usable_stretches)
+from hg_identify_base import (COLUMNS, NAMES, NCOL, NIN, REC_MAGICS, RecordError, Settings,  # noqa: E402
+                              _dp, autocorr_time, butter_lp, clamped_periods, dac_output, dilate,
+                              force_per_volt, fric_col, params_copy, record_columns, usable_stretches)
 
 _reg_sizeof = hg._sig("hg_regressor_sizeof", C.c_ulong)
 _reg_init = hg._sig("hg_regressor_init", C.c_int, C.c_void_p, C.c_void_p, C.POINTER(C.c_char_p),
@@ -254,57 +253,27 @@ class Run:
 def read_board_record(path):
     """A record of tools/hg_record.py (docs/replay.md), through the C reader
     (src/hg_record.c): its messages name line, column and field."""
-    with open(path, "rb") as f:
-        data = f.read()
-    r = C.create_string_buffer(REC_BYTES)
-    e = RecErr()
-    if rec_open(r, data, len(data), C.byref(e)):
-        raise BadInput("%s: %s" % (path, e.msg.decode(errors="replace")))
-    lines = data.split(b"\n", 64)
-    hdr_no = next(i for i, l in enumerate(lines) if l.startswith(b"sample,")) + 1
-    header = lines[hdr_no - 1].decode().rstrip("\r").split(",")
     need = ["in.period-ns", "in.integrator", "out.amps-on", "out.fault"] + \
         ["in.dac-v-%02d" % j for j in range(6)] + ["out.z-%d" % j for j in range(6)] + \
         ["out.zd-%d" % j for j in range(6)] + ["out.count-%02d" % j for j in range(6)] + \
         ["in.enc-scale-%02d" % j for j in range(6)]
-    for name in need:
-        if name not in header:
-            raise BadInput("%s: line %d, column %d (the header): no column '%s': a record of another "
-                           "pin set; record with tools/hg_record.py of this board (docs/replay.md)"
-                           % (path, hdr_no, len(lines[hdr_no - 1]) + 1, name))
     t = hg_params_table()
-    param_cols = {name: header.index("in.param-" + hal) for name, hal in t.items()
-                  if "in.param-" + hal in header}      # format 1: every parameter every period
-    # format 2: the parameters as events in two slots per period (docs/replay.md)
-    slots = [[header.index("in.pev-%d-%s" % (k, part)) for part in ("entry", "value", "age")]
-             for k in range(2) if "in.pev-%d-entry" % k in header]
+    # the board's asked substeps (the trains' fast fit) and format 1's parameters (every one every period),
+    # where the record has them
+    optional = ["in.substeps"] + ["in.param-" + hal for hal in t.values()]
+    try:
+        a, header, hdr_no, evs = record_columns(path, need, "a record of another pin set; record with "
+                                                "tools/hg_record.py of this board (docs/replay.md)", optional)
+    except RecordError as ex:
+        raise BadInput(str(ex))
+    cols = need + [c for c in optional if c in header]
+    # what the board ran with at the end: format 1's last row, format 2's events (two slots per period)
+    recorded = {name: float(a[-1, cols.index("in.param-" + hal)]) for name, hal in t.items()
+                if "in.param-" + hal in cols} if len(a) else {}
     entry_of = {n: i for i, n in enumerate(t)}
-    told, events = {}, {}
-    first = lines[hdr_no].split(b"\n", 1)[0].rstrip(b"\r") if len(lines) > hdr_no else b""
-    why = rec_bind(r, header, first)         # every column typed as its pin, as replay reads it
-    if why:
-        raise BadInput("%s: %s" % (path, why))
-    cols = [header.index(x) for x in need]
-    if "in.substeps" in header:                         # the board's asked substeps (the trains' fast fit)
-        cols.append(header.index("in.substeps"))
-    row = np.zeros(len(header) + 8)
-    out = []
-    while True:
-        rc = rec_next(r, row, C.byref(e))
-        if rc == 0:
-            break
-        if rc < 0:
-            raise BadInput("%s: %s" % (path, e.msg.decode(errors="replace")))
-        for c_entry, c_value, c_age in slots:
-            ev = RecEvent()
-            if rec_event_of(row[c_entry], row[c_value], row[c_age], len(out), C.byref(ev)):
-                told[ev.entry] = ev.value
-                events[(ev.entry, ev.at)] = ev.value
-        out.append(row[cols].copy())
-    # what the board ran with at the end: format 1's last row, format 2's events
-    recorded = {name: float(row[c]) for name, c in param_cols.items()} if out else {}
+    told = {e: v for e, v, _ in evs}
+    events = {(e, at): v for e, v, at in evs}
     recorded.update({name: told[i] for name, i in entry_of.items() if i in told})
-    a = np.array(out).reshape(-1, len(cols))
     run = Run(path, "record")
     run.last_line = hdr_no + len(a)
     if len(a):
@@ -315,8 +284,8 @@ def read_board_record(path):
                            "identify one period at a time" % (path, hdr_no + 1 + bad, per[bad]))
         run.dt = per[0] * 1e-9
         run.integrator = int(np.bincount(a[:, 1].astype(int)).argmax())
-        if len(cols) > len(need):
-            run.substeps = int(np.bincount(a[:, len(need)].astype(int)).argmax())
+        if "in.substeps" in cols:
+            run.substeps = int(np.bincount(a[:, cols.index("in.substeps")].astype(int)).argmax())
     run.ok = (a[:, 2] > 0.5) & (a[:, 3] < 0.5)
     run.volts = a[:, 4:10]
     run.pos = a[:, 10:16]

@@ -97,42 +97,16 @@ def read_record(path):
                                                        C.byref(ib.RecErr())):
         raise BadInput("%s: not a record of the serial plant (its in.plant, '# plant'): give a serial machine's "
                        "records alone (docs/serial.md)" % path)
-    r = C.create_string_buffer(ib.REC_BYTES)
-    e = ib.RecErr()
-    if ib.rec_open(r, data, len(data), C.byref(e)):
-        raise BadInput("%s: %s" % (path, e.msg.decode(errors="replace")))
-    lines = data.split(b"\n", 64)
-    hdr_no = next(i for i, l in enumerate(lines) if l.startswith(b"sample,")) + 1
-    header = lines[hdr_no - 1].decode().rstrip("\r").split(",")
-    n = sum(1 for h in header if h.startswith("out.current-"))
+    header = next((l for l in data.split(b"\n", 64) if l.startswith(b"sample,")), b"").decode(errors="replace")
+    n = sum(1 for h in header.rstrip("\r").split(",") if h.startswith("out.current-"))   # the plant's axes
     need = ["in.period-ns", "in.model", "out.amps-on", "out.fault"] + ["out.count-%02d" % k for k in range(n)] + \
         ["out.current-%d" % k for k in range(n)] + ["in.dac-v-%02d" % k for k in range(n)] + \
         ["in.substeps", "in.integrator"]
-    for name in need:
-        if name not in header:
-            raise BadInput("%s: line %d (the header): no column '%s': not a serial plant's board record" %
-                           (path, hdr_no, name))
-    first = lines[hdr_no].split(b"\n", 1)[0].rstrip(b"\r") if len(lines) > hdr_no else b""
-    why = ib.rec_bind(r, header, first)         # every column typed as its pin, as replay reads it
-    if why:
-        raise BadInput("%s: %s" % (path, why))
-    slots = [[header.index("in.pev-%d-%s" % (k, part)) for part in ("entry", "value", "age")]
-             for k in range(2) if "in.pev-%d-entry" % k in header]
-    cols = [header.index(x) for x in need]
-    row = np.zeros(len(header) + 8)
-    out, told = [], {}
-    while True:
-        rc = ib.rec_next(r, row, C.byref(e))
-        if rc == 0:
-            break
-        if rc < 0:
-            raise BadInput("%s: %s" % (path, e.msg.decode(errors="replace")))
-        for c_entry, c_value, c_age in slots:
-            ev = ib.RecEvent()
-            if ib.rec_event_of(row[c_entry], row[c_value], row[c_age], len(out), C.byref(ev)):
-                told[ev.entry] = ev.value
-        out.append(row[cols].copy())
-    a = np.array(out).reshape(-1, len(cols))
+    try:
+        a, _, hdr_no, evs = ib.record_columns(path, need, "not a serial plant's board record")
+    except ib.RecordError as ex:
+        raise BadInput(str(ex))
+    told = {e: v for e, v, _ in evs}
     if len(a) < MIN_SAMPLES:
         raise BadInput("%s: %d periods; identify needs at least %d" % (path, len(a), MIN_SAMPLES))
     if np.ptp(a[:, 0]) > 0 or np.ptp(a[:, 1]) > 0:

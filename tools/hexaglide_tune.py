@@ -32,6 +32,7 @@ import hg_csv  # noqa: E402
 import hg_config  # noqa: E402
 import hg_margins as hgm  # noqa: E402
 from hg_program import LEAD_IN, PERIOD_S, beyond_limits, program_rows, s_curve, uneven_times  # noqa: E402
+import hg_identify_base as ib  # noqa: E402  (the C record reader)
 import hg_output  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -205,30 +206,24 @@ def beyond_drive(cmd, start, joints):
 
 def load_record(path):
     """Joint commands (n, 6) in mm from a record of tools/hg_record.py
-    (docs/replay.md): the columns joint.N.motor-pos-cmd, from the second
-    period after the last index latch (homing done, where `replay` starts its
-    f-error window) to the last period with every amplifier enabled (pid.N.enable
-    is out-08+N of in.dout-values)."""
-    header, no = None, 0
-    with open(path) as f:
-        for no, line in enumerate(f, 1):
-            if not line.startswith("#"):
-                header = line.rstrip("\r\n").split(",")
-                break
-    if header is None or header[0] != "sample":
-        raise BadInput("%s: no header line after the metadata: the record was cut short; record again" % path)
-    want = ["joint.%d.motor-pos-cmd" % j for j in range(hg.JOINTS)] + ["out.index-latched", "in.dout-values"]
-    missing = [c for c in want if c not in header]
-    if missing:
-        raise BadInput("%s: no column %s: a record from an older tools/hg_record.py has no joint commands; "
-                       "record again (docs/replay.md)" % (path, missing[0]))
+    (docs/replay.md), read as `replay` reads it (every column typed as its pin,
+    every sample in turn: src/hg_record.c), at tune's servo period: the columns
+    joint.N.motor-pos-cmd, from the second period after the last index latch
+    (homing done, where `replay` starts its f-error window) to the last period
+    with every amplifier enabled (pid.N.enable is out-08+N of in.dout-values)."""
+    want = ["joint.%d.motor-pos-cmd" % j for j in range(hg.JOINTS)] + ["out.index-latched", "in.dout-values",
+                                                                      "in.period-ns"]
     try:
-        data = np.loadtxt(path, delimiter=",", skiprows=no, comments="#", ndmin=2,
-                          usecols=[header.index(c) for c in want])
-    except ValueError as ex:
-        raise BadInput("%s: %s (line numbers count after the header, line %d); record again" % (path, ex, no))
-    if not np.all(np.isfinite(data)):
-        raise BadInput("%s holds a NaN or infinite value: not a record tools/hg_record.py wrote" % path)
+        data, _, hdr_no, _ = ib.record_columns(path, want, "tune needs motion's joint commands and the servo period "
+                                               "(an older tools/hg_record.py's record has no joint commands); "
+                                               "record again (docs/replay.md)")
+    except ib.RecordError as ex:
+        raise BadInput(str(ex))
+    off = np.where(data[:, 8] != round(PERIOD_S * 1e9))[0]
+    if len(off):
+        raise BadInput("%s line %d: in.period-ns %d: tune runs one line per %g s servo period; record with "
+                       "[EMCMOT]SERVO_PERIOD = %d (ns)" % (path, hdr_no + 1 + off[0], data[off[0], 8], PERIOD_S,
+                                                           round(PERIOD_S * 1e9)))
     latched = np.where(data[:, 6].astype(np.int64) & 0x3f)[0]
     on = np.where((data[:, 7].astype(np.int64) >> 8 & 0x3f) == 0x3f)[0]
     i0 = latched[-1] + 2 if len(latched) else (on[0] if len(on) else 0)

@@ -5,7 +5,8 @@ rigid least squares (tools/hexaglide_identify.py), the drive trains'
 DAC's output and the drive force per volt, the C record reader's bindings
 (src/hg_record.h, src/hg_board_rec.h), how a run's usable stretches and
 clamped periods are found, the fits' settings, and the residuals'
-correlation time. It imports none of those three."""
+correlation time. It imports none of those three. tune reads its
+recorded trajectories with the same record reader (record_columns)."""
 import ctypes as C
 import os
 import sys
@@ -113,6 +114,58 @@ def rec_bind(r, header, first_row):
         return None
     e = RecErr()
     return e.msg.decode(errors="replace") if _rec_bind_plant(r, plant, variant, C.byref(e)) else None
+
+
+class RecordError(Exception):
+    """A record file that cannot be read (the message names the file, line and cause)."""
+
+
+def record_columns(path, need, why_missing, optional=()):
+    """The columns need of a record of tools/hg_record.py (docs/replay.md)
+    through the C reader (src/hg_record.c), every column typed as its pin on
+    every row and every sample in turn, as `hexaglide replay` reads it:
+    (rows: the columns need, then those of optional the header has; header;
+    the header's line number; the format-2 parameter events [(entry, value,
+    period)], in the record's order). RecordError naming
+    the line and the cause: an unreadable file, the reader's refusal, or the
+    first column of need the header lacks (why_missing: what that means)."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError as ex:
+        raise RecordError("%s: cannot read it: %s; give a record file" % (path, ex.strerror or ex))
+    r = C.create_string_buffer(REC_BYTES)
+    e = RecErr()
+    if rec_open(r, data, len(data), C.byref(e)):
+        raise RecordError("%s: %s" % (path, e.msg.decode(errors="replace")))
+    lines = data.split(b"\n", 64)
+    hdr_no = next(i for i, l in enumerate(lines) if l.startswith(b"sample,")) + 1
+    header = lines[hdr_no - 1].decode().rstrip("\r").split(",")
+    for name in need:
+        if name not in header:
+            raise RecordError("%s: line %d, column %d (the header): no column '%s': %s"
+                              % (path, hdr_no, len(lines[hdr_no - 1]) + 1, name, why_missing))
+    first = lines[hdr_no].split(b"\n", 1)[0].rstrip(b"\r") if len(lines) > hdr_no else b""
+    why = rec_bind(r, header, first)
+    if why:
+        raise RecordError("%s: %s" % (path, why))
+    slots = [[header.index("in.pev-%d-%s" % (k, part)) for part in ("entry", "value", "age")]
+             for k in range(2) if "in.pev-%d-entry" % k in header]
+    cols = [header.index(x) for x in need] + [header.index(x) for x in optional if x in header]
+    row = np.zeros(len(header) + 8)
+    out, events = [], []
+    while True:
+        rc = rec_next(r, row, C.byref(e))
+        if rc == 0:
+            break
+        if rc < 0:
+            raise RecordError("%s: %s" % (path, e.msg.decode(errors="replace")))
+        for c_entry, c_value, c_age in slots:
+            ev = RecEvent()
+            if rec_event_of(row[c_entry], row[c_value], row[c_age], len(out), C.byref(ev)):
+                events.append((ev.entry, ev.value, ev.at))
+        out.append(row[cols].copy())
+    return np.array(out).reshape(-1, len(cols)), header, hdr_no, events
 
 
 # ---------------------------------------------------------------- a run's stretches
