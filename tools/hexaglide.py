@@ -899,12 +899,28 @@ def check_loop_config(cfg):
 def notch_response(f0, q, freqs, period_ns=1000000):
     """LinuxCNC's biquad notch (f0 Hz, Q) in a thread of period_ns: its complex response at
     freqs (src/hg_biquad.c, the coefficients the enable edge computes), and whether
-    biquad.comp accepts f0 and Q (its valid pin)."""
+    biquad.comp accepts f0 and Q (its valid pin). ValueError for what the loop refuses
+    whatever biquad.comp says (loop_config): f0 not finite and > 0 Hz, Q not finite, a period outside
+    (0, 10 ms]; and for a frequency in freqs that is not finite."""
+    f0, q = float(f0), float(q)
+    if not (np.isfinite(f0) and f0 > 0):
+        raise ValueError("notch f0 = %r: must be finite and > 0 (Hz)" % f0)
+    if not np.isfinite(q):
+        raise ValueError("notch Q = %r: must be finite (biquad.comp's valid pin says whether it lies in "
+                         "[0.5, 2])" % q)
+    cfg = LoopConfig()
+    _loop_default(C.byref(cfg))
+    cfg.period_ns = period_ns = _whole("period_ns", period_ns, "ns")
+    check_loop_config(cfg)
+    freqs = np.atleast_1d(np.asarray(freqs, dtype=np.float64))
+    if not np.all(np.isfinite(freqs)):
+        raise ValueError("freqs[%d] = %r: must be finite (Hz)" % (np.argmin(np.isfinite(freqs)),
+                                                                 freqs[np.argmin(np.isfinite(freqs))]))
     b = Biquad()
-    _biquad_notch(C.byref(b), float(f0), float(q))
+    _biquad_notch(C.byref(b), f0, q)
     re, im = C.c_double(), C.c_double()
     h, valid = [], 1
-    for f in np.atleast_1d(freqs):
+    for f in freqs:
         valid = _biquad_response(C.byref(b), period_ns, float(f), C.byref(re), C.byref(im))
         h.append(complex(re.value, im.value))
     return np.array(h), bool(valid)
@@ -1140,7 +1156,9 @@ def pid_gains(gains):
 def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000, state=None):
     """LinuxCNC's pid (src/hg_pid.c) on recorded pins: outputs for arrays of
     command and feedback (and enable, default 1), from `state` (a dict of
-    PidState fields; default the load-time state, all zero)."""
+    PidState fields; default the load-time state, all zero). ValueError naming
+    the argument: a period the loop refuses (hg_loop_config_check: (0, 10 ms]),
+    a state value that is not finite, an enable other than 0 or 1."""
     g = pid_gains(gains)
     st = PidState()
     names = [f for f, _ in PidState._fields_]
@@ -1148,13 +1166,24 @@ def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000, state=
         if k not in names:
             raise ValueError("state: %r is not a PidState field (%s)" % (k, ", ".join(names)))
         setattr(st, k, v)
-    period_ns = _whole("period_ns", period_ns, "ns")
+        if not np.isfinite(getattr(st, k)):
+            raise ValueError("state: %s = %r: must be finite (a pid's memory is never NaN or infinite)" % (k, v))
+    cfg = LoopConfig()
+    _loop_default(C.byref(cfg))
+    cfg.period_ns = period_ns = _whole("period_ns", period_ns, "ns")
+    check_loop_config(cfg)                         # the period, as the closed loop checks it
     command = np.asarray(command, dtype=np.float64)
     if command.ndim != 1:
         raise ValueError("command must be a vector (one value per period), got shape %s" % (command.shape,))
     n = len(command)
     feedback = _vector("feedback", feedback, n, what="one per command")
-    en = np.ones(n, dtype=int) if enable is None else np.asarray(_vector("enable", enable, n), dtype=int)
+    en = np.ones(n, dtype=int)
+    if enable is not None:
+        e = _vector("enable", enable, n)
+        off = np.where((e != 0) & (e != 1))[0]
+        if len(off):
+            raise ValueError("enable[%d] = %r: must be 0 or 1 (pid.N.enable is a bit)" % (off[0], e[off[0]]))
+        en = e.astype(int)
     for name, a in (("command", command), ("feedback", feedback)):
         bad = _pid_inputs(name, a)
         if bad:
