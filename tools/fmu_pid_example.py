@@ -19,7 +19,6 @@ for 0.3 s. Prints the peak following error of each joint; --plot writes
 the commanded and actual joints and the following errors (matplotlib).
 Needs Python 3 with numpy (and matplotlib for --plot)."""
 import argparse
-import configparser
 import ctypes as C
 import os
 import shutil
@@ -203,21 +202,15 @@ class Pid:
 
 # ---- the config and the move ----
 def read_joints(ini):
-    """[JOINT_0..5] of a LinuxCNC INI file: six {KEY: number}."""
-    cp = configparser.ConfigParser(strict=False, interpolation=None, comment_prefixes=("#", ";"))
-    cp.optionxform = str.upper
-    with open(ini) as f:
-        cp.read_string("".join(l for l in f if not l.startswith("#INCLUDE")))
-    joints = []
-    for j in range(JOINTS):
-        d = {}
-        for k, v in cp.items("JOINT_%d" % j):
-            try:
-                d[k] = float(v)
-            except ValueError:
-                pass
-        joints.append(d)
-    return joints
+    """[JOINT_0..5] of a LinuxCNC INI file: six {KEY: number}, read by build/hexaglide's INI reader
+    (tools/hg_config.py: as soak and tune read them; a key given twice, a value that is no finite
+    number or a key the HAL file sets missing is refused, naming key, file and line)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import hg_config
+    try:
+        return hg_config.read(ini, loop=True, cmd="fmu_pid_example").joints
+    except hg_config.ConfigError as ex:
+        sys.exit("fmu_pid_example: %s" % ex)
 
 
 def quintic_move(target_mm, seconds, hold, period):
@@ -267,6 +260,8 @@ def main():
     ap.add_argument("--csv", help="per period: t, cmd, fb, ferror, volts of each joint")
     ap.add_argument("--plot", help="PNG: commanded and actual joints, following errors")
     a = ap.parse_args()
+    if not (a.time >= 0.01 and a.time <= 600):
+        ap.error("--time %s: the move must take 0.01 to 600 s (not a number, or too short or long)" % a.time)
     for path, what in ((a.fmu, "make fmu"), (a.ini, "a LinuxCNC INI with [JOINT_0]..[JOINT_5]")):
         if not os.path.exists(path):
             sys.exit("fmu_pid_example: %s not found (%s)" % (path, what))
