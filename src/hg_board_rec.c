@@ -282,9 +282,11 @@ void hg_board_rec_entry_set(hg_board_params *p, int n, unsigned e, double v)
         p->plant.v[e] = v;
 }
 
-void hg_board_rec_stream_start(hg_board_rec_stream *s)
+void hg_board_rec_stream_start(hg_board_rec_stream *s, int plant, int variant)
 {
     int k;
+    if (hg_board_params_default(plant, variant, &s->told))
+        memset(&s->told, 0, sizeof s->told);
     s->started = 0;
     s->lost = 0;
     s->period = 0;
@@ -308,19 +310,27 @@ static void enqueue(hg_board_rec_stream *s, unsigned e, double v)
     s->count++;
 }
 
+/* 1 if entry e of p differs bitwise from what s has told (a NaN equals itself). */
+static int changed(const hg_board_rec_stream *s, const hg_board_params *p, int n, unsigned e)
+{
+    double v = hg_board_rec_entry(p, n, e), w = hg_board_rec_entry(&s->told, n, e);
+    return memcmp(&v, &w, sizeof v) != 0; // NOLINT(bugprone-suspicious-memory-comparison): bitwise on purpose
+}
+
 void hg_board_rec_stream_step(hg_board_rec_stream *s, const hg_board_params *p, int n)
 {
     unsigned e;
-    int k;
+    int k, pass;
     if (s->started)
         s->period++;
-    for (e = 0; e < (unsigned)n; e++) {  /* everything at the start, then what changed */
-        double v = hg_board_rec_entry(p, n, e), w = hg_board_rec_entry(&s->told, n, e);
-        if (!s->started || memcmp(&v, &w, sizeof v) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise, a NaN equals itself
-            enqueue(s, e, v);
-            hg_board_rec_entry_set(&s->told, n, e, v);
-        }
-    }
+    /* at the start the whole block, those that differ from the defaults (where a replay starts) first,
+     * so that a record of a few periods still carries them; then what changed */
+    for (pass = s->started ? 1 : 0; pass < 2; pass++)
+        for (e = 0; e < (unsigned)n; e++)
+            if (s->started ? changed(s, p, n, e) : changed(s, p, n, e) == (pass == 0))
+                enqueue(s, e, hg_board_rec_entry(p, n, e));
+    for (e = 0; e < (unsigned)n; e++)
+        hg_board_rec_entry_set(&s->told, n, e, hg_board_rec_entry(p, n, e));
     s->started = 1;
     for (k = 0; k < HG_BOARD_REC_SLOTS; k++) {
         if (s->count == 0) {

@@ -31,7 +31,8 @@
  *     non-finite code in bits 16..17; "in.pev-S-value"; "in.pev-S-age":
  *     periods since the value took effect). The stream
  *     (hg_board_rec_stream) sends the plant's whole block from the period
- *     it starts, then every entry that changes, in order (substeps and
+ *     it starts (the entries that differ from the defaults first), then
+ *     every entry that changes, in order (substeps and
  *     integrator stay columns, as in format 1); a replay reads
  *     ahead, applies each value at the period it took effect and checks
  *     the fingerprint of every period ("in.plant" names the plant).
@@ -120,8 +121,11 @@ double hg_board_rec_entry(const hg_board_params *p, int n, unsigned e);
 /* Set the plant's entry e (of n) of p to v (none past them). */
 void hg_board_rec_entry_set(hg_board_params *p, int n, unsigned e, double v);
 
-/* Start the stream (nothing told yet: the first period sends the whole block). */
-void hg_board_rec_stream_start(hg_board_rec_stream *s);
+/* Start the stream of a board of plant and variant (nothing told yet: the
+ * first period queues the whole block, the entries that differ from the
+ * plant's defaults first: a replay starts from the defaults, so a record
+ * shorter than the block's periods still carries every value that matters). */
+void hg_board_rec_stream_start(hg_board_rec_stream *s, int plant, int variant);
 
 /* One recorded period with input block p (n plant entries): queue what
  * changed (everything, in the first period), fill this period's slots. */

@@ -373,7 +373,7 @@ static void write_rec(board_t *b, long period)
     hg_board_rec_ctx c;
     int i;
     if (!b->recording)                /* record rose: the parameters' stream starts again */
-        hg_board_rec_stream_start(&b->stream);
+        hg_board_rec_stream_start(&b->stream, b->b.plant, b->b.variant);
     hg_board_rec_stream_step(&b->stream, &b->ins.params, b->nparams);
     c.in = &b->ins;
     c.out = &b->o;

@@ -1204,7 +1204,7 @@ class _RecCtx(C.Structure):
 
 _REC_FIELD_BYTES = 56          # sizeof(hg_board_rec_field): name[32], 7 bytes, offset, nf_index (checked below)
 _rec_fields = _sig("hg_board_rec_fields", C.c_int, _P, C.c_int, C.c_int, C.c_int, C.c_int)
-_rec_stream_start = _sig("hg_board_rec_stream_start", None, _P)
+_rec_stream_start = _sig("hg_board_rec_stream_start", None, _P, C.c_int, C.c_int)
 _rec_stream_step = _sig("hg_board_rec_stream_step", None, _P, C.POINTER(BoardParams), C.c_int)
 _rec_get = _sig("hg_board_rec_get", C.c_double, _P, C.c_int, C.c_int, C.POINTER(_RecCtx))
 
@@ -1237,7 +1237,7 @@ class Recorder:
             raise ImportError("hg_board_rec_field: layout differs from the library's: rebuild both (%r)" % names[:2])
         self.np = len(board.params.names)
         self.stream = C.create_string_buffer(1 << 17)
-        _rec_stream_start(self.stream)
+        _rec_stream_start(self.stream, pi, var)
         self.f = open(path, "w")
         self.f.write("# hexaglide-record 2\n# source %s\n# board 0\n# plant %s\n# closed-loop no: %s\nsample,%s\n"
                      % (source, plant_names()[pi], source, ",".join(names)))

@@ -956,7 +956,8 @@ int cmd_replay(int argc, char **argv)
         if (col_fp >= 0 && (double)hg_board_rec_fingerprint(&in.params, np) != row[col_fp]) {
             fprintf(stderr, "hexaglide replay: %s: sample %ld (line %ld): the parameters in force then are not "
                     "in the record (in.params-fp does not match the events; more than %d changes waited at "
-                    "once, or rows are missing): it replays only up to here\n", o.file, n, r.line,
+                    "once, rows are missing, or the record ends before they were sent): it replays only up to "
+                    "here\n", o.file, n, r.line,
                     HG_BOARD_REC_QUEUE);
             status = 1;
             break;

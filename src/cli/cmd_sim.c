@@ -96,7 +96,7 @@ static int record_open(sim_record *r, const char *path, const hg_board *b)
     r->np = hg_board_plant(b)->nparams(b->variant);
     if (r->n < 0 || cli_out_open("sim", path, &r->out))
         return -1;
-    hg_board_rec_stream_start(&r->stream);
+    hg_board_rec_stream_start(&r->stream, b->plant, b->variant);
     fprintf(r->out.f, "# hexaglide-record %d\n# source hexaglide sim (open loop, constant volts)\n# board 0\n"
                       "# plant %s\n# closed-loop no: an open-loop run of hexaglide sim\nsample",
             HG_BOARD_REC_FORMAT, hg_board_plant(b)->name);
@@ -123,6 +123,28 @@ static void record_row(sim_record *r, long s, const hg_board *b, const hg_board_
     for (k = 0; k < r->n; k++)
         fprintf(r->out.f, ",%.17g", hg_board_rec_get(r->f, r->n, k, &c));
     fputc('\n', r->out.f);
+}
+
+/* 1 after a message if parameter events that differ from the defaults (where a replay starts) still
+ * wait in the stream after the record's rows: replay could not apply them. */
+static int record_incomplete(const sim_record *r, const hg_board *b, long rows)
+{
+    hg_board_params d;
+    int k, waiting = 0;
+    if (hg_board_params_default(b->plant, b->variant, &d))
+        return 0;
+    for (k = 0; k < r->stream.count; k++) {
+        const hg_board_rec_event *ev = &r->stream.q[(r->stream.head + k) % HG_BOARD_REC_QUEUE];
+        double v = hg_board_rec_entry(&d, r->np, ev->entry);
+        waiting += memcmp(&v, &ev->value, sizeof v) != 0;
+    }
+    if (!waiting)
+        return 0;
+    fprintf(stderr, "hexaglide sim: --record: %d parameter value%s other than the default did not fit into the "
+                    "record's %ld row%s (%d events a period): replay stops at its first sample; record a longer "
+                    "run (--time)\n", waiting, waiting == 1 ? "" : "s", rows, rows == 1 ? "" : "s",
+            HG_BOARD_REC_SLOTS);
+    return 1;
 }
 
 enum { OPT_MODEL, OPT_TIME, OPT_DT, OPT_VOLTS, OPT_SUBSTEPS, OPT_INTEGRATOR, OPT_INI, OPT_SET, OPT_CSV,
@@ -314,6 +336,8 @@ int cmd_sim(int argc, char **argv)
         write_row(csv.f, (double)(s + 1) * dt, pl, &out);   /* no drift from summing dt */
     }
     if (cli_out_close("sim", &csv, 1))       /* the rows before a failure are kept */
+        rc = rc ? rc : -1;
+    if (record && record_incomplete(&rec, b, s < n ? s + 1 : s))
         rc = rc ? rc : -1;
     if (record && cli_out_close("sim", &rec.out, 1))
         rc = rc ? rc : -1;

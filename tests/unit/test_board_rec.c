@@ -248,7 +248,7 @@ static size_t record_run(int n, int steps, void (*inputs)(hg_board_inputs *, int
     int k, s;
     hg_board_init(&ba, 0, HG_MODEL_REDUCED_CARTESIAN, 0);
     hg_board_inputs_default(&ba, &in);
-    hg_board_rec_stream_start(&stream);
+    hg_board_rec_stream_start(&stream, 0, HG_MODEL_REDUCED_CARTESIAN);
     len = (size_t)snprintf(text, sizeof text, "%s\n# board 0\nsample", HG_RECORD_MAGIC);
     for (k = 0; k < n; k++)
         len += (size_t)snprintf(text + len, sizeof text - len, ",%s", f[k].name);
