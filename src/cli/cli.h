@@ -278,6 +278,14 @@ int cli_out_open(const char *cmd, const char *path, cli_out *o);
  * failed; no temporary left, a regular file as it was). */
 int cli_out_close(const char *cmd, cli_out *o, int keep);
 
+/* Flush stdout: 0, or -1 after a message (once per process) naming the cause of a failed
+ * write (a full disk, a closed pipe): main checks it after every command, so no result is
+ * lost silently. */
+int cli_stdout_flush(const char *cmd);
+/* stdout through a writer that keeps the first failed write's cause for cli_stdout_flush
+ * (main, before any output). */
+void cli_stdout_init(void);
+
 /* 1 if outputs a and b would write the same file (symlinks followed). */
 int cli_out_same(const char *a, const char *b);
 

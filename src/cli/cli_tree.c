@@ -5,6 +5,7 @@
  * every python3 on $PATH, each checked by importing the modules. And the
  * output files: a regular file (or a new one) through a temporary file and
  * a rename, a symlink's target the same way, a FIFO or device straight. */
+#define _GNU_SOURCE                    /* fopencookie: stdout keeping its write error (cli_stdout_init) */
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -313,16 +314,58 @@ int cli_out_open(const char *cmd, const char *path, cli_out *o)
     return 0;
 }
 
+static int stdout_errno;               /* the first failed write's cause (0: none) */
+
+/* stdout's writer: all n bytes to fd 1, or -1 keeping the cause (stdio forgets it once
+ * a large fputs bypassed the buffer). */
+static ssize_t stdout_write(void *cookie, const char *buf, size_t n)
+{
+    size_t done = 0;
+    (void)cookie;
+    while (done < n) {
+        ssize_t w = write(STDOUT_FILENO, buf + done, n - done);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0) {
+            if (!stdout_errno)
+                stdout_errno = w < 0 ? errno : EIO;
+            return -1;
+        }
+        done += (size_t)w;
+    }
+    return (ssize_t)n;
+}
+
+void cli_stdout_init(void)
+{
+    cookie_io_functions_t io = {0, stdout_write, 0, 0};
+    FILE *f = fopencookie(0, "w", io);
+    if (!f)
+        return;                        /* stdio's own stdout then: the cause may read EIO */
+    if (isatty(STDOUT_FILENO))
+        setvbuf(f, 0, _IOLBF, BUFSIZ); /* a terminal sees each line as before */
+    stdout = f;
+}
+
+int cli_stdout_flush(const char *cmd)
+{
+    static int reported;               /* once: sim's CSV to stdout, then main */
+    errno = 0;
+    if (fflush(stdout) == 0 && !ferror(stdout))
+        return 0;
+    if (!reported)
+        fprintf(stderr, "hexaglide %s: writing stdout failed: %s; the output is incomplete\n", cmd,
+                strerror(stdout_errno ? stdout_errno : errno ? errno : EIO));
+    reported = 1;
+    return -1;
+}
+
 int cli_out_close(const char *cmd, cli_out *o, int keep)
 {
     int err = 0, renamed = o->path && o->tmp[0];
     errno = 0;
-    if (!o->path) {
-        if (fflush(stdout) == 0 && !ferror(stdout))
-            return 0;
-        fprintf(stderr, "hexaglide %s: writing stdout failed: %s\n", cmd, strerror(errno ? errno : EIO));
-        return -1;
-    }
+    if (!o->path)
+        return cli_stdout_flush(cmd);
     if (fflush(o->f) != 0 || ferror(o->f))
         err = errno ? errno : EIO;
     if (!err && renamed && keep && fsync(fileno(o->f)) != 0)

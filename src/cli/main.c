@@ -45,16 +45,19 @@ static void usage(FILE *f)
 int main(int argc, char **argv)
 {
     int i;
+    cli_stdout_init();
     if (argc < 2) {
         usage(stderr);
         return 2;
     }
     for (i = 0; i < N_COMMANDS; i++)
-        if (strcmp(argv[1], commands[i].name) == 0)
-            return commands[i].run(argc - 2, argv + 2);
+        if (strcmp(argv[1], commands[i].name) == 0) {
+            int rc = commands[i].run(argc - 2, argv + 2);
+            return cli_stdout_flush(commands[i].name) && rc == 0 ? 1 : rc;  /* a result lost is a failure */
+        }
     if (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
         usage(stdout);
-        return 0;
+        return cli_stdout_flush("--help") ? 1 : 0;
     }
     fprintf(stderr, "hexaglide: unknown command '%s'\n", argv[1]);
     usage(stderr);
