@@ -2,7 +2,7 @@
  * process exit code: 0 on success (and for --help / -h, usage on stdout),
  * 1 on a refused or failed computation, 2 on a usage error. Messages go
  * to stderr, results to stdout. Every option takes "--opt value" and
- * "--opt=value" (cli_next). */
+ * "--opt=value", once unless CLI_REPEAT (--set) (cli_next). */
 #ifndef HG_CLI_H
 #define HG_CLI_H
 
@@ -45,11 +45,16 @@ extern const char cli_usage_ik[], cli_usage_fk[], cli_usage_sim[], cli_usage_soa
 
 /* ---- options (cli_parse.c) ---- */
 
-/* One option of a subcommand: "--name", and whether it takes a value. */
+/* One option of a subcommand: "--name", and whether it takes a value: 0 (a flag),
+ * 1 (a value, given at most once: a second is refused naming both) or
+ * CLI_REPEAT (a value that may be given again, each one kept: --set). */
+#define CLI_REPEAT 2
 typedef struct {
     const char *name;
     int has_value;
 } cli_opt;
+
+#define CLI_MAX_OPTS 32    /* options of one subcommand */
 
 /* The scanner over a subcommand's arguments. */
 typedef struct {
@@ -60,6 +65,7 @@ typedef struct {
     char **argv;
     int i;                 /* next argument */
     int only_positional;   /* after "--" */
+    const char *given[CLI_MAX_OPTS]; /* each once-only option's value so far, 0 if not given */
 } cli_args;
 
 #define CLI_DONE (-1)      /* no arguments left */
@@ -73,7 +79,9 @@ void cli_args_init(cli_args *a, const char *cmd, const char *usage, const cli_op
 /* Next argument: the index of the option in opts (its value in *value, 0
  * for a flag), or CLI_DONE, CLI_ARG, CLI_HELP, CLI_BAD. Options are
  * "--name" (value from "--name=v" or the next argument, whatever it looks
- * like) and -h; "-5" is a positional value; after "--" everything is. */
+ * like) and -h; "-5" is a positional value; after "--" everything is. A
+ * value option that is not CLI_REPEAT given a second time is CLI_BAD,
+ * naming both values (nothing is silently the last one). */
 int cli_next(cli_args *a, const char **value);
 
 /* text as a finite double: 0, 1 (not a number: empty, trailing text) or

@@ -18,6 +18,22 @@ void cli_args_init(cli_args *a, const char *cmd, const char *usage, const cli_op
     a->argv = argv;
     a->i = 0;
     a->only_positional = 0;
+    memset(a->given, 0, sizeof a->given);
+}
+
+/* k, or CLI_BAD after a message when once-only option k was given before (value v now). */
+static int once(cli_args *a, int k, const char *v)
+{
+    const cli_opt *o = &a->opts[k];
+    if (o->has_value == CLI_REPEAT || k >= CLI_MAX_OPTS)
+        return k;
+    if (a->given[k]) {
+        fprintf(stderr, "hexaglide %s: %s given twice (%s and %s); give it once\n", a->cmd, o->name,
+                a->given[k], v);
+        return CLI_BAD;
+    }
+    a->given[k] = v;
+    return k;
 }
 
 int cli_next(cli_args *a, const char **value)
@@ -61,7 +77,7 @@ int cli_next(cli_args *a, const char **value)
         }
         if (eq) {
             *value = eq + 1;
-            return k;
+            return once(a, k, *value);
         }
         if (a->i >= a->argc) {
             fprintf(stderr, "hexaglide %s: %s needs a value (%s VALUE or %s=VALUE)\n", a->cmd, o->name,
@@ -69,7 +85,7 @@ int cli_next(cli_args *a, const char **value)
             return CLI_BAD;
         }
         *value = a->argv[a->i++];
-        return k;
+        return once(a, k, *value);
     }
     fprintf(stderr, "hexaglide %s: unknown option '%.*s' ('hexaglide %s --help' lists the options)\n",
             a->cmd, (int)len, arg, a->cmd);

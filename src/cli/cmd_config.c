@@ -40,7 +40,7 @@ const char cli_usage_config[] =
     CLI_USAGE_MODEL;
 
 enum { OPT_INI, OPT_SET, OPT_LOOP, OPT_PLANT, OPT_MODEL };
-static const cli_opt config_opts[] = {{"--ini", 1}, {"--set", 1}, {"--loop", 0}, {"--plant", 1}, {"--model", 1},
+static const cli_opt config_opts[] = {{"--ini", 1}, {"--set", CLI_REPEAT}, {"--loop", 0}, {"--plant", 1}, {"--model", 1},
                                       {0, 0}};
 
 static const char *const limit_keys[] = {"MIN_LIMIT", "MAX_LIMIT", "MAX_VELOCITY", "MAX_ACCELERATION"};
@@ -101,13 +101,8 @@ int cmd_config(int argc, char **argv)
                     "options)\n", v);
             return 2;
         }
-        if (o == OPT_INI) {
-            if (path) {
-                fprintf(stderr, "hexaglide config: --ini given twice (%s and %s)\n", path, v);
-                return 2;
-            }
-            path = v;
-        }
+        if (o == OPT_INI)
+            path = v;                  /* (once: cli_next refuses a second) */
         if (o == OPT_SET)
             sets[nset++] = (char *)v;
         if (o == OPT_LOOP)

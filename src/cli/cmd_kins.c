@@ -25,8 +25,8 @@ const char cli_usage_fk[] =
     "                       separate numbers (--guess X Y Z A B C) are taken too\n" CLI_USAGE_MODEL;
 
 enum { OPT_INI, OPT_SET, OPT_GUESS };
-static const cli_opt ik_opts[] = {{"--ini", 1}, {"--set", 1}, {0, 0}};
-static const cli_opt fk_opts[] = {{"--ini", 1}, {"--set", 1}, {"--guess", 1}, {0, 0}};
+static const cli_opt ik_opts[] = {{"--ini", 1}, {"--set", CLI_REPEAT}, {0, 0}};
+static const cli_opt fk_opts[] = {{"--ini", 1}, {"--set", CLI_REPEAT}, {"--guess", 1}, {0, 0}};
 
 /* What ik and fk share: the parsed command line. */
 typedef struct {
@@ -71,11 +71,7 @@ static int kins_parse(const char *cmd, const char *usage, const cli_opt *opts, c
                 return 2;
             c->npos++;
         } else if (o == OPT_INI) {
-            if (c->ini) {
-                fprintf(stderr, "hexaglide %s: --ini given twice (%s and %s)\n", cmd, c->ini, v);
-                return 2;
-            }
-            c->ini = v;
+            c->ini = v;                /* (once: cli_next refuses a second) */
         } else if (o == OPT_SET) {
             c->sets[c->nset++] = (char *)v;
         } else if (strchr(v, ',')) {  /* OPT_GUESS (only in fk_opts): X,Y,Z,A,B,C */

@@ -114,7 +114,7 @@ static void list_columns(int plant, int format)
 enum { OPT_CSV, OPT_PLOT, OPT_SET, OPT_MODEL, OPT_SUBSTEPS, OPT_INTEGRATOR, OPT_FROM, OPT_SPREAD,
        OPT_OPEN, OPT_LIST, OPT_PLANT, OPT_FORMAT };
 static const cli_opt replay_options[] = {
-    {"--csv", 1}, {"--plot", 1}, {"--set", 1}, {"--model", 1}, {"--substeps", 1}, {"--integrator", 1},
+    {"--csv", 1}, {"--plot", 1}, {"--set", CLI_REPEAT}, {"--model", 1}, {"--substeps", 1}, {"--integrator", 1},
     {"--from", 1}, {"--spread", 1}, {"--open-loop", 0}, {"--list-columns", 0}, {"--plant", 1}, {"--format", 1}, {0, 0},
 };
 

@@ -151,7 +151,7 @@ enum { OPT_MODEL, OPT_TIME, OPT_DT, OPT_VOLTS, OPT_SUBSTEPS, OPT_INTEGRATOR, OPT
        OPT_LIST, OPT_PLANT, OPT_RECORD };
 static const cli_opt sim_opts[] = {
     {"--model", 1}, {"--time", 1}, {"--dt", 1}, {"--volts", 1}, {"--substeps", 1}, {"--integrator", 1},
-    {"--ini", 1}, {"--set", 1}, {"--csv", 1}, {"--list-params", 0}, {"--plant", 1}, {"--record", 1}, {0, 0},
+    {"--ini", 1}, {"--set", CLI_REPEAT}, {"--csv", 1}, {"--list-params", 0}, {"--plant", 1}, {"--record", 1}, {0, 0},
 };
 static const char *const volt_names[HG_CHANNELS_MAX] = {"V0", "V1", "V2", "V3", "V4", "V5", "V6", "V7"};
 
@@ -220,11 +220,7 @@ int cmd_sim(int argc, char **argv)
             volts_text = v;
             break;
         case OPT_INI:
-            if (ini) {
-                fprintf(stderr, "hexaglide sim: --ini given twice (%s and %s)\n", ini, v);
-                return 2;
-            }
-            ini = v;
+            ini = v;                   /* (each value option once: cli_next refuses a second) */
             break;
         case OPT_SET:
             sets[nset++] = (char *)v;

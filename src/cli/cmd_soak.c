@@ -163,7 +163,7 @@ static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_conf
 
 enum { OPT_HOURS, OPT_DT, OPT_SEED, OPT_MODEL, OPT_INI, OPT_SET, OPT_INTEGRATOR };
 static const cli_opt soak_opts[] = {
-    {"--hours", 1}, {"--dt", 1}, {"--seed", 1}, {"--model", 1}, {"--ini", 1}, {"--set", 1},
+    {"--hours", 1}, {"--dt", 1}, {"--seed", 1}, {"--model", 1}, {"--ini", 1}, {"--set", CLI_REPEAT},
     {"--integrator", 1}, {0, 0},
 };
 
