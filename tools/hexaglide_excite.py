@@ -435,9 +435,7 @@ def main(argv=None):
             if p:
                 hg_output.check_writable(p)            # a missing or unwritable directory now, not after the design
         hg_output.refuse_inputs([("--output", a.output), ("--dither", a.dither)], [("--ini", a.ini)])
-        if a.output and a.dither and hg_output.same(a.output, a.dither):
-            raise hg_output.OutputError("--output %s and --dither %s name the same file; give two files"
-                                        % (a.output, a.dither))
+        hg_output.refuse_same([("--output", a.output), ("--dither", a.dither)])
     except hg_output.OutputError as ex:
         log(ex)
         return 2

@@ -1450,8 +1450,12 @@ def validate(vrun, a, reg, params, s, est, pi0, base):
 
 
 # ====================================================================== plots
+PLOT_NAMES = ("identify_fit.png", "identify_estimates.png")     # what plots() writes into --plots ...
+VALIDATE_PLOT_NAMES = ("validate_fit.png", "validate_ferror.png")   # ... and with --validate
+
+
 def plots(outdir, eqs, est, base, pi0, vdata):
-    """identify_fit.png, identify_estimates.png (and validate_fit.png, validate_ferror.png)."""
+    """PLOT_NAMES (and VALIDATE_PLOT_NAMES) in outdir."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -1490,7 +1494,7 @@ def plots(outdir, eqs, est, base, pi0, vdata):
 
     e = eqs[0]
     fit_plot(e, e["F"] - e["Y"] @ est.pi, "identify: fit on the first recording (filtered, decimated)",
-             "identify_fit.png")
+             PLOT_NAMES[0])
     names = est.names
     th0 = est.map @ pi0
     idx = [i for i in range(len(names)) if est.ident[i]]
@@ -1513,10 +1517,10 @@ def plots(outdir, eqs, est, base, pi0, vdata):
     ax2.set_xlabel("sigma / max(|estimate|, unit scale)")
     ax2.set_title("relative sigma")
     fig.tight_layout()
-    save(fig, "identify_estimates.png")
+    save(fig, PLOT_NAMES[1])
     if vdata:
         fit_plot(vdata["e"], vdata["res"], "validate: drive forces of the validation recording",
-                 "validate_fit.png", vdata["res0"])
+                 VALIDATE_PLOT_NAMES[0], vdata["res0"])
         if vdata.get("fe_pred") is not None:
             fig, ax = plt.subplots(figsize=(11, 4))
             j = int(np.argmax(vdata["peak_pred"]))
@@ -1529,7 +1533,7 @@ def plots(outdir, eqs, est, base, pi0, vdata):
             ax.set_ylabel("joint %d f-error (mm)" % j)
             ax.legend(fontsize=8)
             ax.set_title("validate: following error, closed loop")
-            save(fig, "validate_ferror.png")
+            save(fig, VALIDATE_PLOT_NAMES[1])
     return paths
 
 
@@ -1610,8 +1614,8 @@ def main(argv=None):
                     help="board records (HG_RECORD, docs/replay.md) or sampler recordings of a real machine")
     ap.add_argument("--validate", metavar="RECORD", help="predict this recording with the identified model")
     ap.add_argument("--output", help="write ready-to-paste setp lines (HAL units) to this file")
-    ap.add_argument("--plots", metavar="DIR", help="write identify_fit.png, identify_estimates.png (and "
-                    "validate_*.png) there")
+    ap.add_argument("--plots", metavar="DIR", help="write %s (and with --validate %s) there"
+                    % (", ".join(PLOT_NAMES), ", ".join(VALIDATE_PLOT_NAMES)))
     ap.add_argument("--ini", help="config: scales of sampler recordings, gains of the closed-loop validation")
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                     help="a known or prior parameter (spec name, SI), e.g. ka=0.8 (overrides the record)")
@@ -1633,6 +1637,8 @@ def main(argv=None):
         if not (a.cutoff > 0):
             raise BadInput("--cutoff must be positive (Hz)")
         # the outputs and the validation's commands now, not after the fit
+        hg_output.refuse_in_dir(("--output", a.output), ("--plots", a.plots),
+                                PLOT_NAMES + (VALIDATE_PLOT_NAMES if a.validate else ()))
         if a.plots and os.path.exists(a.plots) and not os.path.isdir(a.plots):
             raise BadInput("--plots %s: not a directory; give a directory (made when missing)" % a.plots)
         if a.commands and not a.validate:

@@ -858,8 +858,11 @@ def png_saver(outdir, paths):
     return save
 
 
+PLOT_NAMES = ("tune_step.png", "tune_ferror.png", "tune_bode.png")     # what plots() writes into --plots
+
+
 def plots(outdir, cur, sug, prob, source, notch=None):
-    """step.png, ferror.png, bode.png in outdir (each written to a temp, then renamed)."""
+    """PLOT_NAMES in outdir (each written to a temp, then renamed)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -879,7 +882,7 @@ def plots(outdir, cur, sug, prob, source, notch=None):
     ax.set_xlim(0, 300)
     ax.legend()
     ax.grid(alpha=0.3)
-    save(fig, "tune_step.png")
+    save(fig, PLOT_NAMES[0])
 
     fig, axs = plt.subplots(2, 1, figsize=(10, 6), sharex=True)
     for lab, g in (("current", cur), ("suggested", sug)):
@@ -898,7 +901,7 @@ def plots(outdir, cur, sug, prob, source, notch=None):
     axs[1].set_xlabel("time (s)")
     for a in axs:
         a.grid(alpha=0.3)
-    save(fig, "tune_ferror.png")
+    save(fig, PLOT_NAMES[1])
 
     freqs = prob["frf_hz"]
     fig, axs = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
@@ -922,7 +925,7 @@ def plots(outdir, cur, sug, prob, source, notch=None):
     for a in axs:
         a.grid(alpha=0.3, which="both")
         a.legend(fontsize=7)
-    save(fig, "tune_bode.png")
+    save(fig, PLOT_NAMES[2])
     return paths
 
 
@@ -1129,7 +1132,7 @@ def main(argv=None):
                     help="do not try a biquad notch at the drive trains' resonance")
     ap.add_argument("--seed", type=hg_csv.integer, default=1, help="the search's random seed, 0..2^32-1; default 1")
     ap.add_argument("--output", help="also write the suggestion to this file")
-    ap.add_argument("--plots", help="directory for tune_step.png, tune_ferror.png, tune_bode.png")
+    ap.add_argument("--plots", help="directory for %s" % ", ".join(PLOT_NAMES))
     a = ap.parse_args(argv)
 
     try:
@@ -1183,13 +1186,14 @@ def main(argv=None):
                     hg.loop_config(gains, ferror_limit_mm=ferror_limit)
             except ValueError as ex:
                 raise BadInput("%s: %s" % (what, ex))
+        hg_output.refuse_in_dir(("--output", a.output), ("--plots", a.plots), PLOT_NAMES)
         if a.output:
             hg_output.check_writable(a.output)         # a missing or unwritable directory now, not after the search
             hg_output.refuse_inputs([("--output", a.output)], [("--ini", a.ini), ("--trajectory", a.trajectory),
                                                                ("--gains", a.gains)])
         if a.plots and os.path.exists(a.plots) and not os.path.isdir(a.plots):
-            raise BadInput("--plots %s is a file: give a directory (tune writes tune_step.png, tune_ferror.png "
-                           "and tune_bode.png into it)" % a.plots)
+            raise BadInput("--plots %s is a file: give a directory (tune writes %s into it)"
+                           % (a.plots, ", ".join(PLOT_NAMES)))
         if a.plots and a.evaluate:
             raise BadInput("--plots %s with --evaluate: --evaluate draws no plots; for plots of given gains "
                            "against the INI's use --gains FILE --plots DIR (docs/tuning.md)" % a.plots)

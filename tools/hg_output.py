@@ -49,12 +49,43 @@ def check_writable(path):
 
 
 def same(a, b):
-    """True if outputs a and b would write the same file (symlinks followed)."""
-    ta, tb = os.path.abspath(target(a)), os.path.abspath(target(b))
-    if os.path.exists(ta) or os.path.exists(tb):
-        return os.path.exists(ta) and os.path.exists(tb) and os.path.samefile(ta, tb)
-    return (os.path.basename(ta) == os.path.basename(tb)
-            and os.path.samefile(os.path.dirname(ta), os.path.dirname(tb)))
+    """True if outputs a and b would write the same file (symlinks followed; either may be
+    missing, or in a directory that is still to be made)."""
+    ra, rb = os.path.realpath(a), os.path.realpath(b)
+    if ra == rb:
+        return True
+    try:
+        return os.path.samefile(ra, rb)         # (a hard link)
+    except OSError:
+        return False
+
+
+def refuse_same(outputs):
+    """OutputError if two outputs ((option, path) pairs, None paths skipped) would write one file."""
+    outs = [(o, p) for o, p in outputs if p]
+    for i, (oa, pa) in enumerate(outs):
+        for ob, pb in outs[i + 1:]:
+            if same(pa, pb):
+                raise OutputError("%s %s and %s %s name the same file; give two files" % (oa, pa, ob, pb))
+
+
+def refuse_in_dir(output, plots, names):
+    """OutputError if the file output ((option, path)) would be written where the directory
+    plots ((option, dir), made when missing) is, inside it, or as one of the files names that go
+    into it. Either path None: nothing to check."""
+    (oo, op), (do, dp) = output, plots
+    if not op or not dp:
+        return
+    what = "%s writes %s into it" % (do, ", ".join(names))
+    if same(op, dp):
+        raise OutputError("%s %s and %s %s name the same path: %s writes a file there, %s a directory (%s); "
+                          "give two paths" % (oo, op, do, dp, oo, do, what))
+    if os.path.realpath(dp).startswith(os.path.realpath(op) + os.sep):
+        raise OutputError("%s %s is inside %s %s, a file %s writes; give two paths" % (do, dp, oo, op, oo))
+    for n in names:
+        if same(op, os.path.join(dp, n)):
+            raise OutputError("%s %s and %s %s name the same file, %s (%s); give %s another file"
+                              % (oo, op, do, dp, os.path.join(dp, n), what, oo))
 
 
 def refuse_inputs(outputs, inputs):
