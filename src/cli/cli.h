@@ -165,8 +165,21 @@ int cli_params_check_from(const char *cmd, int plant, int variant, const hg_plan
  * SI units). */
 hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_params *p);
 
-/* --dt seconds -> the board's period in whole ns; 0, or -1 with a message. */
+/* 1 if x is a whole number within the rounding of the decimal it came from and a few
+ * operations on it (CLI_WHOLE_ULPS of x's magnitude: 1e-3 s * 1e9 is 1000000 ns), its value
+ * in *n (the nearest whole number either way). */
+#define CLI_WHOLE_ULPS 8.0
+int cli_whole(double x, double *n);
+
+/* --dt seconds -> the board's period in whole ns; 0, or -1 with a message (out of range, or
+ * not a whole number of ns: the nearest valid periods named; nothing is rounded). */
 int cli_parse_period(const char *cmd, double dt, long *period_ns);
+
+/* Option opt's value (value in unit, unit_s seconds each: --time 1 "s", --hours 3600 "h")
+ * as a whole number of periods of period_ns in min..max into *n; 0, or -1 after a message
+ * naming the value and the nearest valid ones (not a whole number), or the limit. */
+int cli_whole_periods(const char *cmd, const char *opt, double value, double unit_s, const char *unit,
+                      long period_ns, long min, long max, long *n);
 
 /* ---- LinuxCNC INI files (cli_ini.c) ---- */
 
@@ -227,6 +240,11 @@ int cli_ini_joint_number(const char *cmd, const cli_ini *ini, int joint, const c
  * given twice, in a second section). */
 int cli_ini_optional(const char *cmd, const cli_ini *ini, const char *section, const char *key, double *v,
                      int *line);
+
+/* [EMCMOT]SERVO_PERIOD in ns if it is there: 0 (*ns; its line in *line if line is not 0),
+ * 1 if absent, -1 after a message naming file and line (not a finite number, not a whole
+ * number of ns >= 1: LinuxCNC's servo_period_nsec is an integer, nothing is rounded). */
+int cli_ini_servo_period(const char *cmd, const cli_ini *ini, long *ns, int *line);
 
 /* LinuxCNC's following-error rule of a joint (control.c: the limit is
  * max(FERROR |v| / MAX_VELOCITY, MIN_FERROR)), mm and mm/s. */

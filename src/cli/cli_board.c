@@ -1,6 +1,8 @@
 /* cli_board.c - the machine the subcommands drive: its plant, its
  * parameters (defaults, config, --set) and the board (hg_board.h), naming
  * every refused field. */
+#include <float.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -210,14 +212,62 @@ hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_
     return b;
 }
 
+int cli_whole(double x, double *n)
+{
+    *n = floor(x + 0.5);
+    return fabs(x - *n) <= CLI_WHOLE_ULPS * DBL_EPSILON * (fabs(x) > 1.0 ? fabs(x) : 1.0);
+}
+
 int cli_parse_period(const char *cmd, double dt, long *period_ns)
 {
-    double ns = dt * 1e9;
-    if (!(ns >= 1.0 && ns <= (double)HG_PERIOD_MAX_NS)) {
-        fprintf(stderr, "hexaglide %s: --dt must lie in [1e-9, %g] s (the board's period, whole "
-                        "nanoseconds), got %g\n", cmd, (double)HG_PERIOD_MAX_NS * 1e-9, dt);
+    double ns = dt * 1e9, whole;
+    char v[CLI_NUM_LEN], n[CLI_NUM_LEN], lo[CLI_NUM_LEN], hi[CLI_NUM_LEN];
+    if (!(ns >= 0.5 && ns < (double)HG_PERIOD_MAX_NS + 0.5) || !cli_whole(ns, &whole) || whole < 1.0 ||
+        whole > (double)HG_PERIOD_MAX_NS) {
+        if (ns >= 1.0 && ns <= (double)HG_PERIOD_MAX_NS)     /* in range: not whole */
+            fprintf(stderr, "hexaglide %s: --dt %s s is %s ns: the board's period is a whole number of "
+                            "nanoseconds; give %s or %s\n", cmd, cli_num(dt, v), cli_num(ns, n),
+                    cli_num(floor(ns) * 1e-9, lo), cli_num(ceil(ns) * 1e-9, hi));
+        else
+            fprintf(stderr, "hexaglide %s: --dt must lie in [1e-9, %g] s (the board's period, whole "
+                            "nanoseconds), got %s\n", cmd, (double)HG_PERIOD_MAX_NS * 1e-9, cli_num(dt, v));
         return -1;
     }
-    *period_ns = (long)(ns + 0.5);
+    *period_ns = (long)whole;
     return 0;
+}
+
+int cli_whole_periods(const char *cmd, const char *opt, double value, double unit_s, const char *unit,
+                      long period_ns, long min, long max, long *n)
+{
+    double period_s = (double)period_ns * 1e-9, periods = value * unit_s * 1e9 / (double)period_ns, r;
+    double lower = floor(periods), upper = ceil(periods);
+    char v[CLI_NUM_LEN], p[CLI_NUM_LEN], x[CLI_NUM_LEN], lo[CLI_NUM_LEN], hi[CLI_NUM_LEN];
+    cli_num(value, v);
+    cli_num(period_s, p);
+    if (!(periods <= (double)max + 0.5)) {   /* (also an overflow to inf: its number never printed) */
+        fprintf(stderr, "hexaglide %s: %s %s %s is more than the %ld periods of %s s allowed (%s %s at most); give "
+                        "a shorter %s or a longer --dt\n", cmd, opt, v, unit, max, p,
+                cli_num((double)max * period_s / unit_s, hi), unit, opt);
+        return -1;
+    }
+    if (cli_whole(periods, &r) && r >= (double)min) {
+        *n = (long)r;
+        return 0;
+    }
+    cli_num(periods, x);
+    if (upper <= (double)min) {        /* (below min: only min itself is near) */
+        char least[48] = "one servo period";
+        if (min != 1)
+            snprintf(least, sizeof least, "%ld servo periods", min);
+        fprintf(stderr, "hexaglide %s: %s %s %s is shorter than %s of %s s (%s periods); give %s\n", cmd, opt, v,
+                unit, least, p, x, cli_num((double)min * period_s / unit_s, hi));
+    } else {                           /* the whole numbers either side (upper within max) */
+        cli_num(lower * period_s / unit_s, lo);
+        cli_num(upper * period_s / unit_s, hi);
+        fprintf(stderr, "hexaglide %s: %s %s %s is %s periods of %s s: a run is a whole number of periods; "
+                        "give %s%s%s\n", cmd, opt, v, unit, x, p, lo, upper <= (double)max ? " or " : "",
+                upper <= (double)max ? hi : "");
+    }
+    return -1;
 }

@@ -8,6 +8,7 @@
  * Host only (malloc, stdio). Two consumers: a plant's section ([HEXAGLIDE])
  * -> model parameters (ik, fk, sim, soak) and [JOINT_N] -> the servo loops
  * (soak, replay). */
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -481,6 +482,29 @@ int cli_ini_optional(const char *cmd, const cli_ini *ini, const char *section, c
     if (line)
         *line = e->line;
     return 0;
+}
+
+int cli_ini_servo_period(const char *cmd, const cli_ini *ini, long *ns, int *line)
+{
+    double v;
+    int l = 0, rc = cli_ini_optional(cmd, ini, "EMCMOT", "SERVO_PERIOD", &v, &l);
+    char num[CLI_NUM_LEN];
+    if (rc)
+        return rc;
+    if (line)
+        *line = l;
+    if (v >= 1.0 && v <= 9.0e15 && v == floor(v)) {   /* (an integer as LinuxCNC's motmod takes it) */
+        *ns = (long)v;
+        return 0;
+    }
+    if (v >= 1.0 && v <= 9.0e15)
+        fprintf(stderr, "hexaglide %s: %s line %d: [EMCMOT]SERVO_PERIOD = %s is not a whole number of ns "
+                "(LinuxCNC's servo_period_nsec is an integer); give %.0f or %.0f\n", cmd, ini->path, l, cli_num(v, num),
+                floor(v), ceil(v));
+    else
+        fprintf(stderr, "hexaglide %s: %s line %d: [EMCMOT]SERVO_PERIOD = %s is no period: give the servo "
+                "thread's period in whole ns (1000000: 1 ms)\n", cmd, ini->path, l, cli_num(v, num));
+    return -1;
 }
 
 const char *cli_ini_joint_key(int i)

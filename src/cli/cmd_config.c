@@ -88,7 +88,7 @@ int cmd_config(int argc, char **argv)
     const char *path = 0, *v, *model = 0;
     int plant = 0, variant, joints;
     int o, nset = 0, loop = 0, bad = 0, i, j, n;
-    double servo_ns;
+    long servo_ns;
     FILE *out;
     cli_args_init(&a, "config", cli_usage_config, config_opts, argc, argv);
     while ((o = cli_next(&a, &v)) != CLI_DONE) {
@@ -192,10 +192,10 @@ int cmd_config(int argc, char **argv)
         snprintf(sec, sizeof sec, "AXIS_%c", "XYZABC"[j]);
         bad |= limits(&ini, sec, "axis", id, out) != 0;
     }
-    i = cli_ini_optional("config", &ini, "EMCMOT", "SERVO_PERIOD", &servo_ns, 0);
+    i = cli_ini_servo_period("config", &ini, &servo_ns, 0);
     bad |= i < 0;
     if (i == 0)
-        fprintf(out, "servo_period_ns %.17g\n", servo_ns);
+        fprintf(out, "servo_period_ns %ld\n", servo_ns);
     cli_ini_free(&ini);
     if (fclose(out) || strlen(buf) >= sizeof buf - 1) {
         fprintf(stderr, "hexaglide config: the output does not fit %zu bytes\n", sizeof buf);

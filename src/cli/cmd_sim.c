@@ -25,7 +25,8 @@ const char cli_usage_sim[] =
     "defaults: the hexaglide plant, its default model (reduced-cartesian), 1 s, dt 0.001 s, 0 V,\n"
     "CSV to stdout; --volts takes one value per channel of the plant; --substeps and --integrator\n"
     "as the board loads them (motenc-hexaglide.N.substeps, .integrator).\n"
-    "--dt is the board's servo period (whole ns); --volts go through the board's 13-bit DAC;\n"
+    "--dt is the board's servo period (whole ns), --time a whole number of periods (at most 1e8);\n"
+    "--volts go through the board's 13-bit DAC;\n"
     "--list-params prints every parameter: spec name, SI unit, value (the defaults, then --ini\n"
     "and --set, checked), HAL name and INI key;\n"
     "--record FILE writes the run as a record of the board's rec pins (hexaglide replay FILE)\n"
@@ -259,20 +260,11 @@ int cmd_sim(int argc, char **argv)
         fprintf(stderr, "hexaglide sim: --time must be >= 0 s, got %g\n", t_end);
         return 2;
     }
-    if (!(dt > 0.0 && dt <= (double)HG_PERIOD_MAX_NS * 1e-9)) {
-        fprintf(stderr, "hexaglide sim: --dt must be positive and at most %g s, got %g\n",
-                (double)HG_PERIOD_MAX_NS * 1e-9, dt);
-        return 2;
-    }
     if (cli_parse_period("sim", dt, &period_ns))
         return 2;
     dt = (double)period_ns * 1e-9;           /* what the board integrates */
-    if (floor(t_end / dt + 0.5) > (double)SIM_MAX_STEPS) {  /* compare before converting to long */
-        fprintf(stderr, "hexaglide sim: %.3g steps is more than the %ld allowed; use a larger --dt "
-                        "or a shorter --time\n", floor(t_end / dt + 0.5), SIM_MAX_STEPS);
+    if (cli_whole_periods("sim", "--time", t_end, 1.0, "s", period_ns, 0, SIM_MAX_STEPS, &n))
         return 2;
-    }
-    n = (long)floor(t_end / dt + 0.5);
     b = cli_board_new("sim", plant, variant, &bp);
     if (!b)
         return 2;

@@ -36,6 +36,9 @@
 #define SOAK_HARMONICS 3
 #define SOAK_RAMP_S 2.0        /* the trajectory ramps in over this */
 #define SOAK_SETTLED_S 2.5     /* following error counted from here on */
+/* the longest soak: the 1000 h --hours takes at the default 1 ms period (about 9 h of wall time
+ * at 9 us a period); a shorter --dt allows fewer hours, instead of a run that never ends */
+#define SOAK_MAX_PERIODS 3600000000L
 
 const char cli_usage_soak[] =
     "usage: hexaglide soak [--hours H] [--model NAME] [--seed N] [--dt S] [--integrator NAME]\n"
@@ -50,7 +53,8 @@ const char cli_usage_soak[] =
     "              0; tune reads them alike), FERROR MIN_FERROR MAX_VELOCITY (the trip),\n"
     "              [EMCMOT]SERVO_PERIOD, [HEXAGLIDE] geometry. Default: configs/hexaglide.ini\n"
     "              of the source tree this hexaglide was built in (../configs/ beside build/)\n"
-    "  --dt S      servo period (default the config's SERVO_PERIOD)\n"
+    "  --dt S      servo period, whole ns (default the config's SERVO_PERIOD); H is a whole number\n"
+    "              of periods, at most 3.6e9 of them (1000 h at 1 ms)\n"
     "  --model     standard|reduced-joints|reduced-cartesian|fused-cartesian (default reduced-cartesian)\n"
     "  --integrator improved-euler|heun|rk4 (default: the board's, as HAL loads it)\n"
     "  --set name=value  a model parameter (spec name, SI units), after the config\n";
@@ -128,9 +132,9 @@ static double now_s(void)
 static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_config *c, soak_ferror_rule *r)
 {
     cli_ini ini;
-    double servo_ns = 1e6;
+    long servo_ns = 1000000;
     const hg_plant *other;
-    int bad = 0;
+    int bad = 0, line = 0;
     if (cli_ini_read("soak", ini_path, &ini))
         return 2;
     if ((other = cli_ini_other_plant(&ini, 0)) != 0) {   /* its [JOINT_N] are another machine's */
@@ -143,21 +147,20 @@ static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_conf
     hg_loop_config_default(c);
     c->variant = kind;
     bad |= cli_ini_loop("soak", &ini, 6, c, r) != 0;
-    bad |= cli_ini_optional("soak", &ini, "EMCMOT", "SERVO_PERIOD", &servo_ns, 0) < 0;
+    bad |= cli_ini_servo_period("soak", &ini, &servo_ns, &line) < 0;
     cli_ini_free(&ini);
+    if (!bad && !(dt_s > 0) && servo_ns > HG_PERIOD_MAX_NS) {
+        fprintf(stderr, "hexaglide soak: %s line %d: [EMCMOT]SERVO_PERIOD = %ld ns is longer than the board's "
+                "longest period, %ld ns; give a shorter one or --dt\n", ini_path, line, servo_ns, HG_PERIOD_MAX_NS);
+        bad = 1;
+    }
     if (bad) {
         fprintf(stderr, "hexaglide soak: fix %s (or give another with --ini)\n", ini_path);
         return 2;
     }
+    c->period_ns = servo_ns;
     if (dt_s > 0 && cli_parse_period("soak", dt_s, &c->period_ns))
         return 2;
-    if (!(dt_s > 0)) {
-        if (cli_parse_period("soak", servo_ns * 1e-9, &c->period_ns)) {
-            fprintf(stderr, "hexaglide soak: [EMCMOT]SERVO_PERIOD of %s (ns) is outside the board's range\n",
-                    ini_path);
-            return 2;
-        }
-    }
     return 0;
 }
 
@@ -233,7 +236,8 @@ int cmd_soak(int argc, char **argv)
         }
         ini = default_ini;
     }
-    if (read_config(ini, dt, kind, &cfg, rule))
+    if (read_config(ini, dt, kind, &cfg, rule) ||
+        cli_whole_periods("soak", "--hours", hours, 3600.0, "h", cfg.period_ns, 1, SOAK_MAX_PERIODS, &n))
         return 2;
     dt = (double)cfg.period_ns * 1e-9;
     L = malloc(sizeof *L);
@@ -271,12 +275,6 @@ int cmd_soak(int argc, char **argv)
     hm = hg_hexaglide_model(&L->board.m);
     hd = hg_hexaglide_data(&L->board.d);
     hg_energy(hm, hd, &e0k, &e0p);
-    n = (long)(hours * 3600.0 / dt + 0.5);
-    if (n < 1) {
-        fprintf(stderr, "hexaglide soak: --hours %g is shorter than one servo period (%g s)\n", hours, dt);
-        free(L);
-        return 2;
-    }
     t0 = now_s();
     rc = 0;
     for (s = 0; s < n; s++) {

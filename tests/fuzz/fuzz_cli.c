@@ -38,10 +38,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             w = (fuzz_byte(&in) & 1) ? "--time" : "--dt";
         argv[i] = (char *)w;
     }
-    /* a sim run with no --time lasts 1 s of simulation: make sure it is short */
-    if (cmd == 2 && argc + 2 <= 15) {
+    /* a sim run with no --time lasts 1 s of simulation: make sure it is short (a second
+     * --time is refused, and 0.002 s is a whole number of the periods in dts) */
+    for (i = 0; i < argc && strcmp(argv[i], "--time") != 0; i++)
+        ;
+    if (cmd == 2 && i == argc && argc + 2 <= 15) {
         argv[argc++] = "--time";
-        argv[argc++] = "0.003";
+        argv[argc++] = "0.002";
     }
     argv[argc] = 0;
     rc = cmd == 0 ? cmd_ik(argc, argv) : cmd == 1 ? cmd_fk(argc, argv) : cmd_sim(argc, argv);
