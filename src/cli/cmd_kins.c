@@ -22,7 +22,8 @@ const char cli_usage_fk[] =
     "usage: hexaglide fk [--guess X,Y,Z,A,B,C] [--ini FILE] [--set name=value]... J0 J1 J2 J3 J4 J5\n"
     "  prints the pose X Y Z (mm) A B C (degrees) of the joints J0..J5 (mm), one line\n"
     "  --guess X,Y,Z,A,B,C  where Newton-Raphson starts (default HOME, 0,0,0,0,0,0); six\n"
-    "                       separate numbers (--guess X Y Z A B C) are taken too\n" CLI_USAGE_MODEL;
+    "                       separate numbers (--guess X Y Z A B C) are taken too; |X|, |Y|, |Z| at most\n"
+    "                       ten bar lengths, |A|, |B|, |C| at most 360\n" CLI_USAGE_MODEL;
 
 enum { OPT_INI, OPT_SET, OPT_GUESS };
 static const cli_opt ik_opts[] = {{"--ini", 1}, {"--set", CLI_REPEAT}, {0, 0}};
@@ -37,6 +38,26 @@ typedef struct {
     double guess[6];           /* user units */
     hg_params p;
 } kins_cmd;
+
+/* 1 after a message if the --guess is beyond where Newton-Raphson can start: X Y Z farther than
+ * GUESS_REACH bar lengths (1e308 mm gave a NaN residual), A B C beyond a turn. */
+#define GUESS_REACH 10.0
+static int guess_beyond(const char *cmd, const kins_cmd *c)
+{
+    double reach_mm = GUESS_REACH * c->p.geo.l_m * HG_MM_PER_M;
+    int k;
+    for (k = 0; k < 6; k++) {
+        double bound = k < 3 ? reach_mm : 360.0;
+        char v[CLI_NUM_LEN], b[CLI_NUM_LEN];
+        if (fabs(c->guess[k]) <= bound)
+            continue;
+        fprintf(stderr, "hexaglide %s: --guess %s = %s %s is beyond where the solve can start (|%s| <= %s %s%s); "
+                "give a guess near the pose\n", cmd, pose_names[k], cli_num(c->guess[k], v), k < 3 ? "mm" : "deg",
+                pose_names[k], cli_num(bound, b), k < 3 ? "mm" : "deg", k < 3 ? ": ten bar lengths" : ": a turn");
+        return 1;
+    }
+    return 0;
+}
 
 /* Parse the arguments and build the geometry; 0, or the exit code (0 for
  * --help after printing it: *done set). */
@@ -94,7 +115,9 @@ static int kins_parse(const char *cmd, const char *usage, const cli_opt *opts, c
         fprintf(stderr, "hexaglide %s: need 6 numbers %s, got %d\n", cmd, what, c->npos);
         return 2;
     }
-    return cli_hexaglide_params(cmd, c->ini, c->sets, c->nset, &c->p) ? 2 : 0;
+    if (cli_hexaglide_params(cmd, c->ini, c->sets, c->nset, &c->p))
+        return 2;
+    return c->guessed && guess_beyond(cmd, c) ? 2 : 0;
 }
 
 int cmd_ik(int argc, char **argv)
@@ -138,8 +161,11 @@ int cmd_fk(int argc, char **argv)
     if (rc) {
         char what[HG_GUARD_TEXT_LEN];
         hg_guard_describe(&rep.guard, 0, what);
-        fprintf(stderr, "hexaglide fk: %s (code %d, %d iterations, residual %.3g mm)%s%s\n",
-                hg_strerror(rc), rc, rep.iterations, rep.residual_m * HG_MM_PER_M, what[0] ? ": " : "", what);
+        char res[48] = "residual not finite";   /* (no NaN in a message) */
+        if (isfinite(rep.residual_m))
+            snprintf(res, sizeof res, "residual %.3g mm", rep.residual_m * HG_MM_PER_M);
+        fprintf(stderr, "hexaglide fk: %s (code %d, %d iterations, %s)%s%s\n", hg_strerror(rc), rc, rep.iterations,
+                res, what[0] ? ": " : "", what);
         return 1;
     }
     hg_pose_to_user(pose, user);
