@@ -209,6 +209,11 @@ int cli_ini_has_section(const cli_ini *ini, const char *section);
  * ([SERIAL] read as the Hexaglide's config), or 0. */
 const hg_plant *cli_ini_other_plant(const cli_ini *ini, int plant);
 
+/* 0, or -1 after a message if ini is another plant's config (cli_ini_other_plant) given to
+ * command cmd, which runs plant only (ik, fk, soak: the Hexaglide): it names that plant and
+ * what to run instead (sim --plant NAME). */
+int cli_ini_plant_only(const char *cmd, const cli_ini *ini, int plant);
+
 /* [section]key: 0 and *out, 1 if absent, -1 (message) if given twice or in
  * a repeated section (LinuxCNC would silently take the first). */
 int cli_ini_get(const char *cmd, const cli_ini *ini, const char *section, const char *key,
@@ -219,7 +224,9 @@ int cli_ini_number(const char *cmd, const cli_ini *ini, const cli_ini_entry *e, 
 
 /* The plant's section ([HEXAGLIDE] for the Hexaglide) onto v (keys in
  * their HAL unit, mm for lengths); every unknown key, repeated key and
- * non-number is named. 0 or -1. */
+ * non-number is named. 0, -1 (the section's keys named), or -2 when the
+ * file has no such section (named, with what to give: another plant's
+ * config -> --plant NAME, which sim and config take). */
 int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int variant, hg_plant_params *v);
 
 /* [JOINT_0]..[JOINT_{joints-1}] gains and scales onto c, as

@@ -52,10 +52,10 @@ int cli_params_build(const char *cmd, int plant, int variant, const char *ini, c
             return 2;
         rc = cli_ini_apply_plant(cmd, &f, plant, variant, v);
         cli_ini_free(&f);
-        if (rc) {
+        if (rc == -1)                  /* (-2: no such section, what to give said) */
             fprintf(stderr, "hexaglide %s: fix the [%s] section of %s\n", cmd, hg_plant_at(plant)->ini_section, ini);
+        if (rc)
             return 2;
-        }
     }
     for (i = 0; i < nset; i++)
         if (cli_parse_set(cmd, sets[i], plant, variant, v) < 0)
@@ -68,6 +68,15 @@ int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, in
     hg_plant_params v;
     int i, n;
     const int variant = hg_plant_at(0)->default_variant;
+    if (ini) {                         /* ik and fk take no --plant: another plant's config is not theirs */
+        cli_ini f;
+        if (cli_ini_read(cmd, ini, &f))
+            return 2;
+        i = cli_ini_plant_only(cmd, &f, 0);
+        cli_ini_free(&f);
+        if (i)
+            return 2;
+    }
     if (cli_params_build(cmd, 0, variant, ini, sets, nset, &v) ||
         cli_params_check_from(cmd, 0, variant, &v, ini, sets, nset))
         return 2;

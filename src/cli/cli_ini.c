@@ -220,6 +220,17 @@ const hg_plant *cli_ini_other_plant(const cli_ini *ini, int plant)
     return 0;
 }
 
+int cli_ini_plant_only(const char *cmd, const cli_ini *ini, int plant)
+{
+    const hg_plant *other = cli_ini_other_plant(ini, plant), *pl = hg_plant_at(plant);
+    if (!other)
+        return 0;
+    fprintf(stderr, "hexaglide %s: %s is a config of plant %s (no [%s] section): %s runs the %s only; run that "
+            "machine with sim --plant %s, or give a config of the %s\n", cmd, ini->path, other->name, pl->ini_section,
+            cmd, pl->name, other->name, pl->name);
+    return -1;
+}
+
 int cli_ini_get(const char *cmd, const cli_ini *ini, const char *section, const char *key,
                 const cli_ini_entry **out)
 {
@@ -340,7 +351,7 @@ int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int vari
             fprintf(stderr, "hexaglide %s: %s has no [%s] section (the parameters of plant %s, keys %s ...): add "
                     "it, or drop --ini to run the defaults\n", cmd, ini->path, sec, pl->name,
                     t[0].ini_key ? t[0].ini_key : "");
-        return -1;
+        return -2;                     /* (not a section to fix: what to do is said) */
     }
     if (joints_match(cmd, ini, plant, variant))
         return -1;

@@ -133,14 +133,10 @@ static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_conf
 {
     cli_ini ini;
     long servo_ns = 1000000;
-    const hg_plant *other;
     int bad = 0, line = 0;
     if (cli_ini_read("soak", ini_path, &ini))
         return 2;
-    if ((other = cli_ini_other_plant(&ini, 0)) != 0) {   /* its [JOINT_N] are another machine's */
-        fprintf(stderr, "hexaglide soak: %s is a config of plant %s (no [HEXAGLIDE] section): soak runs the "
-                "Hexaglide only; run that machine with sim --plant %s, or give a Hexaglide config\n", ini_path,
-                other->name, other->name);
+    if (cli_ini_plant_only("soak", &ini, 0)) {   /* its [JOINT_N] are another machine's */
         cli_ini_free(&ini);
         return 2;
     }
