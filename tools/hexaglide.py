@@ -876,9 +876,24 @@ def loop_config(gains=None, ferror_limit_mm=0.0, period_ns=1000000, model="reduc
     return cfg
 
 
+class LoopConfigError(ValueError):
+    """What hg_loop_config_check refuses: joint (-1: none), ini_key (its [JOINT_N] key, or ""),
+    value and why (what it must be), as soak names them; str() the whole message."""
+
+    def __init__(self, msg, joint, ini_key, value, why):
+        super().__init__(msg)
+        self.joint, self.ini_key, self.value, self.why = joint, ini_key, value, why
+
+    def in_ini(self, path):
+        """The refusal of the INI at path whose [JOINT_N] gave the loop, as soak words it."""
+        if self.ini_key and self.joint >= 0:
+            return "%s: [JOINT_%d]%s = %.17g: %s" % (path, self.joint, self.ini_key, self.value, self.why)
+        return "%s: %s" % (path, self)
+
+
 def check_loop_config(cfg):
-    """ValueError naming the joint and the field (its INI key, its pid.N pin) hg_loop_config_check
-    refuses in cfg (a LoopConfig), with what it must be."""
+    """LoopConfigError (a ValueError) naming the joint and the field (its INI key, its pid.N pin)
+    hg_loop_config_check refuses in cfg (a LoopConfig), with what it must be."""
     r = LoopCheckReport()
     rc = _loop_check(C.byref(cfg), C.byref(r))
     if not rc:
@@ -893,7 +908,8 @@ def check_loop_config(cfg):
     if r.ini_key:
         name = "%s (%s)" % (r.ini_key.decode(), name)
     where = "joint %d: " % r.joint if r.joint >= 0 else ""
-    raise ValueError("loop config: %s%s = %r: %s" % (where, name, r.value, r.why.decode()))
+    raise LoopConfigError("loop config: %s%s = %r: %s" % (where, name, r.value, r.why.decode()), r.joint,
+                          r.ini_key.decode() if r.ini_key else "", r.value, r.why.decode())
 
 
 def notch_response(f0, q, freqs, period_ns=1000000):

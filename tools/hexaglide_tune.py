@@ -1157,6 +1157,11 @@ def main(argv=None):
                                % s)
         cfg = read_config(a.ini, a.param)  # defaults, [HEXAGLIDE], --param: as sim and soak take them
         joints, axes, params = cfg.joints, cfg.axes, cfg.params
+        ferror_limit = min(g["FERROR"] for g in joints)
+        try:                               # the INI's own gains by the loop's rules, as soak checks them
+            hg.loop_config([pid_keys(g) for g in joints], ferror_limit_mm=ferror_limit)
+        except hg.LoopConfigError as ex:
+            raise BadInput(ex.in_ini(a.ini))
         vmax_dac = min(g["MAX_OUTPUT"] or 10.0 for g in joints)
         if a.max_volts is not None and not (0 < a.max_volts <= vmax_dac):
             raise BadInput("--max-volts %g: must be in (0, %g] V (the smallest [JOINT_N]MAX_OUTPUT of %s; "
@@ -1178,7 +1183,6 @@ def main(argv=None):
             except (OSError, ValueError) as ex:
                 raise BadInput("--gains %s: %s" % (a.gains, getattr(ex, "strerror", None) or ex))
         cur = [dict(pid_keys(g), **sets) for g in joints]
-        ferror_limit = min(g["FERROR"] for g in joints)
         for what, gains in (("--set %s" % " ".join(a.set), cur if a.set else None),
                             ("--gains %s" % a.gains, [dict(c, **g) for c, g in zip(cur, given)] if given else None)):
             try:                           # the loop's rules (hg_loop_config_check) now, not as a traceback later

@@ -352,8 +352,16 @@ def main(argv=None):
             raise BadInput(why)
         cmd = with_settle(cmd)
         stock_g = m.gains()
+        try:                               # the loop's rules (pid.c's) now, not as a traceback later
+            hg.loop_config(stock_g, plant=m.params)
+        except hg.LoopConfigError as ex:
+            raise BadInput(ex.in_ini(a.ini))
         if a.gains:
             stock_g = m.gains(read_gain_file(a.gains, m.n))
+            try:
+                hg.loop_config(stock_g, plant=m.params)
+            except hg.LoopConfigError as ex:
+                raise BadInput("--gains %s: %s" % (a.gains, ex))
         if a.output:
             hg_output.check_writable(a.output)         # a missing or unwritable directory now, not after the search
             hg_output.refuse_inputs([("--output", a.output)], [("--ini", a.ini), ("--trajectory", a.trajectory),
