@@ -7,7 +7,7 @@ const char *hg_strerror(int code)
     case HG_OK: return "ok";
     case HG_ERR_NONFINITE_INPUT: return "input is NaN or infinite";
     case HG_ERR_UNREACHABLE: return "pose unreachable: a bar cannot reach its guide";
-    case HG_ERR_EULER_SINGULAR: return "tilt B too close to +-90 degrees (Euler singularity)";
+    case HG_ERR_EULER_SINGULAR: return "tilt B beyond +-85 degrees (the 3-2-1 Euler angles are singular at +-90)";
     case HG_ERR_NO_CONVERGENCE: return "Newton-Raphson did not converge within its iteration limit";
     case HG_ERR_WRONG_BRANCH: return "solution on another assembly branch (a carriage below its head joint)";
     case HG_ERR_SINGULAR_JACOBIAN: return "constraint Jacobian singular";

@@ -8,7 +8,7 @@ enum hg_error {
     HG_OK = 0,
     HG_ERR_NONFINITE_INPUT = -1,   /* an input was NaN or inf */
     HG_ERR_UNREACHABLE = -2,       /* a bar cannot reach its guide (IK radicand < 0) */
-    HG_ERR_EULER_SINGULAR = -3,    /* |B| too close to 90 deg for 3-2-1 Euler angles */
+    HG_ERR_EULER_SINGULAR = -3,    /* |B| beyond 85 deg (HG_MAX_ABS_B_RAD): 3-2-1 Euler angles are singular at 90 */
     HG_ERR_NO_CONVERGENCE = -4,    /* Newton-Raphson used all its iterations */
     HG_ERR_WRONG_BRANCH = -5,      /* converged to an assembly with a carriage below its head joint */
     HG_ERR_SINGULAR_JACOBIAN = -6, /* a constraint Jacobian could not be factored */

@@ -183,8 +183,10 @@ static void geometry_rules(const hg_geometry *g, hg_check *r)
         hg_check_refuse(r, "l", "must be a positive finite length");
     if (!(isfinite(g->lb_m) && g->lb_m > 0))
         hg_check_refuse(r, "lb", "must be a positive finite length");
-    if (!hg_check_failed(r, "lb") && !(isfinite(g->e_m) && g->e_m >= 0 && g->e_m < g->lb_m))
-        hg_check_refuse(r, "e", "must be finite, >= 0 and smaller than lb");
+    /* e = 0: a post's two bars start at one guide point, touching there whatever d_bar */
+    if (!hg_check_failed(r, "lb") && !(isfinite(g->e_m) && g->e_m > 0 && g->e_m < g->lb_m))
+        hg_check_refuse(r, "e", "must be finite, > 0 (at 0 a post's two bars meet at one guide point) and smaller "
+                                "than lb");
     if (!hg_check_failed(r, "lb") && !(isfinite(g->lp_m) && g->lp_m > 0 && g->lp_m < g->lb_m))
         hg_check_refuse(r, "lp", "must be positive and smaller than lb");
     if (!hg_check_failed(r, "l") && !hg_check_failed(r, "lb") && !hg_check_failed(r, "lp") && !(g->l_m > g->lb_m - g->lp_m))
@@ -206,8 +208,9 @@ static void geometry_rules(const hg_geometry *g, hg_check *r)
         hg_check_refuse(r, "cone_head", "plus the bars' tilt at HOME, asin((lb - lp) / l), must stay below 90 deg "
                                "(a bar would touch the head's joint plane)");
     if (!(g->d_bar_m < hg_guard_home_clearance(g)))
-        hg_check_refuse(r, "d_bar", "must be below the closest distance between two bar axes at HOME "
-                           "(the machine could not stand at HOME)");
+        hg_check_refuse(r, "d_bar", "must be below the closest distance between two bar axes at HOME, which "
+                           "l, lb, e and lp set (the machine could not stand at HOME): a thinner bar, or a "
+                           "geometry with the bars farther apart");
 }
 
 /* Copy the first failure to the caller's outputs; HG_OK or HG_ERR_BAD_PARAM. */

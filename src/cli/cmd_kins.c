@@ -133,8 +133,10 @@ int cmd_ik(int argc, char **argv)
     hg_pose_from_user(c.pos, pose);
     rc = hg_inverse_kinematics_guarded(&c.p.geo, pose, z, &guard);
     if (rc) {
-        char what[HG_GUARD_TEXT_LEN];
+        char what[HG_GUARD_TEXT_LEN], b[CLI_NUM_LEN];
         hg_guard_describe(&guard, 0, what);
+        if (rc == HG_ERR_EULER_SINGULAR)   /* the value refused */
+            snprintf(what, sizeof what, "B = %s deg; give |B| <= 85", cli_num(c.pos[4], b));
         fprintf(stderr, "hexaglide ik: %s (code %d)%s%s\n", hg_strerror(rc), rc, what[0] ? ": " : "", what);
         return 1;
     }

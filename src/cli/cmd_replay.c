@@ -247,6 +247,41 @@ static int parse_sets(const replay_opts *o, int plant, int variant, int *idx, do
     return 0;
 }
 
+/* 0 if the --set values (idx, val) make a valid machine wherever the record's own parameters
+ * are one: the spec's defaults (a format-1 record's as then), then each time its events (ev, in
+ * order) change them; else 2 after naming the refused fields and the sample (a what-if would stop
+ * there: refused up front, as sim refuses them). */
+static int sets_valid(const replay_opts *o, const char *const *sets, int plant, int variant, int format,
+                      const hg_board_rec_event *ev, long nev, const int *idx, const double *val)
+{
+    static const char *why[HG_PLANT_PARAMS_MAX];
+    const hg_plant *pl = hg_plant_at(plant);
+    int np = pl->nparams(variant), k;
+    long i = 0;
+    unsigned long at = 0;
+    hg_board_params p, q;
+    hg_board_params_default(plant, variant, &p);
+    if (format < HG_BOARD_REC_FORMAT)
+        pl->legacy(format, variant, &p.plant);
+    for (;;) {
+        hg_bitset bad;
+        q = p;
+        for (k = 0; k < o->nset; k++)
+            q.plant.v[idx[k]] = val[k];
+        hg_bitset_clear(&bad);
+        if (!pl->check(variant, &p.plant, &bad, why) &&   /* (the record's own refusals are its own) */
+            cli_params_check_from("replay", plant, variant, &q.plant, 0, (char *const *)sets, o->nset)) {
+            fprintf(stderr, "hexaglide replay: %s: with --set, the record's parameters in force from sample %lu on "
+                    "are no valid machine: the what-if cannot run; change --set\n", o->file, at);
+            return 2;
+        }
+        if (i >= nev)
+            return 0;
+        for (at = ev[i].at; i < nev && ev[i].at == at; i++)
+            hg_board_rec_entry_set(&p, np, ev[i].entry, ev[i].value);
+    }
+}
+
 /* 1 when the nj joint commands are equal (an idle period). */
 static int same_commands(const double *a, const double *b, int nj)
 {
@@ -605,8 +640,8 @@ static int same_params_layout(const hg_plant *p, int a, int b)
  * events in the order they took effect (*ev malloc'd; free() it): one
  * pass over the rows before the replay. 0, or 1 after a message. Rows it
  * cannot read are left to the replay's own pass, which names them. */
-static int prescan(const char *file, const char *buf, size_t len, int *plant, int *variant, long *line0,
-                   hg_board_rec_event **ev, long *nev)
+static int prescan(const char *file, const char *buf, size_t len, int *plant, int *variant, double *model,
+                   long *line0, hg_board_rec_event **ev, long *nev)
 {
     static hg_record r;
     static double row[HG_RECORD_MAX_COLS];
@@ -615,6 +650,7 @@ static int prescan(const char *file, const char *buf, size_t len, int *plant, in
     long cap = 0;
     *plant = 0;
     *variant = hg_plant_at(0)->default_variant;
+    *model = *variant;
     *ev = 0;
     *nev = 0;
     *line0 = 0;
@@ -627,6 +663,7 @@ static int prescan(const char *file, const char *buf, size_t len, int *plant, in
     }
     if (r.format == 1) {               /* the Hexaglide; its parameters are columns */
         if (hg_record_next(&r, row, &e) == 1) {
+            *model = row[cm];          /* (as recorded, for the message) */
             *variant = row[cm] >= 0 && row[cm] < 1000 ? (int)row[cm] : -1;
             *line0 = r.line;
         }
@@ -646,6 +683,7 @@ static int prescan(const char *file, const char *buf, size_t len, int *plant, in
         unsigned long n = (unsigned long)row[0];
         if (n == 0) {
             *plant = row[cp] >= 0 && row[cp] < 1000 ? (int)row[cp] : -1;
+            *model = row[cm];
             *variant = row[cm] >= 0 && row[cm] < 1e6 ? (int)row[cm] : -1;
             *line0 = r.line;
         }
@@ -693,13 +731,14 @@ static int whatif_fault(const hg_board *wb, const hg_board_outputs *o, long n, l
     return 0;
 }
 
-/* 1 if the variant is one of plant's, else 0 after a message naming the record and its line. */
-static int variant_known(const char *file, long line, int plant, int variant)
+/* 1 if the variant is one of plant's, else 0 after a message naming the record, its line and
+ * the value recorded there (model: in.model as a number, whatever variant it maps to). */
+static int variant_known(const char *file, long line, int plant, int variant, double model)
 {
     if (hg_plant_nparams_at(plant, variant))
         return 1;
-    fprintf(stderr, "hexaglide replay: %s: line %ld: in.model %d is not a model of the %s; the record is "
-            "damaged\n", file, line, variant, hg_plant_name_at(plant));
+    fprintf(stderr, "hexaglide replay: %s: line %ld: in.model %.17g is not a model of the %s; the record is "
+            "damaged\n", file, line, model, hg_plant_name_at(plant));
     return 0;
 }
 
@@ -731,6 +770,7 @@ int cmd_replay(int argc, char **argv)
     hg_board_params bp0;
     hg_board_rec_event *ev = 0;
     long nev = 0, next_ev = 0, line0;
+    double model_rec;                 /* in.model as recorded */
     hg_loop_config lc;
     hg_loop_check_report lrep;
     int set_idx[REPLAY_MAX_SETS];
@@ -781,8 +821,8 @@ int cmd_replay(int argc, char **argv)
         free(buf);
         return 1;
     }
-    if (prescan(o.file, buf, len, &plant, &variant, &line0, &ev, &nev) ||
-        !variant_known(o.file, line0, plant, variant)) {
+    if (prescan(o.file, buf, len, &plant, &variant, &model_rec, &line0, &ev, &nev) ||
+        !variant_known(o.file, line0, plant, variant, model_rec)) {
         free(buf);
         free(ev);
         return 1;
@@ -807,6 +847,9 @@ int cmd_replay(int argc, char **argv)
     }
     if (!status && parse_sets(&o, plant, variant_w >= 0 ? variant_w : variant, set_idx, set_val))
         status = 2;
+    if (!status && o.nset)
+        status = sets_valid(&o, o.set, plant, variant_w >= 0 ? variant_w : variant, r.format, ev, nev, set_idx,
+                            set_val);
     if (status) {
         free(buf);
         free(ev);
@@ -1025,7 +1068,7 @@ int cmd_replay(int argc, char **argv)
                 if (hg_bitset_has(&bad, bit))
                     fprintf(stderr, " %s (%s)", hg_board_param_hal_name(wb, bit) ? hg_board_param_hal_name(wb, bit) : "?",
                             why[bit] ? why[bit] : "invalid");
-            fprintf(stderr, "; the run goes on with the previous set: change --set\n");
+            fprintf(stderr, "; the what-if stops here: change --set\n");
             status = 1;
             break;
         }
