@@ -136,7 +136,8 @@ int cmd_ik(int argc, char **argv)
         char what[HG_GUARD_TEXT_LEN], b[CLI_NUM_LEN];
         hg_guard_describe(&guard, 0, what);
         if (rc == HG_ERR_EULER_SINGULAR)   /* the value refused */
-            snprintf(what, sizeof what, "B = %s deg; give |B| <= 85", cli_num(c.pos[4], b));
+            snprintf(what, sizeof what, "B = %s deg; give |B| <= %.0f", cli_num(c.pos[4], b),
+                     HG_MAX_ABS_B_RAD * HG_DEG_PER_RAD);
         fprintf(stderr, "hexaglide ik: %s (code %d)%s%s\n", hg_strerror(rc), rc, what[0] ? ": " : "", what);
         return 1;
     }
