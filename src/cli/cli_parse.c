@@ -134,7 +134,8 @@ int cli_parse_list(const char *cmd, const char *opt, const char *text, const cha
     for (k = 0; k < n; k++) {
         const char *comma = strchr(p, ',');
         size_t len = comma ? (size_t)(comma - p) : strlen(p);
-        char item[64], what[96];
+        char *item, what[96];
+        int rc;
         if (!comma && k != n - 1) {
             fprintf(stderr, "hexaglide %s: %s: need %d comma-separated values, got %d in '%s'\n", cmd, opt, n,
                     k + 1, text);
@@ -146,13 +147,16 @@ int cli_parse_list(const char *cmd, const char *opt, const char *text, const cha
             return -1;
         }
         snprintf(what, sizeof what, "%s %s", opt, names[k]);
-        if (len >= sizeof item) {
-            fprintf(stderr, "hexaglide: %s: '%.*s...' is not a number\n", what, 20, p);
+        item = malloc(len + 1);        /* the item whole: any length a single number may have */
+        if (!item) {
+            fprintf(stderr, "hexaglide %s: %s: out of memory\n", cmd, what);
             return -1;
         }
         memcpy(item, p, len);
         item[len] = '\0';
-        if (cli_parse_double(item, what, &out[k]))
+        rc = cli_parse_double(item, what, &out[k]);
+        free(item);
+        if (rc)
             return -1;
         p = comma ? comma + 1 : p + len;
     }
