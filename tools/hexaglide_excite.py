@@ -426,7 +426,8 @@ def main(argv=None):
     ap.add_argument("--dither-volts", type=hg_csv.number, default=DITHER_V,
                     help="the dither's amplitude, V, in (0, %g] (default %%(default)s)" % DITHER_V_MAX)
     ap.add_argument("--dither-band", type=hg_csv.number, nargs=2, default=DITHER_BAND_HZ, metavar=("LO", "HI"),
-                    help="the chirps' band, Hz, 0 < LO < HI < 500 (default %g %g: about the trains' axial mode)"
+                    help="the chirps' band, Hz, 0 < LO < HI < half the servo rate of --ini's [EMCMOT]SERVO_PERIOD "
+                    "(500 at 1 ms; default %g %g: about the trains' axial mode)"
                     % DITHER_BAND_HZ)
     a = ap.parse_args(argv)
     a.argv = argv
@@ -442,11 +443,14 @@ def main(argv=None):
     if a.dither or a.trains:
         try:
             check_options(a, ("--seconds", "--margin", "--dither-volts") if a.trains else ("--dither-volts",))
+            cfg = read_config(a)
+            ns = cfg.servo_period_ns or 1e6      # siggen's chirps run in the servo thread: below its Nyquist
             lo, hi = a.dither_band
-            if not (0 < lo < hi < 500.0):
-                raise ValueError("--dither-band %g %g: need 0 < LO < HI < 500 Hz (below half the 1 kHz servo rate)"
-                                 % (lo, hi))
-            text = trains_gcode(a, read_config(a).axes) if a.trains else None
+            if not (0 < lo < hi < 0.5e9 / ns):
+                raise ValueError("--dither-band %g %g: need 0 < LO < HI < %g Hz (below half the %g Hz servo rate%s)"
+                                 % (lo, hi, 0.5e9 / ns, 1e9 / ns, ", [EMCMOT]SERVO_PERIOD = %.0f ns of %s"
+                                    % (ns, a.ini) if cfg.servo_period_ns else ""))
+            text = trains_gcode(a, cfg.axes) if a.trains else None
         except ValueError as ex:
             log(ex)
             return 2

@@ -31,7 +31,7 @@ import hexaglide as hg  # noqa: E402
 import hg_csv  # noqa: E402
 import hg_config  # noqa: E402
 import hg_margins as hgm  # noqa: E402
-from hg_program import LEAD_IN, PERIOD_S, beyond_limits, program_rows, s_curve, uneven_times  # noqa: E402
+from hg_program import LEAD_IN, PERIOD_S, PERIOD_WHY, beyond_limits, program_rows, s_curve, uneven_times  # noqa: E402
 import hg_identify_base as ib  # noqa: E402  (the C record reader)
 import hg_output  # noqa: E402
 
@@ -1156,6 +1156,10 @@ def main(argv=None):
                 raise BadInput("--param %s: not a model parameter with a number it accepts (names: docs/model.md)"
                                % s)
         cfg = read_config(a.ini, a.param)  # defaults, [HEXAGLIDE], --param: as sim and soak take them
+        try:
+            hg_config.check_period(cfg, "tune", PERIOD_S, PERIOD_WHY)
+        except hg_config.ConfigError as ex:
+            raise BadInput(str(ex))
         joints, axes, params = cfg.joints, cfg.axes, cfg.params
         ferror_limit = min(g["FERROR"] for g in joints)
         try:                               # the INI's own gains by the loop's rules, as soak checks them

@@ -38,7 +38,7 @@ import hg_csv  # noqa: E402
 import hg_output  # noqa: E402
 import hg_program  # noqa: E402
 
-PERIOD_S = 0.001
+PERIOD_S = hg_program.PERIOD_S
 MIN_SAMPLES = 200
 SETTLE = 500                      # periods at rest before the trajectory
 SEARCH_KEYS = ["P", "FF1", "FF2"]
@@ -107,6 +107,10 @@ class Machine:
         try:                           # [SERIAL] and [JOINT_N] as sim and LinuxCNC read them (the C reader)
             cfg = hg_config.read(ini, loop=True, cmd="tune", plant="serial", model=model)
         except ValueError as ex:       # (hg_config.ConfigError, an unknown model)
+            raise BadInput(str(ex))
+        try:
+            hg_config.check_period(cfg, "tune", PERIOD_S, hg_program.PERIOD_WHY)
+        except hg_config.ConfigError as ex:
             raise BadInput(str(ex))
         self.params, self.joints, self.n = cfg.params, cfg.joints, len(cfg.joints)
         for j, g in enumerate(self.joints):

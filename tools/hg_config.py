@@ -87,6 +87,16 @@ def read(path, sets=(), loop=False, cmd="tune", set_option="--set", plant=None, 
     return cfg
 
 
+def check_period(cfg, cmd, period_s, why):
+    """ConfigError when cfg's [EMCMOT]SERVO_PERIOD is given and is not period_s (s): cmd
+    ("tune") works at that period only; why: what would go wrong at another."""
+    ns = int(round(period_s * 1e9))
+    if cfg.servo_period_ns is not None and cfg.servo_period_ns != ns:
+        raise ConfigError("%s: [EMCMOT]SERVO_PERIOD = %.0f (ns): %s works at a %g ms servo period only "
+                          "(SERVO_PERIOD = %d): %s; give an INI with SERVO_PERIOD = %d"
+                          % (cfg.path, cfg.servo_period_ns, cmd, period_s * 1e3, ns, why, ns))
+
+
 def plant_params(path, plant="serial", model=None):
     """hg.PlantParams of `plant` and `model` from the INI's plant section ([SERIAL]: keys in the HAL
     unit, as the CLI's --ini and the HAL file's setp lines read them; the rest the defaults), by

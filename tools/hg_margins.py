@@ -29,8 +29,8 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 import hexaglide as hg
+from hg_program import PERIOD_S   # (tune's one servo period)
 
-PERIOD_S = 0.001
 MEAS_BANDWIDTH_HZ = 20.0      # the holding loop during the measurement
 WINDOW = 2000                 # periods per multi-sine period: tones on a 0.5 Hz grid
 SETTLE = 500                  # periods from HOME before the excitation starts

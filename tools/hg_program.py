@@ -5,7 +5,9 @@ one lead-in, one way to find where a program ran, one check of a trajectory
 against the joints' limits and of its time column."""
 import numpy as np
 
-PERIOD_S = 0.001
+PERIOD_S = 0.001          # tune's servo period: an INI with another [EMCMOT]SERVO_PERIOD is refused
+PERIOD_WHY = ("its closed-loop runs, the plant's response and a trajectory's lines are one per 1 ms period, "
+              "and the gains it finds hold at that period only")
 LEAD_IN = 300              # rows kept before the program starts (recorded runs)
 
 
