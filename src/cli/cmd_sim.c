@@ -137,7 +137,7 @@ static int record_incomplete(const sim_record *r, const hg_board *b, long rows)
     for (k = 0; k < r->stream.count; k++) {
         const hg_board_rec_event *ev = &r->stream.q[(r->stream.head + k) % HG_BOARD_REC_QUEUE];
         double v = hg_board_rec_entry(&d, r->np, ev->entry);
-        waiting += memcmp(&v, &ev->value, sizeof v) != 0;
+        waiting += memcmp(&v, &ev->value, sizeof v) != 0; // NOLINT(bugprone-suspicious-memory-comparison): bitwise, as the fingerprint
     }
     if (!waiting)
         return 0;
