@@ -158,10 +158,11 @@ def dither_hal(band=DITHER_BAND_HZ, amp_v=DITHER_V, sweep_s=DITHER_SWEEP_S):
 
 def read_config(a):
     """The config of --ini as build/hexaglide reads it (tools/hg_config.py, `hexaglide config`):
-    the prior machine (defaults, [HEXAGLIDE], then --set) and the limits; ValueError naming the
+    the prior machine (defaults, [HEXAGLIDE], then --set), the limits and the servo loops' keys
+    ([JOINT_N]MAX_OUTPUT, OUTPUT_SCALE: the drive's reach) as soak reads them; ValueError naming the
     key, file and line of a refused value."""
     try:
-        return hg_config.read(a.ini, getattr(a, "set", []), cmd="excite")
+        return hg_config.read(a.ini, getattr(a, "set", []), loop=True, cmd="excite")
     except hg_config.ConfigError as ex:
         raise ValueError(str(ex))
 
@@ -383,6 +384,32 @@ def check_options(a, names):
             raise ValueError("%s %s: must be in %s (%s)" % (opt, "%g" % v if isinstance(v, float) else v, rng, what))
 
 
+MAX_VOLTS = 4.0                  # --max-volts' default: well inside the DAC's 10 V
+
+
+def drive_bound(a, cfg):
+    """Set a.max_volts (None: the default) within what every joint's drive reaches on the DAC
+    (hg_config.drive_limit: [JOINT_N]MAX_OUTPUT through OUTPUT_SCALE and OUTPUT_OFFSET, as tune
+    caps its --max-volts): a default above it is lowered to it and said; a given --max-volts above it
+    is a ValueError naming the joint and keys."""
+    reach = [hg_config.drive_limit(g) for g in cfg.joints]
+    j = int(np.argmin(reach))
+    g = cfg.joints[j]
+    why = ("[JOINT_%d]MAX_OUTPUT %g of %s limits pid.%d.output; the DAC gets (output - OUTPUT_OFFSET %g) x "
+           "OUTPUT_SCALE %g" % (j, g.get("MAX_OUTPUT", 0.0), a.ini, j, g.get("OUTPUT_OFFSET", 0.0),
+                                g.get("OUTPUT_SCALE", 1.0)))
+    if not reach[j] > 0:
+        raise ValueError("joint %d's drive reaches no volts: %s; give a MAX_OUTPUT above |OUTPUT_OFFSET|" % (j, why))
+    if a.max_volts is None:
+        a.max_volts = min(MAX_VOLTS, reach[j])
+        if reach[j] < MAX_VOLTS:
+            log("drive bound %g V, below the default --max-volts %g: joint %d reaches %g V (%s)"
+                % (a.max_volts, MAX_VOLTS, j, reach[j], why))
+    elif a.max_volts > reach[j]:
+        raise ValueError("--max-volts %g: joint %d's drive reaches only %g V (%s); give --max-volts %g or less"
+                         % (a.max_volts, j, reach[j], why, reach[j]))
+
+
 def main(argv=None):
     """hexaglide excite: design, check on 1 ms, write the G-code."""
     argv = sys.argv[1:] if argv is None else argv
@@ -400,8 +427,10 @@ def main(argv=None):
                     % r["--harmonics"][:2])
     ap.add_argument("--margin", type=hg_csv.number, default=0.8,
                     help="fraction of every range, speed and acceleration limit used, in (0, 1] (default 0.8)")
-    ap.add_argument("--max-volts", type=hg_csv.number, default=4.0,
-                    help="peak drive volts the prior model may need, in (0, 10] (default 4 of the DAC's 10)")
+    ap.add_argument("--max-volts", type=hg_csv.number, default=None,
+                    help="peak drive volts the prior model may need, in (0, 10] and at most what every joint's pid "
+                    "output reaches on the DAC ([JOINT_N]MAX_OUTPUT x OUTPUT_SCALE); default %g, or that reach "
+                    "where it is lower" % MAX_VOLTS)
     ap.add_argument("--segment", type=hg_csv.number, default=0.2,
                     help="G1 segment duration, s, in [%g, period/10] (default 0.2; speeds are held below "
                     "0.5 a_max x segment)" % r["--segment"][0])
@@ -465,8 +494,8 @@ def main(argv=None):
             sys.stdout.write(text)
         return 0
     try:
-        check_options(a, ("--period", "--periods", "--harmonics", "--margin", "--max-volts", "--segment",
-                          "--starts", "--maxiter", "--grid", "--seed"))
+        check_options(a, ("--period", "--periods", "--harmonics", "--margin", "--segment", "--starts", "--maxiter",
+                          "--grid", "--seed") + (("--max-volts",) if a.max_volts is not None else ()))
         if a.period * a.periods > MAX_RUN_S:
             raise ValueError("--period %g x --periods %d = %g s: the program may run at most %g s"
                              % (a.period, a.periods, a.period * a.periods, MAX_RUN_S))
@@ -475,6 +504,7 @@ def main(argv=None):
                              % (a.segment, a.period / 10))
         hid.params_with(a.set)               # the names and numbers here; the values the C reader checks
         cfg = read_config(a)                 # defaults, [HEXAGLIDE], --set: as sim and soak take them
+        drive_bound(a, cfg)
         prob = Problem(a, cfg.params, cfg)
     except ValueError as ex:
         log(ex)
@@ -504,9 +534,9 @@ def main(argv=None):
     Y, z, zd, zdd, volts, x, xd, xdd = prob.evaluate(theta, np.arange(0, a.period, 0.001))
     log("condition number %.1f (base regressor, columns scaled to unit norm, 1 ms grid)" % cond)
     log("runs %.1f s (%d periods of %.4g s) plus the approach and return moves" % (total, a.periods, a.period))
-    log("peaks: world %s; joints %.1f mm, %.1f mm/s, %.0f mm/s^2; drive %.2f V (prior model)"
+    log("peaks: world %s; joints %.1f mm, %.1f mm/s, %.0f mm/s^2; drive %.2f V (prior model; bound %g V)"
         % (" ".join("%s %.1f..%.1f" % (ax, lo, hi) for ax, lo, hi in zip(AXES, x.min(0), x.max(0))),
-           np.abs(z).max(), np.abs(zd).max(), np.abs(zdd).max(), np.abs(volts).max()))
+           np.abs(z).max(), np.abs(zd).max(), np.abs(zdd).max(), np.abs(volts).max(), a.max_volts))
     return 0
 
 

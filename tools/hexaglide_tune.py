@@ -194,7 +194,7 @@ def beyond_drive(cmd, start, joints):
     v = np.diff(cmd, axis=0) / PERIOD_S
     acc = np.diff(cmd, 2, axis=0) / PERIOD_S ** 2
     need = start["FF1"] * v[1:] + start["FF2"] * acc + start["BIAS"]
-    vmax = np.array([g["MAX_OUTPUT"] or 10.0 for g in joints])
+    vmax = np.array([hg_config.output_limit(g) for g in joints])
     over = np.argwhere(np.abs(need) > vmax)
     if not len(over):
         return None
@@ -1166,7 +1166,7 @@ def main(argv=None):
             hg.loop_config([pid_keys(g) for g in joints], ferror_limit_mm=ferror_limit)
         except hg.LoopConfigError as ex:
             raise BadInput(ex.in_ini(a.ini))
-        vmax_dac = min(g["MAX_OUTPUT"] or 10.0 for g in joints)
+        vmax_dac = min(hg_config.output_limit(g) for g in joints)
         if a.max_volts is not None and not (0 < a.max_volts <= vmax_dac):
             raise BadInput("--max-volts %g: must be in (0, %g] V (the smallest [JOINT_N]MAX_OUTPUT of %s; "
                            "MAX_OUTPUT 0 means the DAC's 10 V)" % (a.max_volts, vmax_dac, a.ini))

@@ -87,6 +87,24 @@ def read(path, sets=(), loop=False, cmd="tune", set_option="--set", plant=None, 
     return cfg
 
 
+DAC_V = 10.0      # the board's DAC: +-10 V
+
+
+def output_limit(g):
+    """pid.N.output's reach for joint g ([JOINT_N] keys as read(loop=True) gives them): MAX_OUTPUT,
+    or where it is 0 (pid.c: no limit) the DAC's 10 V."""
+    return g.get("MAX_OUTPUT", 0.0) or DAC_V
+
+
+def drive_limit(g):
+    """The DAC volts joint g can drive either way: pid.N.output within output_limit, on the DAC as
+    (output - OUTPUT_OFFSET) x OUTPUT_SCALE (configs/hexaglide.hal's dac gain and offset), inside
+    the DAC's 10 V."""
+    if not g.get("MAX_OUTPUT", 0.0):
+        return DAC_V
+    return min(DAC_V, max(0.0, (g["MAX_OUTPUT"] - abs(g.get("OUTPUT_OFFSET", 0.0))) * abs(g.get("OUTPUT_SCALE", 1.0))))
+
+
 def check_period(cfg, cmd, period_s, why):
     """ConfigError when cfg's [EMCMOT]SERVO_PERIOD is given and is not period_s (s): cmd
     ("tune") works at that period only; why: what would go wrong at another."""
