@@ -384,6 +384,40 @@ def check_options(a, names):
             raise ValueError("%s %s: must be in %s (%s)" % (opt, "%g" % v if isinstance(v, float) else v, rng, what))
 
 
+# which options each of excite's three jobs uses (argparse dests): the Fourier program (the default),
+# the trains' program (--trains) and the dither's HAL snippet (--dither, with --trains or alone)
+FOURIER_OPTS = ("period", "periods", "harmonics", "max_volts", "segment", "starts", "maxiter", "grid", "seed", "set")
+TRAINS_OPTS = ("stroke", "seconds")
+DITHER_OPTS = ("dither_volts", "dither_band")
+
+
+def unused_options(a, given):
+    """ValueError naming the first option of given (the dests given on the command line) that the
+    job a asks for does not use (nothing silently ignored): --output with --dither alone (it writes
+    no G-code), the Fourier program's options with --trains or --dither alone, --trains' or the
+    dither's without them."""
+    opt = lambda d: "--" + d.replace("_", "-")
+    if a.dither and not a.trains:
+        if "output" in given:
+            raise ValueError("--output %s with --dither and no --trains: --dither alone writes only the dither's "
+                             "HAL snippet (%s), no G-code, so --output would not be written; add --trains for the "
+                             "trains' program (the dither goes with it), or design the Fourier program in a run "
+                             "without --dither" % (a.output, a.dither))
+        for d in FOURIER_OPTS + TRAINS_OPTS + ("margin",):
+            if d in given:
+                raise ValueError("%s: not used by --dither alone, which writes only the dither's HAL snippet (no "
+                                 "program); drop it, or add --trains for the trains' program, or design the Fourier "
+                                 "program in a run without --dither" % opt(d))
+    for d in FOURIER_OPTS if a.trains else ():
+        if d in given:
+            raise ValueError("%s: an option of the Fourier program, which --trains does not design (it writes the "
+                             "trains' program instead); drop it" % opt(d))
+    for d, need in [(d, "--trains (the trains' program)") for d in TRAINS_OPTS if not a.trains] + \
+            [(d, "--dither FILE (the dither's HAL snippet)") for d in DITHER_OPTS if not a.dither]:
+        if d in given:
+            raise ValueError("%s: an option of %s, not given; add it, or drop %s" % (opt(d), need, opt(d)))
+
+
 MAX_VOLTS = 4.0                  # --max-volts' default: well inside the DAC's 10 V
 
 
@@ -460,13 +494,16 @@ def main(argv=None):
                     % DITHER_BAND_HZ)
     a = ap.parse_args(argv)
     a.argv = argv
+    ap.set_defaults(**{d: None for d in vars(a) if d != "argv"})     # the options given on the command line
+    given = {d for d, v in vars(ap.parse_args(argv)).items() if v is not None}   # (abbreviated or not)
     try:
+        unused_options(a, given)
         for p in (a.output, a.dither):
             if p:
                 hg_output.check_writable(p)            # a missing or unwritable directory now, not after the design
         hg_output.refuse_inputs([("--output", a.output), ("--dither", a.dither)], [("--ini", a.ini)])
         hg_output.refuse_same([("--output", a.output), ("--dither", a.dither)])
-    except hg_output.OutputError as ex:
+    except (ValueError, hg_output.OutputError) as ex:
         log(ex)
         return 2
     if a.dither or a.trains:
