@@ -473,8 +473,11 @@ def read_run(path, ini):
     import hexaglide_identify_serial as ids
     if os.path.isdir(path):
         raise BadInput("%s: a directory; give a record file" % path)
-    if not os.path.isfile(path):
+    if not os.path.exists(path):
         raise BadInput("%s: no such file" % path)
+    if not os.path.isfile(path):
+        raise BadInput("%s: not a regular file (a device, FIFO or socket): identify reads a record more than "
+                       "once; give a record file" % path)
     try:
         with open(path, "rb") as f:
             first = f.read(len(REC_MAGICS[0]))

@@ -1058,7 +1058,8 @@ def check_options(a):
             ok = (lo <= v <= hi) if opt == "--max-overshoot" else (lo < v <= hi)
             rng = "%s%g, %g]" % ("[" if opt == "--max-overshoot" else "(", lo, hi)
         if not ok:
-            raise BadInput("%s %s: must be in %s (%s)" % (opt, "%g" % v if isinstance(v, float) else v, rng, what))
+            shown = ("%g" % v if float("%g" % v) == v else repr(v)) if isinstance(v, float) else v  # 250.0001: not 250
+            raise BadInput("%s %s: must be in %s (%s)" % (opt, shown, rng, what))
 
 
 def serial_plant(argv):
