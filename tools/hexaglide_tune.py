@@ -109,7 +109,7 @@ def load_trajectory(path):
                            "deeper FIFO (loadrt sampler depth=...)" % (path, no))
         fields = [x for x in s.replace(",", " ").split()]
         if header is None and not rows and any("motor-pos-cmd" in x for x in fields):
-            header = s.split(",")
+            header = [x.strip() for x in s.split(",")]   # "t_s, joint.0.motor-pos-cmd, ..." too
             continue
         try:
             vals = [hg_csv.number(x) for x in fields]
