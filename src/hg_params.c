@@ -208,9 +208,8 @@ static void geometry_rules(const hg_geometry *g, hg_check *r)
         hg_check_refuse(r, "cone_head", "plus the bars' tilt at HOME, asin((lb - lp) / l), must stay below 90 deg "
                                "(a bar would touch the head's joint plane)");
     if (!(g->d_bar_m < hg_guard_home_clearance(g)))
-        hg_check_refuse(r, "d_bar", "must be below the closest distance between two bar axes at HOME, which "
-                           "l, lb, e and lp set (the machine could not stand at HOME): a thinner bar, or a "
-                           "geometry with the bars farther apart");
+        hg_check_refuse(r, "d_bar", "must be below the closest distance between two bar axes at HOME, set by "
+                           "l, lb, e and lp (the machine could not stand at HOME)");   /* HAL: within 254 chars */
 }
 
 /* Copy the first failure to the caller's outputs; HG_OK or HG_ERR_BAD_PARAM. */
