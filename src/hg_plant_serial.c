@@ -142,12 +142,14 @@ static int rotary_axis(int variant, int k)
     return c >= 4 && c <= 6;
 }
 
+/* The variant of an axes string, in upper or lower case as trivkins' coordinates= takes it; -1 if none. */
 static int variant_of(const char *name)
 {
     int k, v = 0, scale = 1;
     for (k = 0; name[k]; k++) {
+        const char up = name[k] >= 'a' && name[k] <= 'z' ? (char)(name[k] - 'a' + 'A') : name[k];
         int c;
-        for (c = 0; LETTERS[c] && LETTERS[c] != name[k]; c++)
+        for (c = 0; LETTERS[c] && LETTERS[c] != up; c++)
             ;
         if (!LETTERS[c] || k >= AXES_MAX)
             return -1;
