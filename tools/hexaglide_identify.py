@@ -1430,6 +1430,10 @@ def validate(vrun, a, reg, params, s, est, pi0, base):
         out.append("# closed loop: not validated (%s has no joint.N.motor-pos-cmd; give --commands FILE)"
                    % vrun.path)
         return "\n".join(out) + "\n", data
+    if abs(vrun.dt - tune.PERIOD_S) > 1e-12:       # hg.Loop runs tune's 1 ms servo period
+        out.append("# closed loop: not validated (%s ran a %g ms servo period; the closed-loop prediction runs "
+                   "at %g ms, one command a period)" % (vrun.path, vrun.dt * 1e3, tune.PERIOD_S * 1e3))
+        return "\n".join(out) + "\n", data
     try:                                   # the INI's loops as soak and tune read them (the C CLI's reader)
         gains = [tune.pid_keys(g) for g in tune.read_ini(a.ini, cmd="identify")[0]]
     except tune.BadInput as ex:
