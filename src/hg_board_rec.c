@@ -323,14 +323,21 @@ void hg_board_rec_stream_step(hg_board_rec_stream *s, const hg_board_params *p, 
     int k, pass;
     if (s->started)
         s->period++;
-    /* at the start the whole block, those that differ from the defaults (where a replay starts) first,
-     * so that a record of a few periods still carries them; then what changed */
-    for (pass = s->started ? 1 : 0; pass < 2; pass++)
+    if (!s->started) {                 /* the whole block: those that differ from the defaults (where a replay
+                                          starts) first, so that a record of a few periods still carries them */
+        for (pass = 0; pass < 2; pass++)
+            for (e = 0; e < (unsigned)n; e++)
+                if (changed(s, p, n, e) == (pass == 0))
+                    enqueue(s, e, hg_board_rec_entry(p, n, e));
         for (e = 0; e < (unsigned)n; e++)
-            if (s->started ? changed(s, p, n, e) : changed(s, p, n, e) == (pass == 0))
+            hg_board_rec_entry_set(&s->told, n, e, hg_board_rec_entry(p, n, e));
+    } else {                           /* then what changed */
+        for (e = 0; e < (unsigned)n; e++)
+            if (changed(s, p, n, e)) {
                 enqueue(s, e, hg_board_rec_entry(p, n, e));
-    for (e = 0; e < (unsigned)n; e++)
-        hg_board_rec_entry_set(&s->told, n, e, hg_board_rec_entry(p, n, e));
+                hg_board_rec_entry_set(&s->told, n, e, hg_board_rec_entry(p, n, e));
+            }
+    }
     s->started = 1;
     for (k = 0; k < HG_BOARD_REC_SLOTS; k++) {
         if (s->count == 0) {

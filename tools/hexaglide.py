@@ -912,6 +912,16 @@ def check_loop_config(cfg):
                           r.ini_key.decode() if r.ini_key else "", r.value, r.why.decode())
 
 
+def _loop_period(period_ns):
+    """period_ns as an int the closed loop takes (hg_loop_config_check: (0, 10 ms]), else
+    TypeError / LoopConfigError naming it."""
+    cfg = LoopConfig()
+    _loop_default(C.byref(cfg))
+    cfg.period_ns = _whole("period_ns", period_ns, "ns")
+    check_loop_config(cfg)
+    return cfg.period_ns
+
+
 def notch_response(f0, q, freqs, period_ns=1000000):
     """LinuxCNC's biquad notch (f0 Hz, Q) in a thread of period_ns: its complex response at
     freqs (src/hg_biquad.c, the coefficients the enable edge computes), and whether
@@ -924,10 +934,7 @@ def notch_response(f0, q, freqs, period_ns=1000000):
     if not np.isfinite(q):
         raise ValueError("notch Q = %r: must be finite (biquad.comp's valid pin says whether it lies in "
                          "[0.5, 2])" % q)
-    cfg = LoopConfig()
-    _loop_default(C.byref(cfg))
-    cfg.period_ns = period_ns = _whole("period_ns", period_ns, "ns")
-    check_loop_config(cfg)
+    period_ns = _loop_period(period_ns)
     freqs = np.atleast_1d(np.asarray(freqs, dtype=np.float64))
     if not np.all(np.isfinite(freqs)):
         raise ValueError("freqs[%d] = %r: must be finite (Hz)" % (np.argmin(np.isfinite(freqs)),
@@ -1184,10 +1191,7 @@ def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000, state=
         setattr(st, k, v)
         if not np.isfinite(getattr(st, k)):
             raise ValueError("state: %s = %r: must be finite (a pid's memory is never NaN or infinite)" % (k, v))
-    cfg = LoopConfig()
-    _loop_default(C.byref(cfg))
-    cfg.period_ns = period_ns = _whole("period_ns", period_ns, "ns")
-    check_loop_config(cfg)                         # the period, as the closed loop checks it
+    period_ns = _loop_period(period_ns)
     command = np.asarray(command, dtype=np.float64)
     if command.ndim != 1:
         raise ValueError("command must be a vector (one value per period), got shape %s" % (command.shape,))
