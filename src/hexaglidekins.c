@@ -21,7 +21,11 @@
  *   hexaglidekins.fk-error           s32 out  0 or the hg_error code of the last forward call
  *   hexaglidekins.fk-fault           bit out  the last forward call failed
  *   hexaglidekins.fk-fail-count      u32 out  forward failures since load
- *   hexaglidekins.ik-error           s32 out  0 or the hg_error code of the last inverse call */
+ *   hexaglidekins.ik-error           s32 out  0 or the hg_error code of the last inverse call
+ *   hexaglidekins.tool-offset        float in the tool length offset (machine units; net it to
+ *                                    motion.tooloffset.z): X Y Z are the tool tip's, tool-offset
+ *                                    along the head's axis below Op, at any tilt (RTCP,
+ *                                    hg_pose_offset_to_op); 0 (default): Op's */
 #include "rtapi.h"
 #include "rtapi_app.h"
 #include "rtapi_math.h"
@@ -52,6 +56,9 @@ typedef struct {
     hal_bit_t *fk_fault;
     hal_u32_t *fk_fail_count;
     hal_s32_t *ik_error;
+    hal_float_t *tool_offset;                      /* machine units */
+    double tool_offset_said;                       /* the last value given (hg_say_refused_once) */
+    double tool_offset_m;                          /* the last one accepted, m */
     hal_u32_t *board_geometry;                     /* the board's geometry-fingerprint, 0: unconnected */
     unsigned fingerprint;                          /* hg_geometry_fingerprint of the checked geometry */
     int mismatch_calls;                            /* consecutive calls that found a mismatch */
@@ -136,6 +143,27 @@ static double mm_per_unit(void)
     return hd->units.in_force;
 }
 
+/* The tool offset from its pin in m (*d_m; the last accepted one when it is
+ * refused); HG_ERR_BAD_PARAM, said once per value, when hg_tool_offset_check
+ * refuses it: the kinematics then refuse their calls until it is fixed. */
+static int tool_offset(const hg_geometry *g, double mpu, double *d_m)
+{
+    double given = *hd->tool_offset, d = given * mpu / HG_MM_PER_M;
+    int accepted = (hg_tool_offset_check(g, d) == HG_OK);
+    if (accepted)
+        hd->tool_offset_m = d;
+    *d_m = hd->tool_offset_m;
+    if (hg_say_refused_once(&hd->tool_offset_said, given, accepted) == HG_FK_SAY_REFUSED) {
+        char got[HG_TEXT_VALUE_LEN], most[HG_TEXT_VALUE_LEN];
+        hg_text_value(got, given);
+        hg_text_value(most, HG_MAX_ABS_POSITION_BARS * g->l_m * HG_MM_PER_M / mpu);
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: pin hexaglidekins.tool-offset %s is not a tool length "
+                        "(finite, at most %s machine units either way); kinematics refused until it is "
+                        "(net it to motion.tooloffset.z)\n", got, most);
+    }
+    return accepted ? HG_OK : HG_ERR_BAD_PARAM;
+}
+
 /* EmcPose (machine units, deg) -> core pose (m, rad). */
 static void pose_from_emc(const EmcPose *pos, double mpu, double pose[6])
 {
@@ -159,15 +187,18 @@ int kinematicsForward(const double *joints, EmcPose *pos,
 {
     hg_geometry g;
     hg_fk_report rep = {0, 0.0};
-    double z[6], pose[6];
+    double z[6], commanded[6], pose[6], d_m = hd->tool_offset_m;
     double mpu = mm_per_unit();
     int rc, say;
     (void)fflags;
     (void)iflags;
-    pose_from_emc(pos, mpu, pose);
+    pose_from_emc(pos, mpu, commanded);
     hg_joints_from_machine(joints, mpu, z);
     fk_settings();
     rc = current_geometry(&g);
+    if (rc == 0)
+        rc = tool_offset(&g, mpu, &d_m);
+    hg_pose_offset_to_op(commanded, d_m, pose);                    /* the guess, as Op */
     if (rc == 0)
         rc = hg_fk_session_solve(&hd->fk, &g, z, pose, &rep);   /* on failure: the last pose solved */
     else
@@ -188,7 +219,8 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     /* also on failure: motion keeps what is written here as its position
      * (it shows the last solved pose, not the world home it passes as the
      * next guess) */
-    pose_to_emc(pose, mpu, pos);
+    hg_pose_op_to_offset(pose, d_m, commanded);
+    pose_to_emc(commanded, mpu, pos);
     return rc;
 }
 
@@ -197,15 +229,19 @@ int kinematicsInverse(const EmcPose *pos, double *joints,
                       KINEMATICS_FORWARD_FLAGS *fflags)
 {
     hg_geometry g;
-    double pose[6], z[6];
+    double commanded[6], pose[6], z[6], d_m = 0.0;
     double mpu = mm_per_unit();
     int rc;
     (void)iflags;
     (void)fflags;
-    pose_from_emc(pos, mpu, pose);
+    pose_from_emc(pos, mpu, commanded);
     rc = current_geometry(&g);
     if (rc == 0)
+        rc = tool_offset(&g, mpu, &d_m);
+    if (rc == 0) {
+        hg_pose_offset_to_op(commanded, d_m, pose);
         rc = hg_inverse_kinematics(&g, pose, z);
+    }
     *hd->ik_error = rc;
     if (rc)
         return rc;
@@ -240,6 +276,7 @@ static int export_hal(void)
     r |= hal_pin_u32_newf(HAL_OUT, &hd->fk_fail_count, comp_id, "hexaglidekins.fk-fail-count");
     r |= hal_pin_s32_newf(HAL_OUT, &hd->ik_error, comp_id, "hexaglidekins.ik-error");
     r |= hal_pin_u32_newf(HAL_IN, &hd->board_geometry, comp_id, "hexaglidekins.board-geometry");
+    r |= hal_pin_float_newf(HAL_IN, &hd->tool_offset, comp_id, "hexaglidekins.tool-offset");
     if (r)
         return r;
     hg_fk_session_init(&hd->fk);
@@ -254,6 +291,9 @@ static int export_hal(void)
     *hd->fk_fail_count = 0;
     *hd->ik_error = 0;
     *hd->board_geometry = 0;
+    *hd->tool_offset = 0.0;
+    hd->tool_offset_said = 0.0;
+    hd->tool_offset_m = 0.0;
     hd->mismatch_calls = 0;
     return 0;
 }

@@ -94,17 +94,20 @@ void hg_units_init(hg_units_setting *u)
     u->refused = HG_MM_PER_UNIT_DEFAULT;
 }
 
+int hg_say_refused_once(double *last, double value, int accepted)
+{
+    if (!accepted && memcmp(&value, last, sizeof value) == 0) // NOLINT(bugprone-suspicious-memory-comparison): bitwise, NaN equals itself
+        return HG_FK_SAY_NOTHING;      /* refused and said already */
+    *last = value;                     /* a valid value: the next refusal is said again */
+    return accepted ? HG_FK_SAY_NOTHING : HG_FK_SAY_REFUSED;
+}
+
 int hg_units_take(hg_units_setting *u, double mm_per_unit)
 {
-    if (hg_mm_per_unit_check(mm_per_unit) == HG_OK) {
+    int accepted = (hg_mm_per_unit_check(mm_per_unit) == HG_OK);
+    if (accepted)
         u->in_force = mm_per_unit;
-        u->refused = mm_per_unit;      /* a valid value: the next refusal is said again */
-        return HG_FK_SAY_NOTHING;
-    }
-    if (memcmp(&mm_per_unit, &u->refused, sizeof mm_per_unit) == 0) // NOLINT(bugprone-suspicious-memory-comparison): bitwise, NaN equals itself
-        return HG_FK_SAY_NOTHING;      /* refused and said already */
-    u->refused = mm_per_unit;
-    return HG_FK_SAY_REFUSED;
+    return hg_say_refused_once(&u->refused, mm_per_unit, accepted);
 }
 
 /* (x * mm_per_unit) / 1000 and (x * 1000) / mm_per_unit: with mm_per_unit 1
@@ -147,6 +150,29 @@ void hg_tool_tip(const double pose[6], double tool_d_m, double tip[3])
     hg_rotation(pose[3], pose[4], pose[5], R);
     for (i = 0; i < 3; i++)
         tip[i] = pose[i] - tool_d_m * R[3 * i + 2];
+}
+
+int hg_tool_offset_check(const hg_geometry *g, double tool_offset_m)
+{
+    return within_reach(g, 1, &tool_offset_m) ? HG_OK : HG_ERR_BAD_PARAM;
+}
+
+/* op = c + d (R z - z) in X Y Z, the angles as they are: with d 0 or an
+ * untilted head R z - z is exactly 0 and op is c to the bit. */
+void hg_pose_offset_to_op(const double commanded[6], double tool_offset_m, double op[6])
+{
+    double R[9];
+    int i;
+    hg_rotation(commanded[3], commanded[4], commanded[5], R);
+    for (i = 0; i < 6; i++)
+        op[i] = commanded[i];
+    for (i = 0; i < 3; i++)
+        op[i] += tool_offset_m * (R[3 * i + 2] - (i == 2));
+}
+
+void hg_pose_op_to_offset(const double op[6], double tool_offset_m, double commanded[6])
+{
+    hg_pose_offset_to_op(op, -tool_offset_m, commanded);
 }
 
 /* Rz(alpha_i) (radial, s_j e, 0) for bar k. */

@@ -111,6 +111,11 @@ typedef struct {
     double refused;            /* the last value given, as given (bitwise) */
 } hg_units_setting;
 
+/* A value said once when refused: HG_FK_SAY_REFUSED when not accepted and
+ * value differs (bitwise: a NaN equals itself) from *last, the value given
+ * before; HG_FK_SAY_NOTHING otherwise. *last becomes value. */
+int hg_say_refused_once(double *last, double value, int accepted);
+
 /* in_force HG_MM_PER_UNIT_DEFAULT, nothing refused. */
 void hg_units_init(hg_units_setting *u);
 
@@ -157,6 +162,21 @@ void hg_joint_points_rot(const hg_frame *f, const double R[9], const double z[6]
 
 /* The tool tip of pose (tool_d below Op along the head's -z axis), world frame (m). */
 void hg_tool_tip(const double pose[6], double tool_d_m, double tip[3]);
+
+/* RTCP: the tool length offset of LinuxCNC's G43 (motion.tooloffset.z into
+ * hexaglidekins.tool-offset, docs/linuxcnc.md). Motion hands the
+ * kinematics X Y Z = the programmed tool tip + d along world Z. A tool d
+ * long points along the head's -z axis (as hg_tool_tip), so its tip stays
+ * at the programmed point whatever the tilt when
+ *     Op = P + d (R z - z)        (z = (0 0 1), R the head's rotation);
+ * d 0 or an untilted head: Op is P to the bit. The angles pass unchanged. */
+/* HG_OK when tool_offset_m is finite and within HG_MAX_ABS_POSITION_BARS
+ * bar lengths, else HG_ERR_BAD_PARAM. */
+int hg_tool_offset_check(const hg_geometry *g, double tool_offset_m);
+/* The head pose op (Op) of a commanded pose whose X Y Z carry the offset. */
+void hg_pose_offset_to_op(const double commanded[6], double tool_offset_m, double op[6]);
+/* The commanded pose of the head pose op: the inverse of the above. */
+void hg_pose_op_to_offset(const double op[6], double tool_offset_m, double commanded[6]);
 
 /* Bar constraints Phi_k = |B_k - A_k|^2 - l^2 (m^2). */
 void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6],

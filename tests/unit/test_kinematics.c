@@ -617,6 +617,66 @@ static void test_machine_units(void)
     CHECK(same, "mm-per-unit 1: bit-identical to the mm conversions (hg_pose_from_user, x / 1000)");
 }
 
+/* RTCP (hg_pose_offset_to_op): a tool d long, along the head's -z axis,
+ * ends at the programmed tip P - d z (what LinuxCNC's G43 handed the
+ * kinematics) at any tilt. Independent of the code's R: the head's axis
+ * R z = Rz(C) Ry(B) Rx(A) (0 0 1) written out here. */
+static void test_tool_offset(const hg_params *p)
+{
+    const double d = 0.09, bad[] = {NAN, INFINITY, -INFINITY, 1e300};
+    double worst_tip = 0.0, worst_len = 0.0, worst_back = 0.0;
+    int n, k, same = 1, refused = 1;
+    for (n = 0; n < 200; n++) {
+        double c[6], op[6], back[6], tip[3], axis[3], len = 0.0;
+        double dd = n % 2 ? d : -0.03;                       /* a negative offset too */
+        c[0] = hg_test_uniform(-0.1, 0.1); c[1] = hg_test_uniform(-0.1, 0.1); c[2] = hg_test_uniform(-0.1, 0.1);
+        c[3] = hg_test_uniform(-0.4, 0.4); c[4] = hg_test_uniform(-0.4, 0.4); c[5] = hg_test_uniform(-3.0, 3.0);
+        axis[0] = cos(c[5]) * sin(c[4]) * cos(c[3]) + sin(c[5]) * sin(c[3]);
+        axis[1] = sin(c[5]) * sin(c[4]) * cos(c[3]) - cos(c[5]) * sin(c[3]);
+        axis[2] = cos(c[4]) * cos(c[3]);
+        hg_pose_offset_to_op(c, dd, op);
+        for (k = 0; k < 3; k++) {
+            tip[k] = op[k] - dd * axis[k];                   /* the tool's tip, from Op along -R z */
+            worst_tip = fmax(worst_tip, fabs(tip[k] - (c[k] - dd * (k == 2))));
+            len += (op[k] - tip[k]) * (op[k] - tip[k]);
+        }
+        worst_len = fmax(worst_len, fabs(sqrt(len) - fabs(dd)));
+        for (k = 3; k < 6; k++)
+            same &= op[k] == c[k];
+        hg_pose_op_to_offset(op, dd, back);
+        for (k = 0; k < 6; k++)
+            worst_back = fmax(worst_back, fabs(back[k] - c[k]));
+    }
+    CHECK(worst_tip < 1e-16, "tool offset at 200 tilts: the tip is the programmed point P - d z (worst %.1e m)",
+          worst_tip);
+    CHECK(worst_len < 1e-16 && same, "the tool is d long from Op, the angles unchanged (worst %.1e m)", worst_len);
+    CHECK(worst_back < 1e-16, "hg_pose_op_to_offset undoes it (worst %.1e m)", worst_back);
+    {
+        const double c[6] = {0.01, -0.02, 0.03, 0.0, 0.0, 1.2}, z0[6] = {0.01, -0.02, 0.03, 0.3, -0.2, 0.1};
+        double op[6], op0[6];
+        hg_pose_offset_to_op(c, d, op);                       /* untilted: turned about z only */
+        hg_pose_offset_to_op(z0, 0.0, op0);
+        for (k = 0; k < 6; k++)
+            same &= memcmp(&op[k], &c[k], sizeof op[k]) == 0 && memcmp(&op0[k], &z0[k], sizeof op0[k]) == 0;
+        CHECK(same, "an untilted head (any C) or a zero offset: Op is the commanded pose to the bit");
+    }
+    CHECK(hg_tool_offset_check(&p->geo, 0.0) == HG_OK && hg_tool_offset_check(&p->geo, -0.2) == HG_OK &&
+              hg_tool_offset_check(&p->geo, HG_MAX_ABS_POSITION_BARS * p->geo.l_m) == HG_OK,
+          "tool offsets 0, -0.2 m and 100 bar lengths are taken");
+    for (k = 0; k < (int)(sizeof bad / sizeof bad[0]); k++)
+        refused &= hg_tool_offset_check(&p->geo, bad[k]) == HG_ERR_BAD_PARAM;
+    CHECK(refused && hg_tool_offset_check(&p->geo, HG_MAX_ABS_POSITION_BARS * p->geo.l_m * 1.0001) == HG_ERR_BAD_PARAM,
+          "NaN, +-inf, 1e300 m and beyond 100 bar lengths are refused");
+    {
+        double last = 0.0;
+        CHECK(hg_say_refused_once(&last, NAN, 0) == HG_FK_SAY_REFUSED &&
+                  hg_say_refused_once(&last, NAN, 0) == HG_FK_SAY_NOTHING &&
+                  hg_say_refused_once(&last, 0.05, 1) == HG_FK_SAY_NOTHING &&
+                  hg_say_refused_once(&last, NAN, 0) == HG_FK_SAY_REFUSED,
+              "a refusal is said once while it stays, again after a valid value");
+    }
+}
+
 int main(void)
 {
     hg_params p, wide;
@@ -640,5 +700,6 @@ int main(void)
     test_fk_session();
     test_fk_session_solve(&p);
     test_machine_units();
+    test_tool_offset(&p);
     return hg_test_exit();
 }
