@@ -299,6 +299,9 @@ _step = _sig("hg_step", C.c_int, _P, _P, _d6, C.c_double)
 _energy = _sig("hg_energy", None, _P, _P, C.POINTER(C.c_double), C.POINTER(C.c_double))
 _ik = _sig("hg_inverse_kinematics_guarded", C.c_int, _P, _d6, _d6, _P)
 _fk = _sig("hg_forward_kinematics", C.c_int, _P, _d6, _d6, _P, _P)
+_tool_offset_check = _sig("hg_tool_offset_check", C.c_int, _P, C.c_double)
+_offset_to_op = _sig("hg_pose_offset_to_op", None, _d6, C.c_double, _d6)
+_op_to_offset = _sig("hg_pose_op_to_offset", None, _d6, C.c_double, _d6)
 _guard_check = _sig("hg_guard_check", C.c_int, _P, _d6, _d6, C.c_uint, C.POINTER(GuardReport))
 _guard_describe = _sig("hg_guard_describe", None, C.POINTER(GuardReport), C.c_int, C.c_char_p)
 _loop_default = _sig("hg_loop_config_default", None, C.POINTER(LoopConfig))
@@ -496,11 +499,27 @@ def _guard_text(rep):
     return text.value.decode()
 
 
-def ik(pose_user, params=None):
+def _tool_offset_m(geo, tool_offset):
+    """tool_offset (mm) in m, else TypeError (not a number) or ValueError (not finite, or
+    beyond 100 bar lengths: hg_tool_offset_check)."""
+    if isinstance(tool_offset, (bool, np.bool_)) or not isinstance(tool_offset, (int, float, np.integer, np.floating)):
+        raise TypeError("tool_offset must be a number (mm), got %r" % (tool_offset,))
+    d = float(tool_offset)
+    if _tool_offset_check(geo, d / 1000.0):
+        raise ValueError("tool_offset = %r mm is not a tool length: finite, at most 100 bar lengths either way"
+                         % (d,))
+    return d / 1000.0
+
+
+def ik(pose_user, params=None, tool_offset=0.0):
     """Joints (mm) of a pose (X Y Z mm, A B C deg) the machine can take: the closed-form
     inverse and the mechanical guard, as `hexaglide ik` (hg_inverse_kinematics_guarded).
+    tool_offset (mm): G43's tool length, added to Z in pose_user as LinuxCNC does; the tool's
+    tip on the head's axis then follows the pose at any tilt (RTCP, hexaglidekins.tool-offset).
     HexaglideError (code and, for a guard, the bar, value and limit) otherwise."""
-    pose = _pose_si("pose", pose_user)
+    commanded = _pose_si("pose", pose_user)
+    pose = _d6()
+    _offset_to_op(commanded, _tool_offset_m(_geometry(params), tool_offset), pose)
     z = _d6()
     rep = GuardReport()
     rc = _ik(_geometry(params), pose, z, C.byref(rep))
@@ -509,14 +528,18 @@ def ik(pose_user, params=None):
     return np.array(z[:]) * 1000.0
 
 
-def fk(joints_mm, guess_user=(0, 0, 0, 0, 0, 0), params=None):
-    """Pose (mm, deg) of six joint positions (mm), Newton from guess (a pose)."""
+def fk(joints_mm, guess_user=(0, 0, 0, 0, 0, 0), params=None, tool_offset=0.0):
+    """Pose (mm, deg) of six joint positions (mm), Newton from guess (a pose); with
+    tool_offset (mm) the pose of the tool's tip plus tool_offset in Z, as ik takes it."""
     z = _joints_si("joints", joints_mm)
-    pose = _pose_si("guess", guess_user)
+    d = _tool_offset_m(_geometry(params), tool_offset)
+    guess, pose = _pose_si("guess", guess_user), _d6()
+    _offset_to_op(guess, d, pose)
     rc = _fk(_geometry(params), z, pose, None, None)
     if rc:
         raise HexaglideError("fk", rc)
-    return np.concatenate([np.array(pose[:3]) * 1000.0, np.degrees(pose[3:])])
+    _op_to_offset(pose, d, guess)
+    return np.concatenate([np.array(guess[:3]) * 1000.0, np.degrees(guess[3:])])
 
 
 def guard(joints_mm, pose_user, params=None):
