@@ -26,6 +26,7 @@ kg m^2 and rad (ratio instead of 2 pi / lead).
 stdout: NAME = VALUE ± SIGMA UNIT lines, '#' lines for the rest; --output:
 setp lines (HAL units) and [SERIAL] INI lines. Exit 0 ok, 2 bad input."""
 import ctypes as C
+import io
 import os
 import sys
 
@@ -61,11 +62,12 @@ def log(*a):
     print("hexaglide identify:", *a, file=sys.stderr, flush=True)
 
 
-def is_serial_record(path):
+def is_serial_record(path, data=None):
     """True for a board record of the serial plant: its header's "# plant serial" line (hexaglide sim,
-    hg.Recorder) or its first row's in.plant column (tools/hg_record.py's records)."""
+    hg.Recorder) or its first row's in.plant column (tools/hg_record.py's records). data: the file's
+    bytes when the caller has read them (read_record), else the file's head is read here."""
     try:
-        with open(path, "rb") as f:
+        with io.BytesIO(data) if data is not None else open(path, "rb") as f:
             if f.readline().rstrip(b"\r\n") not in hg.RECORD_MAGICS:
                 return False
             for _ in range(64):
@@ -88,13 +90,13 @@ class Record:
 
 
 def read_record(path):
+    """The record at path, read once (its bytes passed to the plant check and the column reader)."""
     try:
-        with open(path, "rb") as f:
-            data = f.read()
-    except OSError as ex:
-        raise BadInput("%s: cannot read it: %s; give a record file" % (path, ex.strerror or ex))
-    if not is_serial_record(path) and not ib.rec_open(C.create_string_buffer(ib.REC_BYTES), data, len(data),
-                                                       C.byref(ib.RecErr())):
+        data = ib.record_bytes(path)
+    except ib.RecordError as ex:
+        raise BadInput(str(ex))
+    if not is_serial_record(path, data) and not ib.rec_open(C.create_string_buffer(ib.REC_BYTES), data,
+                                                             len(data), C.byref(ib.RecErr())):
         raise BadInput("%s: not a record of the serial plant (its in.plant, '# plant'): give a serial machine's "
                        "records alone (docs/serial.md)" % path)
     header = next((l for l in data.split(b"\n", 64) if l.startswith(b"sample,")), b"").decode(errors="replace")
@@ -103,7 +105,7 @@ def read_record(path):
         ["out.current-%d" % k for k in range(n)] + ["in.dac-v-%02d" % k for k in range(n)] + \
         ["in.substeps", "in.integrator"]
     try:
-        a, _, hdr_no, evs = ib.record_columns(path, need, "not a serial plant's board record")
+        a, _, hdr_no, evs = ib.record_columns(path, need, "not a serial plant's board record", data=data)
     except ib.RecordError as ex:
         raise BadInput(str(ex))
     told = {e: v for e, v, _ in evs}

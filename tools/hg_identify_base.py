@@ -120,20 +120,27 @@ class RecordError(Exception):
     """A record file that cannot be read (the message names the file, line and cause)."""
 
 
-def record_columns(path, need, why_missing, optional=()):
+def record_bytes(path):
+    """A record file's bytes, read whole; RecordError naming the path and the cause."""
+    try:
+        with open(path, "rb") as f:
+            return f.read()
+    except OSError as ex:
+        raise RecordError("%s: cannot read it: %s; give a record file" % (path, ex.strerror or ex))
+
+
+def record_columns(path, need, why_missing, optional=(), data=None):
     """The columns need of a record of tools/hg_record.py (docs/replay.md)
     through the C reader (src/hg_record.c), every column typed as its pin on
     every row and every sample in turn, as `hexaglide replay` reads it:
     (rows: the columns need, then those of optional the header has; header;
     the header's line number; the format-2 parameter events [(entry, value,
-    period)], in the record's order). RecordError naming
+    period)], in the record's order). data: the file's bytes when the caller
+    has read them (record_bytes), else the file is read here. RecordError naming
     the line and the cause: an unreadable file, the reader's refusal, or the
     first column of need the header lacks (why_missing: what that means)."""
-    try:
-        with open(path, "rb") as f:
-            data = f.read()
-    except OSError as ex:
-        raise RecordError("%s: cannot read it: %s; give a record file" % (path, ex.strerror or ex))
+    if data is None:
+        data = record_bytes(path)
     r = C.create_string_buffer(REC_BYTES)
     e = RecErr()
     if rec_open(r, data, len(data), C.byref(e)):
