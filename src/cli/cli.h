@@ -88,8 +88,8 @@ int cli_next(cli_args *a, const char **value);
  * 2 (not finite: nan, inf, overflow); *out set only on 0. No message. */
 int cli_strtod(const char *text, double *out);
 
-/* Parse a finite double; 0 on success, -1 (and a message naming what) otherwise. */
-int cli_parse_double(const char *text, const char *what, double *out);
+/* Parse a finite double; 0 on success, -1 (and a message "hexaglide CMD: WHAT: ...") otherwise. */
+int cli_parse_double(const char *cmd, const char *text, const char *what, double *out);
 
 /* v as %g writes it, with more significant digits where %g's 6 do not read back as v (a
  * message's number: 10.0000001, not %g's 10 beside a bound of 10); buf of CLI_NUM_LEN chars,

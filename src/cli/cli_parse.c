@@ -118,11 +118,11 @@ const char *cli_num(double v, char buf[CLI_NUM_LEN])
     return buf;
 }
 
-int cli_parse_double(const char *text, const char *what, double *out)
+int cli_parse_double(const char *cmd, const char *text, const char *what, double *out)
 {
     int rc = cli_strtod(text, out);
     if (rc)
-        fprintf(stderr, "hexaglide: %s: '%s' is not a %snumber\n", what, text, rc == 2 ? "finite " : "");
+        fprintf(stderr, "hexaglide %s: %s: '%s' is not a %snumber\n", cmd, what, text, rc == 2 ? "finite " : "");
     return rc ? -1 : 0;
 }
 
@@ -154,7 +154,7 @@ int cli_parse_list(const char *cmd, const char *opt, const char *text, const cha
         }
         memcpy(item, p, len);
         item[len] = '\0';
-        rc = cli_parse_double(item, what, &out[k]);
+        rc = cli_parse_double(cmd, item, what, &out[k]);
         free(item);
         if (rc)
             return -1;
@@ -253,7 +253,7 @@ static void unknown_param_hint(const hg_plant *pl, int variant, const char *name
 
 int cli_parse_set(const char *cmd, const char *text, int plant, int variant, hg_plant_params *p)
 {
-    char name[64];
+    char name[64], what[72];
     const char *eq = strchr(text, '=');
     double v;
     int i;
@@ -272,7 +272,8 @@ int cli_parse_set(const char *cmd, const char *text, int plant, int variant, hg_
                 "--list-params lists them)\n", cmd, name, pl->name, cli_variant_name(plant, variant, model), hint);
         return -1;
     }
-    if (cli_parse_double(eq + 1, name, &v))
+    snprintf(what, sizeof what, "--set %s", name);
+    if (cli_parse_double(cmd, eq + 1, what, &v))
         return -1;
     p->v[i] = v;
     return i;

@@ -79,7 +79,7 @@ static int kins_parse(const char *cmd, const char *usage, const cli_opt *opts, c
         if (o == CLI_BAD)
             return 2;
         if (o == CLI_ARG && c->guessed && c->nguess < 6) {   /* --guess X Y Z A B C */
-            if (cli_parse_double(v, pose_names[c->nguess], &c->guess[c->nguess]))
+            if (cli_parse_double(cmd, v, pose_names[c->nguess], &c->guess[c->nguess]))
                 return 2;
             c->nguess++;
         } else if (o == CLI_ARG) {
@@ -88,7 +88,7 @@ static int kins_parse(const char *cmd, const char *usage, const cli_opt *opts, c
                         opts == fk_opts ? "; --guess takes X,Y,Z,A,B,C as one comma-separated argument" : "");
                 return 2;
             }
-            if (cli_parse_double(v, names[c->npos], &c->pos[c->npos]))
+            if (cli_parse_double(cmd, v, names[c->npos], &c->pos[c->npos]))
                 return 2;
             c->npos++;
         } else if (o == OPT_INI) {
@@ -101,7 +101,7 @@ static int kins_parse(const char *cmd, const char *usage, const cli_opt *opts, c
             c->guessed = 1;
             c->nguess = 6;
         } else {                       /* OPT_GUESS X, the other five follow */
-            if (cli_parse_double(v, pose_names[0], &c->guess[0]))
+            if (cli_parse_double(cmd, v, pose_names[0], &c->guess[0]))
                 return 2;
             c->guessed = 1;
             c->nguess = 1;

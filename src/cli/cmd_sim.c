@@ -200,7 +200,7 @@ int cmd_sim(int argc, char **argv)
             integrator = v;
             break;
         case OPT_SUBSTEPS:
-            if (cli_parse_double(v, "--substeps", &substeps))
+            if (cli_parse_double("sim", v, "--substeps", &substeps))
                 return 2;
             if (!(substeps >= 1 && substeps <= HG_SUBSTEPS_MAX && substeps == floor(substeps))) {
                 fprintf(stderr, "hexaglide sim: --substeps must be an integer in 1..%u, got %s\n",
@@ -210,11 +210,11 @@ int cmd_sim(int argc, char **argv)
             given_substeps = 1;
             break;
         case OPT_TIME:
-            if (cli_parse_double(v, "--time", &t_end))
+            if (cli_parse_double("sim", v, "--time", &t_end))
                 return 2;
             break;
         case OPT_DT:
-            if (cli_parse_double(v, "--dt", &dt))
+            if (cli_parse_double("sim", v, "--dt", &dt))
                 return 2;
             break;
         case OPT_VOLTS:

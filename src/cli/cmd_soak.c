@@ -17,7 +17,8 @@
  *   following error   motion's f-error through the encoder (mm and counts),
  *                     and LinuxCNC's following-error trip of the config
  *                     (control.c: limit = max(FERROR |v| / MAX_VELOCITY, MIN_FERROR));
- *   faults and the wall time. */
+ *   faults and the wall time.
+ * A long run says how far it is on stderr (progress_every); stdout holds the report alone. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -39,6 +40,11 @@
 /* the longest soak: the 1000 h --hours takes at the default 1 ms period (about 9 h of wall time
  * at 9 us a period); a shorter --dt allows fewer hours, instead of a run that never ends */
 #define SOAK_MAX_PERIODS 3600000000L
+/* progress lines on stderr, counted in periods (not wall time: the same lines on every machine): a run
+ * of SOAK_PROGRESS_MIN periods or more prints one at each tenth of it, and at least every
+ * SOAK_PROGRESS_MAX periods */
+#define SOAK_PROGRESS_MIN 1000000L     /* about 9 s of wall at 9 us a period: shorter runs print none */
+#define SOAK_PROGRESS_MAX 36000000L    /* 10 h at 1 ms, about 5 min of wall: 1000 h prints one each 1 % */
 
 const char cli_usage_soak[] =
     "usage: hexaglide soak [--hours H] [--model NAME] [--seed N] [--dt S] [--integrator NAME]\n"
@@ -46,7 +52,8 @@ const char cli_usage_soak[] =
     "  H hours (default 8) of a random smooth trajectory through LinuxCNC's closed loop\n"
     "  (src/hg_loop.c: pid on the encoder position, the virtual board), then a health report:\n"
     "  constraint drift, energy balance, following error, faults, wall time. Exit 1 on a fault\n"
-    "  or a following-error trip.\n"
+    "  or a following-error trip. A run of 1e6 periods or more prints its progress on stderr at\n"
+    "  each tenth (at least every 3.6e7 periods); stdout holds the report alone.\n"
     "  --ini FILE  the config: [JOINT_0..5] P I D FF0 FF1 FF2 FF3 BIAS DEADBAND MAX_OUTPUT\n"
     "              MAX_ERROR_I INPUT_SCALE OUTPUT_SCALE OUTPUT_OFFSET (as configs/hexaglide.hal\n"
     "              wires them, each required as halcmd requires a setp's key; FF3 may be absent:\n"
@@ -120,6 +127,16 @@ static double bar_length_error(const hg_geometry *g, const double z[6], const do
     return worst;
 }
 
+/* Periods between progress lines in a run of n: a tenth of it (rounded up), at most
+ * SOAK_PROGRESS_MAX; 0 (none) for a run shorter than SOAK_PROGRESS_MIN. */
+static long progress_every(long n)
+{
+    long tenth = (n + 9) / 10;
+    if (n < SOAK_PROGRESS_MIN)
+        return 0;
+    return tenth < SOAK_PROGRESS_MAX ? tenth : SOAK_PROGRESS_MAX;
+}
+
 static double now_s(void)
 {
     struct timespec t;
@@ -183,7 +200,7 @@ int cmd_soak(int argc, char **argv)
     double tool_max = 0;               /* the tool-path error after the ramp-in (mm; -1: a period without a pose) */
     int kind = HG_MODEL_REDUCED_CARTESIAN, k, o, nset = 0, rc = 0, faults = 0, trips = 0, ferr_joint = 0;
     int integrator = -1;
-    long n, s;
+    long n, s, every;
     const hg_model *hm;
     const hg_data *hd;
     cli_args_init(&a, "soak", cli_usage_soak, soak_opts, argc, argv);
@@ -197,9 +214,9 @@ int cmd_soak(int argc, char **argv)
                     "options)\n", v);
             return 2;
         }
-        if ((o == OPT_HOURS && cli_parse_double(v, "--hours", &hours)) ||
-            (o == OPT_DT && (dt_given = 1, cli_parse_double(v, "--dt", &dt))) ||
-            (o == OPT_SEED && cli_parse_double(v, "--seed", &seed_d)))
+        if ((o == OPT_HOURS && cli_parse_double("soak", v, "--hours", &hours)) ||
+            (o == OPT_DT && (dt_given = 1, cli_parse_double("soak", v, "--dt", &dt))) ||
+            (o == OPT_SEED && cli_parse_double("soak", v, "--seed", &seed_d)))
             return 2;
         if (o == OPT_MODEL && (kind = hg_model_from_name(v)) < 0) {
             fprintf(stderr, "hexaglide soak: unknown model '%s' (standard, reduced-joints, reduced-cartesian, "
@@ -271,6 +288,7 @@ int cmd_soak(int argc, char **argv)
     hm = hg_hexaglide_model(&L->board.m);
     hd = hg_hexaglide_data(&L->board.d);
     hg_energy(hm, hd, &e0k, &e0p);
+    every = progress_every(n);
     t0 = now_s();
     rc = 0;
     for (s = 0; s < n; s++) {
@@ -343,6 +361,9 @@ int cmd_soak(int argc, char **argv)
         }
         if (trips)
             break;
+        if (every && (s + 1) % every == 0 && s + 1 < n)
+            fprintf(stderr, "hexaglide soak: %.0f %% (%.2f of %.2f h simulated, %ld of %ld periods)\n",
+                    100.0 * (s + 1) / n, t / 3600.0, n * dt / 3600.0, s + 1, n);
     }
     wall = now_s() - t0;
     hg_energy(hm, hd, &ek, &ep);
