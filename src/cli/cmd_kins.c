@@ -12,22 +12,30 @@
 
 static const char *const pose_names[6] = {"X", "Y", "Z", "A", "B", "C"};
 static const char *const joint_names[6] = {"J0", "J1", "J2", "J3", "J4", "J5"};
+static const char *const guess_names[6] = {"--guess X", "--guess Y", "--guess Z", "--guess A", "--guess B", "--guess C"};
+
+#define USAGE_TOOL_OFFSET \
+    "  --tool-offset MM    G43's tool length, added to Z as LinuxCNC does: the pose is the tool's tip\n" \
+    "                      plus MM in Z, the tip on the head's axis at any tilt (RTCP, as\n" \
+    "                      hexaglidekins.tool-offset; default 0: the pose of Op)\n"
 
 const char cli_usage_ik[] =
-    "usage: hexaglide ik [--ini FILE] [--set name=value]... X Y Z A B C\n"
+    "usage: hexaglide ik [--tool-offset MM] [--ini FILE] [--set name=value]... X Y Z A B C\n"
     "  prints the joints J0..J5 (mm) of the pose X Y Z (mm) A B C (degrees), one line,\n"
-    "  full precision\n" CLI_USAGE_MODEL;
+    "  full precision\n" USAGE_TOOL_OFFSET CLI_USAGE_MODEL;
 
 const char cli_usage_fk[] =
-    "usage: hexaglide fk [--guess X,Y,Z,A,B,C] [--ini FILE] [--set name=value]... J0 J1 J2 J3 J4 J5\n"
+    "usage: hexaglide fk [--guess X,Y,Z,A,B,C] [--tool-offset MM] [--ini FILE] [--set name=value]...\n"
+    "                    J0 J1 J2 J3 J4 J5\n"
     "  prints the pose X Y Z (mm) A B C (degrees) of the joints J0..J5 (mm), one line\n"
     "  --guess X,Y,Z,A,B,C  where Newton-Raphson starts (default HOME, 0,0,0,0,0,0); six\n"
     "                       separate numbers (--guess X Y Z A B C) are taken too; |X|, |Y|, |Z| at most\n"
-    "                       ten bar lengths, |A|, |B|, |C| at most 360\n" CLI_USAGE_MODEL;
+    "                       ten bar lengths, |A|, |B|, |C| at most 360 (with --tool-offset: of the tip)\n"
+    USAGE_TOOL_OFFSET CLI_USAGE_MODEL;
 
-enum { OPT_INI, OPT_SET, OPT_GUESS };
-static const cli_opt ik_opts[] = {{"--ini", 1}, {"--set", CLI_REPEAT}, {0, 0}};
-static const cli_opt fk_opts[] = {{"--ini", 1}, {"--set", CLI_REPEAT}, {"--guess", 1}, {0, 0}};
+enum { OPT_INI, OPT_SET, OPT_TOOL, OPT_GUESS };
+static const cli_opt ik_opts[] = {{"--ini", 1}, {"--set", CLI_REPEAT}, {"--tool-offset", 1}, {0, 0}};
+static const cli_opt fk_opts[] = {{"--ini", 1}, {"--set", CLI_REPEAT}, {"--tool-offset", 1}, {"--guess", 1}, {0, 0}};
 
 /* What ik and fk share: the parsed command line. */
 typedef struct {
@@ -36,6 +44,7 @@ typedef struct {
     int nset, npos, guessed, nguess; /* nguess: numbers of a space-separated --guess read */
     double pos[6];             /* the six positional numbers */
     double guess[6];           /* user units */
+    double tool_offset_m;      /* --tool-offset (hg_pose_offset_to_op) */
     hg_params p;
 } kins_cmd;
 
@@ -79,7 +88,7 @@ static int kins_parse(const char *cmd, const char *usage, const cli_opt *opts, c
         if (o == CLI_BAD)
             return 2;
         if (o == CLI_ARG && c->guessed && c->nguess < 6) {   /* --guess X Y Z A B C */
-            if (cli_parse_double(cmd, v, pose_names[c->nguess], &c->guess[c->nguess]))
+            if (cli_parse_double(cmd, v, guess_names[c->nguess], &c->guess[c->nguess]))
                 return 2;
             c->nguess++;
         } else if (o == CLI_ARG) {
@@ -95,13 +104,17 @@ static int kins_parse(const char *cmd, const char *usage, const cli_opt *opts, c
             c->ini = v;                /* (once: cli_next refuses a second) */
         } else if (o == OPT_SET) {
             c->sets[c->nset++] = (char *)v;
+        } else if (o == OPT_TOOL) {
+            if (cli_parse_double(cmd, v, "--tool-offset", &c->tool_offset_m))
+                return 2;
+            c->tool_offset_m /= HG_MM_PER_M;
         } else if (strchr(v, ',')) {  /* OPT_GUESS (only in fk_opts): X,Y,Z,A,B,C */
             if (cli_parse_list(cmd, "--guess", v, pose_names, 6, c->guess))
                 return 2;
             c->guessed = 1;
             c->nguess = 6;
         } else {                       /* OPT_GUESS X, the other five follow */
-            if (cli_parse_double(cmd, v, pose_names[0], &c->guess[0]))
+            if (cli_parse_double(cmd, v, guess_names[0], &c->guess[0]))
                 return 2;
             c->guessed = 1;
             c->nguess = 1;
@@ -117,6 +130,13 @@ static int kins_parse(const char *cmd, const char *usage, const cli_opt *opts, c
     }
     if (cli_hexaglide_params(cmd, c->ini, c->sets, c->nset, &c->p))
         return 2;
+    if (hg_tool_offset_check(&c->p.geo, c->tool_offset_m) != HG_OK) {
+        char v[CLI_NUM_LEN], b[CLI_NUM_LEN];
+        fprintf(stderr, "hexaglide %s: --tool-offset %s mm is not a tool length: at most %s mm either way "
+                "(%.0f bar lengths)\n", cmd, cli_num(c->tool_offset_m * HG_MM_PER_M, v),
+                cli_num(HG_MAX_ABS_POSITION_BARS * c->p.geo.l_m * HG_MM_PER_M, b), HG_MAX_ABS_POSITION_BARS);
+        return 2;
+    }
     return c->guessed && guess_beyond(cmd, c) ? 2 : 0;
 }
 
@@ -125,12 +145,13 @@ int cmd_ik(int argc, char **argv)
     kins_cmd c;
     char *sets[argc > 0 ? argc : 1];
     hg_guard_report guard;
-    double pose[6], z[6];
+    double commanded[6], pose[6], z[6];
     int rc, k, done;
     rc = kins_parse("ik", cli_usage_ik, ik_opts, pose_names, "X Y Z (mm) A B C (deg)", argc, argv, &c, sets, &done);
     if (rc || done)
         return rc;
-    hg_pose_from_user(c.pos, pose);
+    hg_pose_from_user(c.pos, commanded);
+    hg_pose_offset_to_op(commanded, c.tool_offset_m, pose);
     rc = hg_inverse_kinematics_guarded(&c.p.geo, pose, z, &guard);
     if (rc) {
         char what[HG_GUARD_TEXT_LEN], b[CLI_NUM_LEN];
@@ -151,7 +172,7 @@ int cmd_fk(int argc, char **argv)
     kins_cmd c;
     char *sets[argc > 0 ? argc : 1];
     hg_fk_report rep;
-    double user[6], z[6], pose[6] = {0, 0, 0, 0, 0, 0};
+    double user[6], z[6], guess[6] = {0, 0, 0, 0, 0, 0}, pose[6];
     int rc, k, done;
     rc = kins_parse("fk", cli_usage_fk, fk_opts, joint_names, "J0..J5 (mm)", argc, argv, &c, sets, &done);
     if (rc || done)
@@ -159,7 +180,8 @@ int cmd_fk(int argc, char **argv)
     for (k = 0; k < 6; k++)
         z[k] = c.pos[k] / HG_MM_PER_M;
     if (c.guessed)
-        hg_pose_from_user(c.guess, pose);
+        hg_pose_from_user(c.guess, guess);
+    hg_pose_offset_to_op(guess, c.tool_offset_m, pose);
     rc = hg_forward_kinematics(&c.p.geo, z, pose, 0, &rep);
     if (rc) {
         char what[HG_GUARD_TEXT_LEN];
@@ -171,7 +193,8 @@ int cmd_fk(int argc, char **argv)
                 res, what[0] ? ": " : "", what);
         return 1;
     }
-    hg_pose_to_user(pose, user);
+    hg_pose_op_to_offset(pose, c.tool_offset_m, guess);
+    hg_pose_to_user(guess, user);
     for (k = 0; k < 6; k++)
         printf("%.17g%c", user[k], k < 5 ? ' ' : '\n');
     return 0;
