@@ -158,14 +158,16 @@ int hg_tool_offset_check(const hg_geometry *g, double tool_offset_m)
 }
 
 /* op = c + d (R z - z) in X Y Z, the angles as they are: with d 0 or an
- * untilted head R z - z is exactly 0 and op is c to the bit. */
+ * untilted head R z - z is exactly 0 and op is c (up to the sign of a zero). */
 void hg_pose_offset_to_op(const double commanded[6], double tool_offset_m, double op[6])
 {
     double R[9];
     int i;
-    hg_rotation(commanded[3], commanded[4], commanded[5], R);
     for (i = 0; i < 6; i++)
         op[i] = commanded[i];
+    if (tool_offset_m == 0.0)
+        return;                        /* no tool offset: no rotation to compute */
+    hg_rotation(commanded[3], commanded[4], commanded[5], R);
     for (i = 0; i < 3; i++)
         op[i] += tool_offset_m * (R[3 * i + 2] - (i == 2));
 }
