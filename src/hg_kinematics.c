@@ -177,6 +177,14 @@ void hg_pose_op_to_offset(const double op[6], double tool_offset_m, double comma
     hg_pose_offset_to_op(op, -tool_offset_m, commanded);
 }
 
+double hg_tool_offset_jump(const double commanded[6], double from_m, double to_m)
+{
+    double a[6], b[6];
+    hg_pose_offset_to_op(commanded, from_m, a);
+    hg_pose_offset_to_op(commanded, to_m, b);
+    return sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
+}
+
 /* Rz(alpha_i) (radial, s_j e, 0) for bar k. */
 static void post_point(int k, double radial, double e, double out[3])
 {

@@ -177,6 +177,12 @@ int hg_tool_offset_check(const hg_geometry *g, double tool_offset_m);
 void hg_pose_offset_to_op(const double commanded[6], double tool_offset_m, double op[6]);
 /* The commanded pose of the head pose op: the inverse of the above. */
 void hg_pose_op_to_offset(const double op[6], double tool_offset_m, double commanded[6]);
+/* How far Op moves at once when the offset changes from from_m to to_m at
+ * the commanded pose (m): |to - from| |R z - z|, 0 with the head level. */
+double hg_tool_offset_jump(const double commanded[6], double from_m, double to_m);
+/* A jump above this (an encoder count) is one the joints cannot follow
+ * within a servo period: hexaglidekins says so. */
+#define HG_TOOL_OFFSET_JUMP_SAY_M 1e-6
 
 /* Bar constraints Phi_k = |B_k - A_k|^2 - l^2 (m^2). */
 void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6],

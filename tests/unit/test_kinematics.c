@@ -660,6 +660,14 @@ static void test_tool_offset(const hg_params *p)
             same &= memcmp(&op[k], &c[k], sizeof op[k]) == 0 && memcmp(&op0[k], &z0[k], sizeof op0[k]) == 0;
         CHECK(same, "an untilted head (any C) or a zero offset: Op is the commanded pose to the bit");
     }
+    {
+        const double c[6] = {0.01, -0.02, 0.03, 0.1, -0.15, 0.7}, level[6] = {0.01, -0.02, 0.03, 0.0, 0.0, 0.7};
+        double tilt = acos(cos(c[3]) * cos(c[4]));           /* the head axis' angle from z */
+        double want = 0.05 * 2.0 * sin(tilt / 2.0), got = hg_tool_offset_jump(c, 0.09, 0.04);
+        CHECK(fabs(got - want) < 1e-17 && hg_tool_offset_jump(level, 0.0, 0.09) == 0.0,
+              "a new offset moves Op by |d' - d| 2 sin(tilt / 2) (%.6e m, expected %.6e), by 0 with the head level",
+              got, want);
+    }
     CHECK(hg_tool_offset_check(&p->geo, 0.0) == HG_OK && hg_tool_offset_check(&p->geo, -0.2) == HG_OK &&
               hg_tool_offset_check(&p->geo, HG_MAX_ABS_POSITION_BARS * p->geo.l_m) == HG_OK,
           "tool offsets 0, -0.2 m and 100 bar lengths are taken");
