@@ -57,9 +57,7 @@ typedef struct {
     hal_u32_t *fk_fail_count;
     hal_s32_t *ik_error;
     hal_float_t *tool_offset;                      /* machine units */
-    double tool_offset_said;                       /* the last value given (hg_say_refused_once) */
-    double tool_offset_m;                          /* the last one accepted, m */
-    double last_inverse[6];                        /* the pose of the last inverse call (core units) */
+    hg_tool_offset_setting tool;                   /* the offset in force, refused, its jumps */
     hal_u32_t *board_geometry;                     /* the board's geometry-fingerprint, 0: unconnected */
     unsigned fingerprint;                          /* hg_geometry_fingerprint of the checked geometry */
     int mismatch_calls;                            /* consecutive calls that found a mismatch */
@@ -144,42 +142,31 @@ static double mm_per_unit(void)
     return hd->units.in_force;
 }
 
-/* The tool offset from its pin in m (*d_m; the last accepted one when it is
- * refused); HG_ERR_BAD_PARAM, said once per value, when hg_tool_offset_check
- * refuses it: the kinematics then refuse their calls until it is fixed. A
- * new offset that moves Op at the commanded tilt (G43 or G49 taken with
- * the head tilted) is said: the joints jump, and motion trips on them. The
- * commanded tilt is the last inverse call's before the change: motion asks
- * the inverse of carte-pos-cmd as the last call of every period, and sees
- * a new motion.tooloffset.z in a later one, whose first call may be the
- * inverse of a queued move's end point (command.c's inRange). */
+/* The tool offset from its pin into the setting, in m (*d_m: the one in
+ * force); HG_ERR_BAD_PARAM while it is refused (the kinematics refuse their
+ * calls until it is fixed). Says a refused value once, and a new offset
+ * that moves Op at once (G43 or G49 taken with the head tilted: the joints
+ * jump, and motion trips on them). */
 static int tool_offset(const hg_geometry *g, double mpu, double *d_m)
 {
-    double given = *hd->tool_offset, d = given * mpu / HG_MM_PER_M;
-    int accepted = (hg_tool_offset_check(g, d) == HG_OK);
-    if (accepted && d != hd->tool_offset_m) {
-        double jump = hg_tool_offset_jump(hd->last_inverse, hd->tool_offset_m, d);
-        if (jump > HG_TOOL_OFFSET_JUMP_SAY_M) {
-            char from[HG_TEXT_VALUE_LEN], to[HG_TEXT_VALUE_LEN], mm[HG_TEXT_VALUE_LEN];
-            hg_text_value(from, hd->tool_offset_m * HG_MM_PER_M / mpu);
-            hg_text_value(to, given);
-            hg_text_value(mm, jump * HG_MM_PER_M);
-            rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: the tool offset changed from %s to %s machine units "
-                            "with the head tilted: Op moves %s mm at once and the joints jump (a following-error "
-                            "trip); take G43 and G49 with A = B = 0\n", from, to, mm);
-        }
-        hd->tool_offset_m = d;
-    }
-    *d_m = hd->tool_offset_m;
-    if (hg_say_refused_once(&hd->tool_offset_said, given, accepted) == HG_FK_SAY_REFUSED) {
-        char got[HG_TEXT_VALUE_LEN], most[HG_TEXT_VALUE_LEN];
-        hg_text_value(got, given);
-        hg_text_value(most, HG_MAX_ABS_POSITION_BARS * g->l_m * HG_MM_PER_M / mpu);
+    double given = *hd->tool_offset, was = hd->tool.in_force_m * HG_MM_PER_M / mpu;
+    int say = hg_tool_offset_take(&hd->tool, g, given * mpu / HG_MM_PER_M);
+    char a[HG_TEXT_VALUE_LEN], b[HG_TEXT_VALUE_LEN], c[HG_TEXT_VALUE_LEN];
+    *d_m = hd->tool.in_force_m;
+    hg_text_value(a, given);
+    if (say == HG_FK_SAY_JUMP) {
+        hg_text_value(b, was);
+        hg_text_value(c, hd->tool.jump_m * HG_MM_PER_M);
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: the tool offset changed from %s to %s machine units "
+                        "with the head tilted: Op moves %s mm at once and the joints jump (a following-error "
+                        "trip); take G43 and G49 with A = B = 0\n", b, a, c);
+    } else if (say == HG_FK_SAY_REFUSED) {
+        hg_text_value(b, HG_MAX_ABS_POSITION_BARS * g->l_m * HG_MM_PER_M / mpu);
         rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: pin hexaglidekins.tool-offset %s is not a tool length "
                         "(finite, at most %s machine units either way); kinematics refused until it is "
-                        "(net it to motion.tooloffset.z)\n", got, most);
+                        "(net it to motion.tooloffset.z)\n", a, b);
     }
-    return accepted ? HG_OK : HG_ERR_BAD_PARAM;
+    return hd->tool.refusing ? HG_ERR_BAD_PARAM : HG_OK;
 }
 
 /* EmcPose (machine units, deg) -> core pose (m, rad). */
@@ -205,7 +192,7 @@ int kinematicsForward(const double *joints, EmcPose *pos,
 {
     hg_geometry g;
     hg_fk_report rep = {0, 0.0};
-    double z[6], commanded[6], pose[6], d_m = hd->tool_offset_m;
+    double z[6], commanded[6], pose[6], d_m = hd->tool.in_force_m;
     double mpu = mm_per_unit();
     int rc, say;
     (void)fflags;
@@ -256,7 +243,7 @@ int kinematicsInverse(const EmcPose *pos, double *joints,
     rc = current_geometry(&g);
     if (rc == 0)
         rc = tool_offset(&g, mpu, &d_m);
-    memcpy(hd->last_inverse, commanded, sizeof commanded);
+    memcpy(hd->tool.last_inverse, commanded, sizeof commanded);
     if (rc == 0) {
         hg_pose_offset_to_op(commanded, d_m, pose);
         rc = hg_inverse_kinematics(&g, pose, z);
@@ -311,9 +298,7 @@ static int export_hal(void)
     *hd->ik_error = 0;
     *hd->board_geometry = 0;
     *hd->tool_offset = 0.0;
-    hd->tool_offset_said = 0.0;
-    hd->tool_offset_m = 0.0;
-    memset(hd->last_inverse, 0, sizeof hd->last_inverse);      /* HOME, level */
+    hg_tool_offset_init(&hd->tool);
     hd->mismatch_calls = 0;
     return 0;
 }

@@ -185,6 +185,24 @@ double hg_tool_offset_jump(const double commanded[6], double from_m, double to_m
     return sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
 }
 
+void hg_tool_offset_init(hg_tool_offset_setting *t)
+{
+    memset(t, 0, sizeof *t);
+}
+
+int hg_tool_offset_take(hg_tool_offset_setting *t, const hg_geometry *g, double tool_offset_m)
+{
+    int accepted = (hg_tool_offset_check(g, tool_offset_m) == HG_OK);
+    t->refusing = !accepted;
+    if (accepted && tool_offset_m != t->in_force_m) {
+        t->jump_m = hg_tool_offset_jump(t->last_inverse, t->in_force_m, tool_offset_m);
+        t->in_force_m = tool_offset_m;
+        t->given_m = tool_offset_m;
+        return t->jump_m > HG_TOOL_OFFSET_JUMP_SAY_M ? HG_FK_SAY_JUMP : HG_FK_SAY_NOTHING;
+    }
+    return hg_say_refused_once(&t->given_m, tool_offset_m, accepted);
+}
+
 /* Rz(alpha_i) (radial, s_j e, 0) for bar k. */
 static void post_point(int k, double radial, double e, double out[3])
 {

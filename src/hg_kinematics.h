@@ -70,7 +70,8 @@ enum {
     HG_FK_SAY_NOTHING = 0,
     HG_FK_SAY_REFUSED = 1,     /* a new invalid pair: refused, in_force kept */
     HG_FK_SAY_FAILING = 2,     /* the first failure of a run: the pose shown stays */
-    HG_FK_SAY_SOLVES_AGAIN = 3 /* the first success after a run of failures */
+    HG_FK_SAY_SOLVES_AGAIN = 3, /* the first success after a run of failures */
+    HG_FK_SAY_JUMP = 4         /* a new tool offset moved Op at once (hg_tool_offset_take) */
 };
 
 /* A session with the default settings in force, nothing refused or failed. */
@@ -181,8 +182,32 @@ void hg_pose_op_to_offset(const double op[6], double tool_offset_m, double comma
  * the commanded pose (m): |to - from| |R z - z|, 0 with the head level. */
 double hg_tool_offset_jump(const double commanded[6], double from_m, double to_m);
 /* A jump above this (an encoder count) is one the joints cannot follow
- * within a servo period: hexaglidekins says so. */
+ * within a servo period: hg_tool_offset_take says so. */
 #define HG_TOOL_OFFSET_JUMP_SAY_M 1e-6
+
+/* The tool offset of a kinematics module (hexaglidekins.tool-offset): the
+ * value in force, the last one given (a refusal said once, as
+ * hg_units_setting's) and the pose of the last inverse call, where a new
+ * offset moves Op: motion asks the inverse of its commanded pose as the
+ * last call of every period and sees a new offset in a later one, whose
+ * first call may be the inverse of a queued move's end point. */
+typedef struct {
+    double in_force_m;         /* the last valid offset (m) */
+    double given_m;            /* the last one given, as given (bitwise) */
+    int refusing;              /* 1: the last one given was refused */
+    double jump_m;             /* how far Op moved at the last change (hg_tool_offset_jump) */
+    double last_inverse[6];    /* the commanded pose of the last inverse call (m, rad) */
+} hg_tool_offset_setting;
+
+/* 0 in force, nothing refused, the last inverse at HOME (level). */
+void hg_tool_offset_init(hg_tool_offset_setting *t);
+
+/* Take tool_offset_m into t->in_force_m if hg_tool_offset_check accepts it;
+ * else keep in_force_m and set refusing. HG_FK_SAY_REFUSED for a new
+ * refused value (bitwise: a NaN equals itself), HG_FK_SAY_JUMP when a new
+ * valid value moves Op at the last inverse call's pose by more than
+ * HG_TOOL_OFFSET_JUMP_SAY_M (jump_m: how far), else HG_FK_SAY_NOTHING. */
+int hg_tool_offset_take(hg_tool_offset_setting *t, const hg_geometry *g, double tool_offset_m);
 
 /* Bar constraints Phi_k = |B_k - A_k|^2 - l^2 (m^2). */
 void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6],

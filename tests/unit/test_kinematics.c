@@ -668,6 +668,31 @@ static void test_tool_offset(const hg_params *p)
               "a new offset moves Op by |d' - d| 2 sin(tilt / 2) (%.6e m, expected %.6e), by 0 with the head level",
               got, want);
     }
+    {
+        hg_tool_offset_setting t;
+        const double tilted[6] = {0.0, 0.0, -0.01, 0.0, 0.2, 0.0}, level[6] = {0.0, 0.0, -0.01, 0.0, 0.0, 0.4};
+        int said[8];
+        hg_tool_offset_init(&t);
+        said[0] = hg_tool_offset_take(&t, &p->geo, 0.09);          /* at HOME: level */
+        memcpy(t.last_inverse, tilted, sizeof tilted);
+        said[1] = hg_tool_offset_take(&t, &p->geo, 0.09);          /* unchanged */
+        said[2] = hg_tool_offset_take(&t, &p->geo, 0.0);           /* G49 at B 0.2 rad */
+        CHECK(said[0] == HG_FK_SAY_NOTHING && said[1] == HG_FK_SAY_NOTHING && said[2] == HG_FK_SAY_JUMP &&
+                  fabs(t.jump_m - 0.09 * 2.0 * sin(0.1)) < 1e-17 && t.in_force_m == 0.0,
+              "a new offset is said only where it moves Op (tilted: %.6e m, 0.09 x 2 sin(0.1 rad)), and taken",
+              t.jump_m);
+        said[3] = hg_tool_offset_take(&t, &p->geo, NAN);
+        said[4] = hg_tool_offset_take(&t, &p->geo, NAN);
+        CHECK(said[3] == HG_FK_SAY_REFUSED && said[4] == HG_FK_SAY_NOTHING && t.refusing && t.in_force_m == 0.0,
+              "NaN refused once while it stays, 0 kept in force");
+        memcpy(t.last_inverse, level, sizeof level);
+        said[5] = hg_tool_offset_take(&t, &p->geo, 0.05);           /* G43 with the head level (C only) */
+        said[6] = hg_tool_offset_take(&t, &p->geo, NAN);
+        said[7] = hg_tool_offset_take(&t, &p->geo, 1e300);
+        CHECK(said[5] == HG_FK_SAY_NOTHING && said[6] == HG_FK_SAY_REFUSED && said[7] == HG_FK_SAY_REFUSED &&
+                  t.in_force_m == 0.05,
+              "with the head level a new offset is taken unsaid; a refusal after a valid value is said again");
+    }
     CHECK(hg_tool_offset_check(&p->geo, 0.0) == HG_OK && hg_tool_offset_check(&p->geo, -0.2) == HG_OK &&
               hg_tool_offset_check(&p->geo, HG_MAX_ABS_POSITION_BARS * p->geo.l_m) == HG_OK,
           "tool offsets 0, -0.2 m and 100 bar lengths are taken");
