@@ -12,7 +12,7 @@
 
 static const char *const words[] = {
     "--model", "standard", "reduced-joints", "reduced-cartesian", "fused-cartesian", "bogus",
-    "--volts", "--set", "--guess", "--list-params", "--help", "-h", "m_head=7", "m_head=-1",
+    "--volts", "--set", "--guess", "--tool-offset", "--list-params", "--help", "-h", "m_head=7", "m_head=-1",
     "l=0.3", "c_visc=0", "lead=nan", "i_bar=0.1", "nosuch=1", "=3", "m_head=", "k_stop=1e30",
     "1,2,3,4,5,6", "1,2,3", "1,2,3,4,5,6,7", "nan,0,0,0,0,0", ",,,,,", "10,-10,1e300,0,0,0",
     "0", "-0", "1", "-1", "2.5", "1e-320", "1e308", "1e999", "nan", "inf", "-inf", "0x10",

@@ -1,8 +1,10 @@
 /* fuzz_kinematics.c - inverse and forward kinematics on random, extreme,
- * NaN, inf, denormal and unreachable poses, joints and guesses.
- * Properties: no crash; results finite; a success satisfies the bar
- * equations; a failure is one of the documented codes and leaves the
- * outputs untouched; the iteration count stays within its bound. */
+ * NaN, inf, denormal and unreachable poses, joints and guesses, and tool
+ * offsets (RTCP). Properties: no crash; results finite; a success satisfies
+ * the bar equations; a failure is one of the documented codes and leaves the
+ * outputs untouched; the iteration count stays within its bound; an
+ * offset the check takes keeps a finite pose finite and comes back off,
+ * one it refuses never comes into force. */
 #include <stdio.h>
 #include <stdlib.h>
 #include "fuzz_input.h"
@@ -93,6 +95,25 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             fail("forward answer outside the joints' ranges or with bars touching");
     } else if (memcmp(guess, before, sizeof guess) != 0) {
         fail("failed forward touched its output");
+    }
+    {
+        hg_tool_offset_setting t;
+        double d = fuzz_double(&in, -200.0, 200.0), op[6], back[6];
+        int finite = 1;
+        hg_tool_offset_init(&t);
+        for (k = 0; k < 6; k++)
+            finite &= isfinite(pose[k]) && isfinite(t.last_inverse[k] = pose[k]);
+        hg_tool_offset_take(&t, &p.geo, d);
+        if (!isfinite(t.in_force_m) || (t.refusing != (hg_tool_offset_check(&p.geo, d) != HG_OK)) ||
+            (!t.refusing && t.in_force_m != d) || (t.refusing && t.in_force_m != 0.0))
+            fail("tool offset: a refused value in force, or a valid one not taken");
+        if (!t.refusing && finite) {
+            hg_pose_offset_to_op(pose, d, op);
+            hg_pose_op_to_offset(op, d, back);
+            for (k = 0; k < 6; k++)
+                if (!isfinite(op[k]) || !(fabs(back[k] - pose[k]) <= 1e-12 * (1.0 + fabs(d) + fabs(pose[k]))))
+                    fail("tool offset: a finite pose made non-finite, or not undone");
+        }
     }
     return 0;
 }
