@@ -170,7 +170,8 @@ void hg_tool_tip(const double pose[6], double tool_d_m, double tip[3]);
  * long points along the head's -z axis (as hg_tool_tip), so its tip stays
  * at the programmed point whatever the tilt when
  *     Op = P + d (R z - z)        (z = (0 0 1), R the head's rotation);
- * d 0 or an untilted head: Op is P to the bit. The angles pass unchanged. */
+ * d 0 or an untilted head: Op is P to the bit (up to the sign of a zero).
+ * The angles pass unchanged. */
 /* HG_OK when tool_offset_m is finite and within HG_MAX_ABS_POSITION_BARS
  * bar lengths, else HG_ERR_BAD_PARAM. */
 int hg_tool_offset_check(const hg_geometry *g, double tool_offset_m);
