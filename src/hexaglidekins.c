@@ -153,6 +153,8 @@ static int tool_offset(const hg_geometry *g, double mpu, double *d_m)
     int say = hg_tool_offset_take(&hd->tool, g, given * mpu / HG_MM_PER_M);
     char a[HG_TEXT_VALUE_LEN], b[HG_TEXT_VALUE_LEN], c[HG_TEXT_VALUE_LEN];
     *d_m = hd->tool.in_force_m;
+    if (say == HG_FK_SAY_NOTHING)      /* every call but the rare ones that say something */
+        return hd->tool.refusing ? HG_ERR_BAD_PARAM : HG_OK;
     hg_text_value(a, given);
     if (say == HG_FK_SAY_JUMP) {
         hg_text_value(b, was);

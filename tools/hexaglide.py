@@ -517,12 +517,13 @@ def ik(pose_user, params=None, tool_offset=0.0):
     tool_offset (mm): G43's tool length, added to Z in pose_user as LinuxCNC does; the tool's
     tip on the head's axis then follows the pose at any tilt (RTCP, hexaglidekins.tool-offset).
     HexaglideError (code and, for a guard, the bar, value and limit) otherwise."""
+    geo = _geometry(params)
     commanded = _pose_si("pose", pose_user)
     pose = _d6()
-    _offset_to_op(commanded, _tool_offset_m(_geometry(params), tool_offset), pose)
+    _offset_to_op(commanded, _tool_offset_m(geo, tool_offset), pose)
     z = _d6()
     rep = GuardReport()
-    rc = _ik(_geometry(params), pose, z, C.byref(rep))
+    rc = _ik(geo, pose, z, C.byref(rep))
     if rc:
         raise HexaglideError("ik", rc, _guard_text(rep))
     return np.array(z[:]) * 1000.0
@@ -531,11 +532,12 @@ def ik(pose_user, params=None, tool_offset=0.0):
 def fk(joints_mm, guess_user=(0, 0, 0, 0, 0, 0), params=None, tool_offset=0.0):
     """Pose (mm, deg) of six joint positions (mm), Newton from guess (a pose); with
     tool_offset (mm) the pose of the tool's tip plus tool_offset in Z, as ik takes it."""
+    geo = _geometry(params)
     z = _joints_si("joints", joints_mm)
-    d = _tool_offset_m(_geometry(params), tool_offset)
+    d = _tool_offset_m(geo, tool_offset)
     guess, pose = _pose_si("guess", guess_user), _d6()
     _offset_to_op(guess, d, pose)
-    rc = _fk(_geometry(params), z, pose, None, None)
+    rc = _fk(geo, z, pose, None, None)
     if rc:
         raise HexaglideError("fk", rc)
     _op_to_offset(pose, d, guess)
