@@ -258,8 +258,8 @@ def spindle_wait(s):
     or None. LinuxCNC starts a spindle-synchronized move (G33, G33.1, G76)
     at the spindle's index (spindle.0.index-enable, cleared by its encoder)
     and feeds a G95 move by the measured speed (spindle.0.speed-in): with
-    neither connected, as on this machine, it waits forever and says
-    nothing."""
+    neither connected (a config without configs/hexaglide.hal's virtual
+    spindle), it waits forever and says nothing."""
     if s.queue == 0:
         return None
     if hal.get_value("spindle.0.index-enable"):
