@@ -9,7 +9,7 @@ $HG_OUT/$HG_TAG.json (and the program's samples to $HG_OUT/$HG_TAG.csv):
     emc-enable-in);
  2. unhomed, jog joint 0 + at 0.1 in/s into its limit+ switch (in-01);
     what LinuxCNC says and does; machine on, override limits, jog back off;
- 3. home joints 2, 0, 1 one by one (the stock INI has no HOME_SEQUENCE):
+ 3. home joints 2, 0, 1 (then 3.. in ../vitalsystems6) one by one (the stock INI has no HOME_SEQUENCE):
     home switch, back off at the latch speed, the encoder index;
  4. run HG_PROGRAM, sampling joint.N.f-error and vel-cmd every servo period,
     with the stock gains, then again with velocity feed-forward FF1 from the
@@ -37,8 +37,12 @@ B, X = "motenc.0", "motenc-hexaglide.0"
 OUT = os.environ.get("HG_OUT", "../out")
 TAG = os.environ.get("HG_TAG", "motenc_stock")
 PROGRAM = os.environ.get("HG_PROGRAM", "serial_mill.ngc")
-SAMPLED = ["joint.%d.f-error" % j for j in range(3)] + ["joint.%d.vel-cmd" % j for j in range(3)] + \
-          ["%s.joint-%d.pos" % (X, j) for j in range(3)] + ["joint.%d.motor-pos-cmd" % j for j in range(3)]
+# the joints: 3 in the stock config, 6 in ../vitalsystems6 (its continuation)
+NJ = int(linuxcnc.ini(os.environ["INI_FILE_NAME"]).find("KINS", "JOINTS"))
+# LinuxCNC's sampler takes at most 21 pins: the machine's positions only when they fit
+SAMPLED = ["joint.%d.f-error" % j for j in range(NJ)] + ["joint.%d.vel-cmd" % j for j in range(NJ)] + \
+          (["%s.joint-%d.pos" % (X, j) for j in range(NJ)] if 4 * NJ <= 21 else []) + \
+          ["joint.%d.motor-pos-cmd" % j for j in range(NJ)]
 
 s = linuxcnc.stat()
 c = linuxcnc.command()
@@ -84,8 +88,8 @@ def wait(cond, timeout):
 
 
 def board():
-    return {"pos_mm": [g("%s.joint-%d.pos" % (X, j)) for j in range(3)],
-            "motor_pos_mm": [g("%s.joint-%d.motor-pos" % (X, j)) for j in range(3)],
+    return {"pos_mm": [g("%s.joint-%d.pos" % (X, j)) for j in range(NJ)],
+            "motor_pos_mm": [g("%s.joint-%d.motor-pos" % (X, j)) for j in range(NJ)],
             "amps_on": bool(g(X + ".amps-on")), "estop_in": bool(g(B + ".estop-in")),
             "fault": bool(g(X + ".fault")), "param_error": bool(g(X + ".param-error"))}
 
@@ -153,7 +157,7 @@ def step_home():
     manual()
     c.teleop_enable(0)
     homes = {}
-    for j in (2, 0, 1):
+    for j in (2, 0, 1) + tuple(range(3, NJ)):    # Z first, as an operator would
         t0 = time.time()
         c.home(j)
         ok = wait(lambda: s.homed[j], 30)
@@ -242,7 +246,7 @@ def run_program(path):
         sm.finish()
     s.poll()
     drain()
-    return {"done": done, "seconds": round(secs, 2), "axis_pos_in": list(s.actual_position[:3]),
+    return {"done": done, "seconds": round(secs, 2), "axis_pos_in": list(s.actual_position[:NJ]),
             "board": board(), "enabled": bool(s.enabled), "messages_during": messages[n0:]}
 
 
@@ -261,13 +265,13 @@ def step_program_ff1():
     velocity-mode amplifier's speed per PID output unit, from the INI."""
     ini = linuxcnc.ini(os.environ["INI_FILE_NAME"])
     ff1 = []
-    for j in range(3):
+    for j in range(NJ):
         v_rated_in = float(ini.find("SERIAL", "V_RATED_%d" % j)) / 25.4
         ff1.append(10.0 / (float(ini.find("JOINT_%d" % j, "OUTPUT_SCALE")) * v_rated_in))
         halcmd("setp", "pid.%d.FF1" % j, repr(ff1[-1]))
     r = run_program(os.path.join(OUT, TAG + "_ff1.csv"))
     r["ff1"] = ff1
-    for j in range(3):
+    for j in range(NJ):
         halcmd("setp", "pid.%d.FF1" % j, ini.find("JOINT_%d" % j, "FF1"))
     result["program_ff1"] = r
 
@@ -299,7 +303,7 @@ def step_estop():
     r["button"] = {"moving_at_mm": moving_at, "estop_seen": seen, "seconds": round(dt, 3), "board_at": at,
                    "board_1s_later": later, "emc_enable_in": bool(g("iocontrol.0.emc-enable-in")),
                    "estop_in_not": bool(g(B + ".estop-in-not")), "interp_idle": s.interp_state == linuxcnc.INTERP_IDLE,
-                   "amp_enable_out": [bool(g("joint.%d.amp-enable-out" % j)) for j in range(3)]}
+                   "amp_enable_out": [bool(g("joint.%d.amp-enable-out" % j)) for j in range(NJ)]}
     r["on_while_pressed"] = machine_on()
     hal.set_p(X + ".estop-button", "0")
     time.sleep(0.1)

@@ -1,0 +1,1 @@
+../vitalsystems/motenc_headless.py
