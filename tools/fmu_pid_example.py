@@ -70,6 +70,9 @@ class FMU:
                                                False, False, False, None, 0, None, self._log, None)
         if not self.s:
             raise RuntimeError("fmi3InstantiateCoSimulation failed: %s" % "; ".join(self.messages))
+        # without loggingOn the FMU logs errors only (FMI 3.0): the machine's faults too, not its events
+        f.fmi3SetDebugLogging.argtypes = [C.c_void_p, C.c_bool, C.c_size_t, C.POINTER(C.c_char_p)]
+        f.fmi3SetDebugLogging(self.s, True, 2, (C.c_char_p * 2)(b"logStatusError", b"logStatusWarning"))
         self.t = 0.0
         self._flags = [C.c_bool(), C.c_bool(), C.c_bool()]
         self._last = C.c_double()

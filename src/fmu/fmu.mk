@@ -57,9 +57,9 @@ $(FMU_TREE)/sources/buildDescription.xml: $(FMU_SRC_FILES) src/fmu/fmu.mk
 	cp third_party/fmi-standard/LICENSE.txt $(FMU_TREE)/sources/LICENSE-fmi-standard.txt
 	{ echo '<?xml version="1.0" encoding="UTF-8"?>'; \
 	  echo '<fmiBuildDescription fmiVersion="3.0">'; \
-	  echo '  <!-- compile with $(RT_SAME_FLAGS) to round as build/hexaglide does -->'; \
+	  echo '  <!-- compilerOptions: round as build/hexaglide does (no FMA, libm sin and cos) -->'; \
 	  echo '  <BuildConfiguration modelIdentifier="hexaglide" description="the virtual Hexaglide, C99, libm">'; \
-	  echo '    <SourceFileSet language="C99">'; \
+	  echo '    <SourceFileSet language="C99" compiler="gcc" compilerOptions="-std=c99 $(RT_SAME_FLAGS)">'; \
 	  for f in $(notdir $(FMU_CORE_SRCS) $(FMU_GLUE)); do echo "      <SourceFile name=\"$$f\"/>"; done; \
 	  echo '    </SourceFileSet>'; \
 	  echo '    <Library name="m"/>'; \

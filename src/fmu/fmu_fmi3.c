@@ -58,6 +58,7 @@ enum {
 static const char *const log_categories[] = {"logStatusError", "logStatusWarning", "logEvents"};
 #define LOG_CATEGORIES ((int)(sizeof log_categories / sizeof *log_categories))
 #define LOG_ALL ((1u << LOG_CATEGORIES) - 1u)      /* log_on with every category on */
+#define LOG_ERRORS (1u << 0)                        /* log_on's bit of logStatusError */
 #define LOG_EVENTS (1u << 2)                        /* log_on's bit of logEvents */
 
 typedef fmu_status status_t;
@@ -345,7 +346,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     if (s) {
         *s = tmp;
         s->name = malloc(strlen(instanceName) + 1);
-        s->log_on = loggingOn ? LOG_ALL : LOG_ALL & ~LOG_EVENTS;  /* errors and warnings; events with loggingOn */
+        s->log_on = loggingOn ? LOG_ALL : LOG_ERRORS;  /* FMI 3.0 2.3.1: without loggingOn, errors only */
         s->nvars = fmu_var_count();
         s->off_values = align16(sizeof(status_t));
         s->off_plant = align16(s->off_values + s->nvars * sizeof(double));
@@ -689,14 +690,15 @@ static int value_ok(instance_t *s, const char *fn, fmi3ValueReference vr, double
     return 0;
 }
 
-/* Store a set value; a parameter makes the board be built again. */
+/* Store a set value (a Boolean as 0 or 1, whatever byte the importer's bool held); a parameter makes the
+ * board be built again. */
 static void store(instance_t *s, fmi3ValueReference vr, double x)
 {
     fmu_var v;
     fmu_var_get(vr, &v);
     if (v.causality == FMU_PARAMETER)
         st(s)->built = 0;
-    vals(s)[vr] = x;
+    vals(s)[vr] = v.type == FMU_BOOLEAN ? (double)(x != 0.0) : x;
 }
 
 /* fmi3Get<T> and fmi3Set<T> for a type with variables (T its FMI name, C its C type, F its fmu_type). */

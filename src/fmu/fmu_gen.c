@@ -294,10 +294,10 @@ static int write_description(FILE *f)
     fprintf(f, "  <LogCategories>\n"
                "    <Category name=\"logStatusError\" description=\"refused calls and parameters (on unless "
                "fmi3SetDebugLogging turns it off)\"/>\n"
-               "    <Category name=\"logStatusWarning\" description=\"faults of the machine, NaN volts (on unless "
-               "fmi3SetDebugLogging turns it off)\"/>\n"
+               "    <Category name=\"logStatusWarning\" description=\"faults of the machine, NaN volts (with loggingOn "
+               "or fmi3SetDebugLogging; the step returns fmi3Warning either way)\"/>\n"
                "    <Category name=\"logEvents\" description=\"the board's other events: substeps raised, reset "
-               "done (with loggingOn)\"/>\n  </LogCategories>\n\n");
+               "done (with loggingOn or fmi3SetDebugLogging)\"/>\n  </LogCategories>\n\n");
     fprintf(f, "  <DefaultExperiment startTime=\"0\" stopTime=\"1\" stepSize=\"%s\"/>\n\n",
             num(b, fmu_plant_period_default_s()));
     fprintf(f, "  <ModelVariables>\n");

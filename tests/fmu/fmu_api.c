@@ -80,10 +80,10 @@ static int run(fmi3Instance s, long from, long n, int salt, double *rec)
     return bad;
 }
 
-/* Instantiate, set enc_scale, initialize: the FMU in Step Mode. */
-static fmi3Instance started(const char *name, logbook *b, double m_head)
+/* Instantiate (loggingOn as given), set enc_scale, initialize: the FMU in Step Mode. */
+static fmi3Instance started_logging(const char *name, logbook *b, double m_head, fmi3Boolean logging_on)
 {
-    fmi3Instance s = instantiate(name, b);
+    fmi3Instance s = instantiate_logging(name, b, logging_on);
     if (!s)
         return 0;
     set_f64(s, "enc_scale", 1000.0);
@@ -95,6 +95,12 @@ static fmi3Instance started(const char *name, logbook *b, double m_head)
         return 0;
     }
     return s;
+}
+
+/* started_logging with loggingOn. */
+static fmi3Instance started(const char *name, logbook *b, double m_head)
+{
+    return started_logging(name, b, m_head, fmi3True);
 }
 
 /* 1 if the n x MAX_OUT records are bitwise equal over m columns. */
@@ -900,7 +906,7 @@ static void test_no_feedthrough(void)
 static void test_log_categories(void)
 {
     logbook b = {0};
-    fmi3Instance s = started("categories", &b, 0);
+    fmi3Instance s = started_logging("categories", &b, 0, fmi3False);
     fmi3ValueReference vr = vr_of("reset");
     fmi3Boolean on = fmi3True, off = fmi3False;
     int n_ok, n_err;
@@ -939,6 +945,31 @@ static void test_log_categories(void)
     fmi3FreeInstance(s);
 }
 
+/* Without loggingOn the FMU calls logMessage for errors only (FMI 3.0 2.3.1): a machine fault returns
+ * fmi3Warning with no message, a refused step fmi3Error with one. */
+static void test_logging_off(void)
+{
+    static const double v[6] = {10, -10, 10, -10, 10, -10};
+    logbook b = {0};
+    fmi3Instance s = started_logging("quiet", &b, 0, fmi3False);
+    fmi3Status rc = fmi3OK;
+    long n;
+    b.quiet = 1;
+    if (!s) {
+        check(0, "logging off: instance");
+        return;
+    }
+    set_volts(s, v);
+    for (n = 0; n < 2000 && rc == fmi3OK; n++)
+        rc = step_at(s, (double)n * PERIOD, PERIOD);
+    check(rc == fmi3Warning && b.n[fmi3Warning] == 0 && b.n[fmi3OK] == 0 && b.n[fmi3Error] == 0,
+          "loggingOn false: the machine faults in period %ld at +-10 V, the step returns fmi3Warning (%d) and "
+          "nothing is logged (%d warnings, %d other messages)", n, (int)rc, b.n[fmi3Warning], b.n[fmi3OK]);
+    check(step_at(s, 0.5, PERIOD) == fmi3Error && b.n[fmi3Error] == 1, "... a refused step still logs its error "
+          "(%s)", b.last);
+    fmi3FreeInstance(s);
+}
+
 int main(void)
 {
     test_state();
@@ -956,5 +987,6 @@ int main(void)
     test_fmi_rules();
     test_no_feedthrough();
     test_log_categories();
+    test_logging_off();
     return test_failures ? 1 : 0;
 }

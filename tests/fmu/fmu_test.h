@@ -42,18 +42,24 @@ static void log_cb(fmi3InstanceEnvironment env, fmi3Status status, fmi3String ca
     if (status >= 0 && status < 5)
         b->n[status]++;
     snprintf(b->last, sizeof b->last, "%s", message);
-    if (!b->quiet)
+    if (!b->quiet && status != fmi3OK)       /* logEvents are counted, not printed */
         printf("# [%s] %s\n", category, message);
 }
 
-/* A co-simulation instance with this build's token (0 on failure). */
-static inline fmi3Instance instantiate(const char *name, logbook *book)
+/* A co-simulation instance with this build's token (0 on failure), loggingOn as given. */
+static inline fmi3Instance instantiate_logging(const char *name, logbook *book, fmi3Boolean logging_on)
 {
     char token[FMU_TOKEN_LEN];
     if (fmu_vars_token(token))
         return 0;
-    return fmi3InstantiateCoSimulation(name, token, "", fmi3False, fmi3False, fmi3False, fmi3False, 0, 0, book,
+    return fmi3InstantiateCoSimulation(name, token, "", fmi3False, logging_on, fmi3False, fmi3False, 0, 0, book,
                                        log_cb, 0);
+}
+
+/* A co-simulation instance with loggingOn: every category logs (the tests read the messages). */
+static inline fmi3Instance instantiate(const char *name, logbook *book)
+{
+    return instantiate_logging(name, book, fmi3True);
 }
 
 /* Value reference of the variable called name (exits when there is none: a test bug). */
