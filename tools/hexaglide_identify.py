@@ -293,12 +293,9 @@ def read_board_record(path):
     run.vel = a[:, 16:22]
     run.counts = a[:, 22:28]
     run.count_scale = a[:, 28:34].mean(0) * 1e3 if len(a) else np.full(6, 1e6)   # counts per m
-    # an encoder reset (homing latches the index): a jump in the counts splits the record
-    jump = np.zeros(len(a), bool)
-    if len(a) > 1:
-        jump[1:] = (np.abs(np.diff(run.counts, axis=0)) > 0.5 * run.count_scale * run.dt).any(1)
-    run.jumps = int((jump & run.ok).sum())         # counted apart from the amplifiers off or a fault
-    run.ok &= ~jump
+    # an encoder reset (homing latches the index): the row after a jump in the counts left out (the board
+    # records the carriages themselves, out.z: no positions to join)
+    leave_out_jumps(run, encoder_jumps(run.counts / run.count_scale, run.dt))
     run.hdr_no = hdr_no
     run.known = {name: recorded[name] for name in KNOWN if name in recorded}
     run.recorded = recorded
@@ -316,6 +313,34 @@ def hal_table():
     """[(spec name, SI unit, HAL name, HAL unit, HAL scale)] of hg_params_table."""
     return [(i.name.decode(), i.unit.decode(), i.hal_name.decode(), i.hal_unit.decode(), i.hal_scale)
             for i in hg.params_table()]
+
+
+def encoder_jumps(pos_m, dt):
+    """Rows (n, 6 encoder positions in m) whose position moved more than 0.5 m/s x dt since the row before
+    on some joint: an encoder reset (homing latches the index) or a glitch, no motion of the machine
+    (its carriages top out at 0.22 m/s). Row 0 is never one."""
+    jump = np.zeros(len(pos_m), bool)
+    if len(pos_m) > 1:
+        jump[1:] = (np.abs(np.diff(pos_m, axis=0)) > 0.5 * dt).any(1)
+    return jump
+
+
+def join_across_jumps(pos_m, jump):
+    """pos_m (n, 6) with the rows before each jump moved by it, less the motion the two rows before it
+    extrapolate (none across another jump): the positions run on as the machine moved, and the stretch
+    after the last jump keeps its own counts (homing latched the reference there)."""
+    p = pos_m.copy()
+    for k in np.flatnonzero(jump)[::-1]:
+        v = p[k - 1] - p[k - 2] if k >= 2 and not jump[k - 1] else 0.0
+        p[:k] += p[k] - (p[k - 1] + v)
+    return p
+
+
+def leave_out_jumps(run, jump):
+    """Periods of run whose motion spans an encoder jump are left out (the jump splits the record into
+    stretches); run.jumps counts those not left out already (amplifiers off, a fault)."""
+    run.jumps = int((jump & run.ok).sum())
+    run.ok &= ~jump
 
 
 def _sampler_columns(header):
@@ -414,6 +439,14 @@ def read_sampler(path, ini):
             raise BadInput("%s: line %d, column 1 (the header): no encoder column for joint %d: record "
                            "motenc.0.enc-%02d-count (docs/identification.md: the pin set)" % (path, hdr_no, j, j))
     a = np.array(rows).reshape(-1, len(header))
+    for j in range(6):                  # an s32 count pin holds whole numbers
+        c, sc = pos[j]
+        if sc is None:
+            bad = np.where((a[:, c] != np.rint(a[:, c])) | (a[:, c] < -2 ** 31) | (a[:, c] > 2 ** 31 - 1))[0]
+            if len(bad):
+                raise BadInput("%s: line %d, field %d (%s): %.17g is not an encoder count (a whole number of the "
+                               "s32 pin, -2147483648 to 2147483647)" % (path, hdr_no + 1 + bad[0], c + 1, header[c],
+                                                                       a[bad[0], c]))
     try:                                # the scales as LinuxCNC and sim read them (the C reader)
         cfg = hg_config.read(ini, loop=True, cmd="identify") if ini else None
     except hg_config.ConfigError as ex:
@@ -442,6 +475,17 @@ def read_sampler(path, ini):
         V[:, j] = (a[:, dac[j]] - g.get("OUTPUT_OFFSET", 0.0)) * g.get("OUTPUT_SCALE", 1.0)
         c, sc = pos[j]
         P[:, j] = a[:, c] * (sc if sc is not None else 1e-3 / g.get("INPUT_SCALE", 1000.0))
+    # an encoder reset (homing) or glitch: the stretches joined as the machine moved, the jumps left out below
+    jump = encoder_jumps(P, run.dt)
+    for k in np.flatnonzero(jump)[:5]:
+        moved = P[k] - P[k - 1]
+        j = int(np.argmax(np.abs(moved)))
+        log("%s: line %d: joint %d's encoder jumped by %.6g mm in one period (an encoder reset, homing, or a "
+            "glitch): the positions before it are joined to those after it, as the machine moved"
+            % (path, hdr_no + 1 + k, j, 1e3 * moved[j]))
+    if jump.sum() > 5:
+        log("%s: %d encoder jumps in all" % (path, int(jump.sum())))
+    P = join_across_jumps(P, jump)
     # the encoder row n was read before V_n: the position after V_n is row n + 1
     run.volts = V[:-1]
     run.pos = P[1:]
@@ -454,6 +498,8 @@ def read_sampler(path, ini):
                                 for j in range(6)])
     run.counts = np.rint(run.pos * run.count_scale)
     run.ok = np.ones(len(run.volts), bool)
+    # the motion from row n to n + 1 spans a jump of the encoder: period n left out
+    leave_out_jumps(run, jump[1:])
     if all(c is not None for c in cmd):
         run.cmd_mm = a[:, cmd]
     if all(c is not None for c in fe):
