@@ -211,7 +211,7 @@ static unsigned change(int variant, const hg_plant_params *a, const hg_plant_par
 static void stability_axis(const hg_params *p, hg_stability_axis *a)
 {
     static const char *const names[HG_STAB_NAMES] = {"c_visc", "k_stop", "c_stop", "r_winding", "kp_vel",
-                                                      "k_axial", "c_axial"};
+                                                      "ki_vel", "k_axial", "c_axial"};
     const double k = 2.0 * HG_PI / p->lead_m;
     const double m_end = 2.0 * p->i_bar_kgm2 / (p->geo.l_m * p->geo.l_m) - 0.5 * p->m_bar_kg;
     int i;

@@ -628,7 +628,7 @@ static unsigned change(int variant, const hg_plant_params *a, const hg_plant_par
 static void stability_axis(int variant, const hg_plant_params *v, int k, hg_stability_axis *a)
 {
     static const int fields[HG_STAB_NAMES] = {HG_SF_C_VISC, HG_SF_K_STOP, HG_SF_C_STOP, HG_SF_R_WINDING,
-                                              HG_SF_KP_VEL, HG_SF_K_AXIAL, HG_SF_C_AXIAL};
+                                              HG_SF_KP_VEL, HG_SF_KI_VEL, HG_SF_K_AXIAL, HG_SF_C_AXIAL};
     const double ks = 2.0 * HG_PI / lead_of(variant, v, k);
     const int rot = rotary_axis(variant, k);
     int i;

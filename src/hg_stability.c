@@ -177,8 +177,9 @@ static int test_systems(const hg_stability_axis *a, test_system s[HG_STAB_AXIS_S
         s[n].drive = 1, n++;
     }
     if (a->velocity_mode) {
-        s[n] = drive;                                       /* the velocity loop */
-        s[n].drive = 2, s[n].param = a->name[HG_STAB_KP_VEL], n++;
+        s[n] = drive;                                       /* the velocity loop: ki_vel its spring, kp_vel */
+        s[n].drive = 2, s[n].param = a->name[HG_STAB_KI_VEL];   /* its damping (damping_limits) */
+        s[n].param_c = a->name[HG_STAB_KP_VEL], n++;
         if (!flexible) {
             s[n] = stop;                                    /* ... in a hard stop */
             s[n].drive = 2, n++;
@@ -197,10 +198,14 @@ static int test_systems(const hg_stability_axis *a, test_system s[HG_STAB_AXIS_S
 
 /* 1 when system s has a spring and a damping, and the damping alone
  * cannot be integrated at dt: then the damping, not the spring, names the
- * bound. */
+ * bound. The velocity loop's spring is ki_vel, its damping kp_vel. */
 static int damping_limits(const test_system *s, hg_integrator scheme, double dt)
 {
     test_system c_only = *s;
+    if (s->drive == 2 && s->k == 0.0) {   /* the velocity loop alone: kp_vel alone, without ki_vel */
+        c_only.ki = 0.0;
+        return !stable(&c_only, scheme, dt);
+    }
     c_only.k = 0.0;
     c_only.drive = 0;
     return s->k > 0.0 && s->c > 0.0 && !stable(&c_only, scheme, dt);

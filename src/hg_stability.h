@@ -26,7 +26,7 @@
 /* Which of an axis's parameters a test system is named after. */
 enum {
     HG_STAB_C_VISC = 0, HG_STAB_K_STOP, HG_STAB_C_STOP, HG_STAB_R_WINDING, HG_STAB_KP_VEL,
-    HG_STAB_K_AXIAL, HG_STAB_C_AXIAL, HG_STAB_NAMES
+    HG_STAB_KI_VEL, HG_STAB_K_AXIAL, HG_STAB_C_AXIAL, HG_STAB_NAMES
 };
 
 /* One axis (SI, in its load coordinate: m or rad, N or N m). */

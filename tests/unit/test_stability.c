@@ -218,6 +218,22 @@ static void test_neutral_and_damping_names(void)
     rc = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, 1, &st);
     CHECK(rc == HG_ERR_STIFF && st.param && strcmp(st.param, "c_stop") == 0,
           "c_stop 1e6 at 1 ms, one step: refused, naming %s (c_stop)", st.param ? st.param : "nothing");
+    /* the velocity loop: force fpa (-kp_vel v - ki_vel x), a damping and a spring; ki_vel 1e7 A/m with
+     * kp_vel 1 A s/m: kp_vel alone integrates (fpa kp dt / m far below 2), so ki_vel names the bound
+     * (softer kp_vel makes the loop worse: it is the loop's only damping) */
+    hg_test_rigid_defaults(&p);
+    p.amp_mode = 1.0;
+    p.kp_vel_as_per_m = 1.0;
+    p.ki_vel_a_per_m = 1e7;
+    rc = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, 1, &st);
+    CHECK(rc == HG_ERR_STIFF && st.param && strcmp(st.param, "ki_vel") == 0,
+          "velocity loop, ki_vel 1e7 with kp_vel 1 at 1 ms, one step: refused, naming %s (ki_vel)",
+          st.param ? st.param : "nothing");
+    p.kp_vel_as_per_m = 1e5;
+    p.ki_vel_a_per_m = 0.0;
+    rc = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, 1, &st);
+    CHECK(rc == HG_ERR_STIFF && st.param && strcmp(st.param, "kp_vel") == 0,
+          "... kp_vel 1e5 without ki_vel: refused, naming %s (kp_vel)", st.param ? st.param : "nothing");
     hg_params_default(&p);
     p.c_axial_ns_per_m = 1e8;
     rc = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, 1, &st);
