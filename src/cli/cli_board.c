@@ -221,6 +221,28 @@ hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_
     return b;
 }
 
+int cli_board_integrable(const char *cmd, int plant, int variant, const hg_board_params *p, long period_ns)
+{
+    hg_board *b = cli_board_new(cmd, plant, variant, p);
+    hg_board_inputs in;
+    hg_board_outputs out;
+    if (!b)
+        return 1;
+    hg_board_inputs_default(b, &in);
+    if (p)
+        in.params = *p;
+    hg_board_step(b, &in, &out, period_ns);       /* the first period checks the block's stability */
+    if (out.fault && out.fault_cause == HG_FAULT_STIFF) {
+        char what[HG_PLANT_TEXT_LEN + 2 * HG_BOARD_TEXT_LEN];
+        cli_fault_text(b, &out, period_ns, what);
+        fprintf(stderr, "hexaglide %s: %s\n", cmd, what);
+        free(b);
+        return 1;
+    }
+    free(b);
+    return 0;
+}
+
 int cli_whole(double x, double *n)
 {
     *n = floor(x + 0.5);

@@ -265,6 +265,8 @@ int cmd_sim(int argc, char **argv)
     dt = (double)period_ns * 1e-9;           /* what the board integrates */
     if (cli_whole_periods("sim", "--time", t_end, 1.0, "s", period_ns, 0, SIM_MAX_STEPS, &n))
         return 2;
+    if (cli_board_integrable("sim", plant, variant, &bp, period_ns))
+        return 2;                      /* before any output is opened */
     b = cli_board_new("sim", plant, variant, &bp);
     if (!b)
         return 2;

@@ -267,6 +267,10 @@ int cmd_soak(int argc, char **argv)
     }
     if (integrator >= 0)
         bp.integrator = (unsigned)integrator;
+    if (cli_board_integrable("soak", 0, kind, &bp, cfg.period_ns)) {
+        free(L);
+        return 2;
+    }
     rc = hg_loop_config_check(&cfg, &rep);
     if (rc) {
         if (rep.ini_key && rep.joint >= 0)
