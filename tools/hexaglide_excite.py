@@ -13,7 +13,6 @@ stdout: the G-code (or --output FILE). stderr: progress, the run time and
 the condition number reached. Exit codes: 0 ok, 1 no feasible trajectory,
 2 bad input.
 """
-import argparse
 import os
 import sys
 import time
@@ -25,6 +24,7 @@ import hexaglide as hg  # noqa: E402
 import hexaglide_identify as hid  # noqa: E402
 import hg_config  # noqa: E402
 import hg_csv  # noqa: E402
+import hg_cli  # noqa: E402
 import hg_output  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -342,6 +342,11 @@ def trains_gcode(a, axes):
     if not speeds:
         raise ValueError("[AXIS_Z] MAX_VELOCITY %g mm/s: the trains' speeds %s need at least %g"
                          % (vmax, TRAIN_SPEEDS, min(TRAIN_SPEEDS) / a.margin))
+    shortest = max(speeds) ** 2 / TRAIN_ACCEL      # up to the fastest speed and down again at TRAIN_ACCEL
+    if a.stroke < shortest:
+        raise ValueError("--stroke %g mm: too short to reach the trains' %g mm/s (at %g mm/s^2 it takes "
+                         "%g mm to get there and stop); give at least %g" % (a.stroke, max(speeds), TRAIN_ACCEL,
+                                                                             shortest, shortest))
     lines = ["( hexaglide excite --trains: the drive trains' program for hexaglide identify, docs/identification.md )",
              "( vertical strokes of %g mm at %s mm/s, exact stop at the ends; load the --dither HAL snippet too )"
              % (a.stroke, "/".join("%g" % v for v in speeds)),
@@ -350,7 +355,7 @@ def trains_gcode(a, axes):
     while t < a.seconds:
         v = speeds[i % len(speeds)]
         lines += ["G1 Z%.4f F%.6g" % (-a.stroke, 60 * v), "G1 Z0 F%.6g" % (60 * v)]
-        t += 2 * a.stroke / v
+        t += 2 * (a.stroke / v + v / TRAIN_ACCEL)   # each way: the stroke at v, plus speeding up and stopping
         i += 1
     lines += ["M2", ""]
     return "\n".join(lines)
@@ -447,7 +452,7 @@ def drive_bound(a, cfg):
 def main(argv=None):
     """hexaglide excite: design, check on 1 ms, write the G-code."""
     argv = sys.argv[1:] if argv is None else argv
-    ap = argparse.ArgumentParser(prog="hexaglide excite", description=__doc__.split("\n\n")[0])
+    ap = hg_cli.Parser(prog="hexaglide excite", description=__doc__.split("\n\n")[0])
     ap.add_argument("--ini", default=os.path.join(ROOT, "configs", "hexaglide.ini"),
                     help="config with the [AXIS_*] and [JOINT_N] limits and the [HEXAGLIDE] geometry "
                     "(default configs/hexaglide.ini)")
@@ -578,8 +583,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main())
-    except hg_output.OutputError as ex:
-        log(ex)
-        sys.exit(1)
+    hg_cli.run(main, log, (hg_output.OutputError,))

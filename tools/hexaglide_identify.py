@@ -27,6 +27,7 @@ import hexaglide as hg  # noqa: E402
 import hexaglide_trainid as trainid  # noqa: E402
 import hg_config  # noqa: E402
 import hg_csv  # noqa: E402
+import hg_cli  # noqa: E402
 import hg_output  # noqa: E402
 from hg_identify_base import (COLUMNS, NAMES, NCOL, NIN, REC_MAGICS, RecordError, Settings,  # noqa: E402
                               _dp, autocorr_time, butter_lp, clamped_periods, dac_output, dilate,
@@ -1650,7 +1651,6 @@ def record_args(args):
 
 def main(argv=None):
     """hexaglide identify: read, fit, report, validate, write."""
-    import argparse
     import hexaglide_identify_serial as ids
     args = list(sys.argv[1:] if argv is None else argv)
     recs = record_args(args)
@@ -1662,7 +1662,7 @@ def main(argv=None):
         return 2
     if serial:                                # the serial plant's records: its own force balance
         return ids.main(args)
-    ap = argparse.ArgumentParser(prog="hexaglide identify", description=__doc__.split("\n\n")[0])
+    ap = hg_cli.Parser(prog="hexaglide identify", description=__doc__.split("\n\n")[0])
     ap.add_argument("records", nargs="+", metavar="RECORD",
                     help="board records (HG_RECORD, docs/replay.md) or sampler recordings of a real machine")
     ap.add_argument("--validate", metavar="RECORD", help="predict this recording with the identified model")
@@ -1819,8 +1819,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main())
-    except hg_output.OutputError as ex:
-        log(ex)
-        sys.exit(1)
+    hg_cli.run(main, log, (hg_output.OutputError,))

@@ -36,6 +36,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hg_csv  # noqa: E402
 import hg_identify_base as ib  # noqa: E402
+import hg_cli  # noqa: E402
 import hg_output  # noqa: E402
 
 CUTOFF_HZ = 25.0
@@ -318,8 +319,7 @@ def unit(rot, what):
 
 
 def main(argv):
-    import argparse
-    ap = argparse.ArgumentParser(prog="hexaglide identify (serial plant)")
+    ap = hg_cli.Parser(prog="hexaglide identify (serial plant)")
     ap.add_argument("records", nargs="+")
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
     ap.add_argument("--output")

@@ -10,7 +10,6 @@ stdout: ready-to-paste [JOINT_0]..[JOINT_5] sections, then the predicted
 peak following error per joint (comment lines). stderr: progress.
 Exit codes: 0 ok, 1 no stable gains / unstable gains given, 2 bad input.
 """
-import argparse
 import ctypes as C
 import os
 import re
@@ -33,6 +32,7 @@ import hg_config  # noqa: E402
 import hg_margins as hgm  # noqa: E402
 from hg_program import LEAD_IN, PERIOD_S, PERIOD_WHY, beyond_limits, program_rows, s_curve, uneven_times  # noqa: E402
 import hg_identify_base as ib  # noqa: E402  (the C record reader)
+import hg_cli  # noqa: E402
 import hg_output  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -1081,7 +1081,7 @@ def main(argv=None):
     if plant not in (None, "hexaglide"):
         log("--plant %s: unknown plant; use hexaglide, serial" % plant)
         return 2
-    ap = argparse.ArgumentParser(prog="hexaglide tune", description=__doc__.split("\n\n")[0])
+    ap = hg_cli.Parser(prog="hexaglide tune", description=__doc__.split("\n\n")[0])
     ap.add_argument("--plant", choices=["hexaglide", "serial"], default="hexaglide",
                     help="the machine: hexaglide (default), or serial (implied by an --ini with a [SERIAL] "
                     "section: tools/hexaglide_tune_serial.py, docs/serial.md)")
@@ -1317,8 +1317,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main())
-    except hg_output.OutputError as ex:
-        log(ex)
-        sys.exit(1)
+    hg_cli.run(main, log, (hg_output.OutputError,))

@@ -23,7 +23,6 @@ Hexaglide's coupled six-joint model), the tool-path error (the Hexaglide's
 pose error from its kinematics; with trivkins it is the joints' errors
 themselves) and the notch (against the Hexaglide's structural mode). A
 serial axis's stability is checked here on a step response instead."""
-import argparse
 import configparser
 import os
 import re
@@ -35,6 +34,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hexaglide as hg  # noqa: E402
 import hg_config  # noqa: E402
 import hg_csv  # noqa: E402
+import hg_cli  # noqa: E402
 import hg_output  # noqa: E402
 import hg_program  # noqa: E402
 
@@ -326,7 +326,7 @@ def beyond_ferror(m, peaks):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="hexaglide tune --plant serial", description=__doc__.split("\n\n")[0])
+    ap = hg_cli.Parser(prog="hexaglide tune --plant serial", description=__doc__.split("\n\n")[0])
     ap.add_argument("--plant", default="serial")
     ap.add_argument("--model", help="the axes (default: the INI's [TRAJ]COORDINATES)")
     ap.add_argument("--ini", required=True, help="the config: [JOINT_N] gains and scales, [SERIAL] the machine")
@@ -411,8 +411,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main())
-    except hg_output.OutputError as ex:
-        log(ex)
-        sys.exit(1)
+    hg_cli.run(main, log, (hg_output.OutputError,))

@@ -82,6 +82,7 @@ int cmd_config(int argc, char **argv)
     cli_args a;
     cli_ini ini;
     hg_plant_params p;
+    hg_board_params bp;
     hg_loop_config c;
     cli_ferror_rule rule[HG_LOOP_JOINTS];
     char default_ini[4096], *sets[argc > 0 ? argc : 1], buf[1 << 15];
@@ -196,13 +197,18 @@ int cmd_config(int argc, char **argv)
     bad |= i < 0;
     if (i == 0)
         fprintf(out, "servo_period_ns %ld\n", servo_ns);
+    cli_board_defaults(plant, variant, &bp);   /* the machine as the board integrates it at the config's period */
+    bp.plant = p;
+    if (i >= 0 && !bad && cli_board_integrable("config", plant, variant, &bp, i == 0 ? servo_ns : 1000000L))
+        bad = 2;                       /* the machine, from the INI's [HEXAGLIDE] and the --set values */
     cli_ini_free(&ini);
     if (fclose(out) || strlen(buf) >= sizeof buf - 1) {
         fprintf(stderr, "hexaglide config: the output does not fit %zu bytes\n", sizeof buf);
         return 1;
     }
     if (bad) {
-        fprintf(stderr, "hexaglide config: fix %s (or give another with --ini)\n", path);
+        if (bad == 1)
+            fprintf(stderr, "hexaglide config: fix %s (or give another with --ini)\n", path);
         return 2;
     }
     fputs(buf, stdout);
