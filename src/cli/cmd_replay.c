@@ -913,12 +913,17 @@ int cmd_replay(int argc, char **argv)
             col_fp = col[i];
     }
     if (closed && !has_cmd) {
-        fprintf(stderr, "hexaglide replay: %s has no column joint.0.motor-pos-cmd (recorded by an older "
-                "tools/hg_record.py?): the closed-loop what-if runs the pid loops on motion's joint "
-                "commands; record again, or give --open-loop\n", o.file);
+        char how[64];
+        if (hg_record_meta_get(&r, "closed-loop", how, sizeof how) && strncmp(how, "no", 2) == 0)
+            fprintf(stderr, "hexaglide replay: %s is an open-loop run (header '# closed-loop %s'): no pid "
+                    "loops and no joint commands to run a closed-loop what-if on; give --open-loop\n", o.file, how);
+        else
+            fprintf(stderr, "hexaglide replay: %s has no column joint.0.motor-pos-cmd (recorded by an older "
+                    "tools/hg_record.py?): the closed-loop what-if runs the pid loops on motion's joint "
+                    "commands; record again, or give --open-loop\n", o.file);
         free(buf);
         free(ev);
-        return 1;
+        return 2;
     }
     if (closed && loop_config(&r, o.file, cols.cmd, nj, &lc)) {
         free(buf);
