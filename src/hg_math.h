@@ -11,8 +11,4 @@
 #else
 #include <math.h>
 #endif
-/* pi for a strict ISO C build (-std=c99 defines no M_PI; the FMU's sources are built by importers) */
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
 #endif

@@ -433,6 +433,9 @@ class Printer(C99CodePrinter):
     def _print_Rational(self, e):
         return "%d.0/%d.0" % (e.p, e.q)
 
+    def _print_Pi(self, e):
+        return "HG_PI"                 # the project's pi (hg_units.h): strict C99 has no M_PI
+
 
 class Hoister:
     """Replace parameter-only subexpressions by constants k[i]."""
@@ -619,7 +622,7 @@ def write_unit(unit, outdir):
         h.append(proto + ";")
     h += ["", "#endif", ""]
     c = [stamp(sp.__version__), '#include "hg_math.h"  /* rtapi_math.h in realtime builds */',
-         '#include "hg_errors.h"',
+         '#include "hg_errors.h"', '#include "hg_units.h"',
          '#include "%s.h"' % unit.name, ""]
     c += unit.data
     c.append("void %s_init(const hg_params *p, double *k)" % unit.name)

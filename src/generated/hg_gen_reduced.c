@@ -3,6 +3,7 @@
 
 #include "hg_math.h"  /* rtapi_math.h in realtime builds */
 #include "hg_errors.h"
+#include "hg_units.h"
 #include "hg_gen_reduced.h"
 
 void hg_gen_reduced_init(const hg_params *p, double *k)
@@ -28,7 +29,7 @@ void hg_gen_reduced_init(const hg_params *p, double *k)
     const double c18 = 1.0/(c5);
     const double c19 = c18*c7;
     const double c20 = c18*p->i_bar_kgm2;
-    const double c21 = c20 + 4*(M_PI*M_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
+    const double c21 = c20 + 4*(HG_PI*HG_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
     const double c22 = c20 - 1.0/2.0*p->m_bar_kg;
     const double c23 = c18*c4 + p->m_head_kg;
     const double c24 = p->g_mps2*((1.0/2.0)*p->m_bar_kg + p->m_carriage_kg);

@@ -3,6 +3,7 @@
 
 #include "hg_math.h"  /* rtapi_math.h in realtime builds */
 #include "hg_errors.h"
+#include "hg_units.h"
 #include "hg_gen_regressor.h"
 
 const char *const hg_gen_regressor_names[HG_GEN_REGRESSOR_NPAR] = {
@@ -656,10 +657,10 @@ void hg_gen_regressor_spec(const hg_params *p, double pi[HG_GEN_REGRESSOR_NPAR])
     pi[9] = 0;
     pi[10] = 2*p->i_bar_kgm2/(p->geo.l_m*p->geo.l_m) - 1.0/2.0*p->m_bar_kg;
     pi[11] = -4*p->i_bar_kgm2/(p->geo.l_m*p->geo.l_m) + 2*p->m_bar_kg;
-    pi[12] = 4*(M_PI*M_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
-    pi[13] = 4*(M_PI*M_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
-    pi[14] = 4*(M_PI*M_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
-    pi[15] = 4*(M_PI*M_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
-    pi[16] = 4*(M_PI*M_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
-    pi[17] = 4*(M_PI*M_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
+    pi[12] = 4*(HG_PI*HG_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
+    pi[13] = 4*(HG_PI*HG_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
+    pi[14] = 4*(HG_PI*HG_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
+    pi[15] = 4*(HG_PI*HG_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
+    pi[16] = 4*(HG_PI*HG_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
+    pi[17] = 4*(HG_PI*HG_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m) + p->m_carriage_kg;
 }

@@ -3,6 +3,7 @@
 
 #include "hg_math.h"  /* rtapi_math.h in realtime builds */
 #include "hg_errors.h"
+#include "hg_units.h"
 #include "hg_gen_standard.h"
 
 void hg_gen_standard_init(const hg_params *p, double *k)
@@ -17,7 +18,7 @@ void hg_gen_standard_init(const hg_params *p, double *k)
     const double c7 = (1.0/2.0)*c4*p->geo.lp_m + (1.0/2.0)*p->geo.e_m;
     const double c8 = -c4*p->geo.lb_m + p->geo.e_m;
     const double c9 = (1.0/2.0)*c4*p->geo.lb_m + (1.0/2.0)*p->geo.e_m;
-    k[0] = c0 + 4*(M_PI*M_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m);
+    k[0] = c0 + 4*(HG_PI*HG_PI)*p->j_rotor_kgm2/(p->lead_m*p->lead_m);
     k[1] = c1;
     k[2] = p->i_bar_kgm2;
     k[3] = p->m_head_kg;
