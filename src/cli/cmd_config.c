@@ -88,7 +88,7 @@ int cmd_config(int argc, char **argv)
     char default_ini[4096], *sets[argc > 0 ? argc : 1], buf[1 << 15];
     const char *path = 0, *v, *model = 0;
     int plant = 0, variant, joints;
-    int o, nset = 0, loop = 0, bad = 0, i, j, n;
+    int o, nset = 0, loop = 0, bad = 0, stiff = 0, i, j, n;
     long servo_ns;
     FILE *out;
     cli_args_init(&a, "config", cli_usage_config, config_opts, argc, argv);
@@ -199,18 +199,17 @@ int cmd_config(int argc, char **argv)
         fprintf(out, "servo_period_ns %ld\n", servo_ns);
     cli_board_defaults(plant, variant, &bp);   /* the machine as the board integrates it at the config's period */
     bp.plant = p;
-    if (i >= 0 && !bad && cli_board_integrable("config", plant, variant, &bp, i == 0 ? servo_ns : 1000000L))
-        bad = 2;                       /* the machine, from the INI's [HEXAGLIDE] and the --set values */
+    if (i >= 0 && !bad)                /* the machine, from the INI's [HEXAGLIDE] and the --set values */
+        stiff = cli_board_integrable("config", plant, variant, &bp, i == 0 ? servo_ns : 1000000L);
     cli_ini_free(&ini);
     if (fclose(out) || strlen(buf) >= sizeof buf - 1) {
         fprintf(stderr, "hexaglide config: the output does not fit %zu bytes\n", sizeof buf);
         return 1;
     }
-    if (bad) {
-        if (bad == 1)
-            fprintf(stderr, "hexaglide config: fix %s (or give another with --ini)\n", path);
+    if (bad)
+        fprintf(stderr, "hexaglide config: fix %s (or give another with --ini)\n", path);
+    if (bad || stiff)
         return 2;
-    }
     fputs(buf, stdout);
     return 0;
 }
