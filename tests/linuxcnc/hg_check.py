@@ -94,14 +94,14 @@ def serial_home_checks(r, ini, joints):
     for j in joints:
         sj = serial_joint(ini, j)
         h = r.get("home", {}).get(str(j), {})
-        u, cu = ("deg", 1.0) if sj["rotary"] else ("mm", 25.4)
+        u = "deg" if sj["rotary"] else "mm"
         tol = sj["count"] * sj["unit"]
         check(h.get("homed") and abs(h.get("plant_motor_pos_mm", 99) - sj["home"]) < 8 * tol
               and abs(h.get("plant_pos_mm", 99) - sj["home"]) < 16 * tol,
               "joint %d homed in %.1f s (switch, latch, index): the machine at %.5f %s (motor %.5f), index %.3f %s, "
               "home %.4f %s" % (j, h.get("seconds", 0), h.get("plant_pos_mm", 99), u, h.get("plant_motor_pos_mm", 99),
                                 sj["index"], u, sj["home"], u))
-        fb = h.get("joint_pos_fb_in", 99) * cu
+        fb = h.get("joint_pos_fb_in", 99) * sj["unit"]
         check(abs(fb - (h.get("plant_motor_pos_mm", 99) - sj["index"])) <= 2 * tol,
               "joint %d: motor-pos-fb %.5f %s = the motor's %.5f %s from the index (2 counts, %.2g %s each): the "
               "encoder zeroed at the index" % (j, fb, u, h.get("plant_motor_pos_mm", 99) - sj["index"], u, tol, u))
