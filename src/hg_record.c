@@ -5,6 +5,7 @@
 #include "hg_math.h"
 #include "hg_string.h"
 #include "hg_record.h"
+#include "hg_text.h"
 
 #define NUMBER_MAX 64                 /* longest number field: %.17g and hex floats need < 30 */
 
@@ -305,11 +306,10 @@ int hg_record_meta_get(const hg_record *r, const char *key, char *out, size_t si
     return 0;
 }
 
-/* 1 if c may appear in a number (decimal or hex float). */
+/* 1 if c may appear in a decimal number (hg_text_is_decimal: no hex float). */
 static int number_char(char c)
 {
-    return (c >= '0' && c <= '9') || c == '+' || c == '-' || c == '.' || c == 'x' || c == 'X' ||
-           c == 'p' || c == 'P' || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+    return (c >= '0' && c <= '9') || c == '+' || c == '-' || c == '.' || c == 'e' || c == 'E';
 }
 
 /* Field s[0..n) as a finite double of the column's kind into *v. */
@@ -343,7 +343,7 @@ static int parse_number(hg_record *r, const char *s, size_t n, long column, int 
     tmp[n] = '\0';
     errno = 0;
     x = strtod(tmp, &end);
-    if (end != tmp + n) {
+    if (end != tmp + n || !hg_text_is_decimal(tmp, n)) {   /* (the tools' one syntax: hg_text.h) */
         snprintf(text, sizeof text, "'%s' is not a number; the row is damaged, record again "
                  "(or fix this field)", ex);
         return fail(r, e, HG_REC_ERR_NUMBER, r->line, column + (long)(end - tmp), field, text);

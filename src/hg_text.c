@@ -103,3 +103,45 @@ char *hg_text_add_value(char *buf, unsigned long len, double v)
     hg_text_value(t, v);
     return hg_text_add(buf, len, t);
 }
+
+int hg_text_is_decimal(const char *s, unsigned long n)
+{
+    unsigned long i = 0, digits = 0;
+    if (i < n && (s[i] == '+' || s[i] == '-'))
+        i++;
+    for (; i < n && s[i] >= '0' && s[i] <= '9'; i++)
+        digits++;
+    if (i < n && s[i] == '.')
+        for (i++; i < n && s[i] >= '0' && s[i] <= '9'; i++)
+            digits++;
+    if (!digits)
+        return 0;
+    if (i < n && (s[i] == 'e' || s[i] == 'E')) {
+        unsigned long e0;
+        i++;
+        if (i < n && (s[i] == '+' || s[i] == '-'))
+            i++;
+        for (e0 = i; i < n && s[i] >= '0' && s[i] <= '9'; i++)
+            ;
+        if (i == e0)
+            return 0;
+    }
+    return i == n;
+}
+
+/* 1 if s[0..n) is word (lower case) in any case. */
+static int is_word(const char *s, unsigned long n, const char *word)
+{
+    unsigned long i;
+    for (i = 0; i < n && word[i]; i++)
+        if ((s[i] | 0x20) != word[i])
+            return 0;
+    return i == n && !word[i];
+}
+
+int hg_text_is_nonfinite_word(const char *s, unsigned long n)
+{
+    if (n && (s[0] == '+' || s[0] == '-'))
+        s++, n--;
+    return is_word(s, n, "nan") || is_word(s, n, "inf") || is_word(s, n, "infinity");
+}

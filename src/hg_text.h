@@ -16,4 +16,14 @@ char *hg_text_add(char *buf, unsigned long len, const char *s);
 /* Append v as hg_text_value writes it; returns buf. */
 char *hg_text_add_value(char *buf, unsigned long len, double v);
 
+/* 1 if s[0..n) is a decimal number as every tool of the project reads one (the C
+ * options, INI values and records, tools/hg_csv.py's number()): a sign, ASCII digits
+ * with at most one '.', an exponent e[+-]digits; nothing else, no spaces. C99's
+ * hexadecimal floats ("0x1p3", which strtod takes) and the words nan, inf, infinity
+ * are not decimal numbers (hg_text_is_nonfinite_word: which callers say are not finite). */
+int hg_text_is_decimal(const char *s, unsigned long n);
+
+/* 1 if s[0..n) is [+-]nan, inf or infinity in any case (Python's float() takes them). */
+int hg_text_is_nonfinite_word(const char *s, unsigned long n);
+
 #endif

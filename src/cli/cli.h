@@ -84,9 +84,14 @@ void cli_args_init(cli_args *a, const char *cmd, const char *usage, const cli_op
  * naming both values (nothing is silently the last one). */
 int cli_next(cli_args *a, const char **value);
 
-/* text as a finite double: 0, 1 (not a number: empty, trailing text) or
- * 2 (not finite: nan, inf, overflow); *out set only on 0. No message. */
+/* text as a finite double: 0, 1 (not a number: empty, trailing text), 2 (not
+ * finite: nan, inf, infinity, overflow) or 3 (a C99 hexadecimal float, "0x1p3":
+ * refused as tools/hg_csv.py refuses it); *out set only on 0. No message. The
+ * syntax is hg_text_is_decimal's (src/hg_text.h), the records' too. */
 int cli_strtod(const char *text, double *out);
+
+/* What to add to "is not a number" for cli_strtod's code rc ("" or a hint). */
+const char *cli_strtod_hint(int rc);
 
 /* Parse a finite double; 0 on success, -1 (and a message "hexaglide CMD: WHAT: ...") otherwise. */
 int cli_parse_double(const char *cmd, const char *text, const char *what, double *out);

@@ -263,9 +263,10 @@ int cli_ini_number(const char *cmd, const cli_ini *ini, const cli_ini_entry *e, 
                 e->section, e->key);
         return -1;
     }
-    if (cli_strtod(e->value, v)) {
-        fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s = '%s' is not a finite number%s\n", cmd, ini->path,
-                e->line, e->section, e->key, e->value,
+    int rc = cli_strtod(e->value, v);
+    if (rc) {
+        fprintf(stderr, "hexaglide %s: %s line %d: [%s]%s = '%s' is not a finite number%s%s\n", cmd, ini->path,
+                e->line, e->section, e->key, e->value, cli_strtod_hint(rc),
                 strpbrk(e->value, "#;") ? " (LinuxCNC takes everything after '=' as the value: put comments "
                                           "on their own line)" : "");
         return -1;

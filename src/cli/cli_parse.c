@@ -94,16 +94,26 @@ int cli_next(cli_args *a, const char **value)
 
 int cli_strtod(const char *text, double *out)
 {
-    char *end = 0;
     double v;
+    while (*text == ' ' || *text == '\t')   /* (as strtod, and hg_csv.number) */
+        text++;
+    if (hg_text_is_nonfinite_word(text, strlen(text)))
+        return 2;
+    if (!hg_text_is_decimal(text, strlen(text))) {  /* the one rule: no hex float, no "nan(...)" */
+        const char *p = text + (text[0] == '+' || text[0] == '-');
+        return p[0] == '0' && (p[1] == 'x' || p[1] == 'X') ? 3 : 1;
+    }
     errno = 0;
-    v = strtod(text, &end);
-    if (end == text || *end != '\0')
-        return 1;
+    v = strtod(text, 0);
     if (!isfinite(v) || (errno == ERANGE && fabs(v) > 1.0)) /* overflow; underflow to a denormal or 0 is a number */
         return 2;
     *out = v;
     return 0;
+}
+
+const char *cli_strtod_hint(int rc)
+{
+    return rc == 3 ? " (hexadecimal is not read: give it in decimal)" : "";
 }
 
 const char *cli_num(double v, char buf[CLI_NUM_LEN])
@@ -122,7 +132,8 @@ int cli_parse_double(const char *cmd, const char *text, const char *what, double
 {
     int rc = cli_strtod(text, out);
     if (rc)
-        fprintf(stderr, "hexaglide %s: %s: '%s' is not a %snumber\n", cmd, what, text, rc == 2 ? "finite " : "");
+        fprintf(stderr, "hexaglide %s: %s: '%s' is not a %snumber%s\n", cmd, what, text, rc == 2 ? "finite " : "",
+                cli_strtod_hint(rc));
     return rc ? -1 : 0;
 }
 

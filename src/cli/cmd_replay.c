@@ -431,7 +431,7 @@ static int run_plot(const char *csv, const char *png, long from, long to)
  * a message saying what is missing and what to do. */
 static int loop_config(const hg_record *r, const char *file, const int *col_cmd, int nj, hg_loop_config *c)
 {
-    char key[96], val[96], *end;
+    char key[96], val[96];
     int k, i, nset = 0;
     while (hg_pid_setting_at(nset))
         nset++;
@@ -465,9 +465,7 @@ static int loop_config(const hg_record *r, const char *file, const int *col_cmd,
                         file, key);
                 return 1;
             }
-            errno = 0;
-            v = strtod(val, &end);
-            if (end == val || *end || errno || !isfinite(v)) {
+            if (cli_strtod(val, &v)) {
                 fprintf(stderr, "hexaglide replay: %s: '# %s %s': not a finite number; the pid "
                         "setting is damaged (LinuxCNC had it non-finite?); fix the line, or give "
                         "--open-loop\n", file, key, val);
