@@ -25,7 +25,17 @@
  *   hexaglidekins.tool-offset        float in the tool length offset (machine units; net it to
  *                                    motion.tooloffset.z): X Y Z are the tool tip's, tool-offset
  *                                    along the head's axis below Op, at any tilt (RTCP,
- *                                    hg_pose_offset_to_op); 0 (default): Op's */
+ *                                    hg_pose_offset_to_op); 0 (default): Op's
+ * Switchable kinematics (LinuxCNC's switchkins, motion.switchkins-type):
+ *   type 0 (default) the Hexaglide's, type 1 identity (joint n is world X Y Z
+ *   A B C's n-th: one carriage at a time in world mode); type 2 is refused.
+ *   The Hexaglide's forward kinematics keeps solving under identity, so the
+ *   head's pose stays known and the way back to type 0 starts from it.
+ *   kinstype.is-0 .is-1 .is-2        bit out  the type in force (switchkins' names)
+ *   skgui.x .y .z .a .b .c           float out the head's pose by the Hexaglide's
+ *                                    kinematics whatever the type (for a vismach GUI)
+ * Module parameter coordinates: XYZABC (any case) or left out; the Hexaglide
+ *   needs all six in that order. */
 #include "rtapi.h"
 #include "rtapi_app.h"
 #include "rtapi_math.h"
@@ -64,10 +74,16 @@ typedef struct {
     hal_float_t checked[HG_PARAMS_MAX];            /* the geometry last checked (as geo) ... */
     int checked_rc, checked_valid;                 /* ... its result; 0: check again */
     hg_fk_session fk;                              /* the settings in force, what was refused, failing */
+    hg_kins_switch kins;                           /* the kinematics type in force */
+    EmcPose head;                                  /* the head by the Hexaglide's kinematics, last answer */
+    hal_bit_t *kinstype_is[3];                     /* kinstype.is-0 .. is-2 */
+    hal_float_t *gui[6];                           /* skgui.x .. skgui.c: head */
 } hexaglidekins_hal;
 
 static hexaglidekins_hal *hd; /* the module's one instance, in HAL shared memory */
 static int comp_id;
+static char *coordinates = "";
+RTAPI_MP_STRING(coordinates, "XYZABC (any case) or left out: the world coordinates, in joint order");
 
 /* Geometry from the HAL parameters (HAL units -> SI); HG_ERR_BAD_PARAM,
  * reported once on the RTAPI log, when the user set an impossible one. */
@@ -188,17 +204,16 @@ static void pose_to_emc(const double pose[6], double mpu, EmcPose *pos)
     pos->u = pos->v = pos->w = 0.0;
 }
 
-int kinematicsForward(const double *joints, EmcPose *pos,
-                      const KINEMATICS_FORWARD_FLAGS *fflags,
-                      KINEMATICS_INVERSE_FLAGS *iflags)
+/* The Hexaglide's forward kinematics of joints from the guess *pos into
+ * *pos, its pins and messages: 0, or the hg_error code (then *pos is the
+ * last pose solved). */
+static int hexaglide_forward(const double *joints, EmcPose *pos)
 {
     hg_geometry g;
     hg_fk_report rep = {0, 0.0};
     double z[6], commanded[6], pose[6], d_m = hd->tool.in_force_m;
     double mpu = mm_per_unit();
     int rc, say;
-    (void)fflags;
-    (void)iflags;
     pose_from_emc(pos, mpu, commanded);
     hg_joints_from_machine(joints, mpu, z);
     fk_settings();
@@ -231,6 +246,46 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     return rc;
 }
 
+/* Identity: world X Y Z A B C are joints 0..5 (machine units, as given). */
+static void identity_forward(const double *joints, EmcPose *pos)
+{
+    pos->tran.x = joints[0]; pos->tran.y = joints[1]; pos->tran.z = joints[2];
+    pos->a = joints[3]; pos->b = joints[4]; pos->c = joints[5];
+    pos->u = pos->v = pos->w = 0.0;
+}
+
+/* The head's pose into skgui.*. */
+static void gui_pins(void)
+{
+    const double v[6] = {hd->head.tran.x, hd->head.tran.y, hd->head.tran.z, hd->head.a, hd->head.b, hd->head.c};
+    int i;
+    for (i = 0; i < 6; i++)
+        *hd->gui[i] = v[i];
+}
+
+int kinematicsForward(const double *joints, EmcPose *pos,
+                      const KINEMATICS_FORWARD_FLAGS *fflags,
+                      KINEMATICS_INVERSE_FLAGS *iflags)
+{
+    int rc;
+    (void)fflags;
+    (void)iflags;
+    if (hd->kins.type == HG_KINS_IDENTITY) {
+        hexaglide_forward(joints, &hd->head);  /* tracked; its failure is on fk-error, not identity's */
+        identity_forward(joints, pos);
+        gui_pins();
+        return 0;
+    }
+    if (hd->kins.restart) {                    /* back from identity: motion's guess is identity's world */
+        *pos = hd->head;
+        hd->kins.restart = 0;
+    }
+    rc = hexaglide_forward(joints, pos);
+    hd->head = *pos;
+    gui_pins();
+    return rc;
+}
+
 int kinematicsInverse(const EmcPose *pos, double *joints,
                       const KINEMATICS_INVERSE_FLAGS *iflags,
                       KINEMATICS_FORWARD_FLAGS *fflags)
@@ -241,6 +296,12 @@ int kinematicsInverse(const EmcPose *pos, double *joints,
     int rc;
     (void)iflags;
     (void)fflags;
+    if (hd->kins.type == HG_KINS_IDENTITY) {
+        const double world[6] = {pos->tran.x, pos->tran.y, pos->tran.z, pos->a, pos->b, pos->c};
+        memcpy(joints, world, sizeof world);
+        *hd->ik_error = 0;
+        return 0;
+    }
     pose_from_emc(pos, mpu, commanded);
     rc = current_geometry(&g);
     if (rc == 0)
@@ -260,6 +321,26 @@ int kinematicsInverse(const EmcPose *pos, double *joints,
 KINEMATICS_TYPE kinematicsType(void)
 {
     return KINEMATICS_BOTH;
+}
+
+int kinematicsSwitchable(void)
+{
+    return 1;
+}
+
+/* motion.switchkins-type changed (motion aborts on -1). */
+int kinematicsSwitch(int type)
+{
+    int i;
+    if (hg_kins_switch_to(&hd->kins, type)) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: there is no kinematics type %d (motion.switchkins-type): "
+                        "0 is the Hexaglide's, 1 identity (joint n is X Y Z A B C's n-th); type %d stays in "
+                        "force\n", type, hd->kins.type);
+        return -1;
+    }
+    for (i = 0; i < 3; i++)
+        *hd->kinstype_is[i] = (i == hd->kins.type);
+    return 0;
 }
 
 /* Export the pins and parameters with the spec's defaults. */
@@ -285,6 +366,10 @@ static int export_hal(void)
     r |= hal_pin_s32_newf(HAL_OUT, &hd->ik_error, comp_id, "hexaglidekins.ik-error");
     r |= hal_pin_u32_newf(HAL_IN, &hd->board_geometry, comp_id, "hexaglidekins.board-geometry");
     r |= hal_pin_float_newf(HAL_IN, &hd->tool_offset, comp_id, "hexaglidekins.tool-offset");
+    for (i = 0; i < 3; i++)
+        r |= hal_pin_bit_newf(HAL_OUT, &hd->kinstype_is[i], comp_id, "kinstype.is-%d", i);
+    for (i = 0; i < 6; i++)
+        r |= hal_pin_float_newf(HAL_OUT, &hd->gui[i], comp_id, "skgui.%c", "xyzabc"[i]);
     if (r)
         return r;
     hg_fk_session_init(&hd->fk);
@@ -302,11 +387,20 @@ static int export_hal(void)
     *hd->tool_offset = 0.0;
     hg_tool_offset_init(&hd->tool);
     hd->mismatch_calls = 0;
+    memset(&hd->head, 0, sizeof hd->head);     /* HOME: X Y Z A B C = 0 */
+    hg_kins_switch_init(&hd->kins);
+    kinematicsSwitch(hd->kins.type);
+    gui_pins();
     return 0;
 }
 
 int rtapi_app_main(void)
 {
+    if (!hg_kins_coordinates_ok(coordinates)) {
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: coordinates=%s: the Hexaglide's joints are X Y Z A B C "
+                        "in that order; give coordinates=XYZABC or leave it out\n", coordinates);
+        return -1;
+    }
     comp_id = hal_init("hexaglidekins");
     if (comp_id < 0)
         return comp_id;
@@ -330,7 +424,8 @@ void rtapi_app_exit(void)
     hal_exit(comp_id);
 }
 
-KINS_NOT_SWITCHABLE
+EXPORT_SYMBOL(kinematicsSwitchable);
+EXPORT_SYMBOL(kinematicsSwitch);
 EXPORT_SYMBOL(kinematicsType);
 EXPORT_SYMBOL(kinematicsForward);
 EXPORT_SYMBOL(kinematicsInverse);

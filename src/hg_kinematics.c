@@ -185,6 +185,33 @@ double hg_tool_offset_jump(const double commanded[6], double from_m, double to_m
     return sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
 }
 
+int hg_kins_coordinates_ok(const char *coordinates)
+{
+    static const char order[] = "XYZABC";
+    int i;
+    if (!coordinates || !coordinates[0])
+        return 1;
+    for (i = 0; order[i]; i++)
+        if (coordinates[i] != order[i] && coordinates[i] != order[i] - 'A' + 'a')
+            return 0;
+    return coordinates[i] == 0;
+}
+
+void hg_kins_switch_init(hg_kins_switch *s)
+{
+    s->type = HG_KINS_HEXAGLIDE;
+    s->restart = 0;
+}
+
+int hg_kins_switch_to(hg_kins_switch *s, int type)
+{
+    if (type != HG_KINS_HEXAGLIDE && type != HG_KINS_IDENTITY)
+        return HG_ERR_BAD_PARAM;
+    s->restart = s->restart || (type == HG_KINS_HEXAGLIDE && s->type != HG_KINS_HEXAGLIDE);
+    s->type = type;
+    return HG_OK;
+}
+
 void hg_tool_offset_init(hg_tool_offset_setting *t)
 {
     memset(t, 0, sizeof *t);

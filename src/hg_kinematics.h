@@ -133,6 +133,33 @@ void hg_pose_to_machine(const double pose[6], double mm_per_unit, double user[6]
 void hg_joints_from_machine(const double joints[6], double mm_per_unit, double z[6]);
 void hg_joints_to_machine(const double z[6], double mm_per_unit, double joints[6]);
 
+/* LinuxCNC's switchable kinematics (switchkins.h, motion.switchkins-type):
+ * hexaglidekins has the Hexaglide's kinematics (type 0, the default) and
+ * identity (type 1: world X Y Z A B C are joints 0..5 as they are, to move
+ * one carriage at a time in world mode, as genhexkins' type 1). Type 2,
+ * a user template in LinuxCNC's switchkins modules, it has not. */
+enum { HG_KINS_HEXAGLIDE = 0, HG_KINS_IDENTITY = 1 };
+
+/* The type in force and whether the next Hexaglide forward call must
+ * start from the pose tracked while another type was in force (motion's
+ * guess at a switch is that type's world, not a Hexaglide pose). */
+typedef struct {
+    int type;                  /* HG_KINS_HEXAGLIDE or HG_KINS_IDENTITY */
+    int restart;               /* 1: the next Hexaglide forward starts from the tracked pose */
+} hg_kins_switch;
+
+/* 1 when a kinematics module's coordinates parameter suits the Hexaglide:
+ * left out (0 or "") or XYZABC in any case, its joints' order; else 0. */
+int hg_kins_coordinates_ok(const char *coordinates);
+
+/* Type HG_KINS_HEXAGLIDE, no restart. */
+void hg_kins_switch_init(hg_kins_switch *s);
+
+/* Switch to type: HG_OK (restart set when the Hexaglide's kinematics come
+ * back from identity), or HG_ERR_BAD_PARAM for a type hexaglidekins does not
+ * have, the type in force kept. */
+int hg_kins_switch_to(hg_kins_switch *s, int type);
+
 /* Base point of guide k at height 0: Rz(alpha_i)(lb, s_j e, 0). */
 void hg_guide_point(const hg_geometry *g, int k, double out[3]);
 

@@ -710,6 +710,32 @@ static void test_tool_offset(const hg_params *p)
     }
 }
 
+/* LinuxCNC's switchable kinematics: types 0 and 1 are taken, any other
+ * refused with the type in force kept; coming back to the Hexaglide's from
+ * identity (only then) restarts its forward solve from the tracked pose;
+ * the coordinates parameter is XYZABC in any case or nothing. */
+static void test_kins_switch(void)
+{
+    hg_kins_switch s;
+    const int bad[] = {2, 3, -1, 1000};
+    int k, kept = 1;
+    hg_kins_switch_init(&s);
+    CHECK(s.type == HG_KINS_HEXAGLIDE && !s.restart, "starts with the Hexaglide's kinematics (type 0)");
+    CHECK(hg_kins_switch_to(&s, 0) == HG_OK && !s.restart, "type 0 again: no restart");
+    CHECK(hg_kins_switch_to(&s, 1) == HG_OK && s.type == HG_KINS_IDENTITY && !s.restart, "type 1: identity");
+    for (k = 0; k < 4; k++)
+        kept &= hg_kins_switch_to(&s, bad[k]) == HG_ERR_BAD_PARAM && s.type == HG_KINS_IDENTITY;
+    CHECK(kept, "types 2, 3, -1, 1000 refused, identity kept");
+    CHECK(hg_kins_switch_to(&s, 0) == HG_OK && s.type == HG_KINS_HEXAGLIDE && s.restart,
+          "back to type 0 from identity: restart from the tracked pose");
+    CHECK(hg_kins_coordinates_ok(0) && hg_kins_coordinates_ok("") && hg_kins_coordinates_ok("XYZABC") &&
+              hg_kins_coordinates_ok("xyzabc") && hg_kins_coordinates_ok("XyZaBc"),
+          "coordinates: left out, XYZABC in any case");
+    CHECK(!hg_kins_coordinates_ok("XYZAB") && !hg_kins_coordinates_ok("XYZABCU") &&
+              !hg_kins_coordinates_ok("YXZABC") && !hg_kins_coordinates_ok("XYZ"),
+          "coordinates: fewer, more or other letters refused");
+}
+
 int main(void)
 {
     hg_params p, wide;
@@ -734,5 +760,6 @@ int main(void)
     test_fk_session_solve(&p);
     test_machine_units();
     test_tool_offset(&p);
+    test_kins_switch();
     return hg_test_exit();
 }
