@@ -407,7 +407,7 @@ def unused_options(a, given):
             raise ValueError("--output %s with --dither and no --trains: --dither alone writes only the dither's "
                              "HAL snippet (%s), no G-code, so --output would not be written; add --trains for the "
                              "trains' program (the dither goes with it), or design the Fourier program in a run "
-                             "without --dither" % (a.output, a.dither))
+                             "without --dither" % (a.output or hg_output.STDOUT, a.dither))
         for d in FOURIER_OPTS + TRAINS_OPTS + ("margin",):
             if d in given:
                 raise ValueError("%s: not used by --dither alone, which writes only the dither's HAL snippet (no "
@@ -456,7 +456,7 @@ def main(argv=None):
     ap.add_argument("--ini", default=os.path.join(ROOT, "configs", "hexaglide.ini"),
                     help="config with the [AXIS_*] and [JOINT_N] limits and the [HEXAGLIDE] geometry "
                     "(default configs/hexaglide.ini)")
-    ap.add_argument("--output", help="write the G-code here (default: stdout)")
+    ap.add_argument("--output", help="write the G-code here (default, and -: stdout)")
     r = RANGES
     ap.add_argument("--period", type=hg_csv.number, default=8.0, help="period of the series, s, in (0, %g] (default 8)"
                     % r["--period"][1])
@@ -501,8 +501,11 @@ def main(argv=None):
     a.argv = argv
     ap.set_defaults(**{d: None for d in vars(a) if d != "argv"})     # the options given on the command line
     given = {d for d, v in vars(ap.parse_args(argv)).items() if v is not None}   # (abbreviated or not)
+    if a.output == hg_output.STDOUT:        # the program on standard output, as without --output
+        a.output = None
     try:
         unused_options(a, given)
+        hg_output.refuse_stdout([("--dither", a.dither)])
         for p in (a.output, a.dither):
             if p:
                 hg_output.check_writable(p)            # a missing or unwritable directory now, not after the design

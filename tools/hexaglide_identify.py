@@ -1690,6 +1690,7 @@ def main(argv=None):
         if not (a.cutoff > 0):
             raise BadInput("--cutoff must be positive (Hz)")
         # the outputs and the validation's commands now, not after the fit
+        hg_output.refuse_stdout([("--output", a.output), ("--plots", a.plots)])   # (the report is on stdout)
         hg_output.refuse_in_dir(("--output", a.output), ("--plots", a.plots),
                                 PLOT_NAMES + (VALIDATE_PLOT_NAMES if a.validate else ()))
         if a.plots and os.path.exists(a.plots) and not os.path.isdir(a.plots):

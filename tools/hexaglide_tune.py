@@ -1195,6 +1195,7 @@ def main(argv=None):
                     hg.loop_config(gains, ferror_limit_mm=ferror_limit)
             except ValueError as ex:
                 raise BadInput("%s: %s" % (what, ex))
+        hg_output.refuse_stdout([("--output", a.output), ("--plots", a.plots)])   # (the suggestion is on stdout)
         hg_output.refuse_in_dir(("--output", a.output), ("--plots", a.plots), PLOT_NAMES)
         if a.output:
             hg_output.check_writable(a.output)         # a missing or unwritable directory now, not after the search

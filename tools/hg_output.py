@@ -4,6 +4,8 @@ a path naming a symlink is its target's (the link stays a link); a regular
 file, or a new one, is written to a temporary beside it and renamed onto it
 when complete (never a half file); a FIFO or device that exists is written
 straight into; a directory, or a directory that does not exist, is an error.
+"-" is standard output (the Unix idiom, cli_out_is_stdout): never a file named "-"
+(./- names one); an output that cannot go to standard output refuses it.
 Every error is an OutputError naming the path and the cause.
 """
 import os
@@ -14,9 +16,24 @@ class OutputError(Exception):
     """An output that cannot be written: the message names the path and why."""
 
 
+STDOUT = "-"
+_NOT_STDOUT = "'-' is standard output, which %s is not written to; give a path (./- names one called '-')"
+
+
+def refuse_stdout(outputs):
+    """OutputError if an output ((option, path) pairs, None paths skipped) is "-", standard
+    output, which these outputs are not written to."""
+    for o, p in outputs:
+        if p == STDOUT:
+            raise OutputError("%s -: %s" % (o, _NOT_STDOUT % o))
+
+
 def target(path):
     """Where writing path goes: symlinks followed (a dangling one's target too).
-    OutputError for a directory or a missing directory."""
+    OutputError for "-" (refuse_stdout: an output a tool did not take as standard output),
+    a directory or a missing directory."""
+    if path == STDOUT:
+        raise OutputError("cannot write -: %s" % (_NOT_STDOUT % "this output"))
     p = path
     for _ in range(40):
         if not os.path.islink(p):

@@ -312,8 +312,17 @@ typedef struct {
     char tmp[4096];        /* target.tmp-PID while writing; "" when written straight */
 } cli_out;
 
+/* 1 if output path is standard output: 0 (a command's default) or "-" (the Unix idiom: no
+ * command writes a file named "-"; ./- names one). */
+int cli_out_is_stdout(const char *path);
+
+/* 0, or -1 after a message saying why, if the value of output option opt is "-" where a
+ * command cannot write that output to standard output (why: "the plot reads the CSV
+ * from a file"). */
+int cli_out_need_file(const char *cmd, const char *opt, const char *path, const char *why);
+
 /* Open path's temporary file, the path itself (not a regular file) or
- * stdout; 0, or -1 after a message. */
+ * stdout (cli_out_is_stdout); 0, or -1 after a message. */
 int cli_out_open(const char *cmd, const char *path, cli_out *o);
 
 /* Close; keep: rename onto the target, else remove. 0, or -1 after a
@@ -329,7 +338,7 @@ int cli_stdout_flush(const char *cmd);
  * (main, before any output). */
 void cli_stdout_init(void);
 
-/* 1 if outputs a and b would write the same file (symlinks followed). */
+/* 1 if outputs a and b would write the same file (symlinks followed), or both standard output. */
 int cli_out_same(const char *a, const char *b);
 
 /* 1, after saying so, if output out (of option opt) would overwrite the input in (of option

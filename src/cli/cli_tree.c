@@ -242,9 +242,23 @@ static const char *base_of(const char *path)
     return slash ? slash + 1 : path;
 }
 
+int cli_out_is_stdout(const char *path)
+{
+    return !path || strcmp(path, "-") == 0;
+}
+
+int cli_out_need_file(const char *cmd, const char *opt, const char *path, const char *why)
+{
+    if (!path || strcmp(path, "-") != 0)
+        return 0;
+    fprintf(stderr, "hexaglide %s: %s -: '-' is standard output, which %s cannot take (%s); give a file "
+            "(./- for one named '-')\n", cmd, opt, opt, why);
+    return -1;
+}
+
 int cli_out_is_input(const char *cmd, const char *opt, const char *out, const char *in_opt, const char *in)
 {
-    if (!out || !in || !cli_out_same(out, in))
+    if (cli_out_is_stdout(out) || !in || !cli_out_same(out, in))
         return 0;
     fprintf(stderr, "hexaglide %s: %s %s names the file the command reads (%s%s%s): it would be overwritten; "
             "give another file\n", cmd, opt, out, in_opt, in_opt[0] ? " " : "", in);
@@ -256,6 +270,8 @@ int cli_out_same(const char *a, const char *b)
     char ta[PATH_MAX], tb[PATH_MAX], da[PATH_MAX], db[PATH_MAX];
     struct stat sa, sb;
     int ea, eb;
+    if (cli_out_is_stdout(a) || cli_out_is_stdout(b))
+        return cli_out_is_stdout(a) && cli_out_is_stdout(b);
     if (out_target(a, ta, sizeof ta) || out_target(b, tb, sizeof tb))
         return 0;                      /* (opening it says why) */
     ea = stat(ta, &sa) == 0;
@@ -272,10 +288,10 @@ int cli_out_open(const char *cmd, const char *path, cli_out *o)
 {
     struct stat sb;
     int fd, direct;
-    o->path = path;
+    o->path = cli_out_is_stdout(path) ? 0 : path;
     o->tmp[0] = '\0';
     o->f = stdout;
-    if (!path)
+    if (!o->path)
         return 0;
     if (out_target(path, o->target, sizeof o->target)) {
         fprintf(stderr, "hexaglide %s: cannot write %s: %s\n", cmd, path, strerror(errno));

@@ -88,7 +88,8 @@ const char cli_usage_replay[] =
     "With them (what-if): the changed board under LinuxCNC's pid loops with the\n"
     "recorded gains, on the recorded joint commands (closed loop), or fed the\n"
     "recorded DAC volts (--open-loop); written to FILE.whatif.png.csv and\n"
-    "plotted to FILE.whatif.png unless --csv/--plot say otherwise; --set takes\n"
+    "plotted to FILE.whatif.png unless --csv/--plot say otherwise (--csv -: the CSV\n"
+    "to stdout, the report to stderr; not with --plot); --set takes\n"
     "the spec name and SI unit (hexaglide sim --list-params). Following-error\n"
     "statistics from --from SAMPLE (default: after the last index latch, homing).\n"
     "--spread K: K closed loops, the idle after homing stretched by 0, 7, ... periods\n"
@@ -117,6 +118,9 @@ static const cli_opt replay_options[] = {
     {"--csv", 1}, {"--plot", 1}, {"--set", CLI_REPEAT}, {"--model", 1}, {"--substeps", 1}, {"--integrator", 1},
     {"--from", 1}, {"--spread", 1}, {"--open-loop", 0}, {"--list-columns", 0}, {"--plant", 1}, {"--format", 1}, {0, 0},
 };
+
+/* Where the report goes: stdout, or stderr when the CSV is written to stdout (--csv -). */
+static FILE *report;
 
 /* An integer option in lo..hi; 0, or 2 after a message saying what to give. */
 static int int_opt(const char *name, const char *v, long lo, long hi, const char *give, long *out)
@@ -513,8 +517,8 @@ static int compare_row(const hg_board_rec_field *fld, int nf, const int *col, co
             st->max_pose_diff = d;
         if (st->first_mismatch < 0 && print_first) {
             if (!mismatch)
-                printf("first mismatch at sample %ld (line %ld):\n", n, line);
-            printf("  %-22s recorded %.17g  replayed %.17g  difference %.3g\n", fld[i].name, rec, rep,
+                fprintf(report, "first mismatch at sample %ld (line %ld):\n", n, line);
+            fprintf(report, "  %-22s recorded %.17g  replayed %.17g  difference %.3g\n", fld[i].name, rec, rep,
                    rep - rec);
         }
         mismatch = 1;
@@ -545,22 +549,22 @@ static void joint_report(const joint_stats *js, int nj, unsigned rotary, int wha
                          int auto_from)
 {
     int k;
-    printf("f-error window: samples %ld..%ld (%s), each joint while its amplifier is enabled\n", from, to,
+    fprintf(report, "f-error window: samples %ld..%ld (%s), each joint while its amplifier is enabled\n", from, to,
            auto_from ? "from the 2nd period after the last index latch: homing done" : "--from");
     for (k = 0; k < nj; k++) {
         const joint_stats *j = &js[k];
         double rms0 = j->n ? sqrt(j->sq[0] / (double)j->n) : 0.0, rms1 = j->n ? sqrt(j->sq[1] / (double)j->n) : 0.0;
         const char *u = cli_machine_unit_name(rotary, k);
         if (!whatif) {
-            printf("joint %d: peak |f-error| %.6f %s (sample %ld), RMS %.6f %s, peak volts %.4f V\n", k,
+            fprintf(report, "joint %d: peak |f-error| %.6f %s (sample %ld), RMS %.6f %s, peak volts %.4f V\n", k,
                    j->peak_mm[0], u, j->peak_at[0], rms0, u, j->peak_v[0]);
             continue;
         }
-        printf("joint %d: peak |f-error| recorded %.6f %s (sample %ld), predicted %.6f %s (sample %ld)",
+        fprintf(report, "joint %d: peak |f-error| recorded %.6f %s (sample %ld), predicted %.6f %s (sample %ld)",
                k, j->peak_mm[0], u, j->peak_at[0], j->peak_mm[1], u, j->peak_at[1]);
         if (j->peak_mm[0] > 0)
-            printf(" %+.1f%%", 100.0 * (j->peak_mm[1] / j->peak_mm[0] - 1.0));
-        printf("; RMS recorded %.6f, predicted %.6f %s; peak volts recorded %.4f, predicted %.4f V\n",
+            fprintf(report, " %+.1f%%", 100.0 * (j->peak_mm[1] / j->peak_mm[0] - 1.0));
+        fprintf(report, "; RMS recorded %.6f, predicted %.6f %s; peak volts recorded %.4f, predicted %.4f V\n",
                rms0, rms1, u, j->peak_v[0], j->peak_v[1]);
     }
 }
@@ -808,6 +812,10 @@ int cmd_replay(int argc, char **argv)
         return 2;
     }
     if (o.plant && cli_plant("replay", o.plant) < 0)
+        return 2;
+    report = cli_out_is_stdout(o.csv) && o.csv ? stderr : stdout;  /* stdout holds the CSV alone */
+    if (cli_out_need_file("replay", "--plot", o.plot, "the plot is a PNG file") ||
+        (o.plot && cli_out_need_file("replay", "--csv", o.csv, "with --plot: the plot reads the CSV from a file")))
         return 2;
     if (o.csv && o.plot && cli_out_same(o.csv, o.plot)) {
         fprintf(stderr, "hexaglide replay: --csv %s and --plot %s name the same file; give two files\n", o.csv,
@@ -1197,12 +1205,12 @@ int cmd_replay(int argc, char **argv)
             for (i = 1; i < o.spread; i++)
                 v[i] = spk[i][k];
             m = median(v, (int)o.spread);
-            printf("joint %d: predicted peak |f-error| with the program started 0..%ld periods later "
+            fprintf(report, "joint %d: predicted peak |f-error| with the program started 0..%ld periods later "
                    "(%ld loops): median %.6f mm, range %.6f..%.6f mm\n", k, (o.spread - 1) * SPREAD_STEP,
                    o.spread, m, v[0], v[o.spread - 1]);
         }
     if (whatif) {
-        printf("what-if, %s\n", closed ? "closed loop: LinuxCNC's pid with the recorded settings on the "
+        fprintf(report, "what-if, %s\n", closed ? "closed loop: LinuxCNC's pid with the recorded settings on the "
                                         "recorded joint commands"
                                       : "open loop: the recorded DAC volts into the changed board");
         st.samples = stx.samples;
@@ -1215,7 +1223,7 @@ int cmd_replay(int argc, char **argv)
         snprintf(text, sizeof text, "sample %ld (%ld samples differ)", st.first_mismatch, st.mismatched_samples);
     if (out_x.rotary)                  /* a rotary axis's difference in its own unit */
         snprintf(deg, sizeof deg, ", %.3g deg", st.max_pos_diff_deg);
-    printf("%s: samples %ld, max |count diff| %lld, max |pos diff| %.3g mm%s, max |pose diff| %.3g m/rad, "
+    fprintf(report, "%s: samples %ld, max |count diff| %lld, max |pos diff| %.3g mm%s, max |pose diff| %.3g m/rad, "
            "first mismatch %s\n", whatif ? "what-if" : "replay", st.samples, st.max_count_diff,
            st.max_pos_diff_mm, deg, st.max_pose_diff, text);
     if (o.plot && run_plot(csv_path, o.plot, has_cmd && first_enabled >= 0 ? win_from : -1, last_enabled))

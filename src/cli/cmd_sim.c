@@ -23,13 +23,14 @@ const char cli_usage_sim[] =
     "  zm0_mm..zm5_mm (the motors: the encoders' side of the drive trains), x_mm y_mm z_mm,\n"
     "  a_deg b_deg c_deg (head pose); a rotary channel's columns are in deg, deg_s\n"
     "defaults: the hexaglide plant, its default model (reduced-cartesian), 1 s, dt 0.001 s, 0 V,\n"
-    "CSV to stdout; --volts takes one value per channel of the plant; --substeps and --integrator\n"
+    "CSV to stdout (also --csv -); --volts takes one value per channel of the plant; --substeps and --integrator\n"
     "as the board loads them (motenc-hexaglide.N.substeps, .integrator).\n"
     "--dt is the board's servo period (whole ns), --time a whole number of periods (at most 1e8);\n"
     "--volts go through the board's 13-bit DAC;\n"
     "--list-params prints every parameter: spec name, SI unit, value (the defaults, then --ini\n"
     "and --set, checked), HAL name and INI key;\n"
-    "--record FILE writes the run as a record of the board's rec pins (hexaglide replay FILE)\n"
+    "--record FILE writes the run as a record of the board's rec pins (hexaglide replay FILE);\n"
+    "--record - writes it to stdout, with --csv FILE (stdout holds one of them alone)\n"
     CLI_USAGE_MODEL;
 
 /* Every parameter of v: spec name, SI unit, value, what it is, HAL name and INI key. */
@@ -232,6 +233,11 @@ int cmd_sim(int argc, char **argv)
         default:                       /* OPT_CSV */
             csv_path = v;
         }
+    }
+    if (record && cli_out_is_stdout(csv_path) && cli_out_is_stdout(record)) {
+        fprintf(stderr, "hexaglide sim: --record - and the CSV (%s) would both write standard output; give "
+                "--csv FILE or --record FILE\n", csv_path ? "--csv -" : "standard output without --csv");
+        return 2;
     }
     if (csv_path && record && cli_out_same(csv_path, record)) {
         fprintf(stderr, "hexaglide sim: --csv %s and --record %s name the same file; give two files\n", csv_path,
