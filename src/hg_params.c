@@ -287,6 +287,13 @@ static void params_rules(const hg_params *p, hg_check *r)
         if (!(isfinite(v) && v >= 0))
             hg_check_refuse(r, nonneg[i], "must be finite and >= 0");
     }
+    /* the head's COM lies in the head, which hangs between the bars: a few bar lengths below Op at
+     * most (beyond 1e6 m its m_head head_com^2 swamped the rest of the mass matrix: the step failed,
+     * "not positive definite", without naming head_com) */
+    if (!hg_check_failed(r, "head_com") && !hg_check_failed(r, "l") &&
+        !(p->head_com_m <= HG_HEAD_COM_MAX_BARS * p->geo.l_m))
+        hg_check_refuse(r, "head_com", "must be at most 2 bar lengths (2 l) below Op: the head's centre of mass "
+                                       "lies in the head, between the bars");
     if (!hg_check_failed(r, "counts_per_rev") && !(p->counts_per_rev == floor(p->counts_per_rev)))
         hg_check_refuse(r, "counts_per_rev", "must be a whole number of counts");
     /* a lumped bar needs m_end > 0 and m_mid >= 0: m_bar l^2 / 4 <= i_bar < m_bar l^2 / 2 */

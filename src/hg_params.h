@@ -66,6 +66,8 @@ typedef struct {
 /* ... and any must-be-positive field below this one (1/x would overflow). */
 #define HG_PARAM_MIN_POSITIVE 1e-9
 #define HG_CONE_MIN_RAD 0.017453292519943295 /* 1 deg: the least cone_carriage, cone_head */
+/* head_com is at most this many bar lengths l (its message says 2). */
+#define HG_HEAD_COM_MAX_BARS 2.0
 
 /* Upper bound of the table's length. */
 #define HG_PARAMS_MAX 48
