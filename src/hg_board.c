@@ -136,6 +136,7 @@ int hg_board_init(hg_board *b, int plant, int variant, const hg_board_params *p)
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         b->enc_scale[k] = b->enc_scale_in[k] = 1.0;
     b->estop_loop_out = b->estop_loop_out_in = HG_BOARD_ESTOP_LOOP_OUT;
+    b->adc_volts_per_amp = b->adc_volts_per_amp_in = HG_BOARD_ADC_VOLTS_PER_AMP;
     hg_watchdog_init(&b->wd);
     reinit_at_home(b, 0);
     return b->fault ? b->fault_code : HG_OK;
@@ -146,7 +147,7 @@ void hg_board_inputs_default(const hg_board *b, hg_board_inputs *in)
     int k;
     memset(in, 0, sizeof *in);
     in->estop_loop_out = HG_BOARD_ESTOP_LOOP_OUT;
-    in->adc_volts_per_amp = 0.5;
+    in->adc_volts_per_amp = HG_BOARD_ADC_VOLTS_PER_AMP;
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         in->enc_scale[k] = 1.0;
     for (k = 0; k < HG_BOARD_ADCS; k++)
@@ -268,6 +269,23 @@ static void estop_loop_out(hg_board *b, const hg_board_inputs *in, hg_board_outp
     }
 }
 
+/* The current monitors' volts per amp from the input, once per change:
+ * finite and above 0 is taken; any other value is refused (ADC_VPA_BAD,
+ * param_error) and the one in force kept. */
+static void adc_volts_per_amp(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
+{
+    double v = in->adc_volts_per_amp;
+    if (memcmp(&v, &b->adc_volts_per_amp_in, sizeof v) == 0) // NOLINT(bugprone-suspicious-memory-comparison): bitwise, NaN equals itself
+        return;
+    b->adc_volts_per_amp_in = v;
+    if (isfinite(v) && v > 0.0) {
+        b->adc_volts_per_amp = v;
+    } else {
+        out->events |= HG_EV_ADC_VPA_BAD;
+        b->param_error = 1;
+    }
+}
+
 /* 1 when the E-STOP loop is open: button pressed, or the commanded state
  * (value xor invert) of the loop output in force is off. */
 static int estop_open(const hg_board *b, const hg_board_inputs *in)
@@ -373,7 +391,7 @@ static void adc(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
         }
     for (i = next; i < next + 4; i++) {
         double amps = i < b->sense.channels && !b->fault ? b->sense.current_a[i] : 0.0;
-        double x = amps * in->adc_volts_per_amp;
+        double x = amps * b->adc_volts_per_amp;
         b->adc_sample_v[i] = isfinite(x) ? hg_adc_sample(x) : 0.0;
         b->adc_sample_bad = isfinite(x) ? b->adc_sample_bad & ~(1u << i) : b->adc_sample_bad | 1u << i;
     }
@@ -423,6 +441,7 @@ static void publish(const hg_board *b, const hg_board_inputs *in, hg_board_outpu
     out->params.integrator = b->in_force.integrator;
     out->substeps_run = b->substeps_run;
     out->estop_loop_out = b->estop_loop_out;
+    out->adc_volts_per_amp = b->adc_volts_per_amp;
     if (out->stiff_param < 0 || !(out->events & HG_EV_PARAM_REFUSED)) {
         out->stiff_param = b->substeps_run > b->substeps || b->fault_code == HG_ERR_STIFF ? b->stiff_param : -1;
         out->stiff_dt_max_s = out->stiff_param >= 0 ? b->stiff_dt_max_s : 0.0;
@@ -555,6 +574,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     addf_order(b, in, out, period_ns);
     expired = hg_watchdog_advance(&b->wd, dt);
     estop_loop_out(b, in, out);
+    adc_volts_per_amp(b, in, out);
     amps_on = !estop_open(b, in) && !expired && !b->fault;
     for (k = 0; k < b->sense.channels; k++) {
         int on = amps_on && !in->amp_fail[k];

@@ -29,6 +29,7 @@
 #define HG_SUBSTEPS_MAX 64u           /* substeps param: 1..HG_SUBSTEPS_MAX */
 #define HG_PERIOD_MAX_NS 10000000L    /* the longest period integrated (10 ms) */
 #define HG_BOARD_ESTOP_LOOP_OUT 7     /* the E-STOP loop's output at load: out-07, as motenc_io.hal wires it */
+#define HG_BOARD_ADC_VOLTS_PER_AMP 0.5 /* the drives' current monitors at load (V/A) */
 #define HG_BOARD_UNWRITTEN_NS 100000000LL /* steps' time without a dac-write before ADDF_ORDER (100 ms:
                                          a faster plant thread is fine, and so is a servo thread the
                                          host stalls a few ms on a loaded non-realtime machine) */
@@ -76,7 +77,8 @@ typedef struct {
     int adc_read;                     /* 1 if motenc.B.adc-read ran since the last step */
     double adc_gain[HG_BOARD_ADCS];   /* motenc.B.adc-CC-gain */
     double adc_offset[HG_BOARD_ADCS]; /* motenc.B.adc-CC-offset */
-    double adc_volts_per_amp;         /* motenc-hexaglide.B.adc-volts-per-amp */
+    double adc_volts_per_amp;         /* motenc-hexaglide.B.adc-volts-per-amp: finite and > 0, else refused
+                                         (ADC_VPA_BAD), the one in force kept */
     /* fault injection, per channel: motenc-hexaglide.B.joint-N.<name> */
     int amp_fail[HG_CHANNELS_MAX];    /* amp-fail */
     unsigned stuck[HG_CHANNELS_MAX];  /* HG_SW_* bits: stuck-min, stuck-max, stuck-home */
@@ -120,7 +122,9 @@ enum {
                                          adc_volts_per_amp, x gain - offset) became Inf or NaN (reads 0) */
     HG_EV_ESTOP_OUT_BAD = 1u << 14,   /* estop_loop_out was set to neither -1 nor 0..31: refused, the
                                          output in force (estop_loop_out of the outputs) stays in the loop */
-    HG_EV_ALL = (HG_EV_ESTOP_OUT_BAD << 1) - 1u /* every event bit (a new event goes before this line and here) */
+    HG_EV_ADC_VPA_BAD = 1u << 15,     /* adc_volts_per_amp was set to a value not finite or not > 0:
+                                         refused, the one in force (adc_volts_per_amp of the outputs) kept */
+    HG_EV_ALL = (HG_EV_ADC_VPA_BAD << 1) - 1u /* every event bit (a new event goes before this line and here) */
 };
 
 /* Why the fault latched (hg_board_outputs.fault_cause). */
@@ -192,6 +196,7 @@ typedef struct {
     unsigned adc_nan_new;             /* ADC_NAN */
     int estop_loop_out;               /* the E-STOP loop's output in force (-1 none; the glue shows it on
                                          estop-loop-out after ESTOP_OUT_BAD) */
+    double adc_volts_per_amp;         /* the current monitors' V/A in force (shown after ADC_VPA_BAD) */
 } hg_board_outputs;
 
 /* The board: plant, model, state, sensors and latches (no pointers). */
@@ -234,6 +239,8 @@ typedef struct {
                                          search): no forward solve, tool_error HG_TOOL_ERROR_SKIPPED */
     int estop_loop_out;               /* the E-STOP loop's output in force: -1 none, 0..31 */
     int estop_loop_out_in;            /* its input of the previous step (change detection) */
+    double adc_volts_per_amp;         /* the current monitors' V/A in force: finite, > 0 */
+    double adc_volts_per_amp_in;      /* its input of the previous step (bitwise: a NaN equals itself) */
     long long unwritten_ns;           /* steps' time since the last dac-write (ADDF_ORDER) */
 } hg_board;
 

@@ -284,6 +284,14 @@ static void report(board_t *b, long period)
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: " XP ".%d.estop-loop-out = %d refused: the E-STOP loop "
                         "runs through a digital output, 0..31 (out-07 in motenc_io.hal), or -1 for none; keeping "
                         "%d in the loop\n", id, id, b->ins.estop_loop_out, o->estop_loop_out);
+    if (o->events & HG_EV_ADC_VPA_BAD) {
+        char got[HG_TEXT_VALUE_LEN], kept[HG_TEXT_VALUE_LEN];
+        hg_text_value(got, b->ins.adc_volts_per_amp);
+        hg_text_value(kept, o->adc_volts_per_amp);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: " XP ".%d.adc-volts-per-amp = %s refused: the drives' "
+                        "current monitors give a finite, positive number of volts per amp; keeping %s\n", id, id,
+                        got, kept);
+    }
     if (o->events & HG_EV_ADDF_ORDER)
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics ran without a motenc.%d.dac-write "
                         "before it: the machine gets the volts a period late or never; addf motenc.%d.dac-write, "
@@ -365,6 +373,7 @@ static void publish(board_t *b)
     *b->param_error = o->param_error;
     *b->dac_nan = o->dac_nan;
     b->estop_loop_out = o->estop_loop_out; /* the output in force (a refused value is shown replaced) */
+    b->adc_volts_per_amp = o->adc_volts_per_amp; /* the same for the current monitors' V/A */
 }
 
 /* The record pins: this step's inputs, period and outputs, exactly. */

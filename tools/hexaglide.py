@@ -269,7 +269,8 @@ class BoardOutputs(C.Structure):
                 ("injected", C.c_uint * PLANT_INJECT_MAX), ("dac_nan_new", C.c_uint),
                 ("enc_scale_bad", C.c_uint), ("substeps_run", C.c_uint), ("stiff_param", C.c_int),
                 ("stiff_dt_max_s", C.c_double), ("stiff_value", C.c_double), ("stiff_integrator", C.c_int),
-                ("adc_nan_new", C.c_uint), ("estop_loop_out", C.c_int)]
+                ("adc_nan_new", C.c_uint), ("estop_loop_out", C.c_int),
+                ("adc_volts_per_amp", C.c_double)]
 
     @property
     def pose(self):

@@ -654,8 +654,9 @@ static void test_stop_beneath(void)
           what);
 }
 
-/* An ADC conversion that is not a number (a NaN gain, an infinite
- * adc_volts_per_amp) reads 0 and says so once, until it is a number again. */
+/* An ADC conversion that is not a number (a NaN gain) reads 0 and says so
+ * once, until it is a number again; an adc_volts_per_amp not finite or not
+ * above 0 is refused once (event, param_error) and the one in force kept. */
 static void test_adc_nan(void)
 {
     int events = 0, k;
@@ -673,13 +674,24 @@ static void test_adc_nan(void)
           "adc-00 gain NaN: one event (%d), adc-00 reads 0, adc-01 %g", events, out.adc[1]);
     in.adc_gain[0] = 1.0;
     run(4);
-    in.adc_volts_per_amp = INFINITY;
-    for (k = 0, events = 0; k < 6; k++) {
-        run(1);
-        events += (out.events & HG_EV_ADC_NAN) && (out.adc_nan_new & 0x3fu) != 0;
+    {
+        static const double bad[] = {INFINITY, -INFINITY, NAN, 0.0, -0.5};
+        unsigned i;
+        for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+            in.adc_volts_per_amp = bad[i];
+            for (k = 0, events = 0; k < 6; k++) {
+                run(1);
+                events += (out.events & HG_EV_ADC_VPA_BAD) != 0;
+            }
+            CHECK(events == 1 && out.param_error && out.adc_volts_per_amp == HG_BOARD_ADC_VOLTS_PER_AMP &&
+                      !(out.events & HG_EV_ADC_NAN) && isfinite(out.adc[1]) && out.adc[1] != 0.0,
+                  "adc-volts-per-amp %g refused once (%d events), param-error, 0.5 V/A kept: adc-01 reads %g",
+                  bad[i], events, out.adc[1]);
+        }
     }
-    CHECK(events >= 1 && out.adc[0] == 0.0 && out.adc[1] == 0.0,
-          "adc-volts-per-amp Inf with current flowing: reported (%d periods), the channels read 0", events);
+    in.adc_volts_per_amp = 2.0;
+    run(1);
+    CHECK(out.adc_volts_per_amp == 2.0 && !(out.events & HG_EV_ADC_VPA_BAD), "adc-volts-per-amp 2 taken");
 }
 
 /* A geometry change by rounding only (a value shown in mm typed back:
