@@ -30,7 +30,7 @@ import hg_csv  # noqa: E402
 import hg_cli  # noqa: E402
 import hg_output  # noqa: E402
 from hg_identify_base import (COLUMNS, NAMES, NCOL, NIN, REC_MAGICS, RecordError, Settings,  # noqa: E402
-                              _dp, autocorr_time, butter_lp, clamped_periods, dac_output, dilate,
+                              _dp, autocorr_time, butter_lp, clamped_periods, cutoff_floor, dac_output, dilate,
                               force_per_volt, fric_col, params_copy, record_columns, usable_stretches)
 
 _reg_sizeof = hg._sig("hg_regressor_sizeof", C.c_ulong)
@@ -1687,8 +1687,8 @@ def main(argv=None):
     s = Settings()
     s.source, s.cutoff_hz, s.timing = a.source, a.cutoff, a.timing
     try:
-        if not (a.cutoff > 0):
-            raise BadInput("--cutoff must be positive (Hz)")
+        if not (0 < a.cutoff < float("inf")):
+            raise BadInput("--cutoff %s: must be a finite number above 0 Hz" % a.cutoff)
         # the outputs and the validation's commands now, not after the fit
         hg_output.refuse_stdout([("--output", a.output), ("--plots", a.plots)])   # (the report is on stdout)
         hg_output.refuse_in_dir(("--output", a.output), ("--plots", a.plots),
@@ -1723,6 +1723,13 @@ def main(argv=None):
                                "configs/hexaglide.hal sets it; hexaglide sim --record leaves it 1), or --set "
                                "counts_per_rev / lead if the record's are not the machine's"
                                % (r.path, r.hdr_no + 1, j, r.count_scale[j] * 1e-3, cpm * 1e-3, j, j, cpm * 1e-3))
+        longest = min(runs, key=lambda r: cutoff_floor(r, s))
+        if float("inf") > cutoff_floor(longest, s) > a.cutoff:   # (it was "0 usable servo periods", no word of it)
+            raise BadInput("--cutoff %g Hz: must be at least %.4g Hz for %s (%.4g s, the longest record): the "
+                           "fit filters and samples the record at 4 samples per cutoff period and needs 10 of "
+                           "them (2.5 / cutoff s) in a stretch beside its %g s margins at both ends; give a "
+                           "higher --cutoff or a longer record" % (a.cutoff, cutoff_floor(longest, s), longest.path,
+                                                                   len(longest.ok) * longest.dt, s.margin_s))
         # the drive trains: stiffness and backlash first (the rigid equations take the carriages' motion)
         ts = trainid.Settings()
         pieces = [usable_stretches(r, Settings()) for r in runs]

@@ -213,6 +213,14 @@ def dilate(mask, n):
     return np.convolve(mask.astype(float), k, mode="same") > 0
 
 
+def cutoff_floor(run, s):
+    """The lowest cutoff (Hz) whose filtering fits in run at all: usable_stretches needs ten
+    decimated samples (four per cutoff period: 2.5 / cutoff s) beside the two margin_s margins
+    of a stretch; inf when the run is shorter than its margins."""
+    room = len(run.ok) - 2 * int(round(s.margin_s / run.dt)) - 3
+    return 2.5 / (room * run.dt) if room > 0 else float("inf")
+
+
 def usable_stretches(run, s):
     """Contiguous usable stretches (i0, i1) of a run, long enough for the filters."""
     dt = run.dt
