@@ -45,6 +45,7 @@
 
 #include "hg_errors.h"
 #include "hg_kinematics.h"
+#include "hg_linalg.h"
 #include "hg_guard.h"
 #include "hg_params.h"
 #include "hg_text.h"
@@ -231,7 +232,11 @@ static int hexaglide_forward(const double *joints, EmcPose *pos)
     *hd->fk_fault = (rc != 0);
     say = hg_fk_session_result(&hd->fk, rc);
     *hd->fk_fail_count = hd->fk.fail_count;
-    if (say == HG_FK_SAY_FAILING)      /* the first of a run of failures: motion keeps the last pose */
+    if (say == HG_FK_SAY_FAILING && hd->kins.type == HG_KINS_IDENTITY)
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: the Hexaglide's forward kinematics failed (code %d: %s) "
+                        "under identity kinematics (type 1), which answer on; skgui.* stays at the last solved "
+                        "pose until it succeeds (hexaglidekins.fk-error, fk-fail-count)\n", rc, hg_strerror(rc));
+    else if (say == HG_FK_SAY_FAILING) /* the first of a run of failures: motion keeps the last pose */
         rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: forward kinematics failed (code %d: %s); the "
                         "position shown stays at the last solved pose until it succeeds "
                         "(hexaglidekins.fk-error, fk-fail-count)\n", rc, hg_strerror(rc));
@@ -246,12 +251,16 @@ static int hexaglide_forward(const double *joints, EmcPose *pos)
     return rc;
 }
 
-/* Identity: world X Y Z A B C are joints 0..5 (machine units, as given). */
-static void identity_forward(const double *joints, EmcPose *pos)
+/* Identity: world X Y Z A B C are joints 0..5 (machine units, as given);
+ * HG_ERR_NONFINITE_INPUT, pos untouched, for a joint not finite. */
+static int identity_forward(const double *joints, EmcPose *pos)
 {
+    if (!hg_all_finite(6, joints))
+        return HG_ERR_NONFINITE_INPUT;
     pos->tran.x = joints[0]; pos->tran.y = joints[1]; pos->tran.z = joints[2];
     pos->a = joints[3]; pos->b = joints[4]; pos->c = joints[5];
     pos->u = pos->v = pos->w = 0.0;
+    return HG_OK;
 }
 
 /* The head's pose into skgui.*. */
@@ -272,9 +281,8 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     (void)iflags;
     if (hd->kins.type == HG_KINS_IDENTITY) {
         hexaglide_forward(joints, &hd->head);  /* tracked; its failure is on fk-error, not identity's */
-        identity_forward(joints, pos);
         gui_pins();
-        return 0;
+        return identity_forward(joints, pos);
     }
     if (hd->kins.restart) {                    /* back from identity: motion's guess is identity's world */
         *pos = hd->head;
@@ -298,9 +306,10 @@ int kinematicsInverse(const EmcPose *pos, double *joints,
     (void)fflags;
     if (hd->kins.type == HG_KINS_IDENTITY) {
         const double world[6] = {pos->tran.x, pos->tran.y, pos->tran.z, pos->a, pos->b, pos->c};
-        memcpy(joints, world, sizeof world);
-        *hd->ik_error = 0;
-        return 0;
+        *hd->ik_error = hg_all_finite(6, world) ? HG_OK : HG_ERR_NONFINITE_INPUT;
+        if (*hd->ik_error == HG_OK)
+            memcpy(joints, world, sizeof world);
+        return *hd->ik_error;
     }
     pose_from_emc(pos, mpu, commanded);
     rc = current_geometry(&g);
