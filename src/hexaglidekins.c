@@ -130,16 +130,18 @@ static void fk_settings(void)
     const char *field = "", *why = "";
     if (hg_fk_session_settings(&hd->fk, *hd->fk_max_iterations, *hd->fk_tolerance_mm / HG_MM_PER_M, &field,
                                &why) == HG_FK_SAY_REFUSED) {
-        char max_mm[HG_TEXT_VALUE_LEN], kept_mm[HG_TEXT_VALUE_LEN];
+        char min_mm[HG_TEXT_VALUE_LEN], max_mm[HG_TEXT_VALUE_LEN], kept_mm[HG_TEXT_VALUE_LEN];
+        hg_text_value(min_mm, HG_FK_TOLERANCE_MIN_M * HG_MM_PER_M);
         hg_text_value(max_mm, HG_FK_TOLERANCE_MAX_M * HG_MM_PER_M);
         hg_text_value(kept_mm, hd->fk.in_force.tolerance_m * HG_MM_PER_M);
         if (strcmp(field, "max_iterations") == 0)
             rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: pin hexaglidekins.fk-max-iterations %s; keeping %d\n",
                             why, hd->fk.in_force.max_iterations);
         else
-            rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: pin hexaglidekins.fk-tolerance must be positive and "
-                            "at most %s mm (a coarser Newton step would leave the pose off by more than an encoder "
-                            "count); keeping %s mm\n", max_mm, kept_mm);
+            rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: pin hexaglidekins.fk-tolerance must be from %s to %s mm "
+                            "(a finer Newton step is below what double precision resolves, a coarser one would "
+                            "leave the pose off by more than an encoder count); keeping %s mm\n", min_mm, max_mm,
+                            kept_mm);
     }
 }
 

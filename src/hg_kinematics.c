@@ -34,9 +34,10 @@ int hg_fk_options_check(const hg_fk_options *o, const char **field, const char *
     const char *f = 0, *w = 0;
     if (!(o->max_iterations >= 1 && o->max_iterations <= HG_FK_ITERATION_CAP))
         f = "max_iterations", w = "must be a whole number from 1 to 100";
-    else if (!(o->tolerance_m > 0.0 && o->tolerance_m <= HG_FK_TOLERANCE_MAX_M))
-        f = "tolerance", w = "must be positive and at most 1e-6 m: a coarser Newton step would leave the pose "
-                             "off by more than an encoder count";
+    else if (!(o->tolerance_m >= HG_FK_TOLERANCE_MIN_M && o->tolerance_m <= HG_FK_TOLERANCE_MAX_M))
+        f = "tolerance", w = "must be from 1e-13 to 1e-6 m: a finer Newton step than 1e-13 m is below what double "
+                             "precision resolves, a coarser one than 1e-6 m would leave the pose off by more than "
+                             "an encoder count";
     if (field)
         *field = f;
     if (why)

@@ -44,6 +44,9 @@ typedef struct {
 void hg_fk_options_default(hg_fk_options *o);
 
 #define HG_FK_ITERATION_CAP 100    /* max_iterations at most this */
+#define HG_FK_TOLERANCE_MIN_M 1e-13 /* tolerance_m at least this: double precision resolves a Newton step of
+                                      about 1e-15 m at 1 m bars (the step stalls there and the solve
+                                      fails); 100 times that (tests/unit/test_kinematics) */
 #define HG_FK_TOLERANCE_MAX_M 1e-6 /* tolerance_m at most this: a coarser Newton step would leave the
                                       pose off by more than the machine's 1 um encoder count */
 

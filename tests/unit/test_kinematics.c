@@ -174,6 +174,33 @@ static void test_round_trip(const hg_params *p)
     CHECK(maxit <= 10, "FK from HOME needs at most 10 iterations (max %d)", maxit);
 }
 
+/* The finest tolerance allowed (HG_FK_TOLERANCE_MIN_M) is one double
+ * precision reaches: the solve from HOME converges at it for every random
+ * reachable pose; half of it is refused by the check. */
+static void test_fk_tolerance_floor(const hg_params *p)
+{
+    const hg_fk_options finest = {HG_FK_ITERATION_CAP, HG_FK_TOLERANCE_MIN_M};
+    hg_fk_options half = finest;
+    int n, done = 0, fails = 0, maxit = 0;
+    for (n = 0; n < 10000; n++) {
+        double pose[6], z[6], fk[6] = {0, 0, 0, 0, 0, 0};
+        int it = 0;
+        if (!random_pose(&p->geo, pose, z))
+            continue;
+        done++;
+        if (hg_forward_solve(&p->geo, z, fk, &finest, &it, 0))
+            fails++;
+        else if (it > maxit)
+            maxit = it;
+    }
+    CHECK(done == 10000 && fails == 0, "tolerance %g m (the finest allowed): the solve from HOME converged for "
+          "all %d random reachable poses (%d failures, at most %d iterations)", HG_FK_TOLERANCE_MIN_M, done, fails,
+          maxit);
+    half.tolerance_m = HG_FK_TOLERANCE_MIN_M / 2;
+    CHECK(hg_fk_options_check(&finest, 0, 0) == HG_OK && hg_fk_options_check(&half, 0, 0) == HG_ERR_BAD_PARAM,
+          "the check takes %g m and refuses half of it", HG_FK_TOLERANCE_MIN_M);
+}
+
 static void test_far_poses_from_home(const hg_params *p)
 {
     /* corners of the working volume, from HOME as the guess */
@@ -751,6 +778,7 @@ int main(void)
     test_ik_bar_lengths(&p);
     test_round_trip(&wide);
     test_far_poses_from_home(&wide);
+    test_fk_tolerance_floor(&wide);
     test_fk_guard(&p);
     test_jacobian_fd(&p);
     test_refusals(&p);
