@@ -12,7 +12,7 @@
  *   .cone-head (deg), .d-bar (mm); h follows from l, lb, lp
  *   hexaglidekins.mm-per-unit (default 1): mm in one machine unit, 0.001..1000;
  *   scales X Y Z and the joints (hg_joints_from_machine ...), a refused value
- *   is said once and the last valid one kept
+ *   is said once and the last valid one kept and written back
  * HAL pins:
  *   hexaglidekins.fk-iterations      s32 out  iterations of the last forward call
  *   hexaglidekins.fk-max-iterations  s32 in   iteration bound (default 30)
@@ -92,15 +92,17 @@ static int current_geometry(hg_geometry *g)
 {
     const char *field = "", *why = "";
     hg_params p;
-    int i, n, rc;
+    int i, n, rc, changed = -1;
     const hg_param_info *t = hg_params_table(&n);
     int same = hd->checked_valid;
     hg_params_default(&p);
     for (i = 0; i < n; i++)
         if (hg_param_is_geometry(i)) {
             double now = hd->geo[i], was = hd->checked[i];
+            int kept = now == was || (now != now && was != was);        /* a NaN kept is unchanged too */
             *hg_params_at(&p, i) = now / t[i].hal_scale;
-            same = same && (now == was || (now != now && was != was));   /* a NaN kept is unchanged too */
+            changed = kept || changed >= 0 || !hd->checked_valid ? changed : i;  /* the first one set since */
+            same = same && kept;
             hd->checked[i] = hd->geo[i];
         }
     *g = p.geo;
@@ -116,10 +118,19 @@ static int current_geometry(hg_geometry *g)
     rc = hg_geometry_check(g, &field, &why);
     hd->checked_rc = rc;
     hd->checked_valid = 1;
-    if (rc)                              /* once per refused geometry: a new bad value is named too */
-        rtapi_print_msg(RTAPI_MSG_ERR,
-                        "hexaglidekins: parameter hexaglidekins.%s %s; kinematics refused "
-                        "until it is fixed with setp\n", hg_params_hal_name(field), why);
+    if (rc) {                            /* once per refused geometry: a new bad value is named too */
+        char reason[HG_TEXT_VALUE_LEN * 8] = "", value[HG_TEXT_VALUE_LEN];
+        hg_text_add_hal_names(reason, sizeof reason, why);
+        if (changed >= 0 && strcmp(t[changed].name, field) != 0) { /* another field's rule: say what was set */
+            hg_text_value(value, hd->geo[changed]);
+            rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: parameter hexaglidekins.%s %s; kinematics refused until "
+                            "it is fixed with setp (after hexaglidekins.%s was set to %s)\n",
+                            hg_params_hal_name(field), reason, t[changed].hal_name, value);
+        } else {
+            rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: parameter hexaglidekins.%s %s; kinematics refused until "
+                            "it is fixed with setp\n", hg_params_hal_name(field), reason);
+        }
+    }
     return rc;
 }
 
@@ -146,8 +157,8 @@ static void fk_settings(void)
 }
 
 /* The machine units from the parameter into the setting (the core keeps
- * the last valid value); a refused value is said once. The mm per unit in
- * force. */
+ * the last valid value); a refused value is said once and the parameter
+ * shows the value in force again. The mm per unit in force. */
 static double mm_per_unit(void)
 {
     if (hg_units_take(&hd->units, hd->mm_per_unit) == HG_FK_SAY_REFUSED) {
@@ -157,6 +168,7 @@ static double mm_per_unit(void)
         rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: parameter hexaglidekins.mm-per-unit %s must be from 0.001 "
                         "to 1000 (mm in one machine unit: 1 for LINEAR_UNITS mm, 25.4 for inch); keeping %s\n",
                         got, kept);
+        hd->mm_per_unit = hd->units.in_force;     /* halcmd show param shows what is in force, as the board */
     }
     return hd->units.in_force;
 }

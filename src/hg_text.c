@@ -85,16 +85,27 @@ void hg_text_value(char buf[HG_TEXT_VALUE_LEN], double v)
     *p = '\0';
 }
 
-char *hg_text_add(char *buf, unsigned long len, const char *s)
+/* Append s to buf (capacity len), every character from written as to. */
+static char *add_replacing(char *buf, unsigned long len, const char *s, char from, char to)
 {
     unsigned long n = 0;
     while (n < len && buf[n])
         n++;
-    while (*s && n + 1 < len)
-        buf[n++] = *s++;
+    for (; *s && n + 1 < len; s++)
+        buf[n++] = *s == from ? to : *s;
     if (n < len)
         buf[n] = '\0';
     return buf;
+}
+
+char *hg_text_add(char *buf, unsigned long len, const char *s)
+{
+    return add_replacing(buf, len, s, '\0', '\0');
+}
+
+char *hg_text_add_hal_names(char *buf, unsigned long len, const char *s)
+{
+    return add_replacing(buf, len, s, '_', '-');
 }
 
 char *hg_text_add_value(char *buf, unsigned long len, double v)

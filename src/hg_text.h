@@ -16,6 +16,11 @@ char *hg_text_add(char *buf, unsigned long len, const char *s);
 /* Append v as hg_text_value writes it; returns buf. */
 char *hg_text_add_value(char *buf, unsigned long len, double v);
 
+/* Append s with every '_' written '-': the core's reasons name parameters
+ * by their C names (k_axial), which the HAL glue prints as the HAL names
+ * (k-axial: every parameter's HAL name is its C name so written); returns buf. */
+char *hg_text_add_hal_names(char *buf, unsigned long len, const char *s);
+
 /* 1 if s[0..n) is a decimal number as every tool of the project reads one (the C
  * options, INI values and records, tools/hg_csv.py's number()): a sign, ASCII digits
  * with at most one '.', an exponent e[+-]digits; nothing else, no spaces. C99's

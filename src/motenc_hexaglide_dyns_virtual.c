@@ -208,10 +208,39 @@ static void write_params(board_t *b)
 }
 
 /* Say, once, why the parameter change was refused: every field, its value, the rule. */
+/* The value of the refused set's field i as HAL shows it (table units). */
+static void refused_value(const board_t *b, int i, char v[HG_TEXT_VALUE_LEN])
+{
+    if (i < b->nparams)
+        hg_text_value(v, b->ins.params.plant.v[i] * b->info[i].hal_scale);
+    else
+        hg_text_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->ins.params.substeps : b->ins.params.integrator);
+}
+
+/* One line per model parameter the refused set changed that is not in
+ * *said (0: none said): a rule that names another field may fail because
+ * of it (lb 1e-300 fails "e ... smaller than lb"). */
+static void report_changed(board_t *b, const hg_bitset *said)
+{
+    char v[HG_TEXT_VALUE_LEN], was[HG_TEXT_VALUE_LEN];
+    int i;
+    for (i = 0; i < b->nparams; i++) {
+        double now = b->ins.params.plant.v[i], kept = b->o.params.plant.v[i];
+        if (memcmp(&now, &kept, sizeof now) == 0 || (said && hg_bitset_has(said, i))) // NOLINT(bugprone-suspicious-memory-comparison): bitwise, NaN equals itself
+            continue;
+        const char *u = strcmp(b->info[i].hal_unit, "1") != 0 ? b->info[i].hal_unit : ""; /* dimensionless: none */
+        refused_value(b, i, v);
+        hg_text_value(was, kept * b->info[i].hal_scale);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s, changed from %s%s%s in this "
+                        "set\n", b->id, b->id, hg_board_param_hal_name(&b->b, i), v, u[0] ? " " : "", u, was,
+                        u[0] ? " " : "", u);
+    }
+}
+
 static void report_refusal(board_t *b, long period)
 {
     hg_bitset bad;
-    char v[HG_TEXT_VALUE_LEN];
+    char v[HG_TEXT_VALUE_LEN], why[HG_BOARD_TEXT_LEN];
     const hg_param_info *t = b->info;
     int i, n = b->nparams;
     if (b->o.param_rc != HG_ERR_BAD_PARAM) {
@@ -223,6 +252,7 @@ static void report_refusal(board_t *b, long period)
                         b->id, hg_strerror(b->o.param_rc), b->o.param_rc, HG_SUBSTEPS_MAX);
         if (what[0])
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: refused because %s\n", b->id, what);
+        report_changed(b, 0);
         return;
     }
     hg_board_params_check(&b->b, &b->ins.params, &bad, b->why);
@@ -231,16 +261,14 @@ static void report_refusal(board_t *b, long period)
     for (i = 0; i < HG_BOARD_WHY_LEN; i++) {
         if (!hg_bitset_has(&bad, i))
             continue;
-        if (i < n)
-            hg_text_value(v, b->ins.params.plant.v[i] * t[i].hal_scale);
-        else
-            hg_text_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->ins.params.substeps
-                                                                : b->ins.params.integrator);
         const int unit = i < n && strcmp(t[i].hal_unit, "1") != 0; /* a dimensionless one has none */
+        refused_value(b, i, v);
+        why[0] = '\0';
+        hg_text_add_hal_names(why, sizeof why, b->why[i] ? b->why[i] : "");
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s: %s\n", b->id, b->id,
-                        hg_board_param_hal_name(&b->b, i), v, unit ? " " : "", unit ? t[i].hal_unit : "",
-                        b->why[i] ? b->why[i] : "");
+                        hg_board_param_hal_name(&b->b, i), v, unit ? " " : "", unit ? t[i].hal_unit : "", why);
     }
+    report_changed(b, &bad);
 }
 
 /* The board's events as RTAPI messages (the same ones as before the core existed). */
@@ -314,10 +342,13 @@ static void report(board_t *b, long period)
                         "period even with %u substeps: drives off; set %s, then " XP ".%d.reset\n",
                         id, HG_SUBSTEPS_MAX, o->stiff_dt_max_s > 0.0 ? "a softer value or another integrator"
                                                                        : "the mode damping or another integrator", id);
+    } else if (o->events & HG_EV_FAULT_LATCHED && o->fault_cause == HG_FAULT_PERIOD) {
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: bad thread period (code %d): drives off, state "
+                        "frozen; run motenc.%d.dynamics in a thread of at most %ld ns, then set " XP ".%d.reset\n",
+                        id, o->fault_code, id, HG_PERIOD_MAX_NS, id);
     } else if (o->events & HG_EV_FAULT_LATCHED) {
         static const char tail[] = "; drives off, state frozen; set " XP ".00.reset to restart at HOME";
-        const char *cause = o->fault_cause == HG_FAULT_PERIOD ? "bad thread period"
-                            : o->fault_cause == HG_FAULT_HOME ? "reset at HOME failed"
+        const char *cause = o->fault_cause == HG_FAULT_HOME ? "reset at HOME failed"
                             : o->fault_report.kind ? "the machine struck a mechanical limit" : "dynamics step failed";
         char what[HG_PLANT_TEXT_LEN];
         pl->describe(&o->fault_report, 1, what);
