@@ -10,7 +10,8 @@
  * pins into hg_board_inputs, calls hg_board_step once per period (in
  * dynamics), copies hg_board_outputs back to pins (each hal_motenc function
  * publishes its own pins) and turns the board's events into RTAPI messages.
- * All state lives in one hal_malloc'd struct; no malloc, no stdio. */
+ * Pins and parameters live in one hal_malloc'd struct, the core's state in
+ * the module's memory (the_core); no malloc, no stdio. */
 #include "rtapi.h"
 #include "rtapi_app.h"
 #include "rtapi_math.h"
@@ -58,6 +59,18 @@ typedef union { hal_float_t *f; hal_u32_t *u; } extra_pin;
 
 typedef union { hal_float_t *f; hal_s32_t *s; hal_u32_t *u; hal_bit_t *b; } rec_pin;
 
+/* What the core keeps for a board: its state, inputs and outputs, the
+ * record tables, a refusal's reasons and the parameter table (about 100 KB). */
+typedef struct {
+    hg_board b;
+    hg_board_inputs ins;
+    hg_board_outputs o;
+    hg_board_rec_field rec[HG_BOARD_REC_MAX]; /* the record pin set (docs/replay.md; nrec 0 without record=1) */
+    hg_board_rec_stream stream;       /* the parameters' events on the rec pins */
+    const char *why[HG_BOARD_WHY_LEN]; /* a refusal's reasons (too large for the stack) */
+    hg_param_info info[HG_PLANT_PARAMS_MAX]; /* the plant's parameter table as the loaded model has it (units) */
+} board_core;
+
 typedef struct {
     enc_hal enc[HG_BOARD_ENCODERS];
     analog_hal dac[HG_BOARD_DACS], adc[HG_BOARD_ADCS];
@@ -79,20 +92,19 @@ typedef struct {
     hal_u32_t substeps, integrator;
     hal_bit_t record;                 /* XP.<board>.record: write the rec pins (the recorder sets it;
                                          exists with loadrt record=1 only, else stays 0) */
-    hg_board b;
-    hg_board_inputs ins;
-    hg_board_outputs o;
+    board_core *c;                    /* the core's state, in module memory */
     int id;
-    hg_board_rec_field rec[HG_BOARD_REC_MAX]; /* the record pin set (docs/replay.md; nrec 0 without record=1) */
-    rec_pin rec_pin[HG_BOARD_REC_MAX]; /* XP.<board>.rec.<name>, type as rec[i].type */
+    rec_pin rec_pin[HG_BOARD_REC_MAX]; /* XP.<board>.rec.<name>, type as c->rec[i].type */
     int nrec;
-    hg_board_rec_stream stream;       /* the parameters' events on the rec pins */
     int recording;                    /* record was TRUE in the last period */
     hg_board_rate rate;               /* encoder-read's and dynamics' calls (hg_board_rate_read, _step) */
-    const char *why[HG_BOARD_WHY_LEN]; /* a refusal's reasons (too large for the stack) */
     int nparams;                      /* entries of the plant's parameter table */
-    hg_param_info info[HG_PLANT_PARAMS_MAX]; /* that table as the loaded model has it (units) */
 } board_t;
+
+/* The board's one core (one board per loadrt): in the module's own memory,
+ * not in HAL's shared memory (1 MB in all, which unloadrt never gives
+ * back), where only what HAL needs lives: pins, parameters, the board_t. */
+static board_core the_core;
 
 static int comp_id;
 
@@ -102,7 +114,7 @@ static void encoder_read(void *arg, long period)
 {
     board_t *b = arg;
     int ch;
-    b->ins.dac_stale |= b->ins.dac_written;   /* read after the volts were written: wrong addf order */
+    b->c->ins.dac_stale |= b->c->ins.dac_written;   /* read after the volts were written: wrong addf order */
     if (hg_board_rate_read(&b->rate, period)) { /* two messages: LinuxCNC's error channel keeps
                                                             255 characters of each (EMCMOT_ERROR_LEN) */
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.dynamics has not run for 1 s while "
@@ -113,11 +125,11 @@ static void encoder_read(void *arg, long period)
                         b->id, b->id, b->id);
     }
     for (ch = 0; ch < HG_BOARD_ENCODERS; ch++) {
-        if (b->o.index_latched[ch])
+        if (b->c->o.index_latched[ch])
             *b->enc[ch].index_enable = 0; /* the latch fired: cancel index-enable */
-        *b->enc[ch].count = b->o.count[ch];
-        *b->enc[ch].position = b->o.position[ch];
-        *b->enc[ch].index = b->o.index[ch];
+        *b->enc[ch].count = b->c->o.count[ch];
+        *b->enc[ch].position = b->c->o.position[ch];
+        *b->enc[ch].index = b->c->o.index[ch];
     }
 }
 
@@ -127,9 +139,9 @@ static void dac_write(void *arg, long period)
     int ch;
     (void)period;
     for (ch = 0; ch < HG_BOARD_DACS; ch++)
-        b->ins.dac_v[ch] = (*b->dac[ch].value - b->dac[ch].offset) * b->dac[ch].gain;
-    b->ins.dac_written = 1;
-    b->ins.dac_stale = 0;
+        b->c->ins.dac_v[ch] = (*b->dac[ch].value - b->dac[ch].offset) * b->dac[ch].gain;
+    b->c->ins.dac_written = 1;
+    b->c->ins.dac_stale = 0;
 }
 
 static void adc_read(void *arg, long period)
@@ -138,8 +150,8 @@ static void adc_read(void *arg, long period)
     int ch;
     (void)period;
     for (ch = 0; ch < HG_BOARD_ADCS; ch++)
-        *b->adc[ch].value = b->o.adc[ch];
-    b->ins.adc_read = 1;
+        *b->adc[ch].value = b->c->o.adc[ch];
+    b->c->ins.adc_read = 1;
 }
 
 static void digital_in_read(void *arg, long period)
@@ -148,8 +160,8 @@ static void digital_in_read(void *arg, long period)
     int i;
     (void)period;
     for (i = 0; i < HG_BOARD_INPUTS; i++) {
-        *b->din[i] = b->o.in[i];
-        *b->din_not[i] = !b->o.in[i];
+        *b->din[i] = b->c->o.in[i];
+        *b->din_not[i] = !b->c->o.in[i];
     }
 }
 
@@ -157,15 +169,15 @@ static void digital_out_write(void *arg, long period)
 {
     board_t *b = arg;
     (void)period;
-    *b->dout_word = b->o.dout_word;
+    *b->dout_word = b->c->o.dout_word;
 }
 
 static void misc_update(void *arg, long period)
 {
     board_t *b = arg;
     (void)period;
-    *b->estop_in = b->o.estop_in;
-    *b->estop_in_not = !b->o.estop_in;
+    *b->estop_in = b->c->o.estop_in;
+    *b->estop_in_not = !b->c->o.estop_in;
 }
 
 /* --- the extra function: one servo period of the board --- */
@@ -174,37 +186,37 @@ static void misc_update(void *arg, long period)
  * (SI); 1 if any did (a setp since the last period). */
 static int read_params(board_t *b)
 {
-    const hg_param_info *t = b->info;
+    const hg_param_info *t = b->c->info;
     int i, n = b->nparams, changed = 0;
     for (i = 0; i < n; i++) {
         double v = b->par[i];
         if (memcmp(&v, &b->shadow[i], sizeof v) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise, a NaN a user set equals itself
-            b->ins.params.plant.v[i] = v / t[i].hal_scale;
+            b->c->ins.params.plant.v[i] = v / t[i].hal_scale;
             changed = 1;
         }
     }
-    changed |= b->ins.params.substeps != b->substeps || b->ins.params.integrator != b->integrator;
-    b->ins.params.substeps = b->substeps;
-    b->ins.params.integrator = b->integrator;
+    changed |= b->c->ins.params.substeps != b->substeps || b->c->ins.params.integrator != b->integrator;
+    b->c->ins.params.substeps = b->substeps;
+    b->c->ins.params.integrator = b->integrator;
     return changed;
 }
 
 /* Show the block in force: every field the board holds differently is written back. */
 static void write_params(board_t *b)
 {
-    const hg_param_info *t = b->info;
+    const hg_param_info *t = b->c->info;
     int i, n = b->nparams;
     for (i = 0; i < n; i++) {
-        double *want = &b->ins.params.plant.v[i];
-        double got = b->o.params.plant.v[i];
+        double *want = &b->c->ins.params.plant.v[i];
+        double got = b->c->o.params.plant.v[i];
         if (memcmp(want, &got, sizeof got) != 0) { // NOLINT(bugprone-suspicious-memory-comparison): bitwise
             *want = got;
             b->par[i] = got * t[i].hal_scale;
         }
         b->shadow[i] = b->par[i];
     }
-    b->ins.params.substeps = b->substeps = b->o.params.substeps;
-    b->ins.params.integrator = b->integrator = b->o.params.integrator;
+    b->c->ins.params.substeps = b->substeps = b->c->o.params.substeps;
+    b->c->ins.params.integrator = b->integrator = b->c->o.params.integrator;
 }
 
 /* Say, once, why the parameter change was refused: every field, its value, the rule. */
@@ -212,9 +224,9 @@ static void write_params(board_t *b)
 static void refused_value(const board_t *b, int i, char v[HG_TEXT_VALUE_LEN])
 {
     if (i < b->nparams)
-        hg_text_value(v, b->ins.params.plant.v[i] * b->info[i].hal_scale);
+        hg_text_value(v, b->c->ins.params.plant.v[i] * b->c->info[i].hal_scale);
     else
-        hg_text_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->ins.params.substeps : b->ins.params.integrator);
+        hg_text_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->c->ins.params.substeps : b->c->ins.params.integrator);
 }
 
 /* One line per model parameter the refused set changed that is not in
@@ -225,14 +237,14 @@ static void report_changed(board_t *b, const hg_bitset *said)
     char v[HG_TEXT_VALUE_LEN], was[HG_TEXT_VALUE_LEN];
     int i;
     for (i = 0; i < b->nparams; i++) {
-        double now = b->ins.params.plant.v[i], kept = b->o.params.plant.v[i];
+        double now = b->c->ins.params.plant.v[i], kept = b->c->o.params.plant.v[i];
         if (memcmp(&now, &kept, sizeof now) == 0 || (said && hg_bitset_has(said, i))) // NOLINT(bugprone-suspicious-memory-comparison): bitwise, NaN equals itself
             continue;
-        const char *u = strcmp(b->info[i].hal_unit, "1") != 0 ? b->info[i].hal_unit : ""; /* dimensionless: none */
+        const char *u = strcmp(b->c->info[i].hal_unit, "1") != 0 ? b->c->info[i].hal_unit : ""; /* dimensionless: none */
         refused_value(b, i, v);
-        hg_text_value(was, kept * b->info[i].hal_scale);
+        hg_text_value(was, kept * b->c->info[i].hal_scale);
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s, changed from %s%s%s in this "
-                        "set\n", b->id, b->id, hg_board_param_hal_name(&b->b, i), v, u[0] ? " " : "", u, was,
+                        "set\n", b->id, b->id, hg_board_param_hal_name(&b->c->b, i), v, u[0] ? " " : "", u, was,
                         u[0] ? " " : "", u);
     }
 }
@@ -241,21 +253,21 @@ static void report_refusal(board_t *b, long period)
 {
     hg_bitset bad;
     char v[HG_TEXT_VALUE_LEN], why[HG_BOARD_TEXT_LEN];
-    const hg_param_info *t = b->info;
+    const hg_param_info *t = b->c->info;
     int i, n = b->nparams;
-    if (b->o.param_rc != HG_ERR_BAD_PARAM) {
+    if (b->c->o.param_rc != HG_ERR_BAD_PARAM) {
         char what[HG_BOARD_TEXT_LEN];
-        hg_board_describe_stiffness(&b->b, &b->o, period, 1, what);
+        hg_board_describe_stiffness(&b->c->b, &b->c->o, period, 1, what);
         /* two messages: LinuxCNC's error channel keeps 255 characters of each (EMCMOT_ERROR_LEN) */
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter set refused: %s (code %d), even with %u "
                         "substeps; keeping the set in force (halcmd show param displays it again)\n",
-                        b->id, hg_strerror(b->o.param_rc), b->o.param_rc, HG_SUBSTEPS_MAX);
+                        b->id, hg_strerror(b->c->o.param_rc), b->c->o.param_rc, HG_SUBSTEPS_MAX);
         if (what[0])
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: refused because %s\n", b->id, what);
         report_changed(b, 0);
         return;
     }
-    hg_board_params_check(&b->b, &b->ins.params, &bad, b->why);
+    hg_board_params_check(&b->c->b, &b->c->ins.params, &bad, b->c->why);
     rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter change refused, keeping the set in "
                     "force (halcmd show param displays it again); invalid:\n", b->id);
     for (i = 0; i < HG_BOARD_WHY_LEN; i++) {
@@ -264,9 +276,9 @@ static void report_refusal(board_t *b, long period)
         const int unit = i < n && strcmp(t[i].hal_unit, "1") != 0; /* a dimensionless one has none */
         refused_value(b, i, v);
         why[0] = '\0';
-        hg_text_add_hal_names(why, sizeof why, b->why[i] ? b->why[i] : "");
+        hg_text_add_hal_names(why, sizeof why, b->c->why[i] ? b->c->why[i] : "");
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s: %s\n", b->id, b->id,
-                        hg_board_param_hal_name(&b->b, i), v, unit ? " " : "", unit ? t[i].hal_unit : "", why);
+                        hg_board_param_hal_name(&b->c->b, i), v, unit ? " " : "", unit ? t[i].hal_unit : "", why);
     }
     report_changed(b, &bad);
 }
@@ -274,8 +286,8 @@ static void report_refusal(board_t *b, long period)
 /* The board's events as RTAPI messages (the same ones as before the core existed). */
 static void report(board_t *b, long period)
 {
-    const hg_board_outputs *o = &b->o;
-    const hg_plant *pl = hg_board_plant(&b->b);
+    const hg_board_outputs *o = &b->c->o;
+    const hg_plant *pl = hg_board_plant(&b->c->b);
     int k, i, id = b->id;
     if (o->events & HG_EV_PARAM_REFUSED)
         report_refusal(b, period);
@@ -311,10 +323,10 @@ static void report(board_t *b, long period)
     if (o->events & HG_EV_ESTOP_OUT_BAD)
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: " XP ".%d.estop-loop-out = %d refused: the E-STOP loop "
                         "runs through a digital output, 0..31 (out-07 in motenc_io.hal), or -1 for none; keeping "
-                        "%d in the loop\n", id, id, b->ins.estop_loop_out, o->estop_loop_out);
+                        "%d in the loop\n", id, id, b->c->ins.estop_loop_out, o->estop_loop_out);
     if (o->events & HG_EV_ADC_VPA_BAD) {
         char got[HG_TEXT_VALUE_LEN], kept[HG_TEXT_VALUE_LEN];
-        hg_text_value(got, b->ins.adc_volts_per_amp);
+        hg_text_value(got, b->c->ins.adc_volts_per_amp);
         hg_text_value(kept, o->adc_volts_per_amp);
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: " XP ".%d.adc-volts-per-amp = %s refused: the drives' "
                         "current monitors give a finite, positive number of volts per amp; keeping %s\n", id, id,
@@ -326,7 +338,7 @@ static void report(board_t *b, long period)
                         "then motenc.%d.dynamics, after the PIDs in one thread\n", id, id, id, id, id);
     if (o->events & HG_EV_SUBSTEPS_AUTO) {
         char what[HG_BOARD_TEXT_LEN];
-        hg_board_describe_stiffness(&b->b, o, period, 1, what);
+        hg_board_describe_stiffness(&b->c->b, o, period, 1, what);
         /* the default 1 asks for what the step needs: said at INFO; more asked and not enough: WARN */
         rtapi_print_msg(o->params.substeps > 1 ? RTAPI_MSG_WARN : RTAPI_MSG_INFO,
                         MODNAME ": board %d: %s: running %u integration steps per period "
@@ -335,7 +347,7 @@ static void report(board_t *b, long period)
     }
     if (o->events & HG_EV_FAULT_LATCHED && o->fault_cause == HG_FAULT_STIFF) {
         char what[HG_BOARD_TEXT_LEN];
-        hg_board_describe_stiffness(&b->b, o, period, 1, what);
+        hg_board_describe_stiffness(&b->c->b, o, period, 1, what);
         /* two messages: LinuxCNC's error channel keeps 255 characters of each (EMCMOT_ERROR_LEN) */
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s (code %d)\n", id, what, o->fault_code);
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: the step cannot integrate these parameters at this "
@@ -372,8 +384,8 @@ static void report(board_t *b, long period)
 /* The extra pins from the last outputs (mm, mm/s, degrees on HAL). */
 static void publish(board_t *b)
 {
-    const hg_board_outputs *o = &b->o;
-    const hg_plant *pl = hg_board_plant(&b->b);
+    const hg_board_outputs *o = &b->c->o;
+    const hg_plant *pl = hg_board_plant(&b->c->b);
     int k;
     for (k = 0; k < o->channels; k++) {
         joint_hal *j = &b->joint[k];
@@ -413,17 +425,17 @@ static void write_rec(board_t *b, long period)
     hg_board_rec_ctx c;
     int i;
     if (!b->recording)                /* record rose: the parameters' stream starts again */
-        hg_board_rec_stream_start(&b->stream, b->b.plant, b->b.variant);
-    hg_board_rec_stream_step(&b->stream, &b->ins.params, b->nparams);
-    c.in = &b->ins;
-    c.out = &b->o;
+        hg_board_rec_stream_start(&b->c->stream, b->c->b.plant, b->c->b.variant);
+    hg_board_rec_stream_step(&b->c->stream, &b->c->ins.params, b->nparams);
+    c.in = &b->c->ins;
+    c.out = &b->c->o;
     c.period_ns = period;
-    c.plant = b->b.plant;
-    c.variant = b->b.variant;
-    c.stream = &b->stream;
+    c.plant = b->c->b.plant;
+    c.variant = b->c->b.variant;
+    c.stream = &b->c->stream;
     for (i = 0; i < b->nrec; i++) {
-        double v = hg_board_rec_get(b->rec, b->nrec, i, &c);
-        switch (b->rec[i].type) {
+        double v = hg_board_rec_get(b->c->rec, b->nrec, i, &c);
+        switch (b->c->rec[i].type) {
         case HG_BRF_F64: *b->rec_pin[i].f = v; break;
         case HG_BRF_S32: *b->rec_pin[i].s = (hal_s32_t)v; break;
         case HG_BRF_BIT: *b->rec_pin[i].b = v != 0.0; break;
@@ -435,7 +447,7 @@ static void write_rec(board_t *b, long period)
 static void dynamics(void *arg, long period)
 {
     board_t *b = arg;
-    hg_board_inputs *in = &b->ins;
+    hg_board_inputs *in = &b->c->ins;
     long long t0 = rtapi_get_time(), dt_ns;
     int k, changed;
     if (hg_board_rate_step(&b->rate)) { /* two messages: LinuxCNC's error channel keeps 255
@@ -468,7 +480,7 @@ static void dynamics(void *arg, long period)
         in->adc_offset[k] = b->adc[k].offset;
     }
     in->adc_volts_per_amp = b->adc_volts_per_amp;
-    for (k = 0; k < b->o.channels; k++) {
+    for (k = 0; k < b->c->o.channels; k++) {
         joint_hal *j = &b->joint[k];
         int i;
         in->amp_fail[k] = *j->amp_fail;
@@ -476,30 +488,30 @@ static void dynamics(void *arg, long period)
         in->tripped[k] = SW3(*j->tripped[0], *j->tripped[1], *j->tripped[2]);
         in->index_lost[k] = *j->index_lost;
         in->enc_glitch[k] = *j->enc_glitch;
-        in->pos_cmd[k] = *j->pos_cmd / ((b->o.rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M);
+        in->pos_cmd[k] = *j->pos_cmd / ((b->c->o.rotary >> k) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M);
         in->inject[k] = 0;
-        for (i = 0; i < hg_board_plant(&b->b)->ninjections; i++)
+        for (i = 0; i < hg_board_plant(&b->c->b)->ninjections; i++)
             in->inject[k] |= (*j->inject[i] ? 1u : 0u) << i;
     }
     changed = read_params(b);
 
-    hg_board_step(&b->b, in, &b->o, period);
+    hg_board_step(&b->c->b, in, &b->c->o, period);
     if (b->record)
         write_rec(b, period);
     b->recording = b->record;
 
     in->dac_written = in->dac_stale = in->adc_read = 0;
-    for (k = 0; k < b->o.channels; k++)
+    for (k = 0; k < b->c->o.channels; k++)
         if (in->enc_glitch[k])
             *b->joint[k].enc_glitch = 0;  /* applied once */
-    if (b->o.events & HG_EV_WATCHDOG_KICKED)
+    if (b->c->o.events & HG_EV_WATCHDOG_KICKED)
         *b->watchdog_reset = 0;
-    if (b->o.events & HG_EV_RESET_DONE) {
+    if (b->c->o.events & HG_EV_RESET_DONE) {
         *b->step_max_ns = 0;
         memset(&b->rate, 0, sizeof b->rate); /* said again after a reset, as the addf order */
     }
     report(b, period);
-    if (changed || (b->o.events & (HG_EV_PARAM_REFUSED | HG_EV_PARAM_APPLIED | HG_EV_RESET_DONE)))
+    if (changed || (b->c->o.events & (HG_EV_PARAM_REFUSED | HG_EV_PARAM_APPLIED | HG_EV_RESET_DONE)))
         write_params(b);              /* show the block in force only when it may differ */
     publish(b);
 
@@ -579,13 +591,13 @@ static int export_motenc(board_t *b)
 static int export_rec(board_t *b)
 {
     int rc, i;
-    b->nrec = hg_board_rec_fields(b->rec, HG_BOARD_REC_MAX, b->b.plant, b->b.variant, HG_BOARD_REC_FORMAT);
+    b->nrec = hg_board_rec_fields(b->c->rec, HG_BOARD_REC_MAX, b->c->b.plant, b->c->b.variant, HG_BOARD_REC_FORMAT);
     if (b->nrec < 0)
         return -EINVAL;
     for (i = 0; i < b->nrec; i++) {
-        const char *n = b->rec[i].name;
+        const char *n = b->c->rec[i].name;
         rec_pin *p = &b->rec_pin[i];
-        switch (b->rec[i].type) {
+        switch (b->c->rec[i].type) {
         case HG_BRF_F64: TRY(hal_pin_float_newf(HAL_OUT, &p->f, comp_id, XP ".%d.rec.%s", b->id, n)); break;
         case HG_BRF_S32: TRY(hal_pin_s32_newf(HAL_OUT, &p->s, comp_id, XP ".%d.rec.%s", b->id, n)); break;
         case HG_BRF_BIT: TRY(hal_pin_bit_newf(HAL_OUT, &p->b, comp_id, XP ".%d.rec.%s", b->id, n)); break;
@@ -599,12 +611,12 @@ static int export_rec(board_t *b)
 static int export_extra(board_t *b)
 {
     static const char *const sw[3] = {"min", "max", "home"};
-    const hg_plant *pl = hg_board_plant(&b->b);
-    int rc, k, i, n = pl->nparams(b->b.variant), id = b->id;
-    const hg_param_info *t = b->info;
+    const hg_plant *pl = hg_board_plant(&b->c->b);
+    int rc, k, i, n = pl->nparams(b->c->b.variant), id = b->id;
+    const hg_param_info *t = b->c->info;
     for (k = 0; k < n; k++)
-        pl->param(b->b.variant, k, &b->info[k]);
-    for (k = 0; k < b->o.channels; k++) {
+        pl->param(b->c->b.variant, k, &b->c->info[k]);
+    for (k = 0; k < b->c->o.channels; k++) {
         joint_hal *j = &b->joint[k];
         PIN(float, HAL_OUT, &j->pos, XP ".%d.joint-%d.pos", id, k);
         PIN(float, HAL_OUT, &j->vel, XP ".%d.joint-%d.vel", id, k);
@@ -646,17 +658,17 @@ static int export_extra(board_t *b)
     PIN(u32, HAL_OUT, &b->dout_word, XP ".%d.digital-out-word", id);
     PAR(float, &b->adc_volts_per_amp, XP ".%d.adc-volts-per-amp", id);
     PAR(s32, &b->estop_loop_out, XP ".%d.estop-loop-out", id);
-    b->estop_loop_out = b->ins.estop_loop_out;
-    b->adc_volts_per_amp = b->ins.adc_volts_per_amp;
+    b->estop_loop_out = b->c->ins.estop_loop_out;
+    b->adc_volts_per_amp = b->c->ins.adc_volts_per_amp;
     for (k = 0; k < n; k++) {
         PAR(float, &b->par[k], XP ".%d.%s", id, t[k].hal_name);
-        b->par[k] = b->shadow[k] = b->o.params.plant.v[k] * t[k].hal_scale;
+        b->par[k] = b->shadow[k] = b->c->o.params.plant.v[k] * t[k].hal_scale;
     }
     b->nparams = n;
     PAR(u32, &b->substeps, XP ".%d.substeps", id);
     PAR(u32, &b->integrator, XP ".%d.integrator", id);
-    b->substeps = b->o.params.substeps;
-    b->integrator = b->o.params.integrator;
+    b->substeps = b->c->o.params.substeps;
+    b->integrator = b->c->o.params.integrator;
     if (record) {                     /* asked for at loadrt: the recorder's pins */
         PAR(bit, &b->record, XP ".%d.record", id);
         TRY(export_rec(b));
@@ -705,15 +717,17 @@ int rtapi_app_main(void)
         return -ENOMEM;
     }
     memset(b, 0, sizeof *b);
+    memset(&the_core, 0, sizeof the_core);
+    b->c = &the_core;
     b->id = board;
-    rc = hg_board_init(&b->b, pi, kind, 0);
+    rc = hg_board_init(&b->c->b, pi, kind, 0);
     if (rc) {
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": default model refused: %s\n", hg_strerror(rc));
         hal_exit(comp_id);
         return -EINVAL;
     }
-    hg_board_inputs_default(&b->b, &b->ins);
-    hg_board_peek(&b->b, &b->o);
+    hg_board_inputs_default(&b->c->b, &b->c->ins);
+    hg_board_peek(&b->c->b, &b->c->o);
     rc = export_motenc(b);
     if (!rc)
         rc = export_extra(b);
