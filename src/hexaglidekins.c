@@ -32,8 +32,9 @@
  *   The Hexaglide's forward kinematics keeps solving under identity, so the
  *   head's pose stays known and the way back to type 0 starts from it.
  *   kinstype.is-0 .is-1 .is-2        bit out  the type in force (switchkins' names)
- *   skgui.x .y .z .a .b .c           float out the head's pose by the Hexaglide's
- *                                    kinematics whatever the type (for a vismach GUI)
+ *   skgui.x .y .z .a .b .c           float out the world pose by the Hexaglide's
+ *                                    kinematics whatever the type (the tool tip with
+ *                                    tool-offset, as in type 0; for a vismach GUI)
  * Module parameter coordinates: XYZABC (any case) or left out; the Hexaglide
  *   needs all six in that order. */
 #include "rtapi.h"
@@ -121,14 +122,12 @@ static int current_geometry(hg_geometry *g)
     if (rc) {                            /* once per refused geometry: a new bad value is named too */
         char reason[HG_TEXT_VALUE_LEN * 8] = "", value[HG_TEXT_VALUE_LEN];
         hg_text_add_hal_names(reason, sizeof reason, why);
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: parameter hexaglidekins.%s %s; kinematics refused until "
+                        "it is fixed with setp\n", hg_params_hal_name(field), reason);
         if (changed >= 0 && strcmp(t[changed].name, field) != 0) { /* another field's rule: say what was set */
-            hg_text_value(value, hd->geo[changed]);
-            rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: parameter hexaglidekins.%s %s; kinematics refused until "
-                            "it is fixed with setp (after hexaglidekins.%s was set to %s)\n",
-                            hg_params_hal_name(field), reason, t[changed].hal_name, value);
-        } else {
-            rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: parameter hexaglidekins.%s %s; kinematics refused until "
-                            "it is fixed with setp\n", hg_params_hal_name(field), reason);
+            hg_text_value(value, hd->geo[changed]);  /* a line of its own: LinuxCNC keeps 254 characters of each */
+            rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: that rule failed after hexaglidekins.%s was set to %s\n",
+                            t[changed].hal_name, value);
         }
     }
     return rc;
@@ -184,6 +183,8 @@ static int tool_offset(const hg_geometry *g, double mpu, double *d_m)
     int say = hg_tool_offset_take(&hd->tool, g, given * mpu / HG_MM_PER_M);
     char a[HG_TEXT_VALUE_LEN], b[HG_TEXT_VALUE_LEN], c[HG_TEXT_VALUE_LEN];
     *d_m = hd->tool.in_force_m;
+    if (say == HG_FK_SAY_JUMP && hd->kins.type == HG_KINS_IDENTITY)
+        say = HG_FK_SAY_NOTHING;       /* identity applies no offset: the joints do not jump */
     if (say == HG_FK_SAY_NOTHING)      /* every call but the rare ones that say something */
         return hd->tool.refusing ? HG_ERR_BAD_PARAM : HG_OK;
     hg_text_value(a, given);

@@ -229,20 +229,43 @@ static void refused_value(const board_t *b, int i, char v[HG_TEXT_VALUE_LEN])
         hg_text_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->c->ins.params.substeps : b->c->ins.params.integrator);
 }
 
-/* One line per model parameter the refused set changed that is not in
- * *said (0: none said): a rule that names another field may fail because
- * of it (lb 1e-300 fails "e ... smaller than lb"). */
+/* The value of the set in force's field i as HAL shows it (table units). */
+static void kept_value(const board_t *b, int i, char v[HG_TEXT_VALUE_LEN])
+{
+    if (i < b->nparams)
+        hg_text_value(v, b->c->o.params.plant.v[i] * b->c->info[i].hal_scale);
+    else
+        hg_text_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->c->o.params.substeps : b->c->o.params.integrator);
+}
+
+/* 1 when the refused set's field i equals the one in force (a NaN kept too). */
+static int field_same(const board_t *b, int i)
+{
+    const hg_board_params *now = &b->c->ins.params, *kept = &b->c->o.params;
+    if (i == HG_BOARD_BIT_SUBSTEPS)
+        return now->substeps == kept->substeps;
+    if (i == HG_BOARD_BIT_INTEGRATOR)
+        return now->integrator == kept->integrator;
+    return now->plant.v[i] == kept->plant.v[i] || (now->plant.v[i] != now->plant.v[i] &&
+                                                   kept->plant.v[i] != kept->plant.v[i]);
+}
+
+/* One line per field the refused set changed that is not in *said: a rule
+ * that names another field may fail because of it (lb 1e-300 fails "e ...
+ * smaller than lb"). */
 static void report_changed(board_t *b, const hg_bitset *said)
 {
     char v[HG_TEXT_VALUE_LEN], was[HG_TEXT_VALUE_LEN];
     int i;
-    for (i = 0; i < b->nparams; i++) {
-        double now = b->c->ins.params.plant.v[i], kept = b->c->o.params.plant.v[i];
-        if (memcmp(&now, &kept, sizeof now) == 0 || (said && hg_bitset_has(said, i))) // NOLINT(bugprone-suspicious-memory-comparison): bitwise, NaN equals itself
+    for (i = 0; i < HG_BOARD_WHY_LEN; i++) {
+        const int plant = i < b->nparams;
+        if ((!plant && i < HG_BOARD_BIT_SUBSTEPS) || hg_bitset_has(said, i))
             continue;
-        const char *u = strcmp(b->c->info[i].hal_unit, "1") != 0 ? b->c->info[i].hal_unit : ""; /* dimensionless: none */
+        if (field_same(b, i))
+            continue;
         refused_value(b, i, v);
-        hg_text_value(was, kept * b->c->info[i].hal_scale);
+        kept_value(b, i, was);
+        const char *u = plant && strcmp(b->c->info[i].hal_unit, "1") != 0 ? b->c->info[i].hal_unit : ""; /* dimensionless: none */
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s, changed from %s%s%s in this "
                         "set\n", b->id, b->id, hg_board_param_hal_name(&b->c->b, i), v, u[0] ? " " : "", u, was,
                         u[0] ? " " : "", u);
@@ -264,7 +287,10 @@ static void report_refusal(board_t *b, long period)
                         b->id, hg_strerror(b->c->o.param_rc), b->c->o.param_rc, HG_SUBSTEPS_MAX);
         if (what[0])
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: refused because %s\n", b->id, what);
-        report_changed(b, 0);
+        hg_bitset_clear(&bad);
+        if (b->c->o.stiff_param >= 0)
+            hg_bitset_set(&bad, b->c->o.stiff_param);    /* named in the sentence above */
+        report_changed(b, &bad);
         return;
     }
     hg_board_params_check(&b->c->b, &b->c->ins.params, &bad, b->c->why);
@@ -415,8 +441,12 @@ static void publish(board_t *b)
     *b->watchdog_expired = o->watchdog_expired;
     *b->param_error = o->param_error;
     *b->dac_nan = o->dac_nan;
-    b->estop_loop_out = o->estop_loop_out; /* the output in force (a refused value is shown replaced) */
-    b->adc_volts_per_amp = o->adc_volts_per_amp; /* the same for the current monitors' V/A */
+    /* a refused value is shown replaced by the one in force; only then, so that a setp landing
+     * between the step's read and here is not overwritten */
+    if (o->events & HG_EV_ESTOP_OUT_BAD)
+        b->estop_loop_out = o->estop_loop_out;
+    if (o->events & HG_EV_ADC_VPA_BAD)
+        b->adc_volts_per_amp = o->adc_volts_per_amp;
 }
 
 /* The record pins: this step's inputs, period and outputs, exactly. */
