@@ -532,8 +532,11 @@ static const char *plant_wrong(const plant *p, const plant *ref, double enc_scal
     }
     if (!SAME(b->wd, r->wd) && !(b->wd.control == 0 && is_bit(b->wd.expired) && isfinite(b->wd.remaining_s)))
         return "its watchdog is in a state the FMU never sets";
-    if (b->adc_state != r->adc_state || !SAME(b->adc_sample_v, r->adc_sample_v) || !SAME(b->adc_value, r->adc_value))
+    if (b->adc_state != r->adc_state || !SAME(b->adc_sample_v, r->adc_sample_v) || !SAME(b->adc_value, r->adc_value) ||
+        !SAME(b->adc_volts_per_amp, r->adc_volts_per_amp) || !SAME(b->adc_volts_per_amp_in, r->adc_volts_per_amp_in))
         return "its ADCs are in a state the FMU never sets";
+    if (b->estop_loop_out != r->estop_loop_out || b->estop_loop_out_in != r->estop_loop_out_in)
+        return "its E-STOP loop's output is not the one the FMU sets";
     if (b->dac_nan >> FMU_JOINTS || !is_bit(b->prev_reset) || !is_bit(b->fault) || (b->fault != 0) != (b->fault_code != 0) ||
         !is_bit(b->param_error) || b->order_bad_run < 0 || b->order_bad_run > 2 || !is_bit(b->order_reported) ||
         !isfinite(b->tool_error) || b->tool_error < -1.0)
