@@ -299,9 +299,9 @@ int kinematicsForward(const double *joints, EmcPose *pos,
         gui_pins();
         return identity_forward(joints, pos);
     }
-    if (hd->kins.restart) {                    /* back from identity: motion's guess is identity's world */
+    if (hd->kins.restart > 0) {                /* back from identity: motion's guesses are identity's world */
         *pos = hd->head;
-        hd->kins.restart = 0;
+        hd->kins.restart--;
     }
     rc = hexaglide_forward(joints, pos);
     hd->head = *pos;

@@ -208,7 +208,8 @@ int hg_kins_switch_to(hg_kins_switch *s, int type)
 {
     if (type != HG_KINS_HEXAGLIDE && type != HG_KINS_IDENTITY)
         return HG_ERR_BAD_PARAM;
-    s->restart = s->restart || (type == HG_KINS_HEXAGLIDE && s->type != HG_KINS_HEXAGLIDE);
+    if (type == HG_KINS_HEXAGLIDE && s->type != HG_KINS_HEXAGLIDE)
+        s->restart = HG_KINS_RESTART_CALLS;
     s->type = type;
     return HG_OK;
 }

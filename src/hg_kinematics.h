@@ -143,12 +143,15 @@ void hg_joints_to_machine(const double z[6], double mm_per_unit, double joints[6
  * a user template in LinuxCNC's switchkins modules, it has not. */
 enum { HG_KINS_HEXAGLIDE = 0, HG_KINS_IDENTITY = 1 };
 
-/* The type in force and whether the next Hexaglide forward call must
- * start from the pose tracked while another type was in force (motion's
- * guess at a switch is that type's world, not a Hexaglide pose). */
+/* The type in force and how many of the next Hexaglide forward calls
+ * must start from the pose tracked while another type was in force:
+ * motion's guesses in the period of a switch are that type's world, not a
+ * Hexaglide pose, for both its streams (the commanded joints at the switch,
+ * then the feedback joints in the same period). */
+#define HG_KINS_RESTART_CALLS 2
 typedef struct {
     int type;                  /* HG_KINS_HEXAGLIDE or HG_KINS_IDENTITY */
-    int restart;               /* 1: the next Hexaglide forward starts from the tracked pose */
+    int restart;               /* > 0: the next Hexaglide forward calls start from the tracked pose */
 } hg_kins_switch;
 
 /* 1 when a kinematics module's coordinates parameter suits the Hexaglide:
@@ -158,9 +161,9 @@ int hg_kins_coordinates_ok(const char *coordinates);
 /* Type HG_KINS_HEXAGLIDE, no restart. */
 void hg_kins_switch_init(hg_kins_switch *s);
 
-/* Switch to type: HG_OK (restart set when the Hexaglide's kinematics come
- * back from identity), or HG_ERR_BAD_PARAM for a type hexaglidekins does not
- * have, the type in force kept. */
+/* Switch to type: HG_OK (restart HG_KINS_RESTART_CALLS when the
+ * Hexaglide's kinematics come back from identity), or HG_ERR_BAD_PARAM for a
+ * type hexaglidekins does not have, the type in force kept. */
 int hg_kins_switch_to(hg_kins_switch *s, int type);
 
 /* Base point of guide k at height 0: Rz(alpha_i)(lb, s_j e, 0). */

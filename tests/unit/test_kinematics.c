@@ -753,8 +753,9 @@ static void test_kins_switch(void)
     for (k = 0; k < 4; k++)
         kept &= hg_kins_switch_to(&s, bad[k]) == HG_ERR_BAD_PARAM && s.type == HG_KINS_IDENTITY;
     CHECK(kept, "types 2, 3, -1, 1000 refused, identity kept");
-    CHECK(hg_kins_switch_to(&s, 0) == HG_OK && s.type == HG_KINS_HEXAGLIDE && s.restart,
-          "back to type 0 from identity: restart from the tracked pose");
+    CHECK(hg_kins_switch_to(&s, 0) == HG_OK && s.type == HG_KINS_HEXAGLIDE && s.restart == 2,
+          "back to type 0 from identity: the next 2 forward calls (motion's commanded and feedback joints) "
+          "restart from the tracked pose");
     CHECK(hg_kins_coordinates_ok(0) && hg_kins_coordinates_ok("") && hg_kins_coordinates_ok("XYZABC") &&
               hg_kins_coordinates_ok("xyzabc") && hg_kins_coordinates_ok("XyZaBc"),
           "coordinates: left out, XYZABC in any case");
