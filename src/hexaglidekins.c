@@ -77,7 +77,7 @@ typedef struct {
     int checked_rc, checked_valid;                 /* ... its result; 0: check again */
     hg_fk_session fk;                              /* the settings in force, what was refused, failing */
     hg_kins_switch kins;                           /* the kinematics type in force */
-    EmcPose head;                                  /* the head by the Hexaglide's kinematics, last answer */
+    EmcPose head;                                  /* the Hexaglide's kinematics' last world pose (skgui) */
     hal_bit_t *kinstype_is[3];                     /* kinstype.is-0 .. is-2 */
     hal_float_t *gui[6];                           /* skgui.x .. skgui.c: head */
 } hexaglidekins_hal;
@@ -278,7 +278,7 @@ static int identity_forward(const double *joints, EmcPose *pos)
     return HG_OK;
 }
 
-/* The head's pose into skgui.*. */
+/* The world pose by the Hexaglide's kinematics (the tool tip with tool-offset) into skgui.*. */
 static void gui_pins(void)
 {
     const double v[6] = {hd->head.tran.x, hd->head.tran.y, hd->head.tran.z, hd->head.a, hd->head.b, hd->head.c};
