@@ -265,7 +265,8 @@ static void report_changed(board_t *b, const hg_bitset *said)
             continue;
         refused_value(b, i, v);
         kept_value(b, i, was);
-        const char *u = plant && strcmp(b->c->info[i].hal_unit, "1") != 0 ? b->c->info[i].hal_unit : ""; /* dimensionless: none */
+        /* the unit HAL shows: none for a dimensionless one, substeps or the integrator */
+        const char *u = plant && strcmp(b->c->info[i].hal_unit, "1") != 0 ? b->c->info[i].hal_unit : "";
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s, changed from %s%s%s in this "
                         "set\n", b->id, b->id, hg_board_param_hal_name(&b->c->b, i), v, u[0] ? " " : "", u, was,
                         u[0] ? " " : "", u);
