@@ -46,7 +46,6 @@
 
 #include "hg_errors.h"
 #include "hg_kinematics.h"
-#include "hg_linalg.h"
 #include "hg_guard.h"
 #include "hg_params.h"
 #include "hg_text.h"
@@ -266,16 +265,18 @@ static int hexaglide_forward(const double *joints, EmcPose *pos)
     return rc;
 }
 
-/* Identity: world X Y Z A B C are joints 0..5 (machine units, as given);
- * HG_ERR_NONFINITE_INPUT, pos untouched, for a joint not finite. */
+/* Identity (hg_identity_kinematics): world X Y Z A B C are joints 0..5;
+ * pos untouched on failure. */
 static int identity_forward(const double *joints, EmcPose *pos)
 {
-    if (!hg_all_finite(6, joints))
-        return HG_ERR_NONFINITE_INPUT;
-    pos->tran.x = joints[0]; pos->tran.y = joints[1]; pos->tran.z = joints[2];
-    pos->a = joints[3]; pos->b = joints[4]; pos->c = joints[5];
-    pos->u = pos->v = pos->w = 0.0;
-    return HG_OK;
+    double world[6];
+    int rc = hg_identity_kinematics(joints, world);
+    if (rc == HG_OK) {
+        pos->tran.x = world[0]; pos->tran.y = world[1]; pos->tran.z = world[2];
+        pos->a = world[3]; pos->b = world[4]; pos->c = world[5];
+        pos->u = pos->v = pos->w = 0.0;
+    }
+    return rc;
 }
 
 /* The world pose by the Hexaglide's kinematics (the tool tip with tool-offset) into skgui.*. */
@@ -299,10 +300,8 @@ int kinematicsForward(const double *joints, EmcPose *pos,
         gui_pins();
         return identity_forward(joints, pos);
     }
-    if (hd->kins.restart > 0) {                /* back from identity: motion's guesses are identity's world */
+    if (hg_kins_switch_restart(&hd->kins))    /* back from identity: motion's guesses are identity's world */
         *pos = hd->head;
-        hd->kins.restart--;
-    }
     rc = hexaglide_forward(joints, pos);
     hd->head = *pos;
     gui_pins();
@@ -321,9 +320,7 @@ int kinematicsInverse(const EmcPose *pos, double *joints,
     (void)fflags;
     if (hd->kins.type == HG_KINS_IDENTITY) {
         const double world[6] = {pos->tran.x, pos->tran.y, pos->tran.z, pos->a, pos->b, pos->c};
-        *hd->ik_error = hg_all_finite(6, world) ? HG_OK : HG_ERR_NONFINITE_INPUT;
-        if (*hd->ik_error == HG_OK)
-            memcpy(joints, world, sizeof world);
+        *hd->ik_error = hg_identity_kinematics(world, joints);
         return *hd->ik_error;
     }
     pose_from_emc(pos, mpu, commanded);

@@ -58,6 +58,15 @@ int hg_board_params_check(const hg_board *b, const hg_board_params *p, hg_bitset
     return hg_bitset_empty(&s) ? HG_OK : HG_ERR_BAD_PARAM;
 }
 
+double hg_board_param_value(const hg_board_params *p, int bit)
+{
+    if (bit == HG_BOARD_BIT_SUBSTEPS)
+        return p->substeps;
+    if (bit == HG_BOARD_BIT_INTEGRATOR)
+        return p->integrator;
+    return p->plant.v[bit];
+}
+
 const char *hg_board_param_hal_name(const hg_board *b, int bit)
 {
     hg_param_info e;

@@ -341,6 +341,10 @@ int hg_board_rate_step(hg_board_rate *r);
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
                                  char buf[HG_BOARD_TEXT_LEN]);
 
+/* Field bit of block p, bits as refused (the plant's parameters in SI, then
+ * substeps and integrator), as a double. */
+double hg_board_param_value(const hg_board_params *p, int bit);
+
 /* HAL name of refused bit i of b's plant ("c-visc", "substeps", ...), 0 if none. */
 const char *hg_board_param_hal_name(const hg_board *b, int bit);
 

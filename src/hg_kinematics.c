@@ -6,6 +6,7 @@
 #include "hg_linalg.h"
 #include "hg_errors.h"
 #include "hg_units.h"
+#include "hg_text.h"
 
 /* cos and sin of the post angles alpha = 0, +120, -120 degrees */
 static const double post_cos[3] = {1.0, -0.5, -0.5};
@@ -188,14 +189,23 @@ double hg_tool_offset_jump(const double commanded[6], double from_m, double to_m
 
 int hg_kins_coordinates_ok(const char *coordinates)
 {
-    static const char order[] = "XYZABC";
-    int i;
-    if (!coordinates || !coordinates[0])
-        return 1;
-    for (i = 0; order[i]; i++)
-        if (coordinates[i] != order[i] && coordinates[i] != order[i] - 'A' + 'a')
-            return 0;
-    return coordinates[i] == 0;
+    return !coordinates || !coordinates[0] || hg_text_is_word(coordinates, strlen(coordinates), "xyzabc");
+}
+
+int hg_identity_kinematics(const double in[6], double out[6])
+{
+    if (!hg_all_finite(6, in))
+        return HG_ERR_NONFINITE_INPUT;
+    memcpy(out, in, 6 * sizeof *in);
+    return HG_OK;
+}
+
+int hg_kins_switch_restart(hg_kins_switch *s)
+{
+    if (s->restart <= 0)
+        return 0;
+    s->restart--;
+    return 1;
 }
 
 void hg_kins_switch_init(hg_kins_switch *s)

@@ -158,6 +158,15 @@ typedef struct {
  * left out (0 or "") or XYZABC in any case, its joints' order; else 0. */
 int hg_kins_coordinates_ok(const char *coordinates);
 
+/* Identity kinematics (HG_KINS_IDENTITY) either way: out = in (joints
+ * 0..5 <-> X Y Z A B C, machine units as given), HG_OK; or
+ * HG_ERR_NONFINITE_INPUT, out untouched, when one of in is not finite. */
+int hg_identity_kinematics(const double in[6], double out[6]);
+
+/* 1 when this Hexaglide forward call starts from the tracked pose (one of
+ * the restart calls, counted down), else 0. */
+int hg_kins_switch_restart(hg_kins_switch *s);
+
 /* Type HG_KINS_HEXAGLIDE, no restart. */
 void hg_kins_switch_init(hg_kins_switch *s);
 

@@ -140,8 +140,7 @@ int hg_text_is_decimal(const char *s, unsigned long n)
     return i == n;
 }
 
-/* 1 if s[0..n) is word (lower case) in any case. */
-static int is_word(const char *s, unsigned long n, const char *word)
+int hg_text_is_word(const char *s, unsigned long n, const char *word)
 {
     unsigned long i;
     for (i = 0; i < n && word[i]; i++)
@@ -154,5 +153,5 @@ int hg_text_is_nonfinite_word(const char *s, unsigned long n)
 {
     if (n && (s[0] == '+' || s[0] == '-'))
         s++, n--;
-    return is_word(s, n, "nan") || is_word(s, n, "inf") || is_word(s, n, "infinity");
+    return hg_text_is_word(s, n, "nan") || hg_text_is_word(s, n, "inf") || hg_text_is_word(s, n, "infinity");
 }

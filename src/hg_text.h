@@ -28,6 +28,9 @@ char *hg_text_add_hal_names(char *buf, unsigned long len, const char *s);
  * are not decimal numbers (hg_text_is_nonfinite_word: which callers say are not finite). */
 int hg_text_is_decimal(const char *s, unsigned long n);
 
+/* 1 if s[0..n) is word (given in lower case) in any case. */
+int hg_text_is_word(const char *s, unsigned long n, const char *word);
+
 /* 1 if s[0..n) is [+-]nan, inf or infinity in any case (Python's float() takes them). */
 int hg_text_is_nonfinite_word(const char *s, unsigned long n);
 

@@ -220,34 +220,10 @@ static void write_params(board_t *b)
 }
 
 /* Say, once, why the parameter change was refused: every field, its value, the rule. */
-/* The value of the refused set's field i as HAL shows it (table units). */
-static void refused_value(const board_t *b, int i, char v[HG_TEXT_VALUE_LEN])
+/* Field i of block p as HAL shows it (table units). */
+static void field_value(const board_t *b, const hg_board_params *p, int i, char v[HG_TEXT_VALUE_LEN])
 {
-    if (i < b->nparams)
-        hg_text_value(v, b->c->ins.params.plant.v[i] * b->c->info[i].hal_scale);
-    else
-        hg_text_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->c->ins.params.substeps : b->c->ins.params.integrator);
-}
-
-/* The value of the set in force's field i as HAL shows it (table units). */
-static void kept_value(const board_t *b, int i, char v[HG_TEXT_VALUE_LEN])
-{
-    if (i < b->nparams)
-        hg_text_value(v, b->c->o.params.plant.v[i] * b->c->info[i].hal_scale);
-    else
-        hg_text_value(v, i == HG_BOARD_BIT_SUBSTEPS ? b->c->o.params.substeps : b->c->o.params.integrator);
-}
-
-/* 1 when the refused set's field i equals the one in force (a NaN kept too). */
-static int field_same(const board_t *b, int i)
-{
-    const hg_board_params *now = &b->c->ins.params, *kept = &b->c->o.params;
-    if (i == HG_BOARD_BIT_SUBSTEPS)
-        return now->substeps == kept->substeps;
-    if (i == HG_BOARD_BIT_INTEGRATOR)
-        return now->integrator == kept->integrator;
-    return now->plant.v[i] == kept->plant.v[i] || (now->plant.v[i] != now->plant.v[i] &&
-                                                   kept->plant.v[i] != kept->plant.v[i]);
+    hg_text_value(v, hg_board_param_value(p, i) * (i < b->nparams ? b->c->info[i].hal_scale : 1.0));
 }
 
 /* One line per field the refused set changed that is not in *said: a rule
@@ -261,10 +237,11 @@ static void report_changed(board_t *b, const hg_bitset *said)
         const int plant = i < b->nparams;
         if ((!plant && i < HG_BOARD_BIT_SUBSTEPS) || hg_bitset_has(said, i))
             continue;
-        if (field_same(b, i))
+        double now = hg_board_param_value(&b->c->ins.params, i), kept = hg_board_param_value(&b->c->o.params, i);
+        if (now == kept || (now != now && kept != kept))   /* unchanged (a NaN kept too) */
             continue;
-        refused_value(b, i, v);
-        kept_value(b, i, was);
+        field_value(b, &b->c->ins.params, i, v);
+        field_value(b, &b->c->o.params, i, was);
         /* the unit HAL shows: none for a dimensionless one, substeps or the integrator */
         const char *u = plant && strcmp(b->c->info[i].hal_unit, "1") != 0 ? b->c->info[i].hal_unit : "";
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s, changed from %s%s%s in this "
@@ -301,7 +278,7 @@ static void report_refusal(board_t *b, long period)
         if (!hg_bitset_has(&bad, i))
             continue;
         const int unit = i < n && strcmp(t[i].hal_unit, "1") != 0; /* a dimensionless one has none */
-        refused_value(b, i, v);
+        field_value(b, &b->c->ins.params, i, v);
         why[0] = '\0';
         hg_text_add_hal_names(why, sizeof why, b->c->why[i] ? b->c->why[i] : "");
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s: %s\n", b->id, b->id,

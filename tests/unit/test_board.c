@@ -804,6 +804,20 @@ static void test_slow_step(void)
     CHECK(said == 1, "after the gap, two reads per step: said (%d)", said);
 }
 
+/* hg_board_param_value reads a block by refused bit: the plant's
+ * parameters, then substeps and integrator. */
+static void test_param_value(void)
+{
+    hg_board_params p;
+    memset(&p, 0, sizeof p);
+    p.plant.v[3] = 0.25;
+    p.substeps = 7;
+    p.integrator = 2;
+    CHECK(hg_board_param_value(&p, 3) == 0.25 && hg_board_param_value(&p, HG_BOARD_BIT_SUBSTEPS) == 7.0 &&
+              hg_board_param_value(&p, HG_BOARD_BIT_INTEGRATOR) == 2.0,
+          "parameter 3, substeps and integrator by their bits (0.25, 7, 2)");
+}
+
 int main(void)
 {
     test_estop_loop();
@@ -824,5 +838,6 @@ int main(void)
     test_geometry_rounding();
     test_unstepped();
     test_slow_step();
+    test_param_value();
     return hg_test_exit();
 }

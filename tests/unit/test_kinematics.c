@@ -756,6 +756,20 @@ static void test_kins_switch(void)
     CHECK(hg_kins_switch_to(&s, 0) == HG_OK && s.type == HG_KINS_HEXAGLIDE && s.restart == 2,
           "back to type 0 from identity: the next 2 forward calls (motion's commanded and feedback joints) "
           "restart from the tracked pose");
+    k = hg_kins_switch_restart(&s);
+    k = k * 10 + hg_kins_switch_restart(&s);
+    k = k * 10 + hg_kins_switch_restart(&s);
+    CHECK(k == 110 && s.restart == 0, "hg_kins_switch_restart: 1, 1, then 0 (%03d)", k);
+    {
+        const double in[6] = {1, -2, 3.5, 4, -5, 6e-300};
+        double out[6] = {9, 9, 9, 9, 9, 9}, bad[6] = {1, 2, NAN, 4, 5, 6};
+        CHECK(hg_identity_kinematics(in, out) == HG_OK && memcmp(in, out, sizeof in) == 0,
+              "identity: the six values as given");
+        CHECK(hg_identity_kinematics(bad, out) == HG_ERR_NONFINITE_INPUT && memcmp(in, out, sizeof in) == 0,
+              "identity: a NaN refused, the output untouched");
+        bad[2] = -INFINITY;
+        CHECK(hg_identity_kinematics(bad, out) == HG_ERR_NONFINITE_INPUT, "identity: -inf refused");
+    }
     CHECK(hg_kins_coordinates_ok(0) && hg_kins_coordinates_ok("") && hg_kins_coordinates_ok("XYZABC") &&
               hg_kins_coordinates_ok("xyzabc") && hg_kins_coordinates_ok("XyZaBc"),
           "coordinates: left out, XYZABC in any case");
