@@ -66,6 +66,7 @@ typedef struct {
     int i;                 /* next argument */
     int only_positional;   /* after "--" */
     const char *given[CLI_MAX_OPTS]; /* each once-only option's value so far, 0 if not given */
+    unsigned char seen[CLI_MAX_OPTS]; /* 1: the option was given (any kind) */
 } cli_args;
 
 #define CLI_DONE (-1)      /* no arguments left */
@@ -83,6 +84,12 @@ void cli_args_init(cli_args *a, const char *cmd, const char *usage, const cli_op
  * value option that is not CLI_REPEAT given a second time is CLI_BAD,
  * naming both values (nothing is silently the last one). */
 int cli_next(cli_args *a, const char **value);
+
+/* After the scan, for a listing option (--list-params) that runs nothing:
+ * 0 when no option was given besides list_opt and those named in keep
+ * (0-ended; the options the listing reads), else 2 after a message naming
+ * the first other one (nothing given is silently left unused). */
+int cli_list_only(const cli_args *a, const char *list_opt, const char *const keep[]);
 
 /* text as a finite double: 0, 1 (not a number: empty, trailing text), 2 (not
  * finite: nan, inf, infinity, overflow) or 3 (a C99 hexadecimal float, "0x1p3":

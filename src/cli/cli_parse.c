@@ -19,6 +19,7 @@ void cli_args_init(cli_args *a, const char *cmd, const char *usage, const cli_op
     a->i = 0;
     a->only_positional = 0;
     memset(a->given, 0, sizeof a->given);
+    memset(a->seen, 0, sizeof a->seen);
 }
 
 /* k, or CLI_BAD after a message when once-only option k was given before (value v now). */
@@ -68,6 +69,8 @@ int cli_next(cli_args *a, const char **value)
         const cli_opt *o = &a->opts[k];
         if (strlen(o->name) != len || strncmp(o->name, arg, len) != 0)
             continue;
+        if (k < CLI_MAX_OPTS)
+            a->seen[k] = 1;
         if (!o->has_value) {
             if (eq) {
                 fprintf(stderr, "hexaglide %s: %s takes no value (got '%s')\n", a->cmd, o->name, arg);
@@ -90,6 +93,23 @@ int cli_next(cli_args *a, const char **value)
     fprintf(stderr, "hexaglide %s: unknown option '%.*s' ('hexaglide %s --help' lists the options)\n",
             a->cmd, (int)len, arg, a->cmd);
     return CLI_BAD;
+}
+
+int cli_list_only(const cli_args *a, const char *list_opt, const char *const keep[])
+{
+    int k, j, kept;
+    for (k = 0; a->opts[k].name && k < CLI_MAX_OPTS; k++) {
+        if (!a->seen[k] || strcmp(a->opts[k].name, list_opt) == 0)
+            continue;
+        for (kept = 0, j = 0; keep[j]; j++)
+            kept |= strcmp(a->opts[k].name, keep[j]) == 0;
+        if (!kept) {
+            fprintf(stderr, "hexaglide %s: %s prints a list and runs nothing: %s would not be used; leave it "
+                    "out, or leave out %s to run\n", a->cmd, list_opt, a->opts[k].name, list_opt);
+            return 2;
+        }
+    }
+    return 0;
 }
 
 int cli_strtod(const char *text, double *out)

@@ -220,7 +220,11 @@ static int parse_opts(int argc, char **argv, replay_opts *o)
         }
     }
     if (list) {
-        int p = cli_plant("replay", o->plant);
+        static const char *const keep[] = {"--plant", "--format", 0};
+        int p;
+        if (cli_list_only(&a, "--list-columns", keep))
+            return 2;
+        p = cli_plant("replay", o->plant);
         if (o->file) {                 /* nothing given is silently left unused */
             fprintf(stderr, "hexaglide replay: --list-columns takes no record file (got '%s'): it lists the pins of "
                     "--plant's records; give either --list-columns or a record FILE\n", o->file);

@@ -28,7 +28,7 @@ const char cli_usage_sim[] =
     "--dt is the board's servo period (whole ns), --time a whole number of periods (at most 1e8);\n"
     "--volts go through the board's 13-bit DAC;\n"
     "--list-params prints every parameter: spec name, SI unit, value (the defaults, then --ini\n"
-    "and --set, checked), HAL name and INI key;\n"
+    "and --set, checked), HAL name and INI key, and runs nothing (it takes --plant, --model, --ini, --set alone);\n"
     "--record FILE writes the run as a record of the board's rec pins (hexaglide replay FILE);\n"
     "--record - writes it to stdout, with --csv FILE (stdout holds one of them alone)\n"
     CLI_USAGE_MODEL;
@@ -233,6 +233,11 @@ int cmd_sim(int argc, char **argv)
         default:                       /* OPT_CSV */
             csv_path = v;
         }
+    }
+    if (list) {                        /* what the listing reads; the rest would be unused */
+        static const char *const keep[] = {"--plant", "--model", "--ini", "--set", 0};
+        if (cli_list_only(&a, "--list-params", keep))
+            return 2;
     }
     if (record && cli_out_is_stdout(csv_path) && cli_out_is_stdout(record)) {
         fprintf(stderr, "hexaglide sim: --record - and the CSV (%s) would both write standard output; give "
