@@ -70,10 +70,8 @@ typedef struct {
     hal_float_t *tool_offset;                      /* machine units */
     hg_tool_offset_setting tool;                   /* the offset in force, refused, its jumps */
     hal_u32_t *board_geometry;                     /* the board's geometry-fingerprint, 0: unconnected */
-    unsigned fingerprint;                          /* hg_geometry_fingerprint of the checked geometry */
     int mismatch_calls;                            /* consecutive calls that found a mismatch */
-    hal_float_t checked[HG_PARAMS_MAX];            /* the geometry last checked (as geo) ... */
-    int checked_rc, checked_valid;                 /* ... its result; 0: check again */
+    hg_geometry_setting geometry;                  /* the geometry last checked, its answer */
     hg_fk_session fk;                              /* the settings in force, what was refused, failing */
     hg_kins_switch kins;                           /* the kinematics type in force */
     EmcPose head;                                  /* the Hexaglide's kinematics' last world pose (skgui) */
@@ -90,46 +88,30 @@ RTAPI_MP_STRING(coordinates, "XYZABC (any case) or left out: the world coordinat
  * reported once on the RTAPI log, when the user set an impossible one. */
 static int current_geometry(hg_geometry *g)
 {
-    const char *field = "", *why = "";
-    hg_params p;
-    int i, n, rc, changed = -1;
+    const char *field, *why;
+    double given[HG_PARAMS_MAX];
+    int i, n, set;
     const hg_param_info *t = hg_params_table(&n);
-    int same = hd->checked_valid;
-    hg_params_default(&p);
     for (i = 0; i < n; i++)
-        if (hg_param_is_geometry(i)) {
-            double now = hd->geo[i], was = hd->checked[i];
-            int kept = now == was || (now != now && was != was);        /* a NaN kept is unchanged too */
-            *hg_params_at(&p, i) = now / t[i].hal_scale;
-            changed = kept || changed >= 0 || !hd->checked_valid ? changed : i;  /* the first one set since */
-            same = same && kept;
-            hd->checked[i] = hd->geo[i];
-        }
-    *g = p.geo;
-    if (!same)
-        hd->fingerprint = hg_geometry_fingerprint(g);
-    if (hg_geometry_mismatch(*hd->board_geometry, hd->fingerprint, &hd->mismatch_calls))
-        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: the geometry differs from the board's "
-                        "(hexaglidekins.board-geometry): LinuxCNC would drive another machine than the one "
-                        "simulated; set both from the same [HEXAGLIDE] keys (compare halcmd show param "
-                        "hexaglidekins. and motenc-hexaglide.0.)\n");
-    if (same)
-        return hd->checked_rc;           /* unchanged since the last call: same answer */
-    rc = hg_geometry_check(g, &field, &why);
-    hd->checked_rc = rc;
-    hd->checked_valid = 1;
-    if (rc) {                            /* once per refused geometry: a new bad value is named too */
+        given[i] = hd->geo[i];
+    if (hg_geometry_take(&hd->geometry, given, &field, &why, &set)) {  /* once per refused geometry */
         char reason[HG_TEXT_VALUE_LEN * 8] = "", value[HG_TEXT_VALUE_LEN];
         hg_text_add_hal_names(reason, sizeof reason, why);
         rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: parameter hexaglidekins.%s %s; kinematics refused until "
                         "it is fixed with setp\n", hg_params_hal_name(field), reason);
-        if (changed >= 0 && strcmp(t[changed].name, field) != 0) { /* another field's rule: say what was set */
-            hg_text_value(value, hd->geo[changed]);  /* a line of its own: LinuxCNC keeps 254 characters of each */
+        if (set >= 0) {                  /* another field's rule: a line of its own (LinuxCNC keeps 254 characters) */
+            hg_text_value(value, given[set]);
             rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: that rule failed after hexaglidekins.%s was set to %s\n",
-                            t[changed].hal_name, value);
+                            t[set].hal_name, value);
         }
     }
-    return rc;
+    *g = hd->geometry.geo;
+    if (hg_geometry_mismatch(*hd->board_geometry, hd->geometry.fingerprint, &hd->mismatch_calls))
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: the geometry differs from the board's "
+                        "(hexaglidekins.board-geometry): LinuxCNC would drive another machine than the one "
+                        "simulated; set both from the same [HEXAGLIDE] keys (compare halcmd show param "
+                        "hexaglidekins. and motenc-hexaglide.0.)\n");
+    return hd->geometry.rc;
 }
 
 /* The forward solver's settings from the pins into the session (the core
@@ -179,11 +161,9 @@ static double mm_per_unit(void)
 static int tool_offset(const hg_geometry *g, double mpu, double *d_m)
 {
     double given = *hd->tool_offset, was = hd->tool.in_force_m * HG_MM_PER_M / mpu;
-    int say = hg_tool_offset_take(&hd->tool, g, given * mpu / HG_MM_PER_M);
+    int say = hg_tool_offset_take(&hd->tool, g, given * mpu / HG_MM_PER_M, hd->kins.type == HG_KINS_HEXAGLIDE);
     char a[HG_TEXT_VALUE_LEN], b[HG_TEXT_VALUE_LEN], c[HG_TEXT_VALUE_LEN];
     *d_m = hd->tool.in_force_m;
-    if (say == HG_FK_SAY_JUMP && hd->kins.type == HG_KINS_IDENTITY)
-        say = HG_FK_SAY_NOTHING;       /* identity applies no offset: the joints do not jump */
     if (say == HG_FK_SAY_NOTHING)      /* every call but the rare ones that say something */
         return hd->tool.refusing ? HG_ERR_BAD_PARAM : HG_OK;
     hg_text_value(a, given);
@@ -408,6 +388,7 @@ static int export_hal(void)
     *hd->tool_offset = 0.0;
     hg_tool_offset_init(&hd->tool);
     hd->mismatch_calls = 0;
+    hg_geometry_setting_init(&hd->geometry);
     memset(&hd->head, 0, sizeof hd->head);     /* HOME: X Y Z A B C = 0 */
     hg_kins_switch_init(&hd->kins);
     kinematicsSwitch(hd->kins.type);

@@ -229,13 +229,13 @@ void hg_tool_offset_init(hg_tool_offset_setting *t)
     memset(t, 0, sizeof *t);
 }
 
-int hg_tool_offset_take(hg_tool_offset_setting *t, const hg_geometry *g, double tool_offset_m)
+int hg_tool_offset_take(hg_tool_offset_setting *t, const hg_geometry *g, double tool_offset_m, int applied)
 {
     int accepted = (hg_tool_offset_check(g, tool_offset_m) == HG_OK);
     int say = hg_say_refused_once(&t->given_m, tool_offset_m, accepted);
     t->refusing = !accepted;
     if (accepted && tool_offset_m != t->in_force_m) {
-        t->jump_m = hg_tool_offset_jump(t->last_inverse, t->in_force_m, tool_offset_m);
+        t->jump_m = applied ? hg_tool_offset_jump(t->last_inverse, t->in_force_m, tool_offset_m) : 0.0;
         t->in_force_m = tool_offset_m;
         if (t->jump_m > HG_TOOL_OFFSET_JUMP_SAY_M)
             say = HG_FK_SAY_JUMP;

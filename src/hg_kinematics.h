@@ -249,8 +249,10 @@ void hg_tool_offset_init(hg_tool_offset_setting *t);
  * else keep in_force_m and set refusing. HG_FK_SAY_REFUSED for a new
  * refused value (bitwise: a NaN equals itself), HG_FK_SAY_JUMP when a new
  * valid value moves Op at the last inverse call's pose by more than
- * HG_TOOL_OFFSET_JUMP_SAY_M (jump_m: how far), else HG_FK_SAY_NOTHING. */
-int hg_tool_offset_take(hg_tool_offset_setting *t, const hg_geometry *g, double tool_offset_m);
+ * HG_TOOL_OFFSET_JUMP_SAY_M (jump_m: how far) and applied is 1, else
+ * HG_FK_SAY_NOTHING. applied 0: the kinematics in force apply no offset
+ * (identity, hg_identity_kinematics), so a new one moves nothing (jump_m 0). */
+int hg_tool_offset_take(hg_tool_offset_setting *t, const hg_geometry *g, double tool_offset_m, int applied);
 
 /* Bar constraints Phi_k = |B_k - A_k|^2 - l^2 (m^2). */
 void hg_constraints(const hg_geometry *g, const double z[6], const double pose[6],

@@ -252,6 +252,46 @@ int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char *
     return first_failure(&r, bad_field, why);
 }
 
+void hg_geometry_setting_init(hg_geometry_setting *s)
+{
+    memset(s, 0, sizeof *s);
+}
+
+int hg_geometry_take(hg_geometry_setting *s, const double hal[HG_PARAMS_MAX], const char **field, const char **why,
+                     int *set_entry)
+{
+    hg_params p;
+    int i, n, set = -1, same = s->valid;
+    const hg_param_info *t = hg_params_table(&n);
+    *field = "";
+    *why = "";
+    *set_entry = -1;
+    for (i = 0; i < n; i++)
+        if (hg_param_is_geometry(i)) {
+            double now = hal[i], was = s->given[i];
+            int kept = now == was || (now != now && was != was);
+            if (!kept && set < 0 && s->valid)
+                set = i;                 /* the first entry set since the last check */
+            same = same && kept;
+            s->given[i] = now;
+        }
+    if (same)
+        return 0;                        /* unchanged: s->rc stands */
+    hg_params_default(&p);
+    for (i = 0; i < n; i++)
+        if (hg_param_is_geometry(i))
+            *hg_params_at(&p, i) = s->given[i] / t[i].hal_scale;
+    s->geo = p.geo;
+    s->fingerprint = hg_geometry_fingerprint(&s->geo);
+    s->valid = 1;
+    s->rc = hg_geometry_check(&s->geo, field, why);
+    if (s->rc == HG_OK)
+        return 0;
+    if (set >= 0 && strcmp(t[set].name, *field) != 0)
+        *set_entry = set;
+    return 1;
+}
+
 /* Every rule of the whole set, in order (geometry first). */
 static void params_rules(const hg_params *p, hg_check *r)
 {

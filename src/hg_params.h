@@ -95,6 +95,31 @@ int hg_params_set(hg_params *p, const char *name, double value);
  * the offending field and *why saying what is wrong (static strings). */
 int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char **why);
 
+/* The geometry of a kinematics module, set field by field in HAL units
+ * (hexaglidekins' parameters): the entries last checked, as given, and the
+ * check's answer, so that the module checks a geometry once per change
+ * and can say which field was set when another field's rule fails. */
+typedef struct {
+    double given[HG_PARAMS_MAX]; /* the geometry entries last checked, HAL units, as given */
+    int valid;                   /* 0: nothing checked yet */
+    int rc;                      /* HG_OK or HG_ERR_BAD_PARAM: the check of given */
+    hg_geometry geo;             /* given, in SI units */
+    unsigned fingerprint;        /* hg_geometry_fingerprint(&geo) */
+} hg_geometry_setting;
+
+/* Nothing checked yet: the next hg_geometry_take checks. */
+void hg_geometry_setting_init(hg_geometry_setting *s);
+
+/* Take the geometry entries of hal (table entry i at hal[i], in the
+ * table's HAL units; other entries unread) into s, and check them with
+ * hg_geometry_check when any differs from those taken before (a NaN kept
+ * is no change). 1 when a changed geometry is refused, to be said once:
+ * *field and *why name the rule, *set_entry the table entry set since the
+ * last check when that is another field than *field (else -1: nothing
+ * more to say). 0 otherwise; s->rc is the answer for the geometry given. */
+int hg_geometry_take(hg_geometry_setting *s, const double hal[HG_PARAMS_MAX], const char **field, const char **why,
+                     int *set_entry);
+
 /* Check the whole set (geometry, positive masses, ordered strokes, ...). */
 int hg_params_check(const hg_params *p, const char **bad_field, const char **why);
 

@@ -103,7 +103,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         hg_tool_offset_init(&t);
         for (k = 0; k < 6; k++)
             finite &= isfinite(pose[k]) && isfinite(t.last_inverse[k] = pose[k]);
-        hg_tool_offset_take(&t, &p.geo, d);
+        hg_tool_offset_take(&t, &p.geo, d, 1);
         if (!isfinite(t.in_force_m) || (t.refusing != (hg_tool_offset_check(&p.geo, d) != HG_OK)) ||
             (!t.refusing && t.in_force_m != d) || (t.refusing && t.in_force_m != 0.0))
             fail("tool offset: a refused value in force, or a valid one not taken");

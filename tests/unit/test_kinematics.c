@@ -390,6 +390,40 @@ static void test_refusals(const hg_params *p)
     CHECK(hg_geometry_check(&shortbars, &field, &why) == HG_ERR_BAD_PARAM && strcmp(field, "l") == 0,
           "geometry with bars too short is refused naming 'l' (%s)", why ? why : "");
     CHECK(hg_geometry_check(&p->geo, &field, &why) == HG_OK, "spec geometry passes the check");
+    {   /* a kinematics module's geometry, set in HAL units: checked once per change, what was set named */
+        hg_geometry_setting s;
+        hg_params d;
+        double hal[HG_PARAMS_MAX] = {0};
+        int n, i, set, said[6], lb = -1, l = -1;
+        const hg_param_info *t = hg_params_table(&n);
+        hg_params_default(&d);
+        for (i = 0; i < n; i++) {
+            hal[i] = hg_params_get(&d, i) * t[i].hal_scale;
+            lb = strcmp(t[i].name, "lb") == 0 ? i : lb;
+            l = strcmp(t[i].name, "l") == 0 ? i : l;
+        }
+        hg_geometry_setting_init(&s);
+        said[0] = hg_geometry_take(&s, hal, &field, &why, &set);
+        CHECK(said[0] == 0 && s.rc == HG_OK && memcmp(&s.geo, &d.geo, sizeof d.geo) == 0 &&
+                  s.fingerprint == hg_geometry_fingerprint(&d.geo),
+              "the defaults in HAL units give the spec geometry in SI, bit for bit, and pass");
+        hal[lb] = 4.0 * hg_params_get(&d, l) * t[lb].hal_scale;   /* lb - lp > l: rule "l > lb - lp" */
+        said[1] = hg_geometry_take(&s, hal, &field, &why, &set);
+        CHECK(said[1] == 1 && strcmp(field, "l") == 0 && set == lb && s.rc == HG_ERR_BAD_PARAM,
+              "lb set 4 l: refused on l's rule (%s), naming lb as what was set", why);
+        said[2] = hg_geometry_take(&s, hal, &field, &why, &set);
+        CHECK(said[2] == 0 && s.rc == HG_ERR_BAD_PARAM, "unchanged: still refused, not said again");
+        hal[lb] = NAN;
+        said[3] = hg_geometry_take(&s, hal, &field, &why, &set);
+        CHECK(said[3] == 1 && strcmp(field, "lb") == 0 && set == -1 && s.rc == HG_ERR_BAD_PARAM,
+              "lb NaN: refused on lb's own rule (%s; nothing more to name)", why);
+        said[4] = hg_geometry_take(&s, hal, &field, &why, &set);
+        CHECK(said[4] == 0 && s.rc == HG_ERR_BAD_PARAM, "a NaN kept is no change: not said again");
+        hal[lb] = hg_params_get(&d, lb) * t[lb].hal_scale;
+        said[5] = hg_geometry_take(&s, hal, &field, &why, &set);
+        CHECK(said[5] == 0 && s.rc == HG_OK && memcmp(&s.geo, &d.geo, sizeof d.geo) == 0,
+              "lb back to its default: taken, the spec geometry again");
+    }
     /* singular Jacobian: all head joints on the machine axis (lp = e = 0)
      * leaves the rotation about z undetermined */
     {
@@ -700,25 +734,29 @@ static void test_tool_offset(const hg_params *p)
         const double tilted[6] = {0.0, 0.0, -0.01, 0.0, 0.2, 0.0}, level[6] = {0.0, 0.0, -0.01, 0.0, 0.0, 0.4};
         int said[8];
         hg_tool_offset_init(&t);
-        said[0] = hg_tool_offset_take(&t, &p->geo, 0.09);          /* at HOME: level */
+        said[0] = hg_tool_offset_take(&t, &p->geo, 0.09, 1);          /* at HOME: level */
         memcpy(t.last_inverse, tilted, sizeof tilted);
-        said[1] = hg_tool_offset_take(&t, &p->geo, 0.09);          /* unchanged */
-        said[2] = hg_tool_offset_take(&t, &p->geo, 0.0);           /* G49 at B 0.2 rad */
+        said[1] = hg_tool_offset_take(&t, &p->geo, 0.09, 1);          /* unchanged */
+        said[2] = hg_tool_offset_take(&t, &p->geo, 0.0, 1);           /* G49 at B 0.2 rad */
         CHECK(said[0] == HG_FK_SAY_NOTHING && said[1] == HG_FK_SAY_NOTHING && said[2] == HG_FK_SAY_JUMP &&
                   fabs(t.jump_m - 0.09 * 2.0 * sin(0.1)) < 1e-17 && t.in_force_m == 0.0,
               "a new offset is said only where it moves Op (tilted: %.6e m, 0.09 x 2 sin(0.1 rad)), and taken",
               t.jump_m);
-        said[3] = hg_tool_offset_take(&t, &p->geo, NAN);
-        said[4] = hg_tool_offset_take(&t, &p->geo, NAN);
+        said[3] = hg_tool_offset_take(&t, &p->geo, NAN, 1);
+        said[4] = hg_tool_offset_take(&t, &p->geo, NAN, 1);
         CHECK(said[3] == HG_FK_SAY_REFUSED && said[4] == HG_FK_SAY_NOTHING && t.refusing && t.in_force_m == 0.0,
               "NaN refused once while it stays, 0 kept in force");
         memcpy(t.last_inverse, level, sizeof level);
-        said[5] = hg_tool_offset_take(&t, &p->geo, 0.05);           /* G43 with the head level (C only) */
-        said[6] = hg_tool_offset_take(&t, &p->geo, NAN);
-        said[7] = hg_tool_offset_take(&t, &p->geo, 1e300);
+        said[5] = hg_tool_offset_take(&t, &p->geo, 0.05, 1);           /* G43 with the head level (C only) */
+        said[6] = hg_tool_offset_take(&t, &p->geo, NAN, 1);
+        said[7] = hg_tool_offset_take(&t, &p->geo, 1e300, 1);
         CHECK(said[5] == HG_FK_SAY_NOTHING && said[6] == HG_FK_SAY_REFUSED && said[7] == HG_FK_SAY_REFUSED &&
                   t.in_force_m == 0.05,
               "with the head level a new offset is taken unsaid; a refusal after a valid value is said again");
+        memcpy(t.last_inverse, tilted, sizeof tilted);
+        said[0] = hg_tool_offset_take(&t, &p->geo, 0.02, 0);         /* G43 tilted, under identity */
+        CHECK(said[0] == HG_FK_SAY_NOTHING && t.jump_m == 0.0 && t.in_force_m == 0.02,
+              "kinematics that apply no offset (identity): a new offset with the head tilted is taken unsaid");
     }
     CHECK(hg_tool_offset_check(&p->geo, 0.0) == HG_OK && hg_tool_offset_check(&p->geo, -0.2) == HG_OK &&
               hg_tool_offset_check(&p->geo, HG_MAX_ABS_POSITION_BARS * p->geo.l_m) == HG_OK,
