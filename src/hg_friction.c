@@ -1,6 +1,7 @@
 /* hg_friction.c - stick and slip of a plant's axes at the velocity level
  * (hg_friction.h). */
 #include "hg_math.h"
+#include "hg_compiler.h"
 #include "hg_friction.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
@@ -90,7 +91,7 @@ typedef struct {
 
 /* Impulses of the sticking axes (mask stuck) that make their speeds
  * exactly 0 with the sliding ones' impulses fixed: W_SS p_S = -(v*_S + W_SF p_F). */
-static inline __attribute__((always_inline)) int
+static HG_ALWAYS_INLINE int
 solve_stuck(const int n, const double *W, const double *vstar, unsigned stuck, stuck_lu *f,
             double *p)
 {
@@ -126,7 +127,7 @@ solve_stuck(const int n, const double *W, const double *vstar, unsigned stuck, s
 
 /* The impulses of a stick/slip set: the sliding axes' from their sliding
  * friction (sigma, slide), the stuck ones' from solve_stuck. */
-static inline __attribute__((always_inline)) int
+static HG_ALWAYS_INLINE int
 set_impulses(const int n, const double *W, const double *vstar, unsigned stuck, stuck_lu *f,
              const double *sigma, const double *slide, double *impulse)
 {
@@ -138,7 +139,7 @@ set_impulses(const int n, const double *W, const double *vstar, unsigned stuck, 
 }
 
 /* Axis k's speed at the step's end under the impulses: v*_k + (W p)_k. */
-static inline __attribute__((always_inline)) double
+static HG_ALWAYS_INLINE double
 end_speed(const int n, const double *W, const double *vstar, const double *impulse, int k)
 {
     double v = vstar[k];
@@ -149,7 +150,7 @@ end_speed(const int n, const double *W, const double *vstar, const double *impul
 }
 
 /* hg_friction_solve with n known where it is inlined (6: the Hexaglide). */
-static inline __attribute__((always_inline)) int
+static HG_ALWAYS_INLINE int
 solve(const int n, const hg_friction_channel *c, const double *W, const double *vstar,
       const double *v0, unsigned at_rest, double dt, hg_friction_out *o)
 {

@@ -10,7 +10,7 @@
 #include "hg_spd6.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
-#include "hg_unroll.h"
+#include "hg_compiler.h"
 
 /* Stage vectors laid over hg_work.stage. */
 typedef struct {
@@ -25,7 +25,7 @@ typedef char hg_stage_ws_fits[sizeof(stage_ws) <= sizeof(((hg_work *)0)->stage) 
 
 /* The paper's step: q1 = q0 + q0' dt + q0'' dt^2/2, q1' = q0' + q0'' dt
  * (the five vectors must not overlap: restrict lets the compiler pack them). */
-static inline __attribute__((always_inline)) void
+static HG_ALWAYS_INLINE void
 improved_euler(const int n, const double *restrict q0, const double *restrict qd0,
                const double *restrict qdd, double dt, double *restrict q1, double *restrict qd1)
 {
@@ -131,13 +131,13 @@ void hg_mass_response(const hg_mass_snapshot *s, const double p[6], double *dv, 
     } else if (s->kind == 1) {
         /* g = T^T p and dz = T g, each entry summed from 0 in j order, two
          * entries per vector (hg_v2: the scalar loops' bits) */
-        hg_v2 t[3] = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+        hg_v2 t[3] = {hg_v2_dup(0.0), hg_v2_dup(0.0), hg_v2_dup(0.0)};
         double g[6];
         HG_UNROLL
         for (j = 0; j < 6; j++)
             HG_UNROLL
             for (i = 0; i < 3; i++)
-                t[i] += hg_v2_load(s->T + 6 * j + 2 * i) * hg_v2_dup(p[j]);
+                t[i] = hg_v2_add(t[i], hg_v2_mul(hg_v2_load(s->T + 6 * j + 2 * i), hg_v2_dup(p[j])));
         HG_UNROLL
         for (i = 0; i < 3; i++)
             hg_v2_store(g + 2 * i, t[i]);
@@ -145,11 +145,11 @@ void hg_mass_response(const hg_mass_snapshot *s, const double p[6], double *dv, 
         memcpy(dv, g, sizeof g);
         HG_UNROLL
         for (i = 0; i < 3; i++) {
-            hg_v2 v = {0.0, 0.0};
+            hg_v2 v = hg_v2_dup(0.0);
             HG_UNROLL
             for (j = 0; j < 6; j++) {
-                const hg_v2 rows = {s->T[12 * i + j], s->T[12 * i + 6 + j]};
-                v += rows * hg_v2_dup(g[j]);
+                const hg_v2 rows = hg_v2_set(s->T[12 * i + j], s->T[12 * i + 6 + j]);
+                v = hg_v2_add(v, hg_v2_mul(rows, hg_v2_dup(g[j])));
             }
             hg_v2_store(dz + 2 * i, v);
         }
@@ -194,12 +194,12 @@ void hg_mass_response_matrix(const hg_mass_snapshot *s, double W[36])
     }
     HG_UNROLL
     for (i = 0; i < 6; i++) {             /* W[i][k] = 0 + T[i][j] X[j][k] summed in j order */
-        hg_v2 w[3] = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+        hg_v2 w[3] = {hg_v2_dup(0.0), hg_v2_dup(0.0), hg_v2_dup(0.0)};
         HG_UNROLL
         for (j = 0; j < 6; j++)
             HG_UNROLL
             for (k = 0; k < 3; k++)
-                w[k] += hg_v2_dup(s->T[6 * i + j]) * hg_v2_load(X + 6 * j + 2 * k);
+                w[k] = hg_v2_add(w[k], hg_v2_mul(hg_v2_dup(s->T[6 * i + j]), hg_v2_load(X + 6 * j + 2 * k)));
         HG_UNROLL
         for (k = 0; k < 3; k++)
             hg_v2_store(W + 6 * i + 2 * k, w[k]);
@@ -273,7 +273,7 @@ static int friction(const hg_model *m, const hg_dae *f, hg_data *ctx, const doub
 /* The explicit Runge-Kutta scheme of ns stages (c, b) whose stage i starts
  * from y0 + c_i dt k_(i-1), n known where it is inlined: 0 or the first
  * failing accel's code. */
-static inline __attribute__((always_inline)) int
+static HG_ALWAYS_INLINE int
 runge_kutta(const int n, int ns, const double *c, const double *b, const hg_model *m,
             const hg_dae *f, hg_data *ctx, stage_ws *w, const double *q0, const double *qd0,
             const double drive_n[6], const double fz0[6], double dt, double *q1, double *qd1,

@@ -2,10 +2,10 @@
 #include "hg_math.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
-#include "hg_unroll.h"
+#include "hg_compiler.h"
 
 /* hg_lu_factor's body; inlined with n known where the caller's is fixed. */
-static inline __attribute__((always_inline)) int lu_factor(int n, double *a, int *piv)
+static HG_ALWAYS_INLINE int lu_factor(int n, double *a, int *piv)
 {
     int i, j, k;
     double amax = 0.0, nonfinite = 0.0;
@@ -60,7 +60,7 @@ int hg_lu_factor(int n, double *a, int *piv)
 }
 
 /* hg_lu_solve's body; inlined with n known where the caller's is fixed. */
-static inline __attribute__((always_inline)) void lu_solve(int n, const double *lu, const int *piv, int nrhs,
+static HG_ALWAYS_INLINE void lu_solve(int n, const double *lu, const int *piv, int nrhs,
                                                            double *b)
 {
     double x[HG_LINALG_MAX_N];

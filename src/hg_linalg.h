@@ -4,6 +4,9 @@
 #ifndef HG_LINALG_H
 #define HG_LINALG_H
 
+#include "hg_compiler.h"
+#include "hg_string.h"
+
 #define HG_LINALG_MAX_N 18
 
 /* LU factorization with partial pivoting in place: a (n x n) becomes L\U,
@@ -32,32 +35,90 @@ static inline int hg_all_finite(int n, const double *v)
     return s0 + s1 == 0.0;
 }
 
-/* Two doubles in one vector register (GCC's vector extension: SSE2 on
- * x86-64). Each lane rounds as the scalar expression would (no
- * contraction into fused multiply-adds: -ffp-contract=off), so a loop over
- * pairs of columns gives the bits of the scalar loop at half the
- * instructions. Loads and stores through memcpy: no alignment needed. */
+/* Two doubles in one vector register (GCC's and Clang's vector extension:
+ * SSE2 on x86-64), or a struct of two elsewhere (hg_compiler.h). Each lane
+ * rounds as the scalar expression would (no contraction into fused
+ * multiply-adds: -ffp-contract=off), so a loop over pairs of columns gives
+ * the bits of the scalar loop at half the instructions. Loads and stores
+ * through memcpy: no alignment needed. */
+#if HG_GNU_C
 typedef double hg_v2 __attribute__((vector_size(16)));
+
+/* a, b */
+static inline hg_v2 hg_v2_set(double a, double b)
+{
+    hg_v2 v = {a, b};
+    return v;
+}
+
+/* a + b, lane by lane */
+static inline hg_v2 hg_v2_add(hg_v2 a, hg_v2 b)
+{
+    return a + b;
+}
+
+/* a - b, lane by lane */
+static inline hg_v2 hg_v2_sub(hg_v2 a, hg_v2 b)
+{
+    return a - b;
+}
+
+/* a * b, lane by lane */
+static inline hg_v2 hg_v2_mul(hg_v2 a, hg_v2 b)
+{
+    return a * b;
+}
+#else
+typedef struct {
+    double lane[2];
+} hg_v2;
+
+/* a, b */
+static inline hg_v2 hg_v2_set(double a, double b)
+{
+    hg_v2 v;
+    v.lane[0] = a;
+    v.lane[1] = b;
+    return v;
+}
+
+/* a + b, lane by lane */
+static inline hg_v2 hg_v2_add(hg_v2 a, hg_v2 b)
+{
+    return hg_v2_set(a.lane[0] + b.lane[0], a.lane[1] + b.lane[1]);
+}
+
+/* a - b, lane by lane */
+static inline hg_v2 hg_v2_sub(hg_v2 a, hg_v2 b)
+{
+    return hg_v2_set(a.lane[0] - b.lane[0], a.lane[1] - b.lane[1]);
+}
+
+/* a * b, lane by lane */
+static inline hg_v2 hg_v2_mul(hg_v2 a, hg_v2 b)
+{
+    return hg_v2_set(a.lane[0] * b.lane[0], a.lane[1] * b.lane[1]);
+}
+#endif
 
 /* p[0], p[1] */
 static inline hg_v2 hg_v2_load(const double *p)
 {
     hg_v2 v;
-    __builtin_memcpy(&v, p, sizeof v);
+    memcpy(&v, p, sizeof v);
     return v;
 }
 
 /* p[0], p[1] = v */
 static inline void hg_v2_store(double *p, hg_v2 v)
 {
-    __builtin_memcpy(p, &v, sizeof v);
+    memcpy(p, &v, sizeof v);
 }
 
 /* x in both lanes */
 static inline hg_v2 hg_v2_dup(double x)
 {
-    hg_v2 v = {x, x};
-    return v;
+    return hg_v2_set(x, x);
 }
 
 #endif

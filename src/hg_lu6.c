@@ -2,7 +2,7 @@
 #include "hg_math.h"
 #include "hg_lu6.h"
 #include "hg_errors.h"
-#include "hg_unroll.h"
+#include "hg_compiler.h"
 
 #define HG_LU6_TINY 1e-13
 #define HG_LU6_MAX_RHS 8
@@ -48,7 +48,7 @@ int hg_lu6_factor(double a[36], int piv[6])
 }
 
 /* The solve with nrhs known at compile time where it is inlined. */
-static inline __attribute__((always_inline)) void solve(const double lu[36], const int piv[6],
+static HG_ALWAYS_INLINE void solve(const double lu[36], const int piv[6],
                                                         const int nrhs, double *b)
 {
     int i, k, r;

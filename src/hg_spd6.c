@@ -2,7 +2,7 @@
 #include "hg_math.h"
 #include "hg_spd6.h"
 #include "hg_errors.h"
-#include "hg_unroll.h"
+#include "hg_compiler.h"
 #include "hg_linalg.h"
 
 
@@ -66,19 +66,19 @@ void hg_spd6_apply6(const double M[36], const double inv_d[6], double B[36])
         for (k = 0; k < i; k++)
             HG_UNROLL
             for (c = 0; c < 3; c++)
-                b[i][c] -= hg_v2_dup(M[6 * i + k]) * b[k][c];
+                b[i][c] = hg_v2_sub(b[i][c], hg_v2_mul(hg_v2_dup(M[6 * i + k]), b[k][c]));
     HG_UNROLL
     for (i = 0; i < 6; i++)            /* D z = y */
         HG_UNROLL
         for (c = 0; c < 3; c++)
-            b[i][c] *= hg_v2_dup(inv_d[i]);
+            b[i][c] = hg_v2_mul(b[i][c], hg_v2_dup(inv_d[i]));
     HG_UNROLL
     for (i = 5; i >= 0; i--)           /* L^T x = z */
         HG_UNROLL
         for (k = i + 1; k < 6; k++)
             HG_UNROLL
             for (c = 0; c < 3; c++)
-                b[i][c] -= hg_v2_dup(M[6 * k + i]) * b[k][c];
+                b[i][c] = hg_v2_sub(b[i][c], hg_v2_mul(hg_v2_dup(M[6 * k + i]), b[k][c]));
     HG_UNROLL
     for (i = 0; i < 6; i++)
         HG_UNROLL

@@ -10,7 +10,7 @@
 #include "hg_system.h"
 #include "hg_spd6.h"
 #include "hg_errors.h"
-#include "hg_unroll.h"
+#include "hg_compiler.h"
 
 #include "hg_linalg.h"
 #include "hg_gen_reduced.h"
@@ -94,8 +94,8 @@ static void cartesian_system(const hg_model *m, hg_data *d, const double *q, con
         HG_UNROLL
         for (j = 0; j < 6; j += 2) {
             const hg_v2 a = hg_v2_load(A + 6 * k + j), mzc = hg_v2_load(Mzc + 6 * k + j);
-            hg_v2_store(W + 6 * k + j, mzc + hm * a);
-            r[j / 2] += a * t - mzc * bk;
+            hg_v2_store(W + 6 * k + j, hg_v2_add(mzc, hg_v2_mul(hm, a)));
+            r[j / 2] = hg_v2_add(r[j / 2], hg_v2_sub(hg_v2_mul(a, t), hg_v2_mul(mzc, bk)));
         }
     }
     HG_UNROLL
@@ -107,12 +107,12 @@ static void cartesian_system(const hg_model *m, hg_data *d, const double *q, con
         hg_v2 pr[3];
         HG_UNROLL
         for (j = 0; j < 3; j++)
-            pr[j] = hg_v2_dup(A[i]) * hg_v2_load(W + 2 * j);
+            pr[j] = hg_v2_mul(hg_v2_dup(A[i]), hg_v2_load(W + 2 * j));
         HG_UNROLL
         for (k = 1; k < 6; k++)
             HG_UNROLL
             for (j = 0; j < 3; j++)
-                pr[j] += hg_v2_dup(A[6 * k + i]) * hg_v2_load(W + 6 * k + 2 * j);
+                pr[j] = hg_v2_add(pr[j], hg_v2_mul(hg_v2_dup(A[6 * k + i]), hg_v2_load(W + 6 * k + 2 * j)));
         HG_UNROLL
         for (j = 0; j < 3; j++)
             hg_v2_store(P + 6 * i + 2 * j, pr[j]);
@@ -209,7 +209,7 @@ void hg_cartesian_hold(const hg_model *m, hg_data *d, const double z0[6], unsign
                 hg_v2 v = hg_v2_dup(0.0);
                 HG_UNROLL
                 for (k = 0; k < 6; k++)
-                    v += hg_v2_dup(row[k]) * hg_v2_load(Y + 6 * k + j);
+                    v = hg_v2_add(v, hg_v2_mul(hg_v2_dup(row[k]), hg_v2_load(Y + 6 * k + j)));
                 hg_v2_store(G + n * i + j, v);
             }
             for (; j < n; j++) {

@@ -7,7 +7,7 @@
 #include "hg_kinematics.h"
 #include "hg_spd6.h"
 #include "hg_lu6.h"
-#include "hg_unroll.h"
+#include "hg_compiler.h"
 #include "hg_gen_reduced.h"
 
 /* Scratch laid over d->work.step. */

@@ -5,8 +5,9 @@
 set -e
 need="linuxcnc-uspace linuxcnc-uspace-dev build-essential man-db"
 # fmusim (make fmu): libxml2, minizip/zlib, SUNDIALS' CVODE; zip packs the FMU, xxd and
-# python3-lxml turn the FMI schema into fmusim's header
-fmu="libxml2-dev zlib1g-dev libminizip-dev libsundials-dev pkg-config zip xxd python3-lxml"
+# python3-lxml turn the FMI schema into fmusim's header; tcc, a C compiler without GCC's
+# extensions, builds the FMU's sources/ as MSVC would (tests/fmu/test_fmu_sources)
+fmu="libxml2-dev zlib1g-dev libminizip-dev libsundials-dev pkg-config zip xxd python3-lxml tcc"
 case "$1" in
   test)  need="$need $fmu libmujoco-dev python3-sympy python3-numpy python3-matplotlib python3-scipy cppcheck clang clang-tidy libclang-rt-14-dev bc xvfb imagemagick" ;;
   demo)  need="$need python3-matplotlib python3-numpy xvfb" ;;

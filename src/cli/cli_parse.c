@@ -98,7 +98,7 @@ int cli_next(cli_args *a, const char **value)
 int cli_list_only(const cli_args *a, const char *list_opt, const char *const keep[])
 {
     int k, j, kept;
-    for (k = 0; a->opts[k].name && k < CLI_MAX_OPTS; k++) {
+    for (k = 0; k < CLI_MAX_OPTS && a->opts[k].name; k++) {
         if (!a->seen[k] || strcmp(a->opts[k].name, list_opt) == 0)
             continue;
         for (kept = 0, j = 0; keep[j]; j++)

@@ -28,6 +28,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "fmi3Functions.h"
+#include "hg_compiler.h"
 #include "fmu_state.h"
 #include "fmu_vars.h"
 
@@ -114,7 +115,7 @@ static void *plant(instance_t *s)
 }
 
 /* Log one message (errors and warnings always, events with loggingOn). */
-static void say(instance_t *s, int level, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void say(instance_t *s, int level, const char *fmt, ...) HG_PRINTF_LIKE(3, 4);
 static void say(instance_t *s, int level, const char *fmt, ...)
 {
     char text[768];

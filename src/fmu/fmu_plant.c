@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "fmu_plant.h"
+#include "hg_compiler.h"
 #include "hg_board.h"
 #include "hg_errors.h"
 #include "hg_scheme.h"
@@ -219,7 +220,7 @@ double fmu_plant_period_max_s(void)
 
 /* Say one message, printf-style. */
 static void sayf(fmu_say_fn *say, void *env, int level, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
+    HG_PRINTF_LIKE(4, 5);
 static void sayf(fmu_say_fn *say, void *env, int level, const char *fmt, ...)
 {
     char text[512];
