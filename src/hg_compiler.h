@@ -29,4 +29,9 @@
 #define HG_UNROLL
 #endif
 
+/* An array of 3-vectors (double a[n][3]) as the read-only rows a function
+ * with a const double [][3] parameter takes: ISO C before C2X does not
+ * convert double (*)[3] to const double (*)[3] by itself (-Wpedantic). */
+#define HG_CONST_ROWS3(a) ((const double (*)[3])(a))
+
 #endif

@@ -2,6 +2,7 @@
  * region (hg_guard.h). */
 #include "hg_math.h"
 #include "hg_guard.h"
+#include "hg_compiler.h"
 #include "hg_kinematics.h"
 #include "hg_errors.h"
 #include "hg_linalg.h"
@@ -74,7 +75,7 @@ void hg_guard_joint_angles(const hg_geometry *g, const double z[6], const double
     hg_head_trig(pose, sc);
     hg_rotation_sc(sc, R);
     hg_joint_points_rot(&gg.f, R, z, pose, B, A);
-    joint_cosines(&gg, B, A, R, cc, ch);
+    joint_cosines(&gg, HG_CONST_ROWS3(B), HG_CONST_ROWS3(A), R, cc, ch);
     for (k = 0; k < 6; k++) {
         carriage_rad[k] = angle_of(cc[k]);
         head_rad[k] = angle_of(ch[k]);
@@ -314,7 +315,7 @@ int hg_guard_check_sc(const hg_guard_geo *gg, const double z[6], const double po
     }
     hg_rotation_sc(sc, R);
     hg_joint_points_rot(&gg->f, R, z, pose, B, A);
-    joint_cosines(gg, B, A, R, cc, ch);
+    joint_cosines(gg, HG_CONST_ROWS3(B), HG_CONST_ROWS3(A), R, cc, ch);
     for (k = 0; k < 6; k++) {
         if (broken & (1u << k))
             continue;
@@ -328,8 +329,8 @@ int hg_guard_check_sc(const hg_guard_geo *gg, const double z[6], const double po
         }
     }
     if (memo && !(broken & 0x3fu) && !cones_known)
-        cones_remember(z, pose, B, A, cc, ch, memo);
-    return clearance(gg, z, pose, B, A, broken, memo, r);
+        cones_remember(z, pose, HG_CONST_ROWS3(B), HG_CONST_ROWS3(A), cc, ch, memo);
+    return clearance(gg, z, pose, HG_CONST_ROWS3(B), HG_CONST_ROWS3(A), broken, memo, r);
 }
 
 int hg_guard_check(const hg_geometry *g, const double z[6], const double pose[6],

@@ -3,6 +3,7 @@
 #include "hg_math.h"
 #include "hg_string.h"
 #include "hg_kinematics.h"
+#include "hg_compiler.h"
 #include "hg_linalg.h"
 #include "hg_errors.h"
 #include "hg_units.h"
@@ -399,7 +400,7 @@ void hg_constraint_jacobian(const hg_geometry *g, const double z[6], const doubl
         d[0] = b[0] - pose[0] - w[k][0];
         d[1] = b[1] - pose[1] - w[k][1];
         d[2] = h + z[k] - pose[2] - w[k][2];
-        jacobian_row(axis, w[k], d, jac_pose + 6 * k);
+        jacobian_row(HG_CONST_ROWS3(axis), w[k], d, jac_pose + 6 * k);
         if (dphi_dz)
             dphi_dz[k] = 2.0 * d[2];
     }
@@ -473,7 +474,7 @@ static void newton_terms(const hg_geometry *g, const hg_frame *f, const double z
         d[0] = b[0] - c[0] - w[0];     /* hg_constraint_jacobian's d */
         d[1] = b[1] - c[1] - w[1];
         d[2] = f->h + z[k] - c[2] - w[2];
-        jacobian_row(axis, w, d, jac + 6 * k);
+        jacobian_row(HG_CONST_ROWS3(axis), w, d, jac + 6 * k);
     }
 }
 
