@@ -96,7 +96,8 @@ static int current_geometry(hg_geometry *g)
         given[i] = hd->geo[i];
     if (hg_geometry_take(&hd->geometry, given, &field, &why, &set)) {  /* once per refused geometry */
         char reason[HG_TEXT_VALUE_LEN * 8] = "", value[HG_TEXT_VALUE_LEN];
-        hg_text_add_hal_names(reason, sizeof reason, why);
+        const int e = hg_param_find(t, n, field);
+        hg_param_hal_reason(reason, sizeof reason, why, e >= 0 ? &t[e] : 0);
         rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: parameter hexaglidekins.%s %s; kinematics refused until "
                         "it is fixed with setp\n", hg_params_hal_name(field), reason);
         if (set >= 0) {                  /* another field's rule: a line of its own (LinuxCNC keeps 254 characters) */

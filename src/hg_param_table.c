@@ -1,6 +1,10 @@
 /* hg_param_table.c - parameter tables, bit sets, rule collectors (hg_param_table.h). */
 #include "hg_string.h"
 #include "hg_param_table.h"
+#include "hg_text.h"
+
+const char hg_why_max_abs[] = "must be finite and below 1e9 in magnitude (SI units)";
+const char hg_why_min_positive[] = "must be positive (at least 1e-9 in SI units)";
 
 void hg_bitset_clear(hg_bitset *s)
 {
@@ -70,4 +74,22 @@ int hg_check_failed(const hg_check *c, const char *field)
 int hg_check_any(const hg_check *c)
 {
     return c->first_field != 0;
+}
+
+char *hg_param_hal_reason(char *buf, unsigned long len, const char *why, const hg_param_info *e)
+{
+    double bound = why == hg_why_max_abs ? HG_PARAM_MAX_ABS : why == hg_why_min_positive ? HG_PARAM_MIN_POSITIVE : 0.0;
+    unsigned long n;
+    hg_text_add_hal_names(buf, len, why);
+    if (bound == 0.0 || !e || strcmp(e->unit, e->hal_unit) == 0)
+        return buf;
+    n = strlen(buf);
+    if (n == 0 || buf[n - 1] != ')')
+        return buf;                    /* cut short: nothing to add inside the parentheses */
+    buf[n - 1] = '\0';
+    hg_text_add(buf, len, "; ");
+    hg_text_add_value(buf, len, bound * e->hal_scale);
+    hg_text_add(buf, len, " ");
+    hg_text_add(buf, len, e->hal_unit);
+    return hg_text_add(buf, len, " here)");
 }

@@ -66,4 +66,19 @@ int hg_check_failed(const hg_check *c, const char *field);
 /* 1 if any rule failed. */
 int hg_check_any(const hg_check *c);
 
+/* The bounds every plant's rules put on every parameter (SI): no machine
+ * needs a number this large (beyond it products overflow), nor a positive
+ * one this small (1/x would overflow); and their reasons, one text each, so
+ * that a printer knows them (hg_param_hal_reason). */
+#define HG_PARAM_MAX_ABS 1e9
+#define HG_PARAM_MIN_POSITIVE 1e-9
+extern const char hg_why_max_abs[];      /* "must be finite and below 1e9 in magnitude (SI units)" */
+extern const char hg_why_min_positive[]; /* "must be positive (at least 1e-9 in SI units)" */
+
+/* Append why as the HAL face says it: parameter names in HAL spelling
+ * (hg_text_add_hal_names), and for the two shared bounds of an entry e (may
+ * be 0) whose HAL unit is not its SI unit, the bound in the HAL unit too
+ * ("...(SI units; 1000000000000 mm here)"); returns buf. */
+char *hg_param_hal_reason(char *buf, unsigned long len, const char *why, const hg_param_info *e);
+
 #endif

@@ -248,7 +248,7 @@ int hg_geometry_check(const hg_geometry *g, const char **bad_field, const char *
     for (i = 0; i < n; i++)
         if (hg_param_is_geometry(i) && !hg_check_failed(&r, t[i].name) &&
             !(fabs(hg_params_get(&p, i)) < HG_PARAM_MAX_ABS))
-            hg_check_refuse(&r, t[i].name, "must be finite and below 1e9 in magnitude (SI units)");
+            hg_check_refuse(&r, t[i].name, hg_why_max_abs);
     return first_failure(&r, bad_field, why);
 }
 
@@ -315,12 +315,12 @@ static void params_rules(const hg_params *p, hg_check *r)
     for (i = 0; i < (unsigned)n; i++) {
         double v = *hg_params_field(q, t[i].name);
         if (!(fabs(v) < HG_PARAM_MAX_ABS))
-            hg_check_refuse(r, t[i].name, "must be finite and below 1e9 in magnitude (SI units)");
+            hg_check_refuse(r, t[i].name, hg_why_max_abs);
     }
     for (i = 0; i < sizeof positive / sizeof positive[0]; i++) {
         double v = *hg_params_field(q, positive[i]);
         if (!(isfinite(v) && v >= HG_PARAM_MIN_POSITIVE))
-            hg_check_refuse(r, positive[i], "must be positive (at least 1e-9 in SI units)");
+            hg_check_refuse(r, positive[i], hg_why_min_positive);
     }
     for (i = 0; i < sizeof nonneg / sizeof nonneg[0]; i++) {
         double v = *hg_params_field(q, nonneg[i]);

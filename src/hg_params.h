@@ -61,10 +61,9 @@ typedef struct {
     double backlash_m;         /* total lost motion (0: a preloaded nut) */
 } hg_params;
 
-/* hg_params_check refuses any field at or above this magnitude (SI). */
-#define HG_PARAM_MAX_ABS 1e9
-/* ... and any must-be-positive field below this one (1/x would overflow). */
-#define HG_PARAM_MIN_POSITIVE 1e-9
+/* hg_params_check refuses any field at or above HG_PARAM_MAX_ABS in
+ * magnitude, and any must-be-positive one below HG_PARAM_MIN_POSITIVE
+ * (hg_param_table.h: every plant's bounds). */
 #define HG_CONE_MIN_RAD 0.017453292519943295 /* 1 deg: the least cone_carriage, cone_head */
 /* head_com is at most this many bar lengths l (its message says 2). */
 #define HG_HEAD_COM_MAX_BARS 2.0

@@ -23,8 +23,6 @@
 #define AXES_MAX 8
 #define DT_MAX_S 0.01                /* the longest step (the board's longest period) */
 #define LETTERS "XYZABCUVW"          /* variant digit d (1..9) is LETTERS[d - 1] */
-#define PARAM_MAX_ABS 1e9            /* no axis needs a number this large (SI) */
-#define PARAM_MIN_POSITIVE 1e-9      /* ... nor a positive one this small */
 
 typedef char hg_serial_table_fits[AXES_MAX * HG_SF_COUNT <= HG_PLANT_PARAMS_MAX ? 1 : -1];
 
@@ -396,12 +394,12 @@ static void axis_rules(rules *r, const hg_plant_params *v, int k)
     int f;
     for (f = 0; f < HG_SF_COUNT; f++) {
         a[f] = get(var, v, k, f);
-        if (has_field(rot, f) && !(fabs(a[f]) < PARAM_MAX_ABS))
-            refuse(r, k, f, "must be finite and below 1e9 in magnitude (SI units)");
+        if (has_field(rot, f) && !(fabs(a[f]) < HG_PARAM_MAX_ABS))
+            refuse(r, k, f, hg_why_max_abs);
     }
     for (i = 0; i < sizeof positive / sizeof positive[0]; i++)
-        if (!(a[positive[i]] >= PARAM_MIN_POSITIVE))
-            refuse(r, k, positive[i], "must be positive (at least 1e-9 in SI units)");
+        if (!(a[positive[i]] >= HG_PARAM_MIN_POSITIVE))
+            refuse(r, k, positive[i], hg_why_min_positive);
     for (i = 0; i < sizeof nonneg / sizeof nonneg[0]; i++)
         if (!(a[nonneg[i]] >= 0.0))
             refuse(r, k, nonneg[i], "must be finite and >= 0");
@@ -423,7 +421,7 @@ static void axis_rules(rules *r, const hg_plant_params *v, int k)
         !(a[HG_SF_HOME_SWITCH] > a[HG_SF_LIMIT_MIN] && a[HG_SF_HOME_SWITCH] < a[HG_SF_LIMIT_MAX]))
         refuse(r, k, HG_SF_HOME_SWITCH, "must lie between the limit switches");
     cpr = a[HG_SF_COUNTS_PER_REV];
-    if (!(fabs(cpr) >= 1.0 && fabs(cpr) < PARAM_MAX_ABS && floor(cpr) == cpr))
+    if (!(fabs(cpr) >= 1.0 && fabs(cpr) < HG_PARAM_MAX_ABS && floor(cpr) == cpr))
         refuse(r, k, HG_SF_COUNTS_PER_REV, "must be a whole number of counts, at least 1 in magnitude (negative: "
                                            "the encoder counts down as the axis moves +)");
     if (!failed(r, k, HG_SF_BACKLASH) && !failed(r, k, HG_SF_K_AXIAL) && a[HG_SF_BACKLASH] > 0.0 &&
@@ -434,7 +432,7 @@ static void axis_rules(rules *r, const hg_plant_params *v, int k)
         !(a[HG_SF_BACKLASH] < a[HG_SF_STOP_MAX] - a[HG_SF_STOP_MIN]))
         refuse(r, k, HG_SF_BACKLASH, "must be shorter than the stroke between the hard stops");
     if (!failed(r, k, HG_SF_K_AXIAL) && !failed(r, k, HG_SF_J_ROTOR) && a[HG_SF_K_AXIAL] > 0.0 &&
-        !(a[HG_SF_J_ROTOR] >= PARAM_MIN_POSITIVE))
+        !(a[HG_SF_J_ROTOR] >= HG_PARAM_MIN_POSITIVE))
         refuse(r, k, HG_SF_J_ROTOR, "must be positive behind a flexible train (k_axial > 0): the rotor is a body "
                                     "of its own");
     /* the bus must drive, at standstill, the current that holds the load's weight */

@@ -280,7 +280,7 @@ static void report_refusal(board_t *b, long period)
         const int unit = i < n && strcmp(t[i].hal_unit, "1") != 0; /* a dimensionless one has none */
         field_value(b, &b->c->ins.params, i, v);
         why[0] = '\0';
-        hg_text_add_hal_names(why, sizeof why, b->c->why[i] ? b->c->why[i] : "");
+        hg_param_hal_reason(why, sizeof why, b->c->why[i] ? b->c->why[i] : "", i < n ? &t[i] : 0);
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s: %s\n", b->id, b->id,
                         hg_board_param_hal_name(&b->c->b, i), v, unit ? " " : "", unit ? t[i].hal_unit : "", why);
     }

@@ -13,6 +13,7 @@
 #include "hg_board.h"
 #include "hg_plant_hexaglide.h"
 #include "hg_text.h"
+#include "hg_params.h"
 #include "hg_dynamics.h"
 #include "hg_errors.h"
 
@@ -818,6 +819,35 @@ static void test_param_value(void)
           "parameter 3, substeps and integrator by their bits (0.25, 7, 2)");
 }
 
+/* A refusal's reason as the HAL face prints it: HAL names, and the shared
+ * bounds in the entry's HAL unit (1e9 m is 1e12 mm; 1e-9 m/rev is 1e-6 mm/rev). */
+static void test_hal_reason(void)
+{
+    hg_params p;
+    hg_bitset bad;
+    const char *why[HG_PARAMS_MAX];
+    char a[256] = "", b[256] = "", c[256] = "", d[256] = "";
+    int n;
+    const hg_param_info *t = hg_params_table(&n);
+    const int lb = hg_param_find(t, n, "lb"), lead = hg_param_find(t, n, "lead"), m = hg_param_find(t, n, "m_head");
+    hg_params_default(&p);
+    p.geo.lb_m = 2e9;
+    p.lead_m = 0.0;
+    p.m_head_kg = 0.0;
+    CHECK(hg_params_check_all(&p, &bad, why) != 0 && why[lb] == hg_why_max_abs && why[lead] == hg_why_min_positive &&
+              why[m] == hg_why_min_positive, "lb 2e9 m, lead 0 and m_head 0 are refused on the shared bounds");
+    hg_param_hal_reason(a, sizeof a, why[lb], &t[lb]);
+    hg_param_hal_reason(b, sizeof b, why[lead], &t[lead]);
+    hg_param_hal_reason(c, sizeof c, why[m], &t[m]);
+    CHECK(strcmp(a, "must be finite and below 1e9 in magnitude (SI units; 1000000000000 mm here)") == 0,
+          "lb's bound on HAL: 1e9 m is 1e12 mm (%s)", a);
+    CHECK(strcmp(b, "must be positive (at least 1e-9 in SI units; 1e-6 mm/rev here)") == 0,
+          "lead's bound on HAL: 1e-9 m/rev is 1e-6 mm/rev (%s)", b);
+    CHECK(strcmp(c, hg_why_min_positive) == 0, "m_head's unit is kg on both faces: the reason as it is (%s)", c);
+    hg_param_hal_reason(d, sizeof d, "must be below k_axial's limit", 0);
+    CHECK(strcmp(d, "must be below k-axial's limit") == 0, "another reason: HAL names only (%s)", d);
+}
+
 int main(void)
 {
     test_estop_loop();
@@ -839,5 +869,6 @@ int main(void)
     test_unstepped();
     test_slow_step();
     test_param_value();
+    test_hal_reason();
     return hg_test_exit();
 }
