@@ -60,8 +60,7 @@ int hg_lu_factor(int n, double *a, int *piv)
 }
 
 /* hg_lu_solve's body; inlined with n known where the caller's is fixed. */
-static HG_ALWAYS_INLINE void lu_solve(int n, const double *lu, const int *piv, int nrhs,
-                                                           double *b)
+static HG_ALWAYS_INLINE void lu_solve(int n, const double *lu, const int *piv, int nrhs, double *b)
 {
     double x[HG_LINALG_MAX_N];
     int i, j, r;

@@ -48,8 +48,7 @@ int hg_lu6_factor(double a[36], int piv[6])
 }
 
 /* The solve with nrhs known at compile time where it is inlined. */
-static HG_ALWAYS_INLINE void solve(const double lu[36], const int piv[6],
-                                                        const int nrhs, double *b)
+static HG_ALWAYS_INLINE void solve(const double lu[36], const int piv[6], const int nrhs, double *b)
 {
     int i, k, r;
     HG_UNROLL

@@ -76,6 +76,11 @@ int hg_check_any(const hg_check *c)
     return c->first_field != 0;
 }
 
+int hg_param_same(double a, double b)
+{
+    return a == b || (a != a && b != b);
+}
+
 char *hg_param_hal_reason(char *buf, unsigned long len, const char *why, const hg_param_info *e)
 {
     double bound = why == hg_why_max_abs ? HG_PARAM_MAX_ABS : why == hg_why_min_positive ? HG_PARAM_MIN_POSITIVE : 0.0;

@@ -75,6 +75,10 @@ int hg_check_any(const hg_check *c);
 extern const char hg_why_max_abs[];      /* "must be finite and below 1e9 in magnitude (SI units)" */
 extern const char hg_why_min_positive[]; /* "must be positive (at least 1e-9 in SI units)" */
 
+/* 1 when b is the parameter value a again: equal (-0 is 0) or both NaN
+ * (a NaN kept is no change). */
+int hg_param_same(double a, double b);
+
 /* Append why as the HAL face says it: parameter names in HAL spelling
  * (hg_text_add_hal_names), and for the two shared bounds of an entry e (may
  * be 0) whose HAL unit is not its SI unit, the bound in the HAL unit too

@@ -268,8 +268,8 @@ int hg_geometry_take(hg_geometry_setting *s, const double hal[HG_PARAMS_MAX], co
     *set_entry = -1;
     for (i = 0; i < n; i++)
         if (hg_param_is_geometry(i)) {
-            double now = hal[i], was = s->given[i];
-            int kept = now == was || (now != now && was != was);
+            double now = hal[i];
+            int kept = hg_param_same(now, s->given[i]);
             if (!kept && set < 0 && s->valid)
                 set = i;                 /* the first entry set since the last check */
             same = same && kept;

@@ -237,9 +237,8 @@ static void report_changed(board_t *b, const hg_bitset *said)
         const int plant = i < b->nparams;
         if ((!plant && i < HG_BOARD_BIT_SUBSTEPS) || hg_bitset_has(said, i))
             continue;
-        double now = hg_board_param_value(&b->c->ins.params, i), kept = hg_board_param_value(&b->c->o.params, i);
-        if (now == kept || (now != now && kept != kept))   /* unchanged (a NaN kept too) */
-            continue;
+        if (hg_param_same(hg_board_param_value(&b->c->ins.params, i), hg_board_param_value(&b->c->o.params, i)))
+            continue;                  /* unchanged (a NaN kept too) */
         field_value(b, &b->c->ins.params, i, v);
         field_value(b, &b->c->o.params, i, was);
         /* the unit HAL shows: none for a dimensionless one, substeps or the integrator */

@@ -19,7 +19,7 @@
 #include "hg_errors.h"
 #include "hg_scheme.h"
 #include "hg_dynamics.h"          /* hg_model_names: the Hexaglide's parametrizations */
-#include "hg_params.h"            /* HG_PARAM_MAX_ABS, HG_PARAM_MIN_POSITIVE: the core's bounds */
+#include "hg_params.h"            /* HG_CONE_MIN_RAD; HG_PARAM_MAX_ABS, HG_PARAM_MIN_POSITIVE (hg_param_table.h) */
 #include "hg_plant_hexaglide.h"   /* hg_hexaglide_data: the machine's state */
 #include "hg_units.h"             /* HG_PI */
 

@@ -844,6 +844,9 @@ static void test_hal_reason(void)
     CHECK(strcmp(b, "must be positive (at least 1e-9 in SI units; 1e-6 mm/rev here)") == 0,
           "lead's bound on HAL: 1e-9 m/rev is 1e-6 mm/rev (%s)", b);
     CHECK(strcmp(c, hg_why_min_positive) == 0, "m_head's unit is kg on both faces: the reason as it is (%s)", c);
+    CHECK(hg_param_same(0.0, -0.0) && hg_param_same(NAN, NAN) && hg_param_same(2.5, 2.5) && !hg_param_same(1.0, NAN) &&
+              !hg_param_same(NAN, 1.0) && !hg_param_same(1.0, 2.0),
+          "a parameter is the same value again when equal (-0 is 0) or both NaN, not otherwise");
     hg_param_hal_reason(d, sizeof d, "must be below k_axial's limit", 0);
     CHECK(strcmp(d, "must be below k-axial's limit") == 0, "another reason: HAL names only (%s)", d);
 }
