@@ -35,6 +35,9 @@
                                          host stalls a few ms on a loaded non-realtime machine) */
 #define HG_ENC_SCALE_MIN 1e-20        /* the smallest |enc-CC-scale| taken; a smaller or non-finite one
                                          reads 1.0 (as hal_motenc) and sets enc_scale_bad */
+#define HG_ENC_SCALE_TEXT_(x) #x
+#define HG_ENC_SCALE_TEXT(x) HG_ENC_SCALE_TEXT_(x)
+#define HG_ENC_SCALE_MIN_TEXT HG_ENC_SCALE_TEXT(HG_ENC_SCALE_MIN) /* "1e-20", for messages */
 
 /* Bits of the refused-field set (hg_board_outputs.refused): bit i is entry
  * i of the plant's parameter table (i < HG_PLANT_PARAMS_MAX), plus these two. */

@@ -84,8 +84,8 @@ int hg_loop_config_check(const hg_loop_config *c, hg_loop_check_report *r)
                           hg_pid_setting_value(&c->pid[k], bad));
         if (!(isfinite(c->input_scale[k]) && fabs(c->input_scale[k]) >= HG_ENC_SCALE_MIN))
             return refuse(r, HG_ERR_BAD_PARAM, k, "loop", "input_scale", "INPUT_SCALE",
-                          "must be finite and at least 1e-20 in magnitude (counts per unit; the board's encoder "
-                          "would read a smaller scale as 1)", c->input_scale[k]);
+                          "must be finite and at least " HG_ENC_SCALE_MIN_TEXT " in magnitude (counts per unit; "
+                          "the board's encoder would read a smaller scale as 1)", c->input_scale[k]);
         if (!isfinite(c->output_scale[k]))
             return refuse(r, HG_ERR_BAD_PARAM, k, "loop", "output_scale", "OUTPUT_SCALE", "must be finite",
                           c->output_scale[k]);

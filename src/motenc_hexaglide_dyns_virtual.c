@@ -321,8 +321,8 @@ static void report(board_t *b, long period)
                             id, k, id, k);
     for (k = 0; k < HG_BOARD_ENCODERS; k++)
         if ((o->enc_scale_bad >> k) & 1u)
-            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: enc-%02d-scale must be a finite non-zero "
-                            "number of counts per unit; set to 1.0 (as hal_motenc)\n", id, k);
+            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: enc-%02d-scale must be finite and at least "
+                            HG_ENC_SCALE_MIN_TEXT " counts per unit in magnitude; set to 1.0 (as hal_motenc)\n", id, k);
     if (o->events & HG_EV_ESTOP_OUT_BAD)
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: " XP ".%d.estop-loop-out = %d refused: the E-STOP loop "
                         "runs through a digital output, 0..31 (out-07 in motenc_io.hal), or -1 for none; keeping "

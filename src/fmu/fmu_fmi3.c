@@ -991,8 +991,10 @@ fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte seriali
         return fmi3Error;
     memset(&h, 0, sizeof h);
     header_of(s, &mine);
-    if (!serializedState || !FMUState)
-        why = "serializedState or FMUState is NULL";
+    if (size == 0)
+        why = "empty (0 bytes): no state of this FMU";
+    else if (!serializedState || !FMUState)
+        why = "missing (serializedState or FMUState is NULL)";
     else if (size < sizeof h)
         why = "too short to be a state of this FMU";
     if (!why) {

@@ -326,23 +326,37 @@ static int write_description(FILE *f)
     return 0;
 }
 
-/* A bound for the Markdown table: as the description writes it, 1e9 for 1000000000 and beyond. */
-static const char *md_num(char buf[32], fmu_type t, double v)
+/* v in its shortest e-form, 1e9 for 1000000000, into buf (24 bytes); its digits. */
+static int md_e_form(char *buf, double v)
 {
     int p, e;
     char *x;
-    if (t != FMU_FLOAT64 || fabs(v) < 1e6)
-        return start_text(buf, t, v);
     for (p = 1; p <= 17; p++) {
-        snprintf(buf, 32, "%.*e", p - 1, v);
+        snprintf(buf, 24, "%.*e", p - 1, v);
         if (strtod(buf, 0) == v)
             break;
     }
     x = strchr(buf, 'e');
     if (x) {
         e = atoi(x + 1);
-        snprintf(x, (size_t)(32 - (x - buf)), "e%d", e);
+        snprintf(x, (size_t)(24 - (x - buf)), "e%d", e);
     }
+    return p;
+}
+
+/* A bound for the Markdown table: as the description writes it, 1e9 for
+ * 1000000000; a strict bound, declared as the double next to a round one
+ * (999999999.9999999 for below 1e9), as "below 1e9" ("above -1e9"). */
+static const char *md_num(char buf[32], fmu_type t, double v)
+{
+    char round[24];
+    if (t != FMU_FLOAT64 || fabs(v) < 1e6)
+        return start_text(buf, t, v);
+    if (md_e_form(buf, v) >= 16 && md_e_form(round, nextafter(v, v > 0 ? HUGE_VAL : -HUGE_VAL)) <= 3) {
+        snprintf(buf, 32, "%s %s", v > 0 ? "below" : "above", round);
+        return buf;
+    }
+    md_e_form(buf, v);
     return buf;
 }
 

@@ -42,7 +42,7 @@ typedef char board_first[offsetof(plant, b) == 0 ? 1 : -1];
 /* The single-field rules of the Hexaglide's parameters (src/hg_params.c:
  * params_rules, geometry_rules): a rule on one value alone, whatever the
  * others, as the inclusive bounds FMI can declare. Every parameter lies
- * within +-HG_PARAM_MAX_ABS; RULE_POSITIVE is at least
+ * below HG_PARAM_MAX_ABS in magnitude (declared as the double below it); RULE_POSITIVE is at least
  * HG_PARAM_MIN_POSITIVE, RULE_MIN0 >= 0 (a strict > 0 too: its limit 0
  * then passes fmi3Set and the core refuses it with the rules between
  * fields, at fmi3ExitInitializationMode), RULE_MAX0 <= 0, RULE_CONE in
@@ -121,8 +121,8 @@ int fmu_plant_param(int i, fmu_param *p)
     p->display_unit = t.hal_unit;
     p->display_factor = t.hal_scale;
     p->start = d.v[i];
-    p->min = -HG_PARAM_MAX_ABS;
-    p->max = HG_PARAM_MAX_ABS;
+    p->max = nextafter(HG_PARAM_MAX_ABS, 0.0);   /* the rule is strict, FMI's max inclusive */
+    p->min = -p->max;
     p->quantum = 0;
     switch (single_rule(t.name)) {
     case RULE_POSITIVE: p->min = HG_PARAM_MIN_POSITIVE; break;
@@ -331,9 +331,9 @@ int fmu_plant_init(void *plant_bytes, const fmu_plant_setup *s, fmu_say_fn *say,
         bad = 1;
     }
     /* the board's rule for an encoder scale (hg_board.c, encoders()), refused here instead of replaced by 1.0 */
-    if (!isfinite(s->enc_scale) || (s->enc_scale < 1e-20 && s->enc_scale > -1e-20)) {
-        sayf(say, env, FMU_SAY_ERROR, "parameter enc_scale = %.9g refused: must be a finite non-zero number of "
-             "counts per unit", s->enc_scale);
+    if (!(isfinite(s->enc_scale) && fabs(s->enc_scale) >= HG_ENC_SCALE_MIN)) {
+        sayf(say, env, FMU_SAY_ERROR, "parameter enc_scale = %.9g refused: must be finite and at least %g in "
+             "magnitude (counts per unit)", s->enc_scale, HG_ENC_SCALE_MIN);
         bad = 1;
     }
     block_of(s, &bp);

@@ -35,6 +35,12 @@ FMIStaticInput* FMIReadInput(const FMIModelDescription* modelDescription, const 
 	// variable names
 	row = CsvReadNextRow(handle);
 
+	if (!row) {  /* hexaglide: an empty file crashed fmusim (CsvReadNextCol(NULL)) */
+		FMILogError("Input file %s is empty: it needs a header (time and variable names) and a row of values.\n", filename);
+		status = FMIError;
+		goto TERMINATE;
+	}
+
     const char* col = CsvReadNextCol(row, handle);
 
     while ((col = CsvReadNextCol(row, handle))) {
@@ -97,6 +103,12 @@ FMIStaticInput* FMIReadInput(const FMIModelDescription* modelDescription, const 
 		}
 
 		input->nRows++;
+	}
+
+	if (input->nRows == 0) {  /* hexaglide: a header without rows crashed fmusim */
+		FMILogError("Input file %s has no rows after its header: give at least one row of values.\n", filename);
+		status = FMIError;
+		goto TERMINATE;
 	}
 
 TERMINATE:
