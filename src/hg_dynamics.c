@@ -286,6 +286,11 @@ static int through_stop(const hg_params *p, const double z[6], hg_guard_report *
     return 0;
 }
 
+double hg_step_dt_max_s(void)
+{
+    return HG_DT_MAX_S;
+}
+
 int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s)
 {
     double q0[HG_NQ_MAX], qd0[HG_NQ_MAX], q1[HG_NQ_MAX], qd1[HG_NQ_MAX], qdd[HG_NQ_MAX];

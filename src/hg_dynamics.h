@@ -63,6 +63,10 @@ int hg_data_reset(const hg_model *m, hg_data *d);
  * not restored). Substeps: call it n times with dt_s / n. */
 int hg_step(const hg_model *m, hg_data *d, const double volts[6], double dt_s);
 
+/* The longest step hg_step takes, HG_DT_MAX_S (s): for callers that cannot
+ * read the header's constant (tools/hexaglide.py names it in its message). */
+double hg_step_dt_max_s(void);
+
 /* The friction channel of a carriage of p (every carriage alike). */
 void hg_friction_channel_of(const hg_params *p, hg_friction_channel *c);
 

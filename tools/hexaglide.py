@@ -91,6 +91,46 @@ def _whole(name, value, unit=""):
     return int(value)
 
 
+def _c_range(ctype):
+    """(least, greatest) integer a ctypes integer type carries; ctypes wraps any other silently
+    (2**64 + 1000000 stored in a C long is 1000000)."""
+    bits = 8 * C.sizeof(ctype)
+    if ctype(-1).value < 0:
+        return -(1 << (bits - 1)), (1 << (bits - 1)) - 1
+    return 0, (1 << bits) - 1
+
+
+def _whole_why(name, value, ctype, why_refused, unit=""):
+    """(value as an int, else TypeError; why the core refuses it, or None).
+    why_refused(v) asks the core's own check about v, a value ctype carries, and returns its
+    reason for refusing v, or None. A value ctype cannot carry must never reach the core
+    (ctypes would wrap it), so it is always refused; its reason is the one the core gives for
+    the type's extreme on the value's side (or for the other extreme, when the core takes
+    that one: -1 for an unsigned field), which states the core's own range. Only when the
+    core takes both extremes (it has no range of its own) is the type's range the reason."""
+    v = _whole(name, value, unit)
+    lo, hi = _c_range(ctype)
+    if lo <= v <= hi:
+        return v, why_refused(v)
+    near, far = (lo, hi) if v < lo else (hi, lo)
+    return v, (why_refused(near) or why_refused(far) or
+               "beyond what the C type (ctypes.%s) carries, %d..%d" % (ctype.__name__, lo, hi))
+
+
+def _refusal(name, v, why, unit=""):
+    """The message of a refused whole number: its name, the value as given and the rule."""
+    return "%s = %d%s: %s" % (name, v, " " + unit if unit else "", why)
+
+
+def _whole_checked(name, value, ctype, why_refused=lambda v: None, unit=""):
+    """value as an int the core takes (_whole_why), else TypeError (not an int) or ValueError
+    naming the argument, the value as given and the rule it breaks."""
+    v, why = _whole_why(name, value, ctype, why_refused, unit)
+    if why:
+        raise ValueError(_refusal(name, v, why, unit))
+    return v
+
+
 def _name(arg, value, choices):
     """value as bytes of a name (str), else TypeError naming the argument and the choices."""
     if not isinstance(value, str):
@@ -188,14 +228,6 @@ _scheme_tableau = _sig("hg_scheme_tableau", C.c_int, C.c_int, C.POINTER(C.POINTE
                        C.POINTER(C.POINTER(C.c_double)))
 
 
-def integrator_name(integrator):
-    """The board's name of a time integration scheme ("improved-euler", "heun", "rk4"), else ValueError."""
-    name = _integrator_name(_whole("integrator", integrator))
-    if name is None:
-        raise ValueError("integrator %r: not one of the board's schemes (src/hg_scheme.h)" % (integrator,))
-    return name.decode()
-
-
 def _integrators():
     """The board's scheme names by number: hg_integrator_name's up to the first it has none for."""
     names = []
@@ -205,6 +237,15 @@ def _integrators():
 
 
 INTEGRATORS = _integrators()
+
+
+def integrator_name(integrator):
+    """The board's name of a time integration scheme ("improved-euler", "heun", "rk4"), else
+    TypeError (not an int) or ValueError naming the schemes."""
+    i = _whole_checked("integrator", integrator, C.c_int, lambda v: None if _integrator_name(v) is not None else
+                       "not one of the board's schemes (%s)" % ", ".join(
+                           "%d %s" % (k, n) for k, n in enumerate(INTEGRATORS)))
+    return _integrator_name(i).decode()
 
 
 def integrator_id(name):
@@ -219,9 +260,9 @@ def integrator_id(name):
 def integrator_stages(integrator):
     """The accelerations one step of the scheme evaluates: its Runge-Kutta stages
     (hg_scheme_tableau), one for improved Euler."""
-    integrator_name(integrator)          # a scheme of the board's, else ValueError
+    integrator_name(integrator)          # a scheme of the board's, else TypeError or ValueError
     c, b = C.POINTER(C.c_double)(), C.POINTER(C.c_double)()
-    return max(1, _scheme_tableau(integrator, C.byref(c), C.byref(b)))
+    return max(1, _scheme_tableau(int(integrator), C.byref(c), C.byref(b)))
 
 
 PLANT_PARAMS_MAX = 256      # HG_PLANT_PARAMS_MAX
@@ -285,6 +326,7 @@ for _i, _s in ((7, BoardParams), (9, BoardInputs), (10, BoardOutputs)):
 
 _board_init = _sig("hg_board_init", C.c_int, _P, C.c_int, C.c_int, _P)
 _board_params_check = _sig("hg_board_params_check", C.c_int, _P, _P, _P, _P)
+_board_params_default = _sig("hg_board_params_default", C.c_int, C.c_int, C.c_int, C.POINTER(BoardParams))
 _plant_find = _sig("hg_plant_find", C.c_int, C.c_char_p)
 _plant_variant_named = _sig("hg_plant_variant_named", C.c_int, C.c_int, C.c_char_p)
 _board_inputs_default = _sig("hg_board_inputs_default", None, _P, C.POINTER(BoardInputs))
@@ -293,10 +335,13 @@ _board_step = _sig("hg_board_step", None, _P, C.POINTER(BoardInputs), C.POINTER(
 _params_default = _sig("hg_params_default", None, _P)
 _params_set = _sig("hg_params_set", C.c_int, _P, C.c_char_p, C.c_double)
 _params_field = _sig("hg_params_field", C.POINTER(C.c_double), _P, C.c_char_p)
+_params_check = _sig("hg_params_check", C.c_int, _P, C.POINTER(C.c_char_p), C.POINTER(C.c_char_p))
 _model_init = _sig("hg_model_init", C.c_int, _P, _P, C.c_int, C.POINTER(C.c_char_p), C.POINTER(C.c_char_p))
 _model_from_name = _sig("hg_model_from_name", C.c_int, C.c_char_p)
 _data_reset = _sig("hg_data_reset", C.c_int, _P, _P)
 _step = _sig("hg_step", C.c_int, _P, _P, _d6, C.c_double)
+STEP_DT_MAX_S = _sig("hg_step_dt_max_s", C.c_double)()   # HG_DT_MAX_S: the longest step hg_step takes
+_ERR_BAD_DT = -10                                         # HG_ERR_BAD_DT (src/hg_errors.h): hg_step's dt refused
 _energy = _sig("hg_energy", None, _P, _P, C.POINTER(C.c_double), C.POINTER(C.c_double))
 _ik = _sig("hg_inverse_kinematics_guarded", C.c_int, _P, _d6, _d6, _P)
 _fk = _sig("hg_forward_kinematics", C.c_int, _P, _d6, _d6, _P, _P)
@@ -362,6 +407,40 @@ def _unknown(name, names):
         name, "; did you mean %r?" % close[0] if close else "")
 
 
+BOARD_BIT_SUBSTEPS = PLANT_PARAMS_MAX           # HG_BOARD_BIT_SUBSTEPS: substeps' bit of a refused-field set
+BOARD_BIT_INTEGRATOR = PLANT_PARAMS_MAX + 1     # HG_BOARD_BIT_INTEGRATOR: integrator's (src/hg_board.h)
+_check_boards = {}                              # (plant, variant) -> a board of the plant's defaults
+
+
+def _board_refusals(plant, variant, bp):
+    """{bit: why} of every field of bp (a BoardParams) that hg_board_params_check refuses for a
+    board of the plant and model: bit i below the plant's table length is parameter i, then
+    BOARD_BIT_SUBSTEPS and BOARD_BIT_INTEGRATOR; {} when it takes them all."""
+    if (plant, variant) not in _check_boards:            # (the check reads the board, never writes it)
+        buf = C.create_string_buffer(_sizeof(8))
+        if _board_init(buf, plant, variant, None):      # the plant's defaults: its checks
+            raise ValueError("plant %s: cannot build its board" % plant_names()[plant])
+        _check_boards[plant, variant] = buf
+    bad = (C.c_ulonglong * 5)()                          # hg_bitset (HG_BITSET_BITS 320)
+    why = (C.c_char_p * (PLANT_PARAMS_MAX + 2))()        # HG_BOARD_WHY_LEN
+    if not _board_params_check(_check_boards[plant, variant], C.byref(bp), bad, why):
+        return {}
+    return {i: (why[i] or b"refused").decode() for i in range(PLANT_PARAMS_MAX + 2) if bad[i // 64] >> (i % 64) & 1}
+
+
+def _board_setting(plant, variant, name, value):
+    """substeps or integrator (name) as hg_board_params_check takes it for a board of the plant
+    and model, else TypeError (not an int) or ValueError naming it, its value and its range."""
+    bit = {"substeps": BOARD_BIT_SUBSTEPS, "integrator": BOARD_BIT_INTEGRATOR}[name]
+
+    def why_refused(v):
+        bp = BoardParams()
+        _board_params_default(plant, variant, C.byref(bp))
+        setattr(bp, name, v)
+        return _board_refusals(plant, variant, bp).get(bit)
+    return _whole_checked(name, value, C.c_uint, why_refused)
+
+
 class _ByName:
     """A parameter set is set by name, p["c_visc"] = value. An attribute set, p.c_visc = value,
     would be kept by Python beside the parameters and never reach the machine: it raises
@@ -392,17 +471,28 @@ class Params(_ByName):
         return f[0]
 
     def __setitem__(self, name, value):
+        """KeyError for a name not in the table, TypeError for a value that is not a number,
+        ValueError for one hg_params_set refuses (not finite); the whole set's rules are
+        checked where it is used (Model, Board, ik, fk)."""
         if not _params_field(self.buf, name.encode()):
             raise KeyError(_unknown(name, [e.name.decode() for e in params_table()]))
-        if _params_set(self.buf, name.encode(), float(value)):
-            raise KeyError("bad value: %s=%r" % (name, value))
+        try:
+            v = float(value)
+        except (TypeError, ValueError):
+            raise TypeError("%s must be a number (SI units, params_table), got %r" % (name, value))
+        if _params_set(self.buf, name.encode(), v):     # (a known name: refused only when not finite)
+            raise ValueError("%s = %r: not finite; a parameter is a finite number (SI units)" % (name, value))
 
     def board_params(self, substeps=1, integrator=DEFAULT_INTEGRATOR):
-        """hg_board_params: these model parameters (by table entry) + the board's substeps and integrator."""
+        """hg_board_params: these model parameters (by table entry) + the board's substeps and
+        integrator, those two checked by hg_board_params_check (TypeError, or ValueError naming
+        the argument, its value and its range)."""
+        variant = _plant_variant_named(0, None)
         bp = BoardParams()
         for i, info in enumerate(params_table()):
             bp.plant[i] = self[info.name.decode()]
-        bp.substeps, bp.integrator = substeps, integrator
+        bp.substeps = _board_setting(0, variant, "substeps", substeps)
+        bp.integrator = _board_setting(0, variant, "integrator", integrator)
         return bp
 
 
@@ -450,22 +540,16 @@ class PlantParams(_ByName):
 
     def refused(self):
         """[(name, value, why)] of every parameter the plant refuses (hg_board_params_check); [] if none."""
-        buf = C.create_string_buffer(_sizeof(8))
-        if _board_init(buf, self.plant, self.variant, None):      # the plant's defaults: its checks
-            raise ValueError("plant %s: cannot build its board" % plant_names()[self.plant])
-        bp = self.board_params()
-        bad = (C.c_ulonglong * 5)()                              # hg_bitset (HG_BITSET_BITS 320)
-        why = (C.c_char_p * (PLANT_PARAMS_MAX + 2))()            # HG_BOARD_WHY_LEN
-        if not _board_params_check(buf, C.byref(bp), bad, why):
-            return []
-        return [(name, self.v[i], (why[i] or b"refused").decode()) for i, name in enumerate(self.names)
-                if bad[i // 64] >> (i % 64) & 1]
+        bad = _board_refusals(self.plant, self.variant, self.board_params())
+        return [(name, self.v[i], bad[i]) for i, name in enumerate(self.names) if i in bad]
 
     def board_params(self, substeps=1, integrator=DEFAULT_INTEGRATOR):
+        """hg_board_params: these parameters + substeps and integrator, checked as Params.board_params."""
         bp = BoardParams()
         for i in range(len(self.names)):
             bp.plant[i] = self.v[i]
-        bp.substeps, bp.integrator = substeps, integrator
+        bp.substeps = _board_setting(self.plant, self.variant, "substeps", substeps)
+        bp.integrator = _board_setting(self.plant, self.variant, "integrator", integrator)
         return bp
 
 
@@ -477,6 +561,22 @@ def _geometry(params):
         raise TypeError("params must be a hexaglide.Params (the Hexaglide's parameter set) or None, got %r"
                         % (params,))
     return params.buf  # hg_geometry is the first member of hg_params
+
+
+def _checked_geometry(what, params):
+    """_geometry(params), the set checked first as Model and the CLI's ik and fk check it
+    (hg_params_check): ValueError naming the parameter, its value and its rule, so that the
+    kinematics never run on a machine that cannot be built (a negative bar length gave a
+    message about the tool offset, an e beyond lb zeros)."""
+    params = Params() if params is None else params
+    geo = _geometry(params)
+    bad, why = C.c_char_p(), C.c_char_p()
+    if _params_check(geo, C.byref(bad), C.byref(why)):
+        name = bad.value.decode()
+        unit = {e.name.decode(): e.unit.decode() for e in params_table()}.get(name, "")
+        raise ValueError("%s: params: %s = %r%s: %s (hg_params_check; Model and `hexaglide ik --set` refuse "
+                         "the set too)" % (what, name, params[name], " " + unit if unit else "", why.value.decode()))
+    return geo
 
 
 POSE = "X Y Z (mm) A B C (deg)"
@@ -517,8 +617,9 @@ def ik(pose_user, params=None, tool_offset=0.0):
     inverse and the mechanical guard, as `hexaglide ik` (hg_inverse_kinematics_guarded).
     tool_offset (mm): G43's tool length, added to Z in pose_user as LinuxCNC does; the tool's
     tip on the head's axis then follows the pose at any tilt (RTCP, hexaglidekins.tool-offset).
-    HexaglideError (code and, for a guard, the bar, value and limit) otherwise."""
-    geo = _geometry(params)
+    HexaglideError (code and, for a guard, the bar, value and limit) otherwise; ValueError
+    naming the parameter of params that Model would refuse (hg_params_check), before any solve."""
+    geo = _checked_geometry("ik", params)
     commanded = _pose_si("pose", pose_user)
     pose = _d6()
     _offset_to_op(commanded, _tool_offset_m(geo, tool_offset), pose)
@@ -532,8 +633,9 @@ def ik(pose_user, params=None, tool_offset=0.0):
 
 def fk(joints_mm, guess_user=(0, 0, 0, 0, 0, 0), params=None, tool_offset=0.0):
     """Pose (mm, deg) of six joint positions (mm), Newton from guess (a pose); with
-    tool_offset (mm) the pose of the tool's tip plus tool_offset in Z, as ik takes it."""
-    geo = _geometry(params)
+    tool_offset (mm) the pose of the tool's tip plus tool_offset in Z, as ik takes it; params
+    checked as ik checks them."""
+    geo = _checked_geometry("fk", params)
     z = _joints_si("joints", joints_mm)
     d = _tool_offset_m(geo, tool_offset)
     guess, pose = _pose_si("guess", guess_user), _d6()
@@ -547,11 +649,12 @@ def fk(joints_mm, guess_user=(0, 0, 0, 0, 0, 0), params=None, tool_offset=0.0):
 
 def guard(joints_mm, pose_user, params=None):
     """The mechanical limits at a state (src/hg_guard.h): (0, "") inside
-    them, else (code, sentence naming the bar(s), value and limit)."""
+    them, else (code, sentence naming the bar(s), value and limit); params checked as ik
+    checks them."""
     z = _joints_si("joints", joints_mm)
     pose = _pose_si("pose", pose_user)
     rep = GuardReport()
-    rc = _guard_check(_geometry(params), z, pose, 0, C.byref(rep))
+    rc = _guard_check(_checked_geometry("guard", params), z, pose, 0, C.byref(rep))
     return rc, _guard_text(rep)
 
 
@@ -579,14 +682,19 @@ class Model:
             raise HexaglideError("reset", rc)
 
     def step(self, volts, dt_s):
-        """One integration step with six DAC volts (finite: hg_step would take NaN or inf
-        as 0 V, as the DAC does; Board.step reports that in out.dac_nan); returns self.d."""
+        """One integration step of dt_s seconds with six DAC volts (finite: hg_step would take
+        NaN or inf as 0 V, as the DAC does; Board.step reports that in out.dac_nan); returns
+        self.d. A dt_s hg_step refuses (not finite, <= 0, above STEP_DT_MAX_S) raises
+        HexaglideError code -10 naming dt_s and the limit."""
         try:
             dt_s = float(dt_s)
         except (TypeError, ValueError):
             raise TypeError("dt_s must be a number (s), got %r" % (dt_s,))
         rc = _step(self.m, C.byref(self.d), _d6(*_vector("volts", volts, JOINTS, finite=True, what="DAC volts")),
                    dt_s)
+        if rc == _ERR_BAD_DT:                  # hg_step's own check, its limit HG_DT_MAX_S
+            raise HexaglideError("step", rc, "dt_s = %r s: must be finite, > 0 and at most %r s; split a longer "
+                                 "time into steps of at most that" % (dt_s, STEP_DT_MAX_S))
         if rc:
             raise HexaglideError("step", rc)
         return self.d
@@ -619,11 +727,16 @@ class Board:
                  estop_closed=True, plant="hexaglide"):
         """plant: the machine behind the board (plant_names()); for a plant other than the
         Hexaglide, kind is its model (the serial plant's axes, "XYZ"; None its default) and
-        params a PlantParams of that plant and model (None: its defaults)."""
+        params a PlantParams of that plant and model (None: its defaults). Refused here, not
+        at the first step: a period_ns hg_board_step would fault on (the loop's check, the same
+        (0, HG_PERIOD_MAX_NS]), substeps and integrator hg_board_params_check refuses
+        (ValueError naming the argument, its value and range), an estop_closed not a bool
+        (TypeError), parameters the plant refuses (HexaglideError naming each)."""
         _name("plant", plant, plant_names())
-        substeps = _whole("substeps", substeps)
-        integrator = _whole("integrator", integrator)
-        period_ns = _whole("period_ns", period_ns, "ns")
+        period_ns = _loop_period(period_ns)
+        if not isinstance(estop_closed, (bool, np.bool_)):
+            raise TypeError("estop_closed must be True (the E-STOP loop closed: amplifiers on) or False, got %r"
+                            % (estop_closed,))
         if plant == "hexaglide" and not isinstance(params, PlantParams):
             pi = 0
             _geometry(params)                  # a Params or None, else TypeError
@@ -649,7 +762,10 @@ class Board:
         self.board_params = self.params.board_params(substeps, integrator)
         rc = _board_init(self.buf, pi, k, C.byref(self.board_params))
         if rc:
-            raise HexaglideError("board init", rc)
+            names = [e.name.decode() for e in params_table(pi, k)]
+            raise HexaglideError("board init", rc, "; ".join(
+                "%s = %r: %s" % (names[i], self.board_params.plant[i], why)
+                for i, why in _board_refusals(pi, k, self.board_params).items() if i < len(names)))
         self.inputs = BoardInputs()
         _board_inputs_default(self.buf, C.byref(self.inputs))
         if estop_closed:
@@ -679,7 +795,8 @@ def substeps_run(params=None, integrator=DEFAULT_INTEGRATOR, substeps=1, period_
     """The steps a servo period the board runs for the Hexaglide of params (None: the defaults)
     with this scheme: the substeps asked, raised as its stability check needs
     (src/hg_board.c), read after one period at HOME; 0 when no count up to the board's
-    maximum integrates those parameters (the board refuses them)."""
+    maximum integrates those parameters (the board refuses them). Arguments as Board takes them
+    (a substeps, integrator or period_ns it refuses raises)."""
     try:
         out = Board(params=params, substeps=substeps, integrator=integrator, period_ns=period_ns).step()
     except HexaglideError:
@@ -864,7 +981,7 @@ def loop_config(gains=None, ferror_limit_mm=0.0, period_ns=1000000, model="reduc
         cfg.ferror_limit_mm = ferror_limit_mm
     except TypeError:
         raise TypeError("ferror_limit_mm must be a number (mm; 0: no trip), got %r" % (ferror_limit_mm,))
-    cfg.period_ns = _whole("period_ns", period_ns, "ns")
+    cfg.period_ns = _loop_period(period_ns)
     if plant is None:
         if model not in MODELS:
             raise ValueError("unknown model %r; one of %s" % (model, MODELS))
@@ -919,33 +1036,46 @@ class LoopConfigError(ValueError):
 
 def check_loop_config(cfg):
     """LoopConfigError (a ValueError) naming the joint and the field (its INI key, its pid.N pin)
-    hg_loop_config_check refuses in cfg (a LoopConfig), with what it must be."""
+    hg_loop_config_check refuses in cfg (a LoopConfig, else TypeError), with what it must be;
+    a whole-number field's value printed as the int it is."""
+    if not isinstance(cfg, LoopConfig):
+        raise TypeError("cfg must be a LoopConfig (hexaglide.loop_config(...)), got %r" % (cfg,))
     r = LoopCheckReport()
     rc = _loop_check(C.byref(cfg), C.byref(r))
     if not rc:
         return
     comp, field = r.component.decode(), r.field.decode()
+    value = r.value                            # (the report's value is a double, whatever the field's type)
     if comp == "pid":
         name = "pid.%d.%s" % (r.joint, field)
     elif comp == "biquad":
         name = "notch biquad.%d.%s" % (r.joint, field)
     else:
         name = field
+        if isinstance(getattr(cfg, field, None), int):
+            value = getattr(cfg, field)        # period_ns = 0, not 0.0
     if r.ini_key:
         name = "%s (%s)" % (r.ini_key.decode(), name)
     where = "joint %d: " % r.joint if r.joint >= 0 else ""
-    raise LoopConfigError("loop config: %s%s = %r: %s" % (where, name, r.value, r.why.decode()), r.joint,
+    raise LoopConfigError("loop config: %s%s = %r: %s" % (where, name, value, r.why.decode()), r.joint,
                           r.ini_key.decode() if r.ini_key else "", r.value, r.why.decode())
 
 
 def _loop_period(period_ns):
-    """period_ns as an int the closed loop takes (hg_loop_config_check: (0, 10 ms]), else
-    TypeError / LoopConfigError naming it."""
-    cfg = LoopConfig()
-    _loop_default(C.byref(cfg))
-    cfg.period_ns = _whole("period_ns", period_ns, "ns")
-    check_loop_config(cfg)
-    return cfg.period_ns
+    """period_ns as an int the closed loop and the board take, else TypeError (not an int) or
+    LoopConfigError (a ValueError) naming it, its value as given and the range of
+    hg_loop_config_check, (0, HG_PERIOD_MAX_NS]: hg_board_step faults on a period outside it.
+    A value too large for a C long is refused too (ctypes would wrap 2**64 + 1000000 to 1 ms)."""
+    def why_refused(v):
+        cfg = LoopConfig()
+        _loop_default(C.byref(cfg))            # (the defaults pass: only the period can be refused)
+        cfg.period_ns = v
+        r = LoopCheckReport()
+        return r.why.decode() if _loop_check(C.byref(cfg), C.byref(r)) else None
+    v, why = _whole_why("period_ns", period_ns, C.c_long, why_refused, "ns")
+    if why:
+        raise LoopConfigError(_refusal("period_ns", v, why, "ns"), -1, "", float(v), why)
+    return v
 
 
 def notch_response(f0, q, freqs, period_ns=1000000):
@@ -989,7 +1119,7 @@ class Loop:
         self.cfg = loop_config(gains, ferror_limit_mm, period_ns, model, notch, plant)
         self.joints = _plant_channels(self.cfg.plant, self.cfg.variant)
         self.params = params or Params()
-        self.board_params = self.params.board_params(_whole("substeps", substeps), _whole("integrator", integrator))
+        self.board_params = self.params.board_params(substeps, integrator)   # checked there
         self.buf = C.create_string_buffer(_sizeof(0))
         self.reset()
 
@@ -1004,7 +1134,7 @@ class Loop:
         ValueError naming the row and joint of a command that is not finite or beyond 1e9
         (hg_pid_input_check: pid.c's derivatives would overflow into NaN); nothing run then."""
         cmd = _commands(cmd_mm, self.joints)
-        start = _whole("start", start)
+        start = _whole_checked("start", start, C.c_long)
         n = cmd.shape[0]
         fe = np.zeros((n, self.joints)) if keep else None
         out = np.zeros((n, self.joints)) if keep else None
@@ -1125,7 +1255,8 @@ class Job:
             raise ValueError("joints = %d, but cfg's plant %s has %d channels" % (joints, plant_names()[cfg.plant], n))
         self.cfg, self.board_params, self.cmd = cfg, board_params, _commands(cmd, n)
         self.joints = n
-        self.start, self.keep, self.load, self.tool_error = _whole("start", start), keep, load, tool_error
+        self.start = _whole_checked("start", start, C.c_long)
+        self.keep, self.load, self.tool_error = keep, load, tool_error
         self.stop = _checked_stop(stop, self.cmd.shape[0])
 
     def with_stop(self, stop):
@@ -1143,6 +1274,7 @@ def cores():
 def batch(jobs, threads=0):
     """Run the Jobs over `threads` POSIX threads (0: every core; src/hg_batch.h), no Python
     per period; [RunResult] in the jobs' order, bit for bit what Loop(...).run gives each."""
+    threads = _whole_checked("threads", threads, C.c_int)
     jobs = list(jobs)
     cj = (_BatchJob * max(1, len(jobs)))()
     traces = []
@@ -1161,7 +1293,7 @@ def batch(jobs, threads=0):
         cj[i].stop = C.pointer(j.stop.c) if j.stop is not None else None
         cj[i].trace = _Trace(*[a.ctypes.data_as(_P) if a is not None else None for a in (fe, out, load)])
     res = (_BatchResult * max(1, len(jobs)))()
-    rc = _batch_run(cj, len(jobs), int(threads), res)
+    rc = _batch_run(cj, len(jobs), threads, res)
     if rc:
         raise HexaglideError("batch", rc)
     out_list = []
@@ -1207,13 +1339,17 @@ def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000, state=
     command and feedback (and enable, default 1), from `state` (a dict of
     PidState fields; default the load-time state, all zero). ValueError naming
     the argument: a period the loop refuses (hg_loop_config_check: (0, 10 ms]),
-    a state value that is not finite, an enable other than 0 or 1."""
+    a state value that is not finite (or, for an int field, beyond a C int), an enable other
+    than 0 or 1."""
     g = pid_gains(gains)
     st = PidState()
-    names = [f for f, _ in PidState._fields_]
+    types = dict(PidState._fields_)
+    names = list(types)
     for k, v in (state or {}).items():
         if k not in names:
             raise ValueError("state: %r is not a PidState field (%s)" % (k, ", ".join(names)))
+        if types[k] is C.c_int:                # (ctypes would wrap an int beyond a C int's range)
+            v = _whole_checked("state: " + k, v, C.c_int)
         setattr(st, k, v)
         if not np.isfinite(getattr(st, k)):
             raise ValueError("state: %s = %r: must be finite (a pid's memory is never NaN or infinite)" % (k, v))

@@ -1388,7 +1388,8 @@ def touched_spec(base, est):
 
 # ====================================================================== validation
 def params_of_spec(spec, params):
-    """hg.Params: the known set with the identified spec values (carriage means)."""
+    """hg.Params: the known set with the identified spec values (carriage means);
+    a name the set does not have is left out, a value it refuses (NaN) raises ValueError."""
     p = params_copy(params)
     for name, vals in spec.items():
         try:
@@ -1485,9 +1486,15 @@ def validate(vrun, a, reg, params, s, est, pi0, base):
         gains = [tune.pid_keys(g) for g in tune.read_ini(a.ini, cmd="identify")[0]]
     except tune.BadInput as ex:
         raise BadInput(str(ex))
-    ident = params_of_spec(spec_of_pi(est.pi, params), params)
-    pk, lo, hi, series = predict_ferror(cmd, gains, ident, tune.PREDICT_SETTLES)
-    pk0, _, _, _ = predict_ferror(cmd, gains, params_of_spec(spec_of_pi(pi0, params), params), tune.PREDICT_SETTLES)
+    try:                                   # (an identified m_head of 0 gives head_com = nan: no machine)
+        ident = params_of_spec(spec_of_pi(est.pi, params), params)
+        pk, lo, hi, series = predict_ferror(cmd, gains, ident, tune.PREDICT_SETTLES)
+        pk0, _, _, _ = predict_ferror(cmd, gains, params_of_spec(spec_of_pi(pi0, params), params),
+                                      tune.PREDICT_SETTLES)
+    except (ValueError, hg.HexaglideError) as ex:
+        out.append("# closed loop: not validated (the identified values are no machine the simulator can "
+                   "run: %s)" % ex)
+        return "\n".join(out) + "\n", data
     if pk is None:
         out.append("# closed loop: the identified model is unstable with the gains of %s" % a.ini)
         return "\n".join(out) + "\n", data
