@@ -95,6 +95,20 @@ static double tool_error(const hg_board *b, const double pos_cmd[HG_CHANNELS_MAX
     return isfinite(e) && e >= 0.0 ? e : -1.0;
 }
 
+/* Say which of motion's commands became NaN or inf this period (POS_CMD_BAD): the
+ * tool-path error reads -1 while one is, and a user should learn why. */
+static void pos_cmd_checked(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
+{
+    unsigned bad = 0;
+    int k;
+    for (k = 0; k < b->sense.channels && !b->skip_tool_error; k++)
+        bad |= isfinite(in->pos_cmd[k]) ? 0u : 1u << k;
+    out->pos_cmd_bad_new = bad & ~b->pos_cmd_bad;
+    if (out->pos_cmd_bad_new)
+        out->events |= HG_EV_POS_CMD_BAD;
+    b->pos_cmd_bad = bad;
+}
+
 /* Machine at HOME at rest, counters at 0 and disarmed, fault cleared. */
 static void reinit_at_home(hg_board *b, hg_board_outputs *out)
 {
@@ -609,6 +623,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
 
     pl->sense(&b->m, &b->d, &b->sense);
     b->tool_error = b->skip_tool_error ? HG_TOOL_ERROR_SKIPPED : tool_error(b, in->pos_cmd);
+    pos_cmd_checked(b, in, out);
     encoders(b, in, out);
     for (k = 0; k < b->sense.channels; k++)
         b->switches[k] = hg_switches_stuck(b->sense.switches[k], b->switches[k], in->stuck[k]) | in->tripped[k];
@@ -618,6 +633,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
 
 int hg_board_rate_read(hg_board_rate *r, long period_ns)
 {
+    r->unread_ns = 0;
     if (r->reads < HG_BOARD_RATE_READS_MAX)
         r->reads++;
     if (period_ns <= 0 || r->unstepped_ns >= HG_BOARD_UNSTEPPED_NS)
@@ -642,6 +658,15 @@ int hg_board_rate_step(hg_board_rate *r)
     r->steps = r->window_reads = 0;
     r->said = slow;
     return slow;
+}
+
+int hg_board_rate_unread(hg_board_rate *r, long period_ns)
+{
+    if (period_ns <= 0 || r->unread_said)
+        return 0;
+    r->unread_ns += period_ns < HG_BOARD_UNSTEPPED_NS ? period_ns : HG_BOARD_UNSTEPPED_NS; /* no overflow */
+    r->unread_said = r->unread_ns >= HG_BOARD_UNSTEPPED_NS;
+    return r->unread_said;
 }
 
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,

@@ -127,7 +127,9 @@ enum {
                                          output in force (estop_loop_out of the outputs) stays in the loop */
     HG_EV_ADC_VPA_BAD = 1u << 15,     /* adc_volts_per_amp was set to a value not finite or not > 0:
                                          refused, the one in force (adc_volts_per_amp of the outputs) kept */
-    HG_EV_ALL = (HG_EV_ADC_VPA_BAD << 1) - 1u /* every event bit (a new event goes before this line and here) */
+    HG_EV_POS_CMD_BAD = 1u << 16,     /* pos_cmd_bad_new: bit ch = motion's command of channel ch became
+                                         NaN or inf (the tool-path error reads -1 while one is) */
+    HG_EV_ALL = (HG_EV_POS_CMD_BAD << 1) - 1u /* every event bit (a new event goes before this line and here) */
 };
 
 /* Why the fault latched (hg_board_outputs.fault_cause). */
@@ -197,6 +199,7 @@ typedef struct {
     double stiff_value;               /* ... the limiting parameter's value (SI) in the set it names */
     int stiff_integrator;             /* ... and that set's integrator (refused or in force) */
     unsigned adc_nan_new;             /* ADC_NAN */
+    unsigned pos_cmd_bad_new;         /* POS_CMD_BAD */
     int estop_loop_out;               /* the E-STOP loop's output in force (-1 none; the glue shows it on
                                          estop-loop-out after ESTOP_OUT_BAD) */
     double adc_volts_per_amp;         /* the current monitors' V/A in force (shown after ADC_VPA_BAD) */
@@ -228,6 +231,7 @@ typedef struct {
     double adc_value[HG_BOARD_ADCS];  /* published */
     int adc_state;                    /* 0 power-up, 1/2: which group of 4 converts next */
     unsigned dac_nan;                 /* bit ch: channel ch's product is NaN */
+    unsigned pos_cmd_bad;             /* bit ch: motion's command of channel ch is NaN or inf */
     unsigned adc_nan;                 /* bit ch: channel ch's conversion is Inf or NaN (reads 0) */
     unsigned adc_sample_bad;          /* bit ch: its sample's current x adc_volts_per_amp was not finite */
     int prev_reset;
@@ -319,6 +323,8 @@ typedef struct {
     unsigned steps, window_reads;     /* steps and their reads in the window so far */
     int stepped;                      /* a step ran since load (the reads before the first are not counted) */
     int said;                         /* the slow step was said */
+    long long unread_ns;              /* thread time dynamics ran since the last encoder-read */
+    int unread_said;                  /* the missing encoder-read was said */
 } hg_board_rate;
 
 /* Called by the glue's encoder-read with its thread's period: counts the
@@ -340,6 +346,13 @@ int hg_board_rate_read(hg_board_rate *r, long period_ns);
  * error. A window, not a single step: the two threads of a non-realtime
  * host wake in either order. */
 int hg_board_rate_step(hg_board_rate *r);
+
+/* Called by the glue's dynamics with its thread's period, after
+ * hg_board_rate_step: 1 exactly once, when the steps' time since the last
+ * encoder-read first reaches HG_BOARD_UNSTEPPED_NS: the machine moves but
+ * the encoder and switch pins stand still (motenc.N.encoder-read never
+ * added to a thread, the mirror of hg_board_rate_read's case). */
+int hg_board_rate_unread(hg_board_rate *r, long period_ns);
 
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
                                  char buf[HG_BOARD_TEXT_LEN]);

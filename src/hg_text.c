@@ -19,7 +19,8 @@ static char *put_uint(char *p, unsigned long long u, int min_digits)
     return p;
 }
 
-/* v > 0 finite as "1.23457e-9" (6 significant digits) at p, NUL-terminated. */
+/* v > 0 finite as "1.23456789e-9" (9 significant digits, trailing zeros dropped)
+ * at p, NUL-terminated. */
 static void put_scientific(char *p, double v)
 {
     unsigned long long ip, frac;
@@ -29,15 +30,15 @@ static void put_scientific(char *p, double v)
     while (v < 1.0 && e > -400)
         v *= 10.0, e--;
     ip = (unsigned long long)floor(v);
-    frac = (unsigned long long)floor((v - (double)ip) * 1e5 + 0.5);
-    if (frac >= 100000ull)
-        ip++, frac -= 100000ull;
-    if (ip >= 10ull)                  /* 9.999996 rounded up to 10 */
+    frac = (unsigned long long)floor((v - (double)ip) * 1e8 + 0.5);
+    if (frac >= 100000000ull)
+        ip++, frac -= 100000000ull;
+    if (ip >= 10ull)                  /* 9.9999999996 rounded up to 10 */
         ip = 1, e++;
     p = put_uint(p, ip, 1);
     if (frac) {
         *p++ = '.';
-        p = put_uint(p, frac, 5);
+        p = put_uint(p, frac, 8);
         while (p[-1] == '0')
             p--;
     }
@@ -51,7 +52,8 @@ void hg_text_value(char buf[HG_TEXT_VALUE_LEN], double v)
 {
     char *p = buf;
     unsigned long long ip, frac;
-    double a;
+    double a, scale, t;
+    int d;
     if (v != v) {
         memcpy(buf, "nan", 4);
         return;
@@ -64,21 +66,25 @@ void hg_text_value(char buf[HG_TEXT_VALUE_LEN], double v)
         memcpy(p, "inf", 4);
         return;
     }
-    if (v > 1e15 || (v > 0 && v < 1e-4)) { /* beyond 6 decimals' reach: 6 significant digits */
+    if (v > 1e15 || (v > 0 && v < 1e-4)) {
         put_scientific(p, v);
         return;
     }
     a = floor(v);
     ip = (unsigned long long)a;
-    frac = (unsigned long long)floor((v - a) * 1e6 + 0.5);
-    if (frac >= 1000000ull) {
+    for (d = 8, scale = 1e8, t = v; t >= 10.0 && d > 0; t /= 10.0) /* decimals for 9 significant digits */
+        d--, scale /= 10.0;
+    for (; t < 1.0 && v > 0 && d < 12; t *= 10.0)                   /* (v >= 1e-4: at most 12) */
+        d++, scale *= 10.0;
+    frac = (unsigned long long)floor((v - a) * scale + 0.5);
+    if (frac >= (unsigned long long)scale) {
         ip++;
-        frac -= 1000000ull;
+        frac -= (unsigned long long)scale;
     }
     p = put_uint(p, ip, 1);
     if (frac) {
         *p++ = '.';
-        p = put_uint(p, frac, 6);
+        p = put_uint(p, frac, d);
         while (p[-1] == '0')          /* 1.500000 -> 1.5 */
             p--;
     }

@@ -4,8 +4,10 @@
 #ifndef HG_TEXT_H
 #define HG_TEXT_H
 
-/* v as text: "-12.5", up to 6 decimals; below 1e-4 and above 1e15 in
- * magnitude 6 significant digits, "1.5e-9", "1e+300"; "nan", "inf". */
+/* v as text with 9 significant digits, trailing zeros dropped (a refused
+ * 0.0009999 against a bound of 0.001 must not read "0.001"): "-12.5",
+ * "0.00012345"; below 1e-4 and above 1e15 in magnitude "1.5e-9", "1e+300";
+ * "nan", "inf". */
 #define HG_TEXT_VALUE_LEN 32
 void hg_text_value(char buf[HG_TEXT_VALUE_LEN], double v);
 

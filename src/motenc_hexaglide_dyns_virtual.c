@@ -314,6 +314,11 @@ static void report(board_t *b, long period)
         if ((o->dac_nan_new >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: dac-%02d: (value - offset) * gain is NaN; "
                             "output 0 V until it is a number again\n", id, k);
+    for (k = 0; k < HG_CHANNELS_MAX; k++)
+        if ((o->pos_cmd_bad_new >> k) & 1u)
+            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: " XP ".%d.joint-%d.pos-cmd is NaN or inf: "
+                            "tool-error reads -1 until motion's command is a number again (net it to "
+                            "joint.%d.pos-cmd)\n", id, id, k, k);
     for (k = 0; k < HG_BOARD_ADCS; k++)
         if ((o->adc_nan_new >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: adc-%02d: (current x " XP ".%d.adc-volts-per-amp) "
@@ -466,6 +471,13 @@ static void dynamics(void *arg, long period)
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: addf motenc.%d.dynamics to the servo thread, right "
                         "after motenc.%d.dac-write (a thread of its own may be faster, not slower)\n",
                         b->id, b->id, b->id);
+    }
+    if (hg_board_rate_unread(&b->rate, period)) {
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.encoder-read has not run for 1 s while "
+                        "motenc.%d.dynamics runs: the machine moves but the encoder counts and switches on the "
+                        "pins stand still, and LinuxCNC will trip on following error\n", b->id, b->id, b->id);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: addf motenc.%d.encoder-read servo-thread first, "
+                        "before motion-command-handler (as hal_motenc's)\n", b->id, b->id);
     }
     in->dout_values = in->dout_inverts = 0;
     for (k = 0; k < HG_BOARD_OUTPUTS; k++) {

@@ -520,10 +520,36 @@ static void test_check_all_and_format(void)
     CHECK(strcmp(buf, "-1.5e-9") == 0, "format -1.5e-9: '%s'", buf);
     hg_text_value(buf, 1e300);
     CHECK(strcmp(buf, "1e+300") == 0, "format 1e300: '%s'", buf);
-    hg_text_value(buf, 9.9999999e20);
-    CHECK(strcmp(buf, "1e+21") == 0, "format 9.9999999e20 rounds to 1e+21: '%s'", buf);
+    hg_text_value(buf, 9.9999999996e20);
+    CHECK(strcmp(buf, "1e+21") == 0, "format 9.9999999996e20 rounds to 1e+21: '%s'", buf);
     hg_text_value(buf, 4.9406564584124654e-324);
-    CHECK(strcmp(buf, "4.94066e-324") == 0, "format the smallest denormal: '%s'", buf);
+    CHECK(strcmp(buf, "4.94065646e-324") == 0, "format the smallest denormal: '%s'", buf);
+    /* a refused value next to its bound reads as itself (0.0009999 read "0.001" against 0.001) */
+    hg_text_value(buf, 0.0009999);
+    CHECK(strcmp(buf, "0.0009999") == 0, "format 0.0009999: '%s'", buf);
+    hg_text_value(buf, 0.00012345);
+    CHECK(strcmp(buf, "0.00012345") == 0, "format 0.00012345: '%s'", buf);
+    hg_text_value(buf, 5665.6);
+    CHECK(strcmp(buf, "5665.6") == 0, "format 5665.6: '%s'", buf);
+    hg_text_value(buf, 999999999.9999999);
+    CHECK(strcmp(buf, "1000000000") == 0, "format 999999999.9999999 (9 digits): '%s'", buf);
+    {   /* against C's %.9g: the same value to 9 significant digits, over 20 decades */
+        int k, agree = 1;
+        for (k = 0; k < 20000 && agree; k++) {
+            double v = hg_test_uniform(1.0, 10.0) * pow(10.0, floor(hg_test_uniform(-30, 30)));
+            double x = k % 2 ? -v : v, err;
+            char ref[40];
+            hg_text_value(buf, x);
+            snprintf(ref, sizeof ref, "%.9g", x);
+            err = fabs(strtod(buf, 0) - x);
+            /* (above 1e9 every integer digit is written: closer than %.9g, never farther than its 5e-9) */
+            agree = err <= fabs(strtod(ref, 0) - x) + 5e-10 * v && err <= 5.5e-9 * v && strlen(buf) < HG_TEXT_VALUE_LEN;
+            if (!agree)
+                CHECK(0, "format %.17g: '%s', %%.9g '%s'", x, buf, ref);
+        }
+        CHECK(agree, "hg_text_value reads back within 5.5e-9 relative, at most half a 10th digit farther than "
+              "%%.9g, 20,000 values, 1e-30..1e30");
+    }
 }
 
 /* Count of steps in n with the ADDF_ORDER event. */
@@ -620,9 +646,19 @@ static void test_tool_error(void)
         in.pos_cmd[k] = 5.0;
     hg_board_step(&b, &in, &out, 0);
     CHECK(out.tool_error == -1.0, "carriages commanded 5 m high: no pose, tool-error -1 (%g)", out.tool_error);
+    CHECK(!(out.events & HG_EV_POS_CMD_BAD), "5 m commands are numbers: no POS_CMD_BAD event");
     in.pos_cmd[2] = NAN;
     hg_board_step(&b, &in, &out, 0);
-    CHECK(out.tool_error == -1.0, "a NaN command: tool-error -1 (%g)", out.tool_error);
+    CHECK(out.tool_error == -1.0 && (out.events & HG_EV_POS_CMD_BAD) && out.pos_cmd_bad_new == 1u << 2,
+          "a NaN command: tool-error -1 (%g), POS_CMD_BAD naming channel 2 (mask %#x)", out.tool_error,
+          out.pos_cmd_bad_new);
+    hg_board_step(&b, &in, &out, 0);
+    CHECK(!(out.events & HG_EV_POS_CMD_BAD), "still NaN: said once");
+    in.pos_cmd[2] = 5.0;
+    in.pos_cmd[4] = -INFINITY;
+    hg_board_step(&b, &in, &out, 0);
+    CHECK(out.pos_cmd_bad_new == 1u << 4, "channel 2 a number again, channel 4 -inf: channel 4 said (%#x)",
+          out.pos_cmd_bad_new);
 }
 
 /* A hard stop moved beneath a carriage: the carriage is then deeper in the
@@ -756,6 +792,26 @@ static void test_unstepped(void)
     said += hg_board_rate_read(&r, LONG_MAX);   /* a hostile period: no signed overflow (UBSan) */
     CHECK(said == 1 && r.unstepped_ns == HG_BOARD_UNSTEPPED_NS + PERIOD,
           "a period of LONG_MAX ns after 1 ms: said once, the time capped (%lld ns)", r.unstepped_ns);
+    /* the mirror: steps without encoder-read (it was never added to a thread) */
+    memset(&r, 0, sizeof r);
+    for (i = 1, said = 0, first = -1; i <= 3000; i++) {
+        hg_board_rate_step(&r);
+        if (hg_board_rate_unread(&r, PERIOD)) {
+            said++;
+            if (first < 0)
+                first = i;
+        }
+    }
+    CHECK(said == 1 && first == 1000, "no encoder-read: said once, at the 1000th step of 1 ms (%d times, first %d)",
+          said, first);
+    memset(&r, 0, sizeof r);
+    for (i = 1, said = 0; i <= 3000; i++) {     /* a read every 10th period: reads run */
+        if (i % 10 == 0)
+            hg_board_rate_read(&r, PERIOD);
+        hg_board_rate_step(&r);
+        said += hg_board_rate_unread(&r, PERIOD) + hg_board_rate_unread(&r, 0) + hg_board_rate_unread(&r, -1);
+    }
+    CHECK(said == 0, "encoder-read every 10th step (a slower read thread): not said (%d)", said);
 }
 
 /* One step of dynamics after `reads` calls of encoder-read (1 ms thread). */
