@@ -544,7 +544,7 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     double volts[HG_CHANNELS_MAX] = {0, 0, 0, 0, 0, 0, 0, 0}, dac_out_v[HG_BOARD_DACS];
     double dt = (double)period_ns * 1e-9;
     unsigned nan_now = 0, enabled = 0;
-    int k, amps_on, expired;
+    int k, amps_on, expired, was_expired;
 
     memset(out, 0, sizeof *out);
     out->reset_refused_channel = -1;
@@ -595,7 +595,10 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     if (in->dac_written)
         hg_watchdog_dac_write(&b->wd);
     addf_order(b, in, out, period_ns);
+    was_expired = b->wd.expired;
     expired = hg_watchdog_advance(&b->wd, dt);
+    if (expired && !was_expired)
+        out->events |= HG_EV_WATCHDOG_EXPIRED;
     estop_loop_out(b, in, out);
     adc_volts_per_amp(b, in, out);
     amps_on = !estop_open(b, in) && !expired && !b->fault;

@@ -129,7 +129,9 @@ enum {
                                          refused, the one in force (adc_volts_per_amp of the outputs) kept */
     HG_EV_POS_CMD_BAD = 1u << 16,     /* pos_cmd_bad_new: bit ch = motion's command of channel ch became
                                          NaN or inf (the tool-path error reads -1 while one is) */
-    HG_EV_ALL = (HG_EV_POS_CMD_BAD << 1) - 1u /* every event bit (a new event goes before this line and here) */
+    HG_EV_WATCHDOG_EXPIRED = 1u << 17, /* the watchdog expired this period (amplifiers and outputs off until
+                                          watchdog_reset kicks it) */
+    HG_EV_ALL = (HG_EV_WATCHDOG_EXPIRED << 1) - 1u /* every event bit (a new event goes before this line and here) */
 };
 
 /* Why the fault latched (hg_board_outputs.fault_cause). */

@@ -267,7 +267,11 @@ int hg_stability_check_axes(const hg_stability_axis *ax, int n_axes, hg_integrat
         for (i = 0, m = test_systems(&ax[a], s); i < m; i++, n++) {
             h[n] = stable(&s[i], scheme, period_s / last) ? DBL_MAX
                                                          : longest_step(&s[i], scheme, period_s / substeps_min);
-            name[n] = damping_limits(&s[i], scheme, period_s / last) ? s[i].param_c : s[i].param;
+            /* the damping names the bound when it limits, or when some damping but no step is stable
+             * at all: the mode needs more of it (c_axial = 1e-300 named k_axial; with none, the
+             * system's own name is already the damping's) */
+            name[n] = (damping_limits(&s[i], scheme, period_s / last) ||
+                       (h[n] == 0.0 && s[i].c > 0.0 && s[i].param_c)) ? s[i].param_c : s[i].param;
             if (h[n] < DBL_MAX && (limiting < 0 || h[n] < h[limiting]))
                 limiting = n;
         }

@@ -314,6 +314,12 @@ static void report(board_t *b, long period)
         if ((o->dac_nan_new >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: dac-%02d: (value - offset) * gain is NaN; "
                             "output 0 V until it is a number again\n", id, k);
+    if (o->events & HG_EV_WATCHDOG_EXPIRED)
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: the watchdog expired (motenc.%d.watchdog-control "
+                        "%u: no watchdog-reset within its %d ms): amplifiers and outputs off until "
+                        "motenc.%d.watchdog-reset is set TRUE (or a dac-write, with control bit 16)\n", id, id,
+                        b->c->ins.watchdog_control, (int)(1e3 * hg_watchdog_timeout_s(b->c->ins.watchdog_control)
+                                                      + 0.5), id);
     for (k = 0; k < HG_CHANNELS_MAX; k++)
         if ((o->pos_cmd_bad_new >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: " XP ".%d.joint-%d.pos-cmd is NaN or inf: "

@@ -132,7 +132,7 @@ static void test_estop_loop(void)
 
 static void test_watchdog(void)
 {
-    int i, first = -1;
+    int i, first = -1, said = 0;
     fresh();
     in.watchdog_control = HG_WD_CTL_ENABLE;           /* 8 ms, no auto reset */
     for (i = 1; i <= 12 && first < 0; i++) {
@@ -141,6 +141,12 @@ static void test_watchdog(void)
             first = i;
     }
     CHECK(first == 8 || first == 9, "enabled watchdog (8 ms) expires after 8 periods of 1 ms unkicked (%d)", first);
+    CHECK(out.events & HG_EV_WATCHDOG_EXPIRED, "the period it expires in has WATCHDOG_EXPIRED (the glue says it)");
+    for (i = 0; i < 20; i++) {
+        run(1);
+        said += (out.events & HG_EV_WATCHDOG_EXPIRED) != 0;
+    }
+    CHECK(said == 0 && out.watchdog_expired, "still expired 20 periods on: said once (%d more)", said);
     CHECK(out.amps_on == 0 && out.dout_word == 0, "expired watchdog: amplifiers off, outputs off");
     in.watchdog_reset = 1;
     run(1);

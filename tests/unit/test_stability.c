@@ -239,6 +239,14 @@ static void test_neutral_and_damping_names(void)
     rc = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, 1, &st);
     CHECK(rc == HG_ERR_STIFF && st.param && strcmp(st.param, "c_axial") == 0,
           "flexible train, c_axial 1e8 at 1 ms, one step: refused, naming %s (c_axial)", st.param ? st.param : "nothing");
+    /* Heun on an undamped oscillator grows at any step (|1 + z + z^2/2|^2 = 1 + (w h)^4 / 4 for z = i w h):
+     * a train with no damping to speak of is refused at any substep count, naming the damping it
+     * lacks (it named k_axial) */
+    p.c_axial_ns_per_m = 1e-300;
+    rc = hg_stability_check(&p, HG_INTEGRATOR_HEUN, 1e-3, 1, 64, &st);
+    CHECK(rc == HG_ERR_STIFF && st.param && strcmp(st.param, "c_axial") == 0 && st.dt_max_s == 0.0,
+          "flexible train, c_axial 1e-300 (undamped): refused at 64 steps, naming %s (c_axial), no stable step (%g s)",
+          st.param ? st.param : "nothing", st.dt_max_s);
     /* the refused set's value and integrator, not the set in force's */
     hg_board_init(&b, 0, HG_MODEL_REDUCED_CARTESIAN, 0);
     hg_board_inputs_default(&b, &in);
