@@ -235,6 +235,10 @@ static int hexaglide_forward(const double *joints, EmcPose *pos)
         rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: forward kinematics failed (code %d: %s); the "
                         "position shown stays at the last solved pose until it succeeds "
                         "(hexaglidekins.fk-error, fk-fail-count)\n", rc, hg_strerror(rc));
+    else if (say == HG_FK_SAY_FAILS_OTHERWISE)
+        rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: forward kinematics now fails with code %d: %s (the "
+                        "same run of failures; the position shown stays at the last solved pose)\n", rc,
+                        hg_strerror(rc));
     else if (say == HG_FK_SAY_SOLVES_AGAIN)
         rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: forward kinematics solves again (after %u failed calls "
                         "in all)\n", hd->fk.fail_count);

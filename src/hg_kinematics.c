@@ -78,10 +78,18 @@ int hg_fk_session_settings(hg_fk_session *s, int max_iterations, double toleranc
 int hg_fk_session_result(hg_fk_session *s, int rc)
 {
     const int was_failing = s->failing;
+    const unsigned code = rc < 0 && rc > -32 ? 1u << -rc : 1u;   /* (another value: bit 0) */
     s->failing = (rc != 0);
     if (rc) {
         s->fail_count++;
-        return was_failing ? HG_FK_SAY_NOTHING : HG_FK_SAY_FAILING;
+        if (!was_failing) {
+            s->said_codes = code;
+            return HG_FK_SAY_FAILING;
+        }
+        if (s->said_codes & code)
+            return HG_FK_SAY_NOTHING;
+        s->said_codes |= code;
+        return HG_FK_SAY_FAILS_OTHERWISE;
     }
     return was_failing ? HG_FK_SAY_SOLVES_AGAIN : HG_FK_SAY_NOTHING;
 }

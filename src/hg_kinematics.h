@@ -63,6 +63,7 @@ typedef struct {
     int refused_iterations;    /* the last refused pair, as given */
     double refused_tolerance_m;
     int failing;               /* 1: the last forward call failed */
+    unsigned said_codes;       /* bit -code: a failure code said in the run of failures */
     unsigned fail_count;       /* failed calls since init (wraps as a HAL u32) */
     int have_last;             /* 1: last_pose holds an answer */
     double last_pose[6];       /* the last pose solved (hg_fk_session_solve, hg_guard.h) */
@@ -74,7 +75,8 @@ enum {
     HG_FK_SAY_REFUSED = 1,     /* a new invalid pair: refused, in_force kept */
     HG_FK_SAY_FAILING = 2,     /* the first failure of a run: the pose shown stays */
     HG_FK_SAY_SOLVES_AGAIN = 3, /* the first success after a run of failures */
-    HG_FK_SAY_JUMP = 4         /* a new tool offset moved Op at once (hg_tool_offset_take) */
+    HG_FK_SAY_JUMP = 4,        /* a new tool offset moved Op at once (hg_tool_offset_take) */
+    HG_FK_SAY_FAILS_OTHERWISE = 5 /* a run of failures meets a code not said in it yet */
 };
 
 /* A session with the default settings in force, nothing refused or failed. */
@@ -89,8 +91,11 @@ int hg_fk_session_settings(hg_fk_session *s, int max_iterations, double toleranc
                            const char **why);
 
 /* Note a forward call's result rc (0 or an hg_error code): counts a
- * failure; HG_FK_SAY_FAILING at the first of a run, HG_FK_SAY_SOLVES_AGAIN
- * at the first success after one, else HG_FK_SAY_NOTHING. */
+ * failure; HG_FK_SAY_FAILING at the first of a run,
+ * HG_FK_SAY_FAILS_OTHERWISE at the first call of the run failing with a code
+ * not said in it yet (a NaN joint after a diverged solve; at most once per
+ * code, so a run never floods the log), HG_FK_SAY_SOLVES_AGAIN at the first
+ * success after one, else HG_FK_SAY_NOTHING. */
 int hg_fk_session_result(hg_fk_session *s, int rc);
 
 /* Machine units. LinuxCNC exchanges X Y Z and the joints (carriage

@@ -546,10 +546,17 @@ static void test_fk_session(void)
     CHECK(hg_fk_session_result(&s, 0) == HG_FK_SAY_NOTHING && s.fail_count == 0, "a success: nothing to say");
     CHECK(hg_fk_session_result(&s, HG_ERR_NO_CONVERGENCE) == HG_FK_SAY_FAILING && s.failing && s.fail_count == 1,
           "the first failure of a run is said");
+    CHECK(hg_fk_session_result(&s, HG_ERR_UNREACHABLE) == HG_FK_SAY_FAILS_OTHERWISE && s.fail_count == 2,
+          "another code in the same run is said (once)");
     quiet = 1;
-    for (k = 0; k < 9; k++)
+    for (k = 0; k < 8; k++)
         quiet &= hg_fk_session_result(&s, k % 2 ? HG_ERR_NO_CONVERGENCE : HG_ERR_UNREACHABLE) == HG_FK_SAY_NOTHING;
-    CHECK(quiet && s.fail_count == 10, "the rest of the run is counted, not said (%u failures)", s.fail_count);
+    CHECK(quiet && s.fail_count == 10, "the rest of the run, alternating the two codes, is counted, not said (%u "
+          "failures)", s.fail_count);
+    CHECK(hg_fk_session_result(&s, HG_ERR_NONFINITE_INPUT) == HG_FK_SAY_FAILS_OTHERWISE &&
+              hg_fk_session_result(&s, HG_ERR_NONFINITE_INPUT) == HG_FK_SAY_NOTHING && s.fail_count == 12,
+          "a third code (NaN joints) said once");
+    s.fail_count = 10;
     CHECK(hg_fk_session_result(&s, 0) == HG_FK_SAY_SOLVES_AGAIN && !s.failing, "the first success after it is said");
     CHECK(hg_fk_session_result(&s, 0) == HG_FK_SAY_NOTHING, "the next success: nothing");
     CHECK(hg_fk_session_result(&s, HG_ERR_UNREACHABLE) == HG_FK_SAY_FAILING && s.fail_count == 11,
