@@ -55,7 +55,7 @@ int hg_pid_gains_check(const hg_pid_gains *g, const hg_pid_setting **bad, const 
         if (s->kind == HG_PID_GAIN && !(fabs(v) <= HG_PID_MAX_ABS))
             w = "must be finite and at most 1e9 in magnitude (beyond it pid.c's products overflow)";
         else if (s->kind == HG_PID_LIMIT && !(isfinite(v) && v >= 0.0))
-            w = "must be finite and >= 0 (0: no limit)";
+            w = "must be finite and >= 0 (0: none, as in pid.c: no limit, or no deadband)";
         if (w) {
             if (bad)
                 *bad = s;

@@ -1162,11 +1162,7 @@ def main(argv=None):
         except hg_config.ConfigError as ex:
             raise BadInput(str(ex))
         joints, axes, params = cfg.joints, cfg.axes, cfg.params
-        ferror_limit = min(g["FERROR"] for g in joints)
-        try:                               # the INI's own gains by the loop's rules, as soak checks them
-            hg.loop_config([pid_keys(g) for g in joints], ferror_limit_mm=ferror_limit)
-        except hg.LoopConfigError as ex:
-            raise BadInput(ex.in_ini(a.ini))
+        ferror_limit = min(g["FERROR"] for g in joints)   # (the INI's gains: checked by read_config, as soak)
         vmax_dac = min(hg_config.output_limit(g) for g in joints)
         if a.max_volts is not None and not (0 < a.max_volts <= vmax_dac):
             raise BadInput("--max-volts %g: must be in (0, %g] V (the smallest [JOINT_N]MAX_OUTPUT of %s; "
@@ -1207,6 +1203,11 @@ def main(argv=None):
         if a.plots and a.evaluate:
             raise BadInput("--plots %s with --evaluate: --evaluate draws no plots; for plots of given gains "
                            "against the INI's use --gains FILE --plots DIR (docs/tuning.md)" % a.plots)
+        if a.plots:                        # now, not after the search (as --output)
+            try:
+                hg_output.check_writable_dir(a.plots, PLOT_NAMES)
+            except hg_output.OutputError as ex:
+                raise BadInput("--plots %s: %s" % (a.plots, ex))
     except (BadInput, hg_output.OutputError) as ex:
         log(ex)
         return 2
@@ -1310,10 +1311,15 @@ def main(argv=None):
     text = ini_text(sug, pred, source, notch, without)
     if a.output:
         atomic_write(a.output, lambda f: f.write(text.encode()))
+    sys.stdout.write(text)                 # the suggestion first: a plot that fails late loses nothing
+    sys.stdout.flush()
     if a.plots:
-        for p in plots(a.plots, cur if cur_pred else sug, sug, prob, source, notch):
-            log("wrote", p)
-    sys.stdout.write(text)
+        try:
+            for p in plots(a.plots, cur if cur_pred else sug, sug, prob, source, notch):
+                log("wrote", p)
+        except hg_output.OutputError as ex:
+            log("%s (the suggested gains are on standard output%s)" % (ex, ", and in " + a.output if a.output else ""))
+            return 1
     return 0
 
 

@@ -6,9 +6,10 @@ the limits ([JOINT_N], [AXIS_*] MIN_LIMIT MAX_LIMIT MAX_VELOCITY
 MAX_ACCELERATION) from `hexaglide config` (src/cli/cmd_config.c), the C CLI's
 one INI reader (src/cli/cli_ini.c: LinuxCNC's reading; a key given twice, a
 value that is not a finite number, an unknown [HEXAGLIDE] key, a missing
-key the HAL file sets, an empty limit range refused, naming key, file and
-line). No second parser: what sim, soak, ik and LinuxCNC see is what the
-tools see.
+key the HAL file reads ([HEXAGLIDE] or [JOINT_N]), an empty limit range, and
+with loop=True what soak's loop refuses (a gain pid.c cannot take, a
+SERVO_PERIOD above the board's 10 ms) refused, naming key, file and line).
+No second parser: what sim, soak, ik and LinuxCNC see is what the tools see.
 
     cfg = hg_config.read("configs/hexaglide.ini", sets=["m_head=8"], loop=True, cmd="tune")
     cfg.params       # hg.Params, SI, checked as soak checks them

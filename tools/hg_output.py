@@ -65,6 +65,30 @@ def check_writable(path):
         raise OutputError("cannot write %s: %s (a new file in %s)" % (path, ex.strerror or ex, d))
 
 
+def check_writable_dir(path, names):
+    """OutputError now, before the work, when the files names cannot be written into the directory
+    path (made when missing, as the tools' plot savers make it): in a directory that exists,
+    check_writable of each; for a missing one, a new directory that the first existing directory
+    above it does not take (no permission, a read-only file system), or a file in the way."""
+    if path == STDOUT:
+        raise OutputError("cannot write into -: %s" % (_NOT_STDOUT % "this output"))
+    if os.path.isdir(path):
+        for n in names:
+            check_writable(os.path.join(path, n))
+        return
+    if os.path.lexists(path):
+        raise OutputError("cannot write into %s: not a directory; give a directory" % path)
+    parent = os.path.dirname(os.path.abspath(path))
+    while not os.path.lexists(parent):     # os.makedirs makes the rest below it
+        parent = os.path.dirname(parent)
+    if not os.path.isdir(parent):
+        raise OutputError("cannot make the directory %s: %s is not a directory" % (path, parent))
+    try:
+        os.rmdir(tempfile.mkdtemp(dir=parent, prefix=".tmp-"))
+    except OSError as ex:
+        raise OutputError("cannot make the directory %s: %s (a new directory in %s)" % (path, ex.strerror or ex, parent))
+
+
 def same(a, b):
     """True if outputs a and b would write the same file (symlinks followed; either may be
     missing, or in a directory that is still to be made)."""

@@ -38,7 +38,8 @@ extern const char cli_usage_ik[], cli_usage_fk[], cli_usage_sim[], cli_usage_soa
 /* The usage lines of --ini and --set, shared by ik, fk, sim and soak. */
 #define CLI_USAGE_MODEL                                                                            \
     "  --ini FILE          geometry from the config's [HEXAGLIDE] section (keys L LB E LP in mm,\n" \
-    "                      CONE_CARRIAGE CONE_HEAD in degrees, D_BAR in mm, as configs/hexaglide.ini)\n" \
+    "                      CONE_CARRIAGE CONE_HEAD in degrees, D_BAR in mm, as configs/hexaglide.ini;\n" \
+    "                      each required, as configs/hexaglide.hal reads each)\n" \
     "  --set name=value    a model parameter by spec name in SI units (hexaglide sim --list-params);\n" \
     "                      repeatable. Order: defaults, then --ini, then --set; HOME stays at pose 0\n" \
     "                      for any l, lb, lp (h follows from them)\n"
@@ -137,7 +138,7 @@ const char *cli_variant_name(int plant, int variant, char *buf);
  * section of the INI file ini (0: none; [HEXAGLIDE] for the Hexaglide),
  * then each of the nset "name=value" in sets (HOME is at pose 0 for any
  * Hexaglide geometry: h follows l, lb, lp). Not checked (the board or
- * cli_params_check do). 0, or 2 after a message. */
+ * cli_params_check_from do). 0, or 2 after a message. */
 int cli_params_build(const char *cmd, int plant, int variant, const char *ini, char *const *sets, int nset,
                      hg_plant_params *v);
 
@@ -163,12 +164,11 @@ void cli_board_defaults(int plant, int variant, hg_board_params *bp);
 void cli_fault_text(const hg_board *b, const hg_board_outputs *o, long period_ns,
                     char buf[HG_PLANT_TEXT_LEN + 2 * HG_BOARD_TEXT_LEN]);
 
-/* 0 if v is a valid machine of plant, else 1 after one message per invalid field. */
-int cli_params_check(const char *cmd, int plant, int variant, const hg_plant_params *v);
-
-/* The same, each refused field's message saying where its value came from
- * (the last of the nset "name=value" in sets that sets it, the INI file
- * ini's key with its value and line, or the default). */
+/* 0 if v is a valid machine of plant, else 1 after one message per invalid
+ * field saying where its value came from (the last of the nset "name=value"
+ * in sets that sets it, the INI file ini's key with its value and line, or
+ * the default) and, for a field --set did not change, what --set changed
+ * (a rule between parameters: v_bus against m_head). */
 int cli_params_check_from(const char *cmd, int plant, int variant, const hg_plant_params *v, const char *ini,
                           char *const *sets, int nset);
 
@@ -280,9 +280,19 @@ typedef struct {
  * cli_ini_apply_joints (c initialised by the caller) and each joint's
  * following-error rule (FERROR, MIN_FERROR, MAX_VELOCITY: required), then
  * checked: INPUT_SCALE != 0, MAX_VELOCITY > 0, FERROR >= 0 and
- * MIN_FERROR >= 0, a failing key named with its line. soak and
- * `hexaglide config --loop` (tune) read a config through this. 0 or -1. */
+ * MIN_FERROR >= 0, a failing key named with its line (the part of
+ * cli_ini_servo_loops below that reads the INI). 0 or -1. */
 int cli_ini_loop(const char *cmd, const cli_ini *ini, int joints, hg_loop_config *c, cli_ferror_rule *r);
+
+/* The Hexaglide's six servo loops as soak runs them, the one check of soak and `hexaglide
+ * config --loop` (tune): cli_ini_loop (c initialised by the caller, its plant and variant set),
+ * [EMCMOT]SERVO_PERIOD (1 ms when absent; read and checked even when replaced), the period
+ * (period_ns > 0: given by the command's option period_opt, which replaces SERVO_PERIOD; else
+ * SERVO_PERIOD, at most the board's HG_PERIOD_MAX_NS: a longer one is named with its line and
+ * period_opt, when not 0, as the way around) into c->period_ns, then hg_loop_config_check (a
+ * refused setting named as "FILE: [JOINT_N]KEY = VALUE: rule"). 0, or -1 after the messages. */
+int cli_ini_servo_loops(const char *cmd, const cli_ini *ini, long period_ns, const char *period_opt, hg_loop_config *c,
+                        cli_ferror_rule *r);
 
 /* ---- the source tree and Python (cli_tree.c) ---- */
 

@@ -151,6 +151,10 @@ static void origin(const char *cmd, int plant, int variant, int i, const hg_plan
             cli_ini_free(&f);
         }
     }
+    if (!ini) {                        /* the default, or the record's (replay): not what --set changed */
+        snprintf(buf, len, " (%.9g %s, not changed by --set)", v->v[i], e.unit);
+        return;
+    }
     snprintf(buf, len, " (the default, %.9g %s%s%s%s)", v->v[i], e.unit, ini && e.ini_key ? "; " : "",
              ini && e.ini_key ? ini : "", ini && e.ini_key ? " does not set it" : "");
 }
@@ -171,9 +175,16 @@ static void report_refused(const char *cmd, int plant, int variant, const hg_bit
         is_param = hg_plant_param_at(plant, variant, i, &e) == 0;
         if (is_param && v)
             origin(cmd, plant, variant, i, v, ini, sets, nset, from, sizeof from);
-        fprintf(stderr, "hexaglide %s: bad parameter '%s'%s: %s\n", cmd,
+        fprintf(stderr, "hexaglide %s: bad parameter '%s'%s: %s", cmd,
                 is_param ? e.name : i == HG_BOARD_BIT_SUBSTEPS ? "--substeps" : "--integrator", from,
                 why[i] ? why[i] : "invalid");
+        if (is_param && nset > 0 && strncmp(from, " (--set ", 8) != 0) { /* a rule between parameters */
+            int k;
+            fprintf(stderr, "; with what --set changed:");
+            for (k = 0; k < nset; k++)
+                fprintf(stderr, " %s", sets[k]);
+        }
+        fputc('\n', stderr);
     }
 }
 
@@ -188,11 +199,6 @@ int cli_params_check_from(const char *cmd, int plant, int variant, const hg_plan
         return 0;
     report_refused(cmd, plant, variant, &bad, why, v, ini, sets, nset);
     return 1;
-}
-
-int cli_params_check(const char *cmd, int plant, int variant, const hg_plant_params *v)
-{
-    return cli_params_check_from(cmd, plant, variant, v, 0, 0, 0);
 }
 
 hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_params *p)

@@ -23,6 +23,18 @@ static const char *const other_keys[] = {
     "RECORD",   /* tools/hg_record.tcl's record file (docs/replay.md) */
 };
 
+/* Plant sections whose every key (each parameter's ini_key) a HAL file of this tree reads:
+ * halcmd stops at the first line that reads a missing one ("Ini variable '[HEXAGLIDE]L' not
+ * found"), so a missing key is refused, never left at its default, and so is a missing section.
+ * pins: what the HAL file sets from a key (%s: the parameter's hal_name, twice). The serial
+ * plant's [SERIAL] is read by the integrator's own HAL file (docs/serial.md): a key it lacks
+ * keeps the default. */
+static const struct {
+    const char *section, *hal, *pins;
+} hal_read_sections[] = {
+    {"HEXAGLIDE", "configs/hexaglide.hal", "hexaglidekins.%s and motenc-hexaglide.0.%s"},
+};
+
 /* Keys of earlier versions, with what to do instead. */
 static const struct {
     const char *section, *key, *instead;
@@ -334,7 +346,7 @@ static int joints_match(const char *cmd, const cli_ini *ini, int plant, int vari
 int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int variant, hg_plant_params *v)
 {
     const hg_plant *pl = hg_plant_at(plant);
-    const char *sec = pl->ini_section;
+    const char *sec = pl->ini_section, *hal = 0, *pins = 0;
     static hg_param_info t[HG_PLANT_PARAMS_MAX];
     int i, n = pl->nparams(variant), bad = 0, listed = 0;
     char keys[4096];
@@ -342,13 +354,27 @@ int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int vari
         pl->param(variant, i, &t[i]);
     size_t k;
     key_list(t, n, keys, sizeof keys);
+    for (k = 0; k < N_OF(hal_read_sections); k++)
+        if (strcmp(hal_read_sections[k].section, sec) == 0) {
+            hal = hal_read_sections[k].hal;
+            pins = hal_read_sections[k].pins;
+        }
     if (!cli_ini_has_section(ini, sec)) {   /* --ini names the file of this plant's parameters */
         const hg_plant *other = cli_ini_other_plant(ini, plant);
         if (other)
             fprintf(stderr, "hexaglide %s: %s has no [%s] section but [%s]: it is a config of plant %s, not of "
                     "the %s: give --plant %s\n", cmd, ini->path, sec, other->ini_section, other->name, pl->name,
                     other->name);
-        else
+        else if (hal) {
+            size_t used = 0;           /* the parameters' keys alone (keys: with the other keys) */
+            keys[0] = '\0';
+            for (i = 0; i < n && used < sizeof keys; i++)
+                if (t[i].ini_key)
+                    used += (size_t)snprintf(keys + used, sizeof keys - used, "%s%s", used ? " " : "", t[i].ini_key);
+            fprintf(stderr, "hexaglide %s: %s has no [%s] section (the machine's parameters, keys %s: %s reads "
+                    "every one, and LinuxCNC stops at the first it lacks): add it (configs/hexaglide.ini has the "
+                    "UPNa machine's), or drop --ini\n", cmd, ini->path, sec, keys, hal);
+        } else
             fprintf(stderr, "hexaglide %s: %s has no [%s] section (the parameters of plant %s, keys %s ...): add "
                     "it, or drop --ini to run the defaults\n", cmd, ini->path, sec, pl->name,
                     t[0].ini_key ? t[0].ini_key : "");
@@ -383,8 +409,17 @@ int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int vari
         double x;
         int rc = t[i].ini_key ? cli_ini_get(cmd, ini, sec, t[i].ini_key, &e) : 1;
         bad |= rc < 0;
+        if (rc > 0 && t[i].ini_key && hal) {   /* LinuxCNC would stop at the HAL file's first line that reads it */
+            char set[128];
+            snprintf(set, sizeof set, pins, t[i].hal_name, t[i].hal_name);
+            fprintf(stderr, "hexaglide %s: %s: [%s]%s is missing (the section starts at line %d): %s sets %s from "
+                    "it (LinuxCNC stops there: \"Ini variable '[%s]%s' not found\"); add it (%s, %s)\n", cmd,
+                    ini->path, sec, t[i].ini_key, section_first_line(ini, sec), hal, set, sec, t[i].ini_key,
+                    t[i].what, t[i].hal_unit);
+            bad = 1;
+        }
         if (rc)
-            continue;                  /* absent, or named as repeated */
+            continue;                  /* absent (a key no HAL file of ours reads: the default), or named */
         if (cli_ini_number(cmd, ini, e, &x)) {
             bad = 1;
             continue;
@@ -575,4 +610,31 @@ int cli_ini_loop(const char *cmd, const cli_ini *ini, int joints, hg_loop_config
             }
     }
     return bad ? -1 : 0;
+}
+
+int cli_ini_servo_loops(const char *cmd, const cli_ini *ini, long period_ns, const char *period_opt, hg_loop_config *c,
+                        cli_ferror_rule *r)
+{
+    hg_loop_check_report rep;
+    long servo_ns = 1000000;           /* LinuxCNC's default servo period */
+    int line = 0, bad = cli_ini_loop(cmd, ini, 6, c, r) != 0;   /* the Hexaglide's six, as hexaglide.hal wires them */
+    bad |= cli_ini_servo_period(cmd, ini, &servo_ns, &line) < 0;   /* (read even when replaced: a broken value) */
+    if (bad)
+        return -1;
+    if (period_ns <= 0 && servo_ns > HG_PERIOD_MAX_NS) {
+        fprintf(stderr, "hexaglide %s: %s line %d: [EMCMOT]SERVO_PERIOD = %ld ns is longer than the board's longest "
+                "period, %ld ns; give a shorter one%s%s\n", cmd, ini->path, line, servo_ns, HG_PERIOD_MAX_NS,
+                period_opt ? " or " : "", period_opt ? period_opt : "");
+        return -1;
+    }
+    c->period_ns = period_ns > 0 ? period_ns : servo_ns;
+    if (hg_loop_config_check(c, &rep) == 0)
+        return 0;
+    if (rep.ini_key && rep.joint >= 0)
+        fprintf(stderr, "hexaglide %s: %s: [JOINT_%d]%s = %.17g: %s\n", cmd, ini->path, rep.joint, rep.ini_key,
+                rep.value, rep.why);
+    else
+        fprintf(stderr, "hexaglide %s: %s: the loop's %s %s (joint %d) = %.17g: %s\n", cmd, ini->path, rep.component,
+                rep.field, rep.joint, rep.value, rep.why);
+    return -1;
 }

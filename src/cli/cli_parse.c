@@ -78,16 +78,16 @@ int cli_next(cli_args *a, const char **value)
             }
             return k;
         }
-        if (eq) {
-            *value = eq + 1;
-            return once(a, k, *value);
-        }
-        if (a->i >= a->argc) {
+        if (!eq && a->i >= a->argc) {
             fprintf(stderr, "hexaglide %s: %s needs a value (%s VALUE or %s=VALUE)\n", a->cmd, o->name,
                     o->name, o->name);
             return CLI_BAD;
         }
-        *value = a->argv[a->i++];
+        *value = eq ? eq + 1 : a->argv[a->i++];
+        if (!**value) {                /* (an empty path would write ".csv" or fail late) */
+            fprintf(stderr, "hexaglide %s: %s: an empty value; give one\n", a->cmd, o->name);
+            return CLI_BAD;
+        }
         return once(a, k, *value);
     }
     fprintf(stderr, "hexaglide %s: unknown option '%.*s' ('hexaglide %s --help' lists the options)\n",
@@ -288,8 +288,13 @@ int cli_parse_set(const char *cmd, const char *text, int plant, int variant, hg_
     const char *eq = strchr(text, '=');
     double v;
     int i;
-    if (!eq || eq == text || (size_t)(eq - text) >= sizeof name) {
+    if (!eq || eq == text) {
         fprintf(stderr, "hexaglide %s: --set: expected name=value, got '%s'\n", cmd, text);
+        return -1;
+    }
+    if ((size_t)(eq - text) >= sizeof name) {
+        fprintf(stderr, "hexaglide %s: --set: unknown parameter '%.*s...': longer than any parameter's name "
+                "(hexaglide sim --list-params lists them)\n", cmd, 20, text);
         return -1;
     }
     memcpy(name, text, (size_t)(eq - text));

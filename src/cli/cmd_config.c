@@ -6,8 +6,9 @@
  *   param NAME VALUE       every model parameter of the Hexaglide (spec name, SI,
  *                          %.17g: the double itself) after the defaults, [HEXAGLIDE]
  *                          and --set, checked as soak checks them
- *   joint N KEY VALUE      [JOINT_N]: with --loop the servo loop's keys as soak reads
- *                          them (cli_ini_loop, FERROR and MIN_FERROR too); MIN_LIMIT
+ *   joint N KEY VALUE      [JOINT_N]: with --loop the servo loop's keys as soak reads and
+ *                          checks them (cli_ini_servo_loops: the loop's rules, SERVO_PERIOD
+ *                          at most the board's 10 ms; FERROR and MIN_FERROR too); MIN_LIMIT
  *                          MAX_LIMIT MAX_VELOCITY MAX_ACCELERATION where given
  *   axis A KEY VALUE       [AXIS_A] MIN_LIMIT MAX_LIMIT MAX_VELOCITY MAX_ACCELERATION
  *                          where given
@@ -23,13 +24,16 @@ const char cli_usage_config[] =
     "usage: hexaglide config [--plant NAME] [--model M] [--ini FILE] [--set name=value]... [--loop]\n"
     "  the config as build/hexaglide reads it (src/cli/cli_ini.c), one value a line, as tune and\n"
     "  excite take it (tools/hg_config.py): 'param NAME VALUE' for every model parameter (spec\n"
-    "  name, SI) after the defaults, [HEXAGLIDE] and --set, checked as soak checks them;\n"
+    "  name, SI) after the defaults, [HEXAGLIDE] (each key hexaglide.hal reads required) and\n"
+    "  --set, checked as soak checks them;\n"
     "  'joint N KEY VALUE' and 'axis A KEY VALUE' for the limits MIN_LIMIT MAX_LIMIT\n"
     "  MAX_VELOCITY MAX_ACCELERATION where given; 'servo_period_ns N'.\n"
     "  --loop      also [JOINT_0..5]'s servo loops as soak reads them (P I D FF0 FF1 FF2 FF3\n"
     "              BIAS DEADBAND MAX_OUTPUT MAX_ERROR_I INPUT_SCALE OUTPUT_SCALE OUTPUT_OFFSET,\n"
     "              every key configs/hexaglide.hal sets required; FERROR MIN_FERROR MAX_VELOCITY)\n"
-    "              as 'joint N KEY VALUE' lines\n"
+    "              as 'joint N KEY VALUE' lines, checked as soak checks them (the same function:\n"
+    "              a gain beyond 1e9, a negative DEADBAND, MAX_OUTPUT or MAX_ERROR_I, a\n"
+    "              SERVO_PERIOD above the board's 10 ms refused)\n"
     "  Default --ini: configs/hexaglide.ini of the source tree this hexaglide was built in.\n"
     "  A value that is not a finite number, a key given twice, MIN_LIMIT >= MAX_LIMIT or a\n"
     "  MAX_VELOCITY or MAX_ACCELERATION <= 0: named with its line, exit 2.\n"
@@ -88,7 +92,7 @@ int cmd_config(int argc, char **argv)
     char default_ini[4096], *sets[argc > 0 ? argc : 1], buf[1 << 15];
     const char *path = 0, *v, *model = 0;
     int plant = 0, variant, joints;
-    int o, nset = 0, loop = 0, bad = 0, stiff = 0, i, j, n;
+    int o, nset = 0, loop = 0, loop_bad = 0, bad = 0, stiff = 0, i, j, n;
     long servo_ns;
     FILE *out;
     cli_args_init(&a, "config", cli_usage_config, config_opts, argc, argv);
@@ -166,10 +170,11 @@ int cmd_config(int argc, char **argv)
                     fprintf(out, "joint %d %s %.17g\n", j, rule_keys[i], x);
             }
         }
-    } else if (loop) {                 /* the servo loops as soak reads them */
+    } else if (loop) {                 /* the servo loops as soak reads and checks them */
         hg_loop_config_default(&c);
-        if (cli_ini_loop("config", &ini, 6, &c, rule))
-            bad = 1;
+        c.variant = variant;
+        if (cli_ini_servo_loops("config", &ini, 0, 0, &c, rule))
+            bad = loop_bad = 1;        /* (SERVO_PERIOD read and named there: not again below) */
         for (j = 0; j < 6 && !bad; j++) {
             char sec[16];
             snprintf(sec, sizeof sec, "JOINT_%d", j);
@@ -193,7 +198,7 @@ int cmd_config(int argc, char **argv)
         snprintf(sec, sizeof sec, "AXIS_%c", "XYZABC"[j]);
         bad |= limits(&ini, sec, "axis", id, out) != 0;
     }
-    i = cli_ini_servo_period("config", &ini, &servo_ns, 0);
+    i = loop_bad ? -1 : cli_ini_servo_period("config", &ini, &servo_ns, 0);
     bad |= i < 0;
     if (i == 0)
         fprintf(out, "servo_period_ns %ld\n", servo_ns);

@@ -159,6 +159,9 @@ int cmd_ik(int argc, char **argv)
         if (rc == HG_ERR_EULER_SINGULAR)   /* the value refused */
             snprintf(what, sizeof what, "B = %s deg; give |B| <= %.0f", cli_num(c.pos[4], b),
                      HG_MAX_ABS_B_RAD * HG_DEG_PER_RAD);
+        if (rc == HG_ERR_UNREACHABLE)
+            snprintf(what, sizeof what, "the pose lies outside the working volume; give one nearer HOME "
+                     "(0 0 0 0 0 0), or longer bars (--set l)");
         fprintf(stderr, "hexaglide ik: %s (code %d)%s%s\n", hg_strerror(rc), rc, what[0] ? ": " : "", what);
         return 1;
     }
@@ -189,6 +192,9 @@ int cmd_fk(int argc, char **argv)
         char res[48] = "residual not finite";   /* (no NaN in a message) */
         if (isfinite(rep.residual_m))
             snprintf(res, sizeof res, "residual %.3g mm", rep.residual_m * HG_MM_PER_M);
+        if (!what[0] && rc != HG_ERR_NONFINITE_INPUT && rc != HG_ERR_OUT_OF_RANGE) /* the solve's own failure */
+            snprintf(what, sizeof what, "these joints are no pose of the machine, or the solve started too far "
+                     "from it; give --guess X Y Z (mm) A B C (deg) near the pose (the default guess is HOME)");
         fprintf(stderr, "hexaglide fk: %s (code %d, %d iterations, %s)%s%s\n", hg_strerror(rc), rc, rep.iterations,
                 res, what[0] ? ": " : "", what);
         return 1;

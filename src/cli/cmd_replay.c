@@ -71,6 +71,7 @@ typedef struct {
 typedef struct {
     double peak_mm[2], sq[2], peak_v[2];
     long peak_at[2], n;
+    double count_mm;                  /* one encoder count, in the joint's unit (the resolution) */
 } joint_stats;
 
 /* pid.c's setting pins (the footer's pid.N.<name> lines, tools/hg_record.py
@@ -550,11 +551,12 @@ static void joint_add(joint_stats *j, int w, long n, double fe, double v)
 /* The per-joint lines: recorded (and predicted) peak and RMS f-error (in
  * the joint's machine unit: deg for a rotary one, bit k of rotary), peak volts. */
 static void joint_report(const joint_stats *js, int nj, unsigned rotary, int whatif, long from, long to,
-                         int auto_from)
+                         int auto_from, int latched)
 {
     int k;
     fprintf(report, "f-error window: samples %ld..%ld (%s), each joint while its amplifier is enabled\n", from, to,
-           auto_from ? "from the 2nd period after the last index latch: homing done" : "--from");
+           !auto_from ? "--from" : latched ? "from the 2nd period after the last index latch: homing done"
+                                           : "the whole record: no index latch (homing) in it");
     for (k = 0; k < nj; k++) {
         const joint_stats *j = &js[k];
         double rms0 = j->n ? sqrt(j->sq[0] / (double)j->n) : 0.0, rms1 = j->n ? sqrt(j->sq[1] / (double)j->n) : 0.0;
@@ -566,8 +568,10 @@ static void joint_report(const joint_stats *js, int nj, unsigned rotary, int wha
         }
         fprintf(report, "joint %d: peak |f-error| recorded %.6f %s (sample %ld), predicted %.6f %s (sample %ld)",
                k, j->peak_mm[0], u, j->peak_at[0], j->peak_mm[1], u, j->peak_at[1]);
-        if (j->peak_mm[0] > 0)
+        if (j->peak_mm[0] >= 0.5 * j->count_mm) /* a peak below the resolution: its change means nothing */
             fprintf(report, " %+.1f%%", 100.0 * (j->peak_mm[1] / j->peak_mm[0] - 1.0));
+        else
+            fprintf(report, " (recorded peak below half an encoder count of %.3g %s: no change in %%)", j->count_mm, u);
         fprintf(report, "; RMS recorded %.6f, predicted %.6f %s; peak volts recorded %.4f, predicted %.4f V\n",
                rms0, rms1, u, j->peak_v[0], j->peak_v[1]);
     }
@@ -771,7 +775,7 @@ int cmd_replay(int argc, char **argv)
     static hg_board_rec_field fld[HG_BOARD_REC_MAX];
     static double row[HG_RECORD_MAX_COLS];
     static const char *why[HG_BOARD_WHY_LEN];
-    int col[HG_BOARD_REC_MAX], col_period = 0, col_model = 0, col_fp = -1;
+    int col[HG_BOARD_REC_MAX], col_period = 0, col_model = 0, col_plant = -1, col_fp = -1;
     int col_latched = -1, has_cmd = 1;
     replay_cols cols;
     hg_record_error e;
@@ -792,6 +796,7 @@ int cmd_replay(int argc, char **argv)
     int nf, np, i, k, rc, whatif, closed, kind = -1, status = 0, plant, variant, variant_w = -1, nj;
     unsigned prev_ie_rec = 0, prev_latched_rec = 0, jmask;
     long period = 0, win_from = 0;
+    int latched = 0;                  /* the f-error window starts after an index latch */
     long settings_from = 0, first_enabled = -1, last_enabled = -1;
     FILE *csv = 0;
     int csv_header_written = 0;
@@ -924,6 +929,8 @@ int cmd_replay(int argc, char **argv)
             col_period = col[i];
         if (fld[i].side == HG_BRS_MODEL)
             col_model = col[i];
+        if (fld[i].side == HG_BRS_PLANT)
+            col_plant = col[i];
         if (fld[i].side == HG_BRS_PARAMS_FP)
             col_fp = col[i];
     }
@@ -972,6 +979,16 @@ int cmd_replay(int argc, char **argv)
         long n = (long)row[0];
         int enable[HG_CHANNELS_MAX];
         unsigned ie_rec, latched_rec;
+        if (n > 0 && (row[col_model] != model_rec || (col_plant >= 0 && row[col_plant] != plant))) {
+            fprintf(stderr, "hexaglide replay: %s: sample %ld (line %ld): %s %.17g differs from the first row's "
+                    "%.17g; the board chooses its machine at load, so it cannot change in a run: the record is "
+                    "damaged (it replays only up to here)\n", o.file, n, r.line,
+                    row[col_model] != model_rec ? "in.model" : "in.plant",
+                    row[col_model] != model_rec ? row[col_model] : row[col_plant],
+                    row[col_model] != model_rec ? model_rec : (double)plant);
+            status = 1;
+            break;
+        }
         if (n == 0) {                  /* power-up, as at loadrt: model and defaults */
             kind = (int)row[col_model];   /* the recorded run is replayed as recorded */
             if (kind != variant) {        /* (the prescan read the same row) */
@@ -1107,6 +1124,7 @@ int cmd_replay(int argc, char **argv)
             if (o.from < 0 && (prev_latched_rec & jmask)) {
                 memset(js, 0, sizeof js); /* a latch (homing): the window starts again */
                 win_from = n + 1;     /* in the period after the latch motion reports 0 */
+                latched = 1;
             }
             if (o.from >= 0)
                 win_from = o.from;
@@ -1119,6 +1137,7 @@ int cmd_replay(int argc, char **argv)
                 joint_add(&js[k], 0, n, fe[0][k], volts[0][k]);
                 joint_add(&js[k], 1, n, fe[1][k], volts[1][k]);
                 js[k].n++;
+                js[k].count_mm = 1.0 / fabs(bx.enc_scale[k]);
             }
             for (k = 0; k < nj; k++)
                 prev_cmd[k] = row[cols.cmd[k]];
@@ -1189,7 +1208,7 @@ int cmd_replay(int argc, char **argv)
                 "(run replay without options for the fields): the recorded f-errors are the replayed ones\n",
                 stx.first_mismatch);
     if (has_cmd && first_enabled >= 0)
-        joint_report(js, nj, out_x.rotary, whatif, win_from, last_enabled, o.from < 0);
+        joint_report(js, nj, out_x.rotary, whatif, win_from, last_enabled, o.from < 0, latched);
     else if (has_cmd && o.from >= stx.samples)
         fprintf(stderr, "hexaglide replay: note: --from %ld is past the record's last sample (%ld): no f-error "
                 "statistics; give a --from below %ld\n", o.from, stx.samples - 1, stx.samples);

@@ -29,7 +29,8 @@ const char cli_usage_sim[] =
     "--volts go through the board's 13-bit DAC;\n"
     "--list-params prints every parameter: spec name, SI unit, value (the defaults, then --ini\n"
     "and --set, checked), HAL name and INI key, and runs nothing (it takes --plant, --model, --ini, --set alone);\n"
-    "--record FILE writes the run as a record of the board's rec pins (hexaglide replay FILE);\n"
+    "--record FILE writes the run as a record of the board's rec pins (hexaglide replay FILE), one row\n"
+    "a period: --time of at least one period;\n"
     "--record - writes it to stdout, with --csv FILE (stdout holds one of them alone)\n"
     CLI_USAGE_MODEL;
 
@@ -259,11 +260,10 @@ int cmd_sim(int argc, char **argv)
         bp.substeps = (unsigned)substeps;
     if (integrator)
         bp.integrator = (unsigned)hg_integrator_from_name(integrator);
-    if (cli_params_build("sim", plant, variant, ini, sets, nset, &bp.plant))
+    if (cli_params_build("sim", plant, variant, ini, sets, nset, &bp.plant) ||
+        cli_params_check_from("sim", plant, variant, &bp.plant, ini, sets, nset))
         return 2;
     if (list) {                        /* the parameters in force: defaults, --ini, --set, checked */
-        if (cli_params_check("sim", plant, variant, &bp.plant))
-            return 2;
         list_params(plant, variant, &bp.plant);
         return 0;
     }
@@ -276,6 +276,13 @@ int cmd_sim(int argc, char **argv)
     dt = (double)period_ns * 1e-9;           /* what the board integrates */
     if (cli_whole_periods("sim", "--time", t_end, 1.0, "s", period_ns, 0, SIM_MAX_STEPS, &n))
         return 2;
+    if (record && n == 0) {            /* a record is its rows: replay refuses one without */
+        char t[CLI_NUM_LEN], p[CLI_NUM_LEN];
+        fprintf(stderr, "hexaglide sim: --record %s with --time %s: a run of no periods has no rows to record, and "
+                "replay refuses a record without them; give --time of at least one period (%s s)\n", record,
+                cli_num(t_end, t), cli_num(dt, p));
+        return 2;
+    }
     if (cli_board_integrable("sim", plant, variant, &bp, period_ns))
         return 2;                      /* before any output is opened */
     b = cli_board_new("sim", plant, variant, &bp);

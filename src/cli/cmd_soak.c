@@ -40,6 +40,7 @@
 /* the longest soak: the 1000 h --hours takes at the default 1 ms period (about 9 h of wall time
  * at 9 us a period); a shorter --dt allows fewer hours, instead of a run that never ends */
 #define SOAK_MAX_PERIODS 3600000000L
+#define SOAK_MAX_HOURS 1000.0
 /* progress lines on stderr, counted in periods (not wall time: the same lines on every machine): a run
  * of SOAK_PROGRESS_MIN periods or more prints one at each tenth of it, and at least every
  * SOAK_PROGRESS_MAX periods */
@@ -49,7 +50,7 @@
 const char cli_usage_soak[] =
     "usage: hexaglide soak [--hours H] [--model NAME] [--seed N] [--dt S] [--integrator NAME]\n"
     "                      [--ini FILE] [--set name=value]...\n"
-    "  H hours (default 8) of a random smooth trajectory through LinuxCNC's closed loop\n"
+    "  H hours (default 8, at most 1000) of a random smooth trajectory through LinuxCNC's closed loop\n"
     "  (src/hg_loop.c: pid on the encoder position, the virtual board), then a health report:\n"
     "  constraint drift, energy balance, following error, faults, wall time. Exit 1 on a fault\n"
     "  or a following-error trip. A run of 1e6 periods or more prints its progress on stderr at\n"
@@ -58,10 +59,12 @@ const char cli_usage_soak[] =
     "              MAX_ERROR_I INPUT_SCALE OUTPUT_SCALE OUTPUT_OFFSET (as configs/hexaglide.hal\n"
     "              wires them, each required as halcmd requires a setp's key; FF3 may be absent:\n"
     "              0; tune reads them alike), FERROR MIN_FERROR MAX_VELOCITY (the trip),\n"
-    "              [EMCMOT]SERVO_PERIOD, [HEXAGLIDE] geometry. Default: configs/hexaglide.ini\n"
+    "              [EMCMOT]SERVO_PERIOD, [HEXAGLIDE] geometry (each key required), checked as\n"
+    "              'hexaglide config --loop' checks them. Default: configs/hexaglide.ini\n"
     "              of the source tree this hexaglide was built in (../configs/ beside build/)\n"
     "  --dt S      servo period, whole ns (default the config's SERVO_PERIOD); H is a whole number\n"
     "              of periods, at most 3.6e9 of them (1000 h at 1 ms)\n"
+    "  --seed N    the trajectory's random seed, a whole number from 0 to 2^53 in digits (default 1)\n"
     "  --model     standard|reduced-joints|reduced-cartesian|fused-cartesian (default reduced-cartesian)\n"
     "  --integrator improved-euler|heun|rk4 (default: the board's, as HAL loads it)\n"
     "  --set name=value  a model parameter (spec name, SI units), after the config\n";
@@ -145,12 +148,12 @@ static double now_s(void)
 }
 
 /* The loop's settings from the config: gains, scales, trip rule, period
- * (dt_s > 0 overrides [EMCMOT]SERVO_PERIOD). 0 or 2 after messages. */
-static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_config *c, soak_ferror_rule *r)
+ * (period_ns > 0: --dt's, which replaces [EMCMOT]SERVO_PERIOD), checked as
+ * `hexaglide config --loop` checks them (cli_ini_servo_loops). 0 or 2 after messages. */
+static int read_config(const char *ini_path, long period_ns, int kind, hg_loop_config *c, soak_ferror_rule *r)
 {
     cli_ini ini;
-    long servo_ns = 1000000;
-    int bad = 0, line = 0;
+    int bad;
     if (cli_ini_read("soak", ini_path, &ini))
         return 2;
     if (cli_ini_plant_only("soak", &ini, 0)) {   /* its [JOINT_N] are another machine's */
@@ -159,21 +162,35 @@ static int read_config(const char *ini_path, double dt_s, int kind, hg_loop_conf
     }
     hg_loop_config_default(c);
     c->variant = kind;
-    bad |= cli_ini_loop("soak", &ini, 6, c, r) != 0;
-    bad |= cli_ini_servo_period("soak", &ini, &servo_ns, &line) < 0;
+    bad = cli_ini_servo_loops("soak", &ini, period_ns, "--dt", c, r) != 0;
     cli_ini_free(&ini);
-    if (!bad && !(dt_s > 0) && servo_ns > HG_PERIOD_MAX_NS) {
-        fprintf(stderr, "hexaglide soak: %s line %d: [EMCMOT]SERVO_PERIOD = %ld ns is longer than the board's "
-                "longest period, %ld ns; give a shorter one or --dt\n", ini_path, line, servo_ns, HG_PERIOD_MAX_NS);
-        bad = 1;
-    }
     if (bad) {
         fprintf(stderr, "hexaglide soak: fix %s (or give another with --ini)\n", ini_path);
         return 2;
     }
-    c->period_ns = servo_ns;
-    if (dt_s > 0 && cli_parse_period("soak", dt_s, &c->period_ns))
-        return 2;
+    return 0;
+}
+
+/* --seed's text as a seed: decimal digits (a '+' before them, as tune's and excite's --seed take
+ * it), 0 to SOAK_SEED_MAX; nothing rounded (a double would read 2^53 + 1 as 2^53). 0, or -1
+ * after a message naming the value and the bound. */
+#define SOAK_SEED_MAX 9007199254740992ull   /* 2^53 */
+static int parse_seed(const char *text, unsigned long long *seed)
+{
+    const char *p = text + (text[0] == '+');
+    unsigned long long v = 0;
+    double d;
+    int digits = 0;
+    if (cli_parse_double("soak", text, "--seed", &d))
+        return -1;                     /* not a number: named as every option's */
+    for (; *p >= '0' && *p <= '9' && v <= SOAK_SEED_MAX; p++, digits++)   /* (stops before it could overflow) */
+        v = v * 10 + (unsigned long long)(*p - '0');
+    if (!digits || *p || v > SOAK_SEED_MAX) {   /* a '-', a '.', an exponent, too many digits */
+        fprintf(stderr, "hexaglide soak: --seed %s: must be a whole number from 0 to 2^53 (%llu), in digits\n", text,
+                SOAK_SEED_MAX);
+        return -1;
+    }
+    *seed = v;
     return 0;
 }
 
@@ -186,7 +203,6 @@ static const cli_opt soak_opts[] = {
 int cmd_soak(int argc, char **argv)
 {
     hg_loop_config cfg;
-    hg_loop_check_report rep;
     hg_board_params bp;
     hg_loop *L;
     hg_loop_sample smp;
@@ -195,12 +211,15 @@ int cmd_soak(int argc, char **argv)
     cli_args a;
     char default_ini[4096], *sets[argc > 0 ? argc : 1];
     const char *ini = 0, *v;
-    double hours = 8.0, dt = 0, seed_d = 1, dt_given = 0, t0, wall, e0k, e0p, ek, ep, net, mismatch;
+    double hours = 8.0, dt = 0, t0, wall, e0k, e0p, ek, ep, net, mismatch;
     double work_j = 0, friction_j = 0, drift = 0, ferr_max = 0, ferr_counts = 0, cmd_prev[6] = {0}, cmd_prev2[6] = {0};
     double tool_max = 0;               /* the tool-path error after the ramp-in (mm; -1: a period without a pose) */
     int kind = HG_MODEL_REDUCED_CARTESIAN, k, o, nset = 0, rc = 0, faults = 0, trips = 0, ferr_joint = 0;
     int integrator = -1;
-    long n, s, every;
+    long measured = 0;                 /* periods after the ramp-in: their errors measured */
+    char ferr_text[96], tool_text[32];
+    long n, s, every, period_ns = 0;   /* period_ns: --dt's, 0 without it */
+    unsigned long long seed = 1;
     const hg_model *hm;
     const hg_data *hd;
     cli_args_init(&a, "soak", cli_usage_soak, soak_opts, argc, argv);
@@ -215,8 +234,8 @@ int cmd_soak(int argc, char **argv)
             return 2;
         }
         if ((o == OPT_HOURS && cli_parse_double("soak", v, "--hours", &hours)) ||
-            (o == OPT_DT && (dt_given = 1, cli_parse_double("soak", v, "--dt", &dt))) ||
-            (o == OPT_SEED && cli_parse_double("soak", v, "--seed", &seed_d)))
+            (o == OPT_DT && (cli_parse_double("soak", v, "--dt", &dt) || cli_parse_period("soak", dt, &period_ns))) ||
+            (o == OPT_SEED && parse_seed(v, &seed)))
             return 2;
         if (o == OPT_MODEL && (kind = hg_model_from_name(v)) < 0) {
             fprintf(stderr, "hexaglide soak: unknown model '%s' (standard, reduced-joints, reduced-cartesian, "
@@ -232,12 +251,10 @@ int cmd_soak(int argc, char **argv)
         if (o == OPT_SET)
             sets[nset++] = (char *)v;
     }
-    if (!(hours > 0 && hours <= 1000) || !((!dt_given && dt == 0) || (dt > 0 && dt <= HG_DT_MAX_S))) {
-        fprintf(stderr, "hexaglide soak: need 0 < --hours <= 1000 and 0 < --dt <= %g s\n", HG_DT_MAX_S);
-        return 2;
-    }
-    if (!(seed_d >= 0 && seed_d <= 9007199254740992.0 && seed_d == floor(seed_d))) {
-        fprintf(stderr, "hexaglide soak: --seed must be a whole number from 0 to 2^53 (9007199254740992)\n");
+    if (!(hours > 0 && hours <= SOAK_MAX_HOURS)) {
+        char num[CLI_NUM_LEN];
+        fprintf(stderr, "hexaglide soak: --hours %s: must be in (0, %g] (simulated hours)\n", cli_num(hours, num),
+                SOAK_MAX_HOURS);
         return 2;
     }
     if (!ini) {
@@ -249,7 +266,7 @@ int cmd_soak(int argc, char **argv)
         }
         ini = default_ini;
     }
-    if (read_config(ini, dt, kind, &cfg, rule) ||
+    if (read_config(ini, period_ns, kind, &cfg, rule) ||
         cli_whole_periods("soak", "--hours", hours, 3600.0, "h", cfg.period_ns, 1, SOAK_MAX_PERIODS, &n))
         return 2;
     dt = (double)cfg.period_ns * 1e-9;
@@ -271,24 +288,13 @@ int cmd_soak(int argc, char **argv)
         free(L);
         return 2;
     }
-    rc = hg_loop_config_check(&cfg, &rep);
-    if (rc) {
-        if (rep.ini_key && rep.joint >= 0)
-            fprintf(stderr, "hexaglide soak: %s: [JOINT_%d]%s = %.17g: %s\n", ini, rep.joint, rep.ini_key,
-                    rep.value, rep.why);
-        else
-            fprintf(stderr, "hexaglide soak: the loop's %s %s (joint %d) = %.17g: %s\n", rep.component, rep.field,
-                    rep.joint, rep.value, rep.why);
-        free(L);
-        return 2;
-    }
     rc = hg_loop_init(L, &cfg, &bp);
     if (rc) {
         fprintf(stderr, "hexaglide soak: cannot build the loop: %s (code %d)\n", hg_strerror(rc), rc);
         free(L);
         return 2;
     }
-    trajectory_init(&tr, (unsigned long long)seed_d * 7919 + 1);
+    trajectory_init(&tr, seed * 7919 + 1);
     hm = hg_hexaglide_model(&L->board.m);
     hd = hg_hexaglide_data(&L->board.d);
     hg_energy(hm, hd, &e0k, &e0p);
@@ -356,6 +362,7 @@ int cmd_soak(int argc, char **argv)
                 friction_j -= w;
             }
         }
+        measured += t > SOAK_SETTLED_S;   /* (a period whose errors count: above and here) */
         if (t > SOAK_SETTLED_S && tool_max >= 0 && (smp.tool_error_mm < 0 || smp.tool_error_mm > tool_max))
             tool_max = smp.tool_error_mm;
         {
@@ -385,22 +392,33 @@ int cmd_soak(int argc, char **argv)
         printf("soak: (the flexible trains ran %u steps a period and the balance holds the forces of a "
                "period's last: a --dt of one step a period gives the balance its meaning)\n",
                L->out.substeps_run);
-    if (s * dt > SOAK_SETTLED_S)
+    if (measured)
         printf("soak: max following error after the %.1f s ramp-in: %.4f mm = %.2f counts (joint %d, through the "
                "encoder)\n", SOAK_SETTLED_S, ferr_max, ferr_counts, ferr_joint);
     else
         printf("soak: max following error after the %.1f s ramp-in: none measured (the run ended at %.3f s, "
                "before it)\n", SOAK_SETTLED_S, s * dt);
-    if (tool_max >= 0)
+    if (!measured)
+        printf("soak: max tool-path error after the ramp-in: none measured (the run ended at %.3f s, before it)\n",
+               s * dt);
+    else if (tool_max >= 0)
         printf("soak: max tool-path error after the ramp-in: %.4f mm (the tool tip against where the commanded "
                "joints put it)\n", tool_max);
     else
         printf("soak: tool-path error: some period's commands had no pose near the machine's\n");
     printf("soak: faults: %d, following-error trips: %d\n", faults, trips);
+    /* the machine line: a value that was not measured is a word, never a number that reads as one */
+    if (measured)
+        snprintf(ferr_text, sizeof ferr_text, "ferr_mm=%.6f ferr_counts=%.3f", ferr_max, ferr_counts);
+    else
+        snprintf(ferr_text, sizeof ferr_text, "ferr_mm=none ferr_counts=none");
+    if (measured && tool_max >= 0)
+        snprintf(tool_text, sizeof tool_text, "%.6f", tool_max);
+    else
+        snprintf(tool_text, sizeof tool_text, "%s", measured ? "nopose" : "none");
     printf("SOAK drift_m=%.3e energy_net_j=%.6g energy_mismatch_j=%.3e energy_rel=%.3e friction_j=%.6g "
-           "faults=%d trips=%d ferr_mm=%.6f ferr_counts=%.3f tool_mm=%.6f wall_s=%.1f steps=%ld\n", drift, net,
-           mismatch, fabs(mismatch) / (net != 0 ? fabs(net) : 1), friction_j, faults, trips, ferr_max, ferr_counts,
-           tool_max, wall, s);
+           "faults=%d trips=%d %s tool_mm=%s wall_s=%.1f steps=%ld\n", drift, net, mismatch,
+           fabs(mismatch) / (net != 0 ? fabs(net) : 1), friction_j, faults, trips, ferr_text, tool_text, wall, s);
     free(L);
     return (rc || faults || trips) ? 1 : 0;
 }
