@@ -568,9 +568,9 @@ static void joint_report(const joint_stats *js, int nj, unsigned rotary, int wha
         }
         fprintf(report, "joint %d: peak |f-error| recorded %.6f %s (sample %ld), predicted %.6f %s (sample %ld)",
                k, j->peak_mm[0], u, j->peak_at[0], j->peak_mm[1], u, j->peak_at[1]);
-        if (j->peak_mm[0] >= 0.5 * j->count_mm) /* a peak below the resolution: its change means nothing */
+        if (j->peak_mm[0] > 0 && j->peak_mm[0] >= 0.5 * j->count_mm) /* below the resolution: means nothing */
             fprintf(report, " %+.1f%%", 100.0 * (j->peak_mm[1] / j->peak_mm[0] - 1.0));
-        else
+        else if (j->n)
             fprintf(report, " (recorded peak below half an encoder count of %.3g %s: no change in %%)", j->count_mm, u);
         fprintf(report, "; RMS recorded %.6f, predicted %.6f %s; peak volts recorded %.4f, predicted %.4f V\n",
                rms0, rms1, u, j->peak_v[0], j->peak_v[1]);
