@@ -1778,6 +1778,11 @@ def main(argv=None):
                                                                   r.hdr_no + 1 + first))
         if a.output:
             hg_output.check_writable(a.output)         # a missing or unwritable directory now, not after the fit
+        if a.plots:                                    # (as tune's --plots)
+            try:
+                hg_output.check_writable_dir(a.plots, PLOT_NAMES + (VALIDATE_PLOT_NAMES if a.validate else ()))
+            except hg_output.OutputError as ex:
+                raise BadInput("--plots %s: %s" % (a.plots, ex))
     except (BadInput, ValueError, hg_output.OutputError) as ex:
         log(ex)
         return 2
