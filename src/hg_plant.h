@@ -109,6 +109,11 @@ typedef struct {
     const char *name;                /* "hexaglide" */
     const char *what;                /* one line */
     const char *ini_section;         /* the INI section of its parameters ("HEXAGLIDE") */
+    const char *ini_hal_file;        /* the shipped HAL file that reads every key of that section (halcmd
+                                        stops at the first missing one), 0 if a config's own HAL file
+                                        reads what it needs and a missing key keeps its default */
+    const char *ini_hal_pins;        /* what ini_hal_file sets from a key: a format with the parameter's
+                                        HAL name twice ("hexaglidekins.%s and motenc-hexaglide.0.%s") */
     const char *variants_help;       /* what model= takes, for messages */
     int default_variant;             /* the variant a board loads without being told */
     const hg_plant_output *outputs;  /* its extra outputs (sense.extra[i]) */

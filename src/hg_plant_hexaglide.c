@@ -374,6 +374,8 @@ const hg_plant hg_plant_hexaglide = {
     "hexaglide",
     "the UPNa Hexaglide: six ball-screw carriages on three posts, six bars, a head",
     "HEXAGLIDE",
+    "configs/hexaglide.hal",
+    "hexaglidekins.%s and motenc-hexaglide.0.%s",
     "standard, reduced-joints, reduced-cartesian (the default) or fused-cartesian",
     HG_MODEL_REDUCED_CARTESIAN,
     outputs,

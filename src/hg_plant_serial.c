@@ -920,6 +920,8 @@ const hg_plant hg_plant_serial = {
     "serial",
     "a serial-axis machine (mill, router, lathe, rotary table): one drive per axis, trivkins",
     "SERIAL",
+    0,                               /* [SERIAL]: the integrator's own HAL file reads it (docs/serial.md) */
+    0,
     "the axes, 1 to 8 letters of XYZUVW (linear) and ABC (rotary), one per channel, e.g. XYZ (the default), "
     "XZ, XYZA",
     321,

@@ -23,18 +23,6 @@ static const char *const other_keys[] = {
     "RECORD",   /* tools/hg_record.tcl's record file (docs/replay.md) */
 };
 
-/* Plant sections whose every key (each parameter's ini_key) a HAL file of this tree reads:
- * halcmd stops at the first line that reads a missing one ("Ini variable '[HEXAGLIDE]L' not
- * found"), so a missing key is refused, never left at its default, and so is a missing section.
- * pins: what the HAL file sets from a key (%s: the parameter's hal_name, twice). The serial
- * plant's [SERIAL] is read by the integrator's own HAL file (docs/serial.md): a key it lacks
- * keeps the default. */
-static const struct {
-    const char *section, *hal, *pins;
-} hal_read_sections[] = {
-    {"HEXAGLIDE", "configs/hexaglide.hal", "hexaglidekins.%s and motenc-hexaglide.0.%s"},
-};
-
 /* Keys of earlier versions, with what to do instead. */
 static const struct {
     const char *section, *key, *instead;
@@ -346,7 +334,10 @@ static int joints_match(const char *cmd, const cli_ini *ini, int plant, int vari
 int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int variant, hg_plant_params *v)
 {
     const hg_plant *pl = hg_plant_at(plant);
-    const char *sec = pl->ini_section, *hal = 0, *pins = 0;
+    /* a section a shipped HAL file reads in full (hg_plant.ini_hal_file): halcmd stops at the first line
+     * that reads a missing key ("Ini variable '[HEXAGLIDE]L' not found"), so a missing key is refused,
+     * never left at its default, and so is a missing section */
+    const char *sec = pl->ini_section, *hal = pl->ini_hal_file, *pins = pl->ini_hal_pins;
     static hg_param_info t[HG_PLANT_PARAMS_MAX];
     int i, n = pl->nparams(variant), bad = 0, listed = 0;
     char keys[4096];
@@ -354,11 +345,6 @@ int cli_ini_apply_plant(const char *cmd, const cli_ini *ini, int plant, int vari
         pl->param(variant, i, &t[i]);
     size_t k;
     key_list(t, n, keys, sizeof keys);
-    for (k = 0; k < N_OF(hal_read_sections); k++)
-        if (strcmp(hal_read_sections[k].section, sec) == 0) {
-            hal = hal_read_sections[k].hal;
-            pins = hal_read_sections[k].pins;
-        }
     if (!cli_ini_has_section(ini, sec)) {   /* --ini names the file of this plant's parameters */
         const hg_plant *other = cli_ini_other_plant(ini, plant);
         if (other)

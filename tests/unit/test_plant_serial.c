@@ -418,7 +418,7 @@ static void tp_describe(const hg_plant_report *r, int hal, char buf[HG_PLANT_TEX
     buf[0] = '\0';
 }
 static const hg_plant test_plant = {
-    "test-mass", "a mass pushed by its DAC", "TEST", "one", 0, 0, 0, 0, 0,
+    "test-mass", "a mass pushed by its DAC", "TEST", 0, 0, "one", 0, 0, 0, 0, 0,
     sizeof(tp_model), sizeof(tp_data), sizeof(tp_data),
     tp_variant_of, tp_variant_name, tp_channels, tp_nparams, tp_param, tp_defaults, tp_legacy, tp_check,
     tp_build, tp_params_of, tp_reset, tp_change, tp_stability, tp_inject, tp_step, tp_sense, tp_tool_error,
