@@ -634,15 +634,23 @@ void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
     publish(b, in, out, volts);
 }
 
+/* Add a thread's period to the time *ns one function ran without the other (a period <= 0 adds
+ * nothing); 1 exactly when that time first reaches HG_BOARD_UNSTEPPED_NS (the other function
+ * sets it back to 0). */
+static int time_without(long long *ns, long period_ns)
+{
+    if (period_ns <= 0 || *ns >= HG_BOARD_UNSTEPPED_NS)
+        return 0;
+    *ns += period_ns < HG_BOARD_UNSTEPPED_NS ? period_ns : HG_BOARD_UNSTEPPED_NS; /* no overflow */
+    return *ns >= HG_BOARD_UNSTEPPED_NS;
+}
+
 int hg_board_rate_read(hg_board_rate *r, long period_ns)
 {
     r->unread_ns = 0;
     if (r->reads < HG_BOARD_RATE_READS_MAX)
         r->reads++;
-    if (period_ns <= 0 || r->unstepped_ns >= HG_BOARD_UNSTEPPED_NS)
-        return 0;
-    r->unstepped_ns += period_ns < HG_BOARD_UNSTEPPED_NS ? period_ns : HG_BOARD_UNSTEPPED_NS; /* no overflow */
-    return r->unstepped_ns >= HG_BOARD_UNSTEPPED_NS;
+    return time_without(&r->unstepped_ns, period_ns);
 }
 
 int hg_board_rate_step(hg_board_rate *r)
@@ -665,11 +673,7 @@ int hg_board_rate_step(hg_board_rate *r)
 
 int hg_board_rate_unread(hg_board_rate *r, long period_ns)
 {
-    if (period_ns <= 0 || r->unread_said)
-        return 0;
-    r->unread_ns += period_ns < HG_BOARD_UNSTEPPED_NS ? period_ns : HG_BOARD_UNSTEPPED_NS; /* no overflow */
-    r->unread_said = r->unread_ns >= HG_BOARD_UNSTEPPED_NS;
-    return r->unread_said;
+    return time_without(&r->unread_ns, period_ns);
 }
 
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,

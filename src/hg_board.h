@@ -326,7 +326,6 @@ typedef struct {
     int stepped;                      /* a step ran since load (the reads before the first are not counted) */
     int said;                         /* the slow step was said */
     long long unread_ns;              /* thread time dynamics ran since the last encoder-read */
-    int unread_said;                  /* the missing encoder-read was said */
 } hg_board_rate;
 
 /* Called by the glue's encoder-read with its thread's period: counts the
@@ -353,7 +352,8 @@ int hg_board_rate_step(hg_board_rate *r);
  * hg_board_rate_step: 1 exactly once, when the steps' time since the last
  * encoder-read first reaches HG_BOARD_UNSTEPPED_NS: the machine moves but
  * the encoder and switch pins stand still (motenc.N.encoder-read never
- * added to a thread, the mirror of hg_board_rate_read's case). */
+ * added to a thread, the mirror of hg_board_rate_read's case; said again
+ * if encoder-read stops once more after running). */
 int hg_board_rate_unread(hg_board_rate *r, long period_ns);
 
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,

@@ -120,7 +120,9 @@ void cli_board_defaults(int plant, int variant, hg_board_params *bp)
 }
 
 /* Where parameter i of v came from, as " (...)" into buf: the last --set of
- * it, else the INI's key (value and line), else the default; "" when unknown. */
+ * it, else the INI's key (value and line), else the default (without an
+ * INI: the value, not changed by --set: replay's come from the record);
+ * "" when unknown. */
 static void origin(const char *cmd, int plant, int variant, int i, const hg_plant_params *v, const char *ini,
                    char *const *sets, int nset, char *buf, size_t len)
 {
@@ -155,8 +157,8 @@ static void origin(const char *cmd, int plant, int variant, int i, const hg_plan
         snprintf(buf, len, " (%.9g %s, not changed by --set)", v->v[i], e.unit);
         return;
     }
-    snprintf(buf, len, " (the default, %.9g %s%s%s%s)", v->v[i], e.unit, ini && e.ini_key ? "; " : "",
-             ini && e.ini_key ? ini : "", ini && e.ini_key ? " does not set it" : "");
+    snprintf(buf, len, " (the default, %.9g %s%s%s%s)", v->v[i], e.unit, e.ini_key ? "; " : "",
+             e.ini_key ? ini : "", e.ini_key ? " does not set it" : "");
 }
 
 /* One line per set bit: bit i < table length is parameter i, then the

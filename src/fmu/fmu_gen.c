@@ -352,12 +352,9 @@ static const char *md_num(char buf[32], fmu_type t, double v)
     char round[24];
     if (t != FMU_FLOAT64 || fabs(v) < 1e6)
         return start_text(buf, t, v);
-    if (md_e_form(buf, v) >= 16 && md_e_form(round, nextafter(v, v > 0 ? HUGE_VAL : -HUGE_VAL)) <= 3) {
+    if (md_e_form(buf, v) >= 16 && md_e_form(round, nextafter(v, v > 0 ? HUGE_VAL : -HUGE_VAL)) <= 3)
         snprintf(buf, 32, "%s %s", v > 0 ? "below" : "above", round);
-        return buf;
-    }
-    md_e_form(buf, v);
-    return buf;
+    return buf;                        /* (else v's own e-form, written by the test) */
 }
 
 /* The variables as a Markdown table, a per-joint group in one row; 0 or -1. */

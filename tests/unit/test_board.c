@@ -810,6 +810,12 @@ static void test_unstepped(void)
     }
     CHECK(said == 1 && first == 1000, "no encoder-read: said once, at the 1000th step of 1 ms (%d times, first %d)",
           said, first);
+    hg_board_rate_read(&r, PERIOD);             /* it ran once, then stopped again */
+    for (i = 1, said = 0; i <= 1000; i++) {
+        hg_board_rate_step(&r);
+        said += hg_board_rate_unread(&r, PERIOD);
+    }
+    CHECK(said == 1, "encoder-read ran once and stopped again: said again after 1 s (%d)", said);
     memset(&r, 0, sizeof r);
     for (i = 1, said = 0; i <= 3000; i++) {     /* a read every 10th period: reads run */
         if (i % 10 == 0)
