@@ -328,6 +328,15 @@ def gains_from_x(x, prob):
     return out
 
 
+GAIN_FORMAT = "%.6g"        # how the suggestion's INI text prints a gain (ini_text)
+
+
+def as_printed(gains):
+    """The gains as ini_text prints them, read back: the suggestion's prediction, margins and
+    plots are those of the numbers the user gets (`tune --gains` of the output repeats them)."""
+    return [dict(g, **{k: float(GAIN_FORMAT % g[k]) for k in KEYS if k in g}) for g in gains]
+
+
 def notch_of(x, prob):
     """The notch of search vector x: prob["notch"] (f0, Q) on all six joints when x has the
     notch switch (x[5], with prob["notch"]) on, else None."""
@@ -494,7 +503,8 @@ def margin_penalty(m):
 
 
 W_RMS = 0.2                # run_cost: mm of cost per mm of the worst RMS f-error
-W_VOLTS = 1.0              # run_cost: mm of cost per volt above the limit (a hard limit in effect)
+W_VOLTS = 1.0              # run_cost: mm of cost per volt above the limit
+VOLTS_SHOWN = 5e-4         # half the last digit of the volts tune prints (%.3f)
 
 
 def run_cost(runs, prob):
@@ -797,7 +807,7 @@ def ini_text(gains, pred, source, notch=None, without=None):
     for j, g in enumerate(gains):
         out.append("[JOINT_%d]" % j)
         for k in KEYS:
-            out.append("%s = %.6g" % (k, g.get(k, 0.0)))
+            out.append("%s = %s" % (k, GAIN_FORMAT % g.get(k, 0.0)))
         out.append("")
     out.append("# predicted with these gains%s on %s (%d closed-loop runs through the board model):"
                % (" and the notch below" if notch else "", source, pred["runs"]))
@@ -1278,7 +1288,7 @@ def main(argv=None):
             prob["search_params"] = search_bp
         log(line)
         x, c_plain, c_notch = search(a, prob)
-        sug, notch, without = gains_from_x(x, prob), None, None
+        sug, notch, without = as_printed(gains_from_x(x, prob)), None, None
         if notch_of(x, prob):
             without, _ = predict(sug, prob, settles)
             notch = prob["notch"]
@@ -1299,9 +1309,15 @@ def main(argv=None):
                "; " + bad if bad else "", hgm.describe(pred["margins"]), pred["ferror"].max(), pred["tool"]))
         return 1
     log("suggested: peak |f-error| %.5f mm (current %s), peak tool-path error %.5f mm, peak output %.3f V "
-        "(limit %.3f V), step overshoot %.0f%%; %s"
+        "(median of %d runs, as the limit; max %.3f V; limit %.3f V), step overshoot %.0f%%; %s"
         % (pred["ferror"].max(), "%.5f mm" % cur_pred["ferror"].max() if cur_pred else "unstable",
-           pred["tool"], pred["volts"].max(), prob["vmax"], 100 * over, hgm.describe(pred["margins"])))
+           pred["tool"], pred["volts_median"], pred["runs"], pred["volts"].max(), prob["vmax"], 100 * over,
+           hgm.describe(pred["margins"])))
+    if pred["volts_median"] > prob["vmax"] + VOLTS_SHOWN:
+        log("warning: the suggestion's peak output, %.3f V (median of %d runs), is above the limit %.3f V: "
+            "the search weighs %g mm of cost per volt above it, and its runs are fewer than these; give "
+            "--max-volts below %.3f V to keep under it" % (pred["volts_median"], pred["runs"], prob["vmax"],
+                                                          W_VOLTS, prob["vmax"]))
     if cur_pred is not None and pred["ferror"].max() >= cur_pred["ferror"].max():
         log("note: the suggestion is not better than the current gains on this trajectory "
             "(%.5f vs %.5f mm): the current gains are already at the encoder's resolution or the "
