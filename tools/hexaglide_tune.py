@@ -1318,12 +1318,16 @@ def main(argv=None):
             "the search weighs %g mm of cost per volt above it, and its runs are fewer than these; give "
             "--max-volts below %.3f V to keep under it" % (pred["volts_median"], pred["runs"], prob["vmax"],
                                                           W_VOLTS, prob["vmax"]))
+    cur_bad = hgm.verdict(cur_pred["margins"]) if cur_pred is not None else None
     if cur_pred is not None and pred["ferror"].max() >= cur_pred["ferror"].max():
         log("note: the suggestion is not better than the current gains on this trajectory "
-            "(%.5f vs %.5f mm): the current gains are already at the encoder's resolution or the "
-            "limits (--max-volts, --max-overshoot) bind" % (pred["ferror"].max(), cur_pred["ferror"].max()))
-    if cur_pred is not None and hgm.verdict(cur_pred["margins"]):
-        log("warning: the current gains: %s" % hgm.verdict(cur_pred["margins"]))
+            "(%.5f vs %.5f mm): %s" % (pred["ferror"].max(), cur_pred["ferror"].max(),
+                                       "the current gains miss the stability margins the suggestion must meet "
+                                       "(the warning below)" if cur_bad else
+                                       "the current gains are already at the encoder's resolution or the "
+                                       "limits (--max-volts, --max-overshoot) bind"))
+    if cur_bad:
+        log("warning: the current gains: %s" % cur_bad)
     text = ini_text(sug, pred, source, notch, without)
     if a.output:
         atomic_write(a.output, lambda f: f.write(text.encode()))
