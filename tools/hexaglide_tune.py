@@ -328,15 +328,6 @@ def gains_from_x(x, prob):
     return out
 
 
-GAIN_FORMAT = "%.6g"        # how the suggestion's INI text prints a gain (ini_text)
-
-
-def as_printed(gains):
-    """The gains as ini_text prints them, read back: the suggestion's prediction, margins and
-    plots are those of the numbers the user gets (`tune --gains` of the output repeats them)."""
-    return [dict(g, **{k: float(GAIN_FORMAT % g[k]) for k in KEYS if k in g}) for g in gains]
-
-
 def notch_of(x, prob):
     """The notch of search vector x: prob["notch"] (f0, Q) on all six joints when x has the
     notch switch (x[5], with prob["notch"]) on, else None."""
@@ -807,7 +798,7 @@ def ini_text(gains, pred, source, notch=None, without=None):
     for j, g in enumerate(gains):
         out.append("[JOINT_%d]" % j)
         for k in KEYS:
-            out.append("%s = %s" % (k, GAIN_FORMAT % g.get(k, 0.0)))
+            out.append("%s = %s" % (k, hg_config.GAIN_FORMAT % g.get(k, 0.0)))
         out.append("")
     out.append("# predicted with these gains%s on %s (%d closed-loop runs through the board model):"
                % (" and the notch below" if notch else "", source, pred["runs"]))
@@ -1288,7 +1279,7 @@ def main(argv=None):
             prob["search_params"] = search_bp
         log(line)
         x, c_plain, c_notch = search(a, prob)
-        sug, notch, without = as_printed(gains_from_x(x, prob)), None, None
+        sug, notch, without = hg_config.as_printed(gains_from_x(x, prob), KEYS), None, None
         if notch_of(x, prob):
             without, _ = predict(sug, prob, settles)
             notch = prob["notch"]

@@ -300,7 +300,7 @@ def ini_text(m, gains, pred, stock, source):
         lines.append("[JOINT_%d]" % j)
         for k in OUT_KEYS:
             if k in gains[j]:
-                lines.append("%-8s = %.6g" % (k, gains[j][k]))
+                lines.append("%-8s = %s" % (k, hg_config.GAIN_FORMAT % gains[j][k]))
     for j in range(m.n):
         fe = m.joints[j].get("FERROR")
         lines.append("# joint %d: peak |f-error| %.6g %s (the INI's gains: %.6g %s%s)"
@@ -391,7 +391,7 @@ def main(argv=None):
                                   source))
         return 0
     best = search(m, cmd, a)
-    gains = m.gains(best)
+    gains = m.gains(hg_config.as_printed(best, OUT_KEYS))   # the prediction is the printed gains'
     pred, _, ok = evaluate(m, gains, cmd)
     if not ok:
         log("no stable gains found")

@@ -89,6 +89,14 @@ def read(path, sets=(), loop=False, cmd="tune", set_option="--set", plant=None, 
 
 
 DAC_V = 10.0      # the board's DAC: +-10 V
+GAIN_FORMAT = "%.6g"   # how a tune suggestion's INI text prints a gain
+
+
+def as_printed(gains, keys):
+    """Gains (one dict per joint) with the entries named in keys as GAIN_FORMAT prints them, read
+    back: a suggestion is predicted for the numbers the user gets (`tune --gains` of the output
+    repeats the prediction number for number)."""
+    return [dict(g, **{k: float(GAIN_FORMAT % g[k]) for k in keys if k in g}) for g in gains]
 
 
 def output_limit(g):
