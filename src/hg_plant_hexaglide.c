@@ -66,6 +66,7 @@ static void params_from(const hg_plant_params *v, hg_params *p)
         *hg_params_at(p, i) = v->v[i];
 }
 
+/* The typed parameter set as a block. */
 static void params_to(const hg_params *p, hg_plant_params *v)
 {
     int i, n;
@@ -81,6 +82,7 @@ static int variant_of(const char *name)
     return hg_model_from_name(name);
 }
 
+/* hg_plant.variant_name: the parametrization's name. */
 static int variant_name(int variant, char *buf, int len)
 {
     const char *n = hg_model_name((hg_model_kind)variant);
@@ -93,12 +95,14 @@ static int variant_name(int variant, char *buf, int len)
     return 0;
 }
 
+/* hg_plant.channels: six carriages, whatever the parametrization. */
 static int channels(int variant)
 {
     (void)variant;
     return CHANNELS;
 }
 
+/* hg_plant.nparams: entries of the Hexaglide's parameter table (hg_params.c). */
 static int nparams(int variant)
 {
     int n;
@@ -107,6 +111,7 @@ static int nparams(int variant)
     return n;
 }
 
+/* hg_plant.param: entry i of that table. */
 static int param(int variant, int i, hg_param_info *out)
 {
     int n;
@@ -118,6 +123,7 @@ static int param(int variant, int i, hg_param_info *out)
     return 0;
 }
 
+/* hg_plant.defaults: docs/model.md's machine (hg_params_default). */
 static void defaults(int variant, hg_plant_params *v)
 {
     hg_params p;
@@ -140,6 +146,7 @@ static void legacy(int format, int variant, hg_plant_params *v)
     params_to(&p, v);
 }
 
+/* hg_plant.check: every rule of hg_params_check_all, each bad field named. */
 static int check(int variant, const hg_plant_params *v, hg_bitset *bad, const char *why[HG_PLANT_PARAMS_MAX])
 {
     hg_params p;
@@ -148,6 +155,7 @@ static int check(int variant, const hg_plant_params *v, hg_bitset *bad, const ch
     return hg_params_check_all(&p, bad, why);
 }
 
+/* hg_plant.build: the dynamics model of the set (hg_model_init) with the scheme, and the geometry's fingerprint. */
 static int build(hg_plant_model *m, const hg_plant_params *v, int variant, int integrator,
                  const char **field, const char **why)
 {
@@ -165,19 +173,18 @@ static int build(hg_plant_model *m, const hg_plant_params *v, int variant, int i
     return rc;
 }
 
+/* hg_plant.params_of: the set the model was built from. */
 static void params_of(const hg_plant_model *m, hg_plant_params *v)
 {
     params_to(&model_of(m)->p, v);
 }
 
+/* hg_plant.reset: at rest at HOME. */
 static int reset(const hg_plant_model *m, hg_plant_data *d)
 {
     return hg_data_reset(model_of(m), data_of(d));
 }
 
-/* The machine's shape (l, lb, e, lp: where HOME is) restarts it; the
- * joints' ranges and the bar diameter are limits, not shape. A new lead
- * or counts-per-rev rescales the encoders. */
 /* 1 when x and y differ by at most 4 ulps of the larger. */
 static int within_rounding(double x, double y)
 {
@@ -185,6 +192,9 @@ static int within_rounding(double x, double y)
     return fabs(x - y) <= 4.0 * DBL_EPSILON * (ax > ay ? ax : ay);
 }
 
+/* hg_plant.change: the machine's shape (l, lb, e, lp: where HOME is)
+ * restarts it; the joints' ranges and the bar diameter are limits, not
+ * shape. A new lead or counts-per-rev rescales the encoders. */
 static unsigned change(int variant, const hg_plant_params *a, const hg_plant_params *b)
 {
     hg_params p, q;
@@ -241,6 +251,7 @@ int hg_stability_check(const hg_params *p, hg_integrator scheme, double period_s
     return hg_stability_check_axes(&a, 1, scheme, period_s, substeps_min, substeps_max, out);
 }
 
+/* hg_plant.stability: the substeps the set needs at the period (hg_stability), naming the limiting parameter. */
 static int stability(int variant, const hg_plant_params *v, int integrator, double period_s,
                      unsigned substeps_min, unsigned substeps_max, unsigned *substeps, int *limit,
                      double *dt_max_s)
@@ -258,6 +269,7 @@ static int stability(int variant, const hg_plant_params *v, int integrator, doub
     return rc;
 }
 
+/* hg_plant.inject: a bar broken on a channel's bar-broken pin. */
 static void inject(const hg_plant_model *m, hg_plant_data *d, const unsigned in[HG_CHANNELS_MAX],
                    unsigned acted[HG_PLANT_INJECT_MAX])
 {
@@ -284,6 +296,7 @@ static int state_finite(const hg_data *d)
     return ok;
 }
 
+/* hg_plant.step: one (sub)step of the dynamics under the DAC volts (hg_step). */
 static int step(const hg_plant_model *m, hg_plant_data *d, const double volts[HG_CHANNELS_MAX],
                 unsigned enabled, double dt_s, hg_plant_report *r)
 {
@@ -306,6 +319,7 @@ static int step(const hg_plant_model *m, hg_plant_data *d, const double volts[HG
 /* Finite x, or 0. */
 static double finite_or_zero(double x) { return isfinite(x) ? x : 0.0; }
 
+/* hg_plant.sense: encoders' turns, carriages, currents, switches and the head pose after a step. */
 static void sense(const hg_plant_model *m, const hg_plant_data *d, hg_plant_sense *s)
 {
     const hg_model *hm = model_of(m);
@@ -357,6 +371,7 @@ static double tool_error(const hg_plant_model *m, const hg_plant_data *d, const 
     return isfinite(e) ? e : -1.0;
 }
 
+/* hg_plant.describe: what a failed step struck, as one sentence (hg_guard_text). */
 static void describe(const hg_plant_report *r, int hal, char buf[HG_PLANT_TEXT_LEN])
 {
     hg_guard_report g;

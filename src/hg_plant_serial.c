@@ -157,6 +157,7 @@ static int variant_of(const char *name)
     return k ? v : -1;
 }
 
+/* hg_plant.variant_name: the axes' letters, one per channel ("XYZ"). */
 static int variant_name(int variant, char *buf, int len)
 {
     int k, n = axes_of(variant);
@@ -168,6 +169,7 @@ static int variant_name(int variant, char *buf, int len)
     return 0;
 }
 
+/* hg_plant.channels: one channel per axis. */
 static int channels(int variant)
 {
     return axes_of(variant);
@@ -210,6 +212,7 @@ static int field_of(int variant, int i, int *axis, int *field)
     return -1;
 }
 
+/* hg_plant.nparams: every axis's fields (a rotary axis has no g and no counterbalance). */
 static int nparams(int variant)
 {
     int k, n = 0;
@@ -218,6 +221,7 @@ static int nparams(int variant)
     return n;
 }
 
+/* hg_plant.param: entry i, axis k's field f, with its axis-numbered names and units. */
 static int param(int variant, int i, hg_param_info *out)
 {
     int k, f, r;
@@ -304,6 +308,7 @@ static void rotary_defaults(double *a)
     a[HG_SF_HOME_SWITCH] = 2.0 / HG_DEG_PER_RAD;
 }
 
+/* hg_plant.defaults: each axis as linear_defaults or rotary_defaults makes it. */
 static void defaults(int variant, hg_plant_params *v)
 {
     int k, f;
@@ -454,6 +459,7 @@ static int check_rules(int variant, const hg_plant_params *v, rules *r)
     return r->first >= 0 ? HG_ERR_BAD_PARAM : HG_OK;
 }
 
+/* hg_plant.check: every axis's rules, each bad field named. */
 static int check(int variant, const hg_plant_params *v, hg_bitset *bad, const char *why[HG_PLANT_PARAMS_MAX])
 {
     hg_bitset s;
@@ -509,6 +515,7 @@ typedef char hg_serial_fits[(sizeof(serial_model) <= sizeof(hg_plant_model) &&
                              sizeof(serial_data) <= sizeof(hg_plant_data) && AXES_MAX <= HG_CHANNELS_MAX &&
                              AXES_MAX <= HG_DRIVE_MAX && AXES_MAX <= HG_STAB_AXES_MAX) ? 1 : -1];
 
+/* The model and data laid over the board's storage. */
 static const serial_model *model_of(const hg_plant_model *m) { return (const serial_model *)m->store; }
 static serial_data *data_of(hg_plant_data *d) { return (serial_data *)d->store; }
 static const serial_data *cdata_of(const hg_plant_data *d) { return (const serial_data *)d->store; }
@@ -529,6 +536,7 @@ static void drive_params(int variant, const hg_plant_params *v, int k, hg_drive_
     dp->ki_vel_a_per_m = get(variant, v, k, HG_SF_KI_VEL);
 }
 
+/* hg_plant.build: per axis the drive, the train, the friction and the stops of the set, and the scheme. */
 static int build(hg_plant_model *pm, const hg_plant_params *v, int variant, int integrator, const char **field,
                  const char **why)
 {
@@ -597,11 +605,13 @@ static int build(hg_plant_model *pm, const hg_plant_params *v, int variant, int 
     return HG_OK;
 }
 
+/* hg_plant.params_of: the set the model was built from. */
 static void params_of(const hg_plant_model *m, hg_plant_params *v)
 {
     *v = model_of(m)->p;
 }
 
+/* hg_plant.reset: every axis at rest at its zero, static friction holding it. */
 static int reset(const hg_plant_model *pm, hg_plant_data *pd)
 {
     const serial_model *m = model_of(pm);
@@ -648,6 +658,7 @@ static void stability_axis(int variant, const hg_plant_params *v, int k, hg_stab
         a->name[i] = names[k][fields[i]].spec[rot];
 }
 
+/* hg_plant.stability: the substeps the set needs at the period (hg_stability, one test system per axis), naming the limiting parameter. */
 static int stability(int variant, const hg_plant_params *v, int integrator, double period_s,
                      unsigned substeps_min, unsigned substeps_max, unsigned *substeps, int *limit,
                      double *dt_max_s)
@@ -780,6 +791,7 @@ static int axis_step(const serial_model *m, serial_data *d, int k, double motor,
     return HG_OK;
 }
 
+/* hg_plant.step: one (sub)step: the drives' currents under the volts, then each axis (axis_step). */
 static int step(const hg_plant_model *pm, hg_plant_data *pd, const double volts[HG_CHANNELS_MAX],
                 unsigned enabled, double dt_s, hg_plant_report *rep)
 {
@@ -817,6 +829,7 @@ static int step(const hg_plant_model *pm, hg_plant_data *pd, const double volts[
 /* Finite x, or 0. */
 static double finite_or_zero(double x) { return isfinite(x) ? x : 0.0; }
 
+/* hg_plant.sense: encoders' turns, loads, currents, forces and switches after a step. */
 static void sense(const hg_plant_model *pm, const hg_plant_data *pd, hg_plant_sense *s)
 {
     const serial_model *m = model_of(pm);

@@ -133,6 +133,7 @@ static void encoder_read(void *arg, long period)
     }
 }
 
+/* motenc.N.dac-write: the DAC pins through gain and offset into the next step's inputs. */
 static void dac_write(void *arg, long period)
 {
     board_t *b = arg;
@@ -144,6 +145,7 @@ static void dac_write(void *arg, long period)
     b->c->ins.dac_stale = 0;
 }
 
+/* motenc.N.adc-read: the last step's current-monitor voltages onto the ADC pins. */
 static void adc_read(void *arg, long period)
 {
     board_t *b = arg;
@@ -154,6 +156,7 @@ static void adc_read(void *arg, long period)
     b->c->ins.adc_read = 1;
 }
 
+/* motenc.N.digital-in-read: the switches and inputs of the last step onto in-NN and in-NN-not. */
 static void digital_in_read(void *arg, long period)
 {
     board_t *b = arg;
@@ -165,6 +168,7 @@ static void digital_in_read(void *arg, long period)
     }
 }
 
+/* motenc.N.digital-out-write: the outputs' word as the board read it onto motenc-hexaglide.N.digital-out-word. */
 static void digital_out_write(void *arg, long period)
 {
     board_t *b = arg;
@@ -172,6 +176,7 @@ static void digital_out_write(void *arg, long period)
     *b->dout_word = b->c->o.dout_word;
 }
 
+/* motenc.N.misc-update: the E-STOP input as the board holds it. */
 static void misc_update(void *arg, long period)
 {
     board_t *b = arg;
@@ -219,7 +224,6 @@ static void write_params(board_t *b)
     b->c->ins.params.integrator = b->integrator = b->c->o.params.integrator;
 }
 
-/* Say, once, why the parameter change was refused: every field, its value, the rule. */
 /* Field i of block p as HAL shows it (table units). */
 static void field_value(const board_t *b, const hg_board_params *p, int i, char v[HG_TEXT_VALUE_LEN])
 {
@@ -249,6 +253,7 @@ static void report_changed(board_t *b, const hg_bitset *said)
     }
 }
 
+/* Say, once, why the parameter change was refused: every field, its value, the rule. */
 static void report_refusal(board_t *b, long period)
 {
     hg_bitset bad;
@@ -462,6 +467,7 @@ static void write_rec(board_t *b, long period)
     }
 }
 
+/* motenc.N.dynamics: one servo period of the board (hg_board_step) and what it reports. */
 static void dynamics(void *arg, long period)
 {
     board_t *b = arg;

@@ -49,6 +49,7 @@ static void list_params(int plant, int variant, const hg_plant_params *v)
     }
 }
 
+/* One CSV row of the board's outputs at time t, in write_header's column order. */
 static void write_row(FILE *f, double t, const hg_plant *pl, const hg_board_outputs *o)
 {
     int k;

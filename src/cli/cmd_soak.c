@@ -140,6 +140,7 @@ static long progress_every(long n)
     return tenth < SOAK_PROGRESS_MAX ? tenth : SOAK_PROGRESS_MAX;
 }
 
+/* Monotonic wall time in seconds (the summary's wall time and real-time factor). */
 static double now_s(void)
 {
     struct timespec t;
