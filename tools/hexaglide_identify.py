@@ -1399,22 +1399,23 @@ def params_of_spec(spec, params):
     return p
 
 
-def predict_ferror(cmd, gains, params, settles):
+def predict_ferror(cmd, gains, params, settles, threads=0):
     """Peak |f-error| per joint (mm) over closed-loop runs (hg_loop, LinuxCNC's
     pid around the board) with different settling before cmd: (median, lowest,
-    highest, the first run's f-error series), or Nones when a run is unstable."""
+    highest, the first run's f-error series), or Nones when a run is unstable.
+    The runs are independent: one hg.batch over `threads` threads (0: every
+    core), each run bit for bit what hg.Loop(gains, params=params).run gives."""
     import hexaglide_tune as tune
-    peaks = []
-    series = None
-    for settle in settles:
+    loop = hg.Loop(gains, params=params)     # its loop config and board parameters, checked
+    jobs = []
+    for i, settle in enumerate(settles):
         seq, s0 = tune.lead_in(cmd, settle)
-        loop = hg.Loop(gains, params=params)
-        r = loop.run(seq, start=s0, keep=series is None)
-        if not r.ok:
-            return None, None, None, None
-        if series is None:
-            series = r.ferror_mm[s0:]
-        peaks.append(r.peak_ferror_mm)
+        jobs.append(hg.Job(loop.cfg, loop.board_params, seq, start=s0, keep=i == 0))
+    runs = hg.batch(jobs, threads)
+    if not all(r.ok for r in runs):
+        return None, None, None, None
+    series = runs[0].ferror_mm[jobs[0].start:]
+    peaks = [r.peak_ferror_mm for r in runs]
     peaks = np.array(peaks)
     return np.median(peaks, 0), peaks.min(0), peaks.max(0), series
 
