@@ -1415,8 +1415,7 @@ def predict_ferror(cmd, gains, params, settles, threads=0):
     if not all(r.ok for r in runs):
         return None, None, None, None
     series = runs[0].ferror_mm[jobs[0].start:]
-    peaks = [r.peak_ferror_mm for r in runs]
-    peaks = np.array(peaks)
+    peaks = np.array([r.peak_ferror_mm for r in runs])
     return np.median(peaks, 0), peaks.min(0), peaks.max(0), series
 
 
