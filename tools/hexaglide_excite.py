@@ -218,6 +218,32 @@ class Problem:
 
     NMARGINS = 54
 
+    def margin_names(self):
+        """What each entry of margins() bounds, in its order (for messages)."""
+        def block(names):
+            return (["%s above MAX_LIMIT" % n for n in names] + ["%s below MIN_LIMIT" % n for n in names] +
+                    ["%s speed (MAX_VELOCITY)" % n for n in names] + ["%s acceleration (MAX_ACCELERATION)" % n
+                                                                      for n in names])
+        joints = ["joint %d" % j for j in range(len(self.jmin))]
+        return (block(["axis %s" % x for x in AXES]) + block(joints) +
+                ["%s drive volts (--max-volts %g V)" % (n, self.max_volts) for n in joints])
+
+    def centre_check(self):
+        """None, or why no program can keep within --margin: the programs' centre (the middle of
+        every [AXIS_*] range, at rest) puts a position outside its band (a joint's range centre is
+        not where the axes' centre puts the joint), with the smallest --margin that admits it."""
+        theta = np.concatenate([(self.xmin + self.xmax) / 2, np.zeros(self.fourier.nfree - 6)])
+        g, Y = self.margins(theta, self.t_opt[:1])
+        if Y is None:
+            return "the middle of the [AXIS_*] ranges %s is no pose the machine can take" % list((self.xmin + self.xmax) / 2)
+        pos = [i for i, n in enumerate(self.margin_names()) if "LIMIT" in n]
+        worst = max(pos, key=lambda i: g[i])
+        if g[worst] <= 0:
+            return None
+        return ("--margin %g: the programs' centre (the middle of every [AXIS_*] range, at rest) already puts %s "
+                "beyond the band --margin keeps (the middle %g of each range); no program fits: give --margin %.3g "
+                "or more" % (self.margin, self.margin_names()[worst], self.margin, self.margin + 2 * g[worst]))
+
     def margins(self, theta, t):
         """Every limit, per axis and joint, as value / limit - margin <= 0 (the
         largest over t): world position (both ends of the range, the margin
@@ -551,6 +577,9 @@ def main(argv=None):
         cfg = read_config(a)                 # defaults, [HEXAGLIDE], --set: as sim and soak take them
         drive_bound(a, cfg)
         prob = Problem(a, cfg.params, cfg)
+        why = prob.centre_check()
+        if why:
+            raise ValueError(why)
     except ValueError as ex:
         log(ex)
         return 2
@@ -559,7 +588,8 @@ def main(argv=None):
         % (a.harmonics, 1 / a.period, prob.fourier.nfree, a.starts))
     best = design(a, prob, rng)
     if best is None:
-        log("no start met every limit: try more --starts, fewer --harmonics or a longer --period")
+        log("no start met every limit: try more --starts, fewer --harmonics, a longer --period or a larger "
+            "--margin")
         return 1
     theta = best[0]
     g, cond = fine_check(prob, theta, a.period)
