@@ -232,17 +232,17 @@ class Problem:
         """None, or why no program can keep within --margin: the programs' centre (the middle of
         every [AXIS_*] range, at rest) puts a position outside its band (a joint's range centre is
         not where the axes' centre puts the joint), with the smallest --margin that admits it."""
-        theta = np.concatenate([(self.xmin + self.xmax) / 2, np.zeros(self.fourier.nfree - 6)])
-        g, Y = self.margins(theta, self.t_opt[:1])
+        centre = (self.xmin + self.xmax) / 2
+        g, Y = self.margins(np.concatenate([centre, np.zeros(self.fourier.nfree - 6)]), self.t_opt[:1])
         if Y is None:
-            return "the middle of the [AXIS_*] ranges %s is no pose the machine can take" % list((self.xmin + self.xmax) / 2)
-        pos = [i for i, n in enumerate(self.margin_names()) if "LIMIT" in n]
-        worst = max(pos, key=lambda i: g[i])
+            return "the middle of the [AXIS_*] ranges %s is no pose the machine can take" % list(centre)
+        names = self.margin_names()
+        worst = max((i for i, n in enumerate(names) if "LIMIT" in n), key=lambda i: g[i])   # the positions
         if g[worst] <= 0:
             return None
         return ("--margin %g: the programs' centre (the middle of every [AXIS_*] range, at rest) already puts %s "
                 "beyond the band --margin keeps (the middle %g of each range); no program fits: give --margin %.3g "
-                "or more" % (self.margin, self.margin_names()[worst], self.margin, self.margin + 2 * g[worst]))
+                "or more" % (self.margin, names[worst], self.margin, self.margin + 2 * g[worst]))
 
     def margins(self, theta, t):
         """Every limit, per axis and joint, as value / limit - margin <= 0 (the
