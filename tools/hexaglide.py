@@ -70,8 +70,8 @@ def _vector(name, values, n, finite=False, what=""):
     ValueError naming the first entry that is NaN or infinite. what: the n values' meaning,
     for the message ("X Y Z (mm) A B C (deg)")."""
     try:
-        v = np.asarray(values, dtype=np.float64)
-    except (TypeError, ValueError):
+        v = _real_array(values)
+    except TypeError:
         raise TypeError("%s must be %d numbers%s, got %r" % (name, n, " " + what if what else "", values))
     if v.ndim != 1 or v.shape[0] != n:
         got = "%d values" % v.shape[0] if v.ndim == 1 else "shape %s" % (v.shape,)
@@ -80,6 +80,33 @@ def _vector(name, values, n, finite=False, what=""):
         i = int(np.argmin(np.isfinite(v)))
         raise ValueError("%s[%d] = %r is not finite" % (name, i, float(v[i])))
     return v
+
+
+def _real(name, value, unit=""):
+    """value as a float (a Python or numpy integer or float, not a bool, a string or a complex),
+    else TypeError naming the argument."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError("%s must be a number%s, got %r" % (name, " (%s)" % unit if unit else "", value))
+    return float(value)
+
+
+def _param_name(name):
+    """name (a parameter's spec name) as str, else TypeError."""
+    if not isinstance(name, str):
+        raise TypeError("a parameter is named by its spec name, a str (params_table()), got %r" % (name,))
+    return name
+
+
+def _real_array(values):
+    """values as a float64 array when they are real numbers (ints or floats, of any shape), else
+    TypeError: numpy would read the strings '1.5' as numbers and cut complex ones to their real part."""
+    try:
+        v = np.asarray(values)
+    except (TypeError, ValueError):
+        raise TypeError("not an array of numbers: %r" % (values,))
+    if v.dtype.kind not in "iuf":
+        raise TypeError("numbers (ints or floats) expected, got an array of %s" % v.dtype)
+    return v.astype(np.float64)
 
 
 def _whole(name, value, unit=""):
@@ -342,6 +369,15 @@ _data_reset = _sig("hg_data_reset", C.c_int, _P, _P)
 _step = _sig("hg_step", C.c_int, _P, _P, _d6, C.c_double)
 STEP_DT_MAX_S = _sig("hg_step_dt_max_s", C.c_double)()   # HG_DT_MAX_S: the longest step hg_step takes
 _ERR_BAD_DT = -10                                         # HG_ERR_BAD_DT (src/hg_errors.h): hg_step's dt refused
+_ERR_STIFF = -16                                          # HG_ERR_STIFF: a step the scheme cannot integrate
+
+
+class _Stability(C.Structure):                            # hg_stability (src/hg_stability.h)
+    _fields_ = [("substeps", C.c_uint), ("param", C.c_char_p), ("dt_max_s", C.c_double)]
+
+
+_stability_check = _sig("hg_stability_check", C.c_int, _P, C.c_int, C.c_double, C.c_uint, C.c_uint,
+                        C.POINTER(_Stability))
 _energy = _sig("hg_energy", None, _P, _P, C.POINTER(C.c_double), C.POINTER(C.c_double))
 _ik = _sig("hg_inverse_kinematics_guarded", C.c_int, _P, _d6, _d6, _P)
 _fk = _sig("hg_forward_kinematics", C.c_int, _P, _d6, _d6, _P, _P)
@@ -465,7 +501,7 @@ class Params(_ByName):
             self[k] = v
 
     def __getitem__(self, name):
-        f = _params_field(self.buf, name.encode())
+        f = _params_field(self.buf, _param_name(name).encode())
         if not f:
             raise KeyError(_unknown(name, [e.name.decode() for e in params_table()]))
         return f[0]
@@ -474,12 +510,9 @@ class Params(_ByName):
         """KeyError for a name not in the table, TypeError for a value that is not a number,
         ValueError for one hg_params_set refuses (not finite); the whole set's rules are
         checked where it is used (Model, Board, ik, fk)."""
-        if not _params_field(self.buf, name.encode()):
+        if not _params_field(self.buf, _param_name(name).encode()):
             raise KeyError(_unknown(name, [e.name.decode() for e in params_table()]))
-        try:
-            v = float(value)
-        except (TypeError, ValueError):
-            raise TypeError("%s must be a number (SI units, params_table), got %r" % (name, value))
+        v = _real(name, value, "SI units, params_table")
         if _params_set(self.buf, name.encode(), v):     # (a known name: refused only when not finite)
             raise ValueError("%s = %r: not finite; a parameter is a finite number (SI units)" % (name, value))
 
@@ -517,7 +550,7 @@ class PlantParams(_ByName):
 
     def _index(self, name):
         try:
-            return self.names.index(name)
+            return self.names.index(_param_name(name))
         except ValueError:
             raise KeyError(_unknown(name, self.names))
 
@@ -525,7 +558,9 @@ class PlantParams(_ByName):
         return self.v[self._index(name)]
 
     def __setitem__(self, name, value):
-        self.v[self._index(name)] = float(value)
+        """KeyError for a name not in the plant's table, TypeError for a value that is not a number
+        (the values' rules are checked where the block is used: Board, Loop, batch)."""
+        self.v[self._index(name)] = _real(name, value, "SI units, the plant's params_table")
 
     @property
     def channels(self):
@@ -667,6 +702,7 @@ class Model:
             raise ValueError("unknown model %r; one of %s" % (kind, MODELS))
         _geometry(params)                      # a Params or None, else TypeError
         self.params = params or Params()
+        self._dt_checked = None                # the last step length the stability check passed
         self.m = C.create_string_buffer(_sizeof(4))
         self.d = Data()
         bad, why = C.c_char_p(), C.c_char_p()
@@ -685,19 +721,33 @@ class Model:
         """One integration step of dt_s seconds with six DAC volts (finite: hg_step would take
         NaN or inf as 0 V, as the DAC does; Board.step reports that in out.dac_nan); returns
         self.d. A dt_s hg_step refuses (not finite, <= 0, above STEP_DT_MAX_S) raises
-        HexaglideError code -10 naming dt_s and the limit."""
-        try:
-            dt_s = float(dt_s)
-        except (TypeError, ValueError):
-            raise TypeError("dt_s must be a number (s), got %r" % (dt_s,))
-        rc = _step(self.m, C.byref(self.d), _d6(*_vector("volts", volts, JOINTS, finite=True, what="DAC volts")),
-                   dt_s)
+        HexaglideError code -10 naming dt_s and the limit; a dt_s longer than Heun can integrate
+        on these parameters (hg_stability_check, the board's own check: the board substeps
+        instead) raises HexaglideError code -16 naming the parameter and the longest step."""
+        dt_s = _real("dt_s", dt_s, "s")
+        v = _d6(*_vector("volts", volts, JOINTS, finite=True, what="DAC volts"))
+        if dt_s != self._dt_checked:
+            self._check_dt(dt_s)
+        rc = _step(self.m, C.byref(self.d), v, dt_s)
         if rc == _ERR_BAD_DT:                  # hg_step's own check, its limit HG_DT_MAX_S
             raise HexaglideError("step", rc, "dt_s = %r s: must be finite, > 0 and at most %r s; split a longer "
                                  "time into steps of at most that" % (dt_s, STEP_DT_MAX_S))
         if rc:
             raise HexaglideError("step", rc)
         return self.d
+
+    def _check_dt(self, dt_s):
+        """HexaglideError code -16 when Heun (hg_model_init's scheme) cannot integrate these
+        parameters in steps of dt_s (a dt_s hg_step refuses is left to hg_step's message)."""
+        st = _Stability()
+        # (self.m is an hg_model, whose first member is the hg_params it was built from)
+        if 0 < dt_s <= STEP_DT_MAX_S and _stability_check(self.m, integrator_id("heun"), dt_s, 1, 1,
+                                                            C.byref(st)) == _ERR_STIFF:
+            raise HexaglideError("step", _ERR_STIFF, "dt_s = %r s: heun cannot integrate these parameters in "
+                                 "steps that long: %s limits it to %.4g s; call step with dt_s of at most that "
+                                 "(n steps of dt / n), or use Board, which substeps" % (
+                                     dt_s, (st.param or b"?").decode(), st.dt_max_s))
+        self._dt_checked = dt_s
 
     def energy(self):
         """(kinetic, potential) J."""
@@ -889,7 +939,7 @@ MOTION_JOINT_KEYS = {"TYPE", "HOME", "MIN_LIMIT", "MAX_LIMIT", "MAX_VELOCITY", "
 
 def _gain_dict(name, g):
     """g (a dict of INI keys) checked: TypeError if not a dict, ValueError naming an unknown key
-    (neither the loop's nor one of LinuxCNC's motion keys) or a value that is not a number."""
+    (neither the loop's nor one of LinuxCNC's motion keys), TypeError naming a value that is not a number."""
     if not isinstance(g, dict):
         raise TypeError("%s must be a dict of INI keys (P, I, D, ...), got %r" % (name, g))
     for k, v in g.items():
@@ -899,10 +949,7 @@ def _gain_dict(name, g):
                              "HAL file out, {k: v for k, v in g.items() if k in hg.LOOP_KEYS}"
                              % (name, k, ", ".join(sorted(LOOP_KEYS))))
         if k in LOOP_KEYS:
-            try:
-                float(v)
-            except (TypeError, ValueError):
-                raise ValueError("%s[%r] = %r is not a number" % (name, k, v))
+            _real("%s[%r]" % (name, k), v)
     return g
 
 
@@ -1084,7 +1131,7 @@ def notch_response(f0, q, freqs, period_ns=1000000):
     biquad.comp accepts f0 and Q (its valid pin). ValueError for what the loop refuses
     whatever biquad.comp says (loop_config): f0 not finite and > 0 Hz, Q not finite, a period outside
     (0, 10 ms]; and for a frequency in freqs that is not finite."""
-    f0, q = float(f0), float(q)
+    f0, q = _real("notch f0", f0, "Hz"), _real("notch Q", q)
     if not (np.isfinite(f0) and f0 > 0):
         raise ValueError("notch f0 = %r: must be finite and > 0 (Hz)" % f0)
     if not np.isfinite(q):
@@ -1159,7 +1206,10 @@ def _pid_inputs(name, values):
 def _commands(cmd_mm, joints=JOINTS):
     """cmd_mm as a C-contiguous (n, joints) float64 array, else ValueError (the shape, or the
     row and joint of a command the loop refuses: not finite, or beyond 1e9)."""
-    cmd = np.ascontiguousarray(cmd_mm, dtype=np.float64)
+    try:
+        cmd = np.ascontiguousarray(_real_array(cmd_mm))
+    except TypeError as ex:
+        raise TypeError("commands (mm): %s" % ex)
     if cmd.ndim != 2 or cmd.shape[1] != joints:
         raise ValueError("commands must be an (n, %d) array, got %s" % (joints, cmd.shape))
     bad = _pid_inputs("commands", cmd)
@@ -1276,6 +1326,9 @@ def batch(jobs, threads=0):
     per period; [RunResult] in the jobs' order, bit for bit what Loop(...).run gives each."""
     threads = _whole_checked("threads", threads, C.c_int)
     jobs = list(jobs)
+    for i, j in enumerate(jobs):
+        if not isinstance(j, Job):
+            raise TypeError("jobs[%d] must be a Job (hexaglide.Job), got %r" % (i, j))
     cj = (_BatchJob * max(1, len(jobs)))()
     traces = []
     for i, j in enumerate(jobs):
