@@ -1401,15 +1401,18 @@ def params_of_spec(spec, params):
 
 def predict_ferror(cmd, gains, params, settles, threads=0):
     """Peak |f-error| per joint (mm) over closed-loop runs (hg_loop, LinuxCNC's
-    pid around the board) with different settling before cmd: (median, lowest,
-    highest, the first run's f-error series), or Nones when a run is unstable.
-    The runs are independent: one hg.batch over `threads` threads (0: every
-    core), each run bit for bit what hg.Loop(gains, params=params).run gives."""
+    pid around the board) with different settling before cmd and approaches to
+    its start, as tune's prediction (tune.lead_in, tune.approach_of: static
+    friction holds each carriage at another point of its band, as homing does
+    on the machine): (median, lowest, highest, the first run's f-error series),
+    or Nones when a run is unstable. The runs are independent: one hg.batch
+    over `threads` threads (0: every core), each run bit for bit what
+    hg.Loop(gains, params=params).run gives."""
     import hexaglide_tune as tune
     loop = hg.Loop(gains, params=params)     # its loop config and board parameters, checked
     jobs = []
     for i, settle in enumerate(settles):
-        seq, s0 = tune.lead_in(cmd, settle)
+        seq, s0 = tune.lead_in(cmd, settle, tune.approach_of(i))
         jobs.append(hg.Job(loop.cfg, loop.board_params, seq, start=s0, keep=i == 0))
     runs = hg.batch(jobs, threads)
     if not all(r.ok for r in runs):
