@@ -221,7 +221,7 @@ static unsigned change(int variant, const hg_plant_params *a, const hg_plant_par
 static void stability_axis(const hg_params *p, hg_stability_axis *a)
 {
     static const char *const names[HG_STAB_NAMES] = {"c_visc", "k_stop", "c_stop", "r_winding", "kp_vel",
-                                                      "ki_vel", "k_axial", "c_axial"};
+                                                      "ki_vel", "k_axial", "c_axial", "backlash"};
     const double k = 2.0 * HG_PI / p->lead_m;
     const double m_end = 2.0 * p->i_bar_kgm2 / (p->geo.l_m * p->geo.l_m) - 0.5 * p->m_bar_kg;
     int i;
@@ -239,6 +239,8 @@ static void stability_axis(const hg_params *p, hg_stability_axis *a)
     a->ki_vel = p->ki_vel_a_per_m;
     a->k_axial = p->k_axial_n_per_m;
     a->c_axial = p->c_axial_ns_per_m;
+    a->backlash = p->backlash_m;
+    a->f_max = p->i_max_a * a->force_per_amp;
     for (i = 0; i < HG_STAB_NAMES; i++)
         a->name[i] = names[i];
 }

@@ -636,7 +636,8 @@ static unsigned change(int variant, const hg_plant_params *a, const hg_plant_par
 static void stability_axis(int variant, const hg_plant_params *v, int k, hg_stability_axis *a)
 {
     static const int fields[HG_STAB_NAMES] = {HG_SF_C_VISC, HG_SF_K_STOP, HG_SF_C_STOP, HG_SF_R_WINDING,
-                                              HG_SF_KP_VEL, HG_SF_KI_VEL, HG_SF_K_AXIAL, HG_SF_C_AXIAL};
+                                              HG_SF_KP_VEL, HG_SF_KI_VEL, HG_SF_K_AXIAL, HG_SF_C_AXIAL,
+                                              HG_SF_BACKLASH};
     const double ks = 2.0 * HG_PI / lead_of(variant, v, k);
     const int rot = rotary_axis(variant, k);
     int i;
@@ -654,6 +655,8 @@ static void stability_axis(int variant, const hg_plant_params *v, int k, hg_stab
     a->ki_vel = get(variant, v, k, HG_SF_KI_VEL);
     a->k_axial = get(variant, v, k, HG_SF_K_AXIAL);
     a->c_axial = get(variant, v, k, HG_SF_C_AXIAL);
+    a->backlash = get(variant, v, k, HG_SF_BACKLASH);
+    a->f_max = get(variant, v, k, HG_SF_I_MAX) * a->force_per_amp;
     for (i = 0; i < HG_STAB_NAMES; i++)
         a->name[i] = names[k][fields[i]].spec[rot];
 }

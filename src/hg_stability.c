@@ -1,12 +1,17 @@
 /* hg_stability.c - linear stability of the board's step on the stiff
- * test systems of each axis (hg_stability.h). */
+ * test systems of each axis, and the impact test of a train with
+ * backlash (hg_stability.h). */
 #include <float.h>
 #include "hg_math.h"
 #include "hg_stability.h"
 #include "hg_errors.h"
+#include "hg_drivetrain.h"
+#include "hg_units.h"
 
 #define BISECT_ITER 40        /* the largest stable step, to 1e-12 of the period */
 #define STAB_NEAR 1.05        /* a bound within 5% of the shortest: the simpler system names it */
+#define IMPACT_CYCLES 20.0    /* the impact test's length: crossings of the free play and contacts */
+#define IMPACT_STEPS_MAX 20000 /* ... in at most this many steps */
 
 /* One carriage with one stiff part: m x'' = f - c x' - k x, f the drive's
  * force held over the step from a state variable w. */
@@ -223,6 +228,103 @@ static int all_stable(const hg_stability_axis *ax, int n, hg_integrator scheme, 
     return 1;
 }
 
+/* The impact test's state: rotor and load positions (m) and speeds (m/s). */
+typedef struct {
+    double xr, vr, xl, vl;
+} impact_state;
+
+/* Its accelerations: force f on the rotor, the train between rotor and load, viscous friction on the load. */
+static impact_state impact_rate(const hg_stability_axis *a, const hg_drivetrain_channel *t, double f,
+                                const impact_state *y)
+{
+    double ft = hg_drivetrain_force(t, y->xr - y->xl, y->vr - y->vl);
+    impact_state r = {y->vr, (f - ft) / a->m_rotor, y->vl, (ft - a->c_visc * y->vl) / a->m_load};
+    return r;
+}
+
+/* y + h r. */
+static impact_state impact_add(const impact_state *y, double h, const impact_state *r)
+{
+    impact_state s = {y->xr + h * r->xr, y->vr + h * r->vr, y->xl + h * r->xl, y->vl + h * r->vl};
+    return s;
+}
+
+/* One step of dt of the scheme on the impact test's state (stage i from y0 + c_i dt k_(i-1), as the plants' step). */
+static void impact_step(const hg_stability_axis *a, const hg_drivetrain_channel *t, hg_integrator scheme,
+                        double f, double dt, impact_state *y)
+{
+    static const impact_state zero = {0, 0, 0, 0};
+    const double *cs, *bs;
+    int ns = hg_scheme_tableau(scheme, &cs, &bs), i;
+    impact_state k = impact_rate(a, t, f, y), sum;
+    if (ns == 0) {                     /* improved Euler: q += q' dt + q'' dt^2 / 2, q' += q'' dt */
+        impact_state y1 = impact_add(y, dt, &k);
+        y1.xr += 0.5 * dt * dt * k.vr;
+        y1.xl += 0.5 * dt * dt * k.vl;
+        *y = y1;
+        return;
+    }
+    sum = impact_add(&zero, bs[0], &k);
+    for (i = 1; i < ns; i++) {
+        impact_state ys = impact_add(y, cs[i] * dt, &k);
+        k = impact_rate(a, t, f, &ys);
+        sum = impact_add(&sum, bs[i], &k);
+    }
+    *y = impact_add(y, dt, &sum);
+}
+
+/* The impact test of axis a at dt with the force f (> 0) on its rotor,
+ * from rest in the middle of the free play: 1 while the energy (both
+ * bodies' kinetic energy and the train's spring) stays within
+ * HG_STAB_IMPACT_ENERGY times the work f has done, over IMPACT_CYCLES
+ * crossings of the free play and contacts (at most IMPACT_STEPS_MAX steps). */
+static int impact_passive(const hg_stability_axis *a, hg_integrator scheme, double dt, double f)
+{
+    const hg_drivetrain_channel t = {a->k_axial, a->c_axial, a->backlash};
+    const double m_mode = 1.0 / (1.0 / a->m_rotor + 1.0 / a->m_load);
+    const double cycle = sqrt(2.0 * a->backlash * a->m_rotor / f) + HG_PI * sqrt(m_mode / a->k_axial);
+    const double want = ceil(IMPACT_CYCLES * cycle / dt);
+    const long steps = want < IMPACT_STEPS_MAX ? (long)want : IMPACT_STEPS_MAX;
+    impact_state y = {0, 0, 0, 0};
+    double work = 0.0;
+    long s;
+    for (s = 0; s < steps; s++) {
+        double xr0 = y.xr, e;
+        impact_step(a, &t, scheme, f, dt, &y);
+        work += f * (y.xr - xr0);
+        e = 0.5 * a->m_rotor * y.vr * y.vr + 0.5 * a->m_load * y.vl * y.vl + hg_drivetrain_energy(&t, y.xr - y.xl);
+        if (!(e <= HG_STAB_IMPACT_ENERGY * (work > 0.0 ? work : 0.0)) && !(e <= 0.0))
+            return 0;                  /* (NaN and inf too: neither comparison holds) */
+    }
+    return 1;
+}
+
+/* 1 when axis a has no backlash (or no train, or no drive), or its impact test passes at dt with
+ * each of HG_STAB_IMPACT_FORCES of its force. */
+static int impacts_pass(const hg_stability_axis *a, hg_integrator scheme, double dt)
+{
+    static const double share[] = {HG_STAB_IMPACT_FORCES};
+    unsigned i;
+    if (!(a->backlash > 0.0 && a->k_axial > 0.0 && a->f_max > 0.0))
+        return 1;
+    for (i = 0; i < sizeof share / sizeof share[0]; i++)
+        if (!impact_passive(a, scheme, dt, share[i] * a->f_max))
+            return 0;
+    return 1;
+}
+
+/* 1 when every axis of the n passes its impact test at dt; else *bad is the first that does not. */
+static int all_impacts_pass(const hg_stability_axis *ax, int n, hg_integrator scheme, double dt, int *bad)
+{
+    int a;
+    for (a = 0; a < n; a++)
+        if (!impacts_pass(&ax[a], scheme, dt)) {
+            *bad = a;
+            return 0;
+        }
+    return 1;
+}
+
 /* The longest stable step of system s below hi (bisection). */
 static double longest_step(const test_system *s, hg_integrator scheme, double hi)
 {
@@ -259,6 +361,21 @@ int hg_stability_check_axes(const hg_stability_axis *ax, int n_axes, hg_integrat
             break;
         }
         last = k;
+    }
+    if (out->substeps) {               /* the linear systems are stable: the flanks' impacts too? */
+        int bad = 0;
+        for (k = out->substeps; k <= substeps_max && !all_impacts_pass(ax, n_axes, scheme, period_s / k, &bad); k++)
+            ;
+        if (k != out->substeps) {      /* the impacts raised the count: the backlash names the bound */
+            unsigned pass = k;
+            for (; pass > substeps_max && pass <= 4 * substeps_max; pass += 1 + pass / 8)
+                if (impacts_pass(&ax[bad], scheme, period_s / pass))
+                    break;             /* beyond the most: only to say what step would do */
+            out->substeps = k <= substeps_max ? k : 0;
+            out->param = ax[bad].name[HG_STAB_BACKLASH];
+            out->dt_max_s = pass <= 4 * substeps_max ? period_s / pass : 0.0;
+            return out->substeps ? 0 : HG_ERR_STIFF;
+        }
     }
     /* of the systems unstable at that count, the one with the shortest stable step names the
      * bound; the first listed within 5% of it when there is one (a system listed earlier is a
