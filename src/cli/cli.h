@@ -179,8 +179,10 @@ hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_
 
 /* 0 if the board can integrate block p (0: the plant's defaults) at period_ns, else 1 after a message
  * naming the bound (the stability check the board makes at its first period, src/hg_board.c: made on
- * a board of its own before a command writes anything). */
-int cli_board_integrable(const char *cmd, int plant, int variant, const hg_board_params *p, long period_ns);
+ * a board of its own before a command writes anything), and what the nset --set values changed when
+ * they did not set the parameter it names (kt=100 is refused naming r_winding: the back-EMF's system). */
+int cli_board_integrable(const char *cmd, int plant, int variant, const hg_board_params *p, long period_ns,
+                         char *const *sets, int nset);
 
 /* 1 if x is a whole number within the rounding of the decimal it came from and a few
  * operations on it (CLI_WHOLE_ULPS of x's magnitude: 1e-3 s * 1e9 is 1000000 ns), its value

@@ -161,6 +161,27 @@ static void origin(const char *cmd, int plant, int variant, int i, const hg_plan
              e.ini_key ? ini : "", e.ini_key ? " does not set it" : "");
 }
 
+/* "; with what --set changed: name=value ..." on stderr (nothing without --set). */
+static void print_sets(char *const *sets, int nset)
+{
+    int k;
+    if (nset > 0)
+        fprintf(stderr, "; with what --set changed:");
+    for (k = 0; k < nset; k++)
+        fprintf(stderr, " %s", sets[k]);
+}
+
+/* 1 when one of the nset --set values sets parameter name. */
+static int set_by(const char *name, char *const *sets, int nset)
+{
+    size_t n = strlen(name);
+    int k;
+    for (k = 0; k < nset; k++)
+        if (strncmp(sets[k], name, n) == 0 && sets[k][n] == '=')
+            return 1;
+    return 0;
+}
+
 /* One line per set bit: bit i < table length is parameter i, then the
  * board's substeps / integrator bits; with ini or sets, where each refused
  * parameter's value came from. */
@@ -180,12 +201,8 @@ static void report_refused(const char *cmd, int plant, int variant, const hg_bit
         fprintf(stderr, "hexaglide %s: bad parameter '%s'%s: %s", cmd,
                 is_param ? e.name : i == HG_BOARD_BIT_SUBSTEPS ? "--substeps" : "--integrator", from,
                 why[i] ? why[i] : "invalid");
-        if (is_param && nset > 0 && strncmp(from, " (--set ", 8) != 0) { /* a rule between parameters */
-            int k;
-            fprintf(stderr, "; with what --set changed:");
-            for (k = 0; k < nset; k++)
-                fprintf(stderr, " %s", sets[k]);
-        }
+        if (is_param && strncmp(from, " (--set ", 8) != 0) /* a rule between parameters */
+            print_sets(sets, nset);
         fputc('\n', stderr);
     }
 }
@@ -229,7 +246,8 @@ hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_
     return b;
 }
 
-int cli_board_integrable(const char *cmd, int plant, int variant, const hg_board_params *p, long period_ns)
+int cli_board_integrable(const char *cmd, int plant, int variant, const hg_board_params *p, long period_ns,
+                         char *const *sets, int nset)
 {
     hg_board *b = cli_board_new(cmd, plant, variant, p);
     hg_board_inputs in;
@@ -242,8 +260,12 @@ int cli_board_integrable(const char *cmd, int plant, int variant, const hg_board
     hg_board_step(b, &in, &out, period_ns);       /* the first period checks the block's stability */
     if (out.fault && out.fault_cause == HG_FAULT_STIFF) {
         char what[HG_PLANT_TEXT_LEN + 2 * HG_BOARD_TEXT_LEN];
+        hg_param_info e;
         cli_fault_text(b, &out, period_ns, what);
-        fprintf(stderr, "hexaglide %s: %s\n", cmd, what);
+        fprintf(stderr, "hexaglide %s: %s", cmd, what);
+        if (hg_plant_param_at(plant, variant, out.stiff_param, &e) != 0 || !set_by(e.name, sets, nset))
+            print_sets(sets, nset);
+        fputc('\n', stderr);
         free(b);
         return 1;
     }

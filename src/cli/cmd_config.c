@@ -205,7 +205,7 @@ int cmd_config(int argc, char **argv)
     cli_board_defaults(plant, variant, &bp);   /* the machine as the board integrates it at the config's period */
     bp.plant = p;
     if (i >= 0 && !bad)                /* the machine, from the INI's [HEXAGLIDE] and the --set values */
-        stiff = cli_board_integrable("config", plant, variant, &bp, i == 0 ? servo_ns : 1000000L);
+        stiff = cli_board_integrable("config", plant, variant, &bp, i == 0 ? servo_ns : 1000000L, sets, nset);
     cli_ini_free(&ini);
     if (fclose(out) || strlen(buf) >= sizeof buf - 1) {
         fprintf(stderr, "hexaglide config: the output does not fit %zu bytes\n", sizeof buf);

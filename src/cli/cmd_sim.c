@@ -284,7 +284,7 @@ int cmd_sim(int argc, char **argv)
                 cli_num(t_end, t), cli_num(dt, p));
         return 2;
     }
-    if (cli_board_integrable("sim", plant, variant, &bp, period_ns))
+    if (cli_board_integrable("sim", plant, variant, &bp, period_ns, sets, nset))
         return 2;                      /* before any output is opened */
     b = cli_board_new("sim", plant, variant, &bp);
     if (!b)

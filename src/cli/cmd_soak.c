@@ -285,7 +285,7 @@ int cmd_soak(int argc, char **argv)
     }
     if (integrator >= 0)
         bp.integrator = (unsigned)integrator;
-    if (cli_board_integrable("soak", 0, kind, &bp, cfg.period_ns)) {
+    if (cli_board_integrable("soak", 0, kind, &bp, cfg.period_ns, sets, nset)) {
         free(L);
         return 2;
     }
