@@ -663,6 +663,8 @@ static int prescan(const char *file, const char *buf, size_t len, int *plant, in
     hg_record_error e;
     int cp = -1, cm, cs[HG_BOARD_REC_SLOTS][3], s, k;
     long cap = 0;
+    double plant_rec = 0.0;            /* in.plant as recorded (for the message) */
+    char named[64];
     *plant = 0;
     *variant = hg_plant_at(0)->default_variant;
     *model = *variant;
@@ -697,7 +699,8 @@ static int prescan(const char *file, const char *buf, size_t len, int *plant, in
     while (hg_record_next(&r, row, &e) == 1) {
         unsigned long n = (unsigned long)row[0];
         if (n == 0) {
-            *plant = row[cp] >= 0 && row[cp] < 1000 ? (int)row[cp] : -1;
+            plant_rec = row[cp];
+            *plant = row[cp] >= 0 && row[cp] < 1000 && row[cp] == floor(row[cp]) ? (int)row[cp] : -1;
             *model = row[cm];
             *variant = row[cm] >= 0 && row[cm] < 1e6 ? (int)row[cm] : -1;
             *line0 = r.line;
@@ -718,8 +721,14 @@ static int prescan(const char *file, const char *buf, size_t len, int *plant, in
         }
     }
     if (!hg_plant_at(*plant)) {
-        fprintf(stderr, "hexaglide replay: %s: in.plant %d is not a plant this program knows (a newer "
-                "recorder?); use that version's hexaglide\n", file, *plant);
+        fprintf(stderr, "hexaglide replay: %s: in.plant %.17g is not a plant this program knows (a newer "
+                "recorder?); use that version's hexaglide\n", file, plant_rec);
+        return 1;
+    }
+    if (hg_record_meta_get(&r, "plant", named, sizeof named) == 1 && hg_plant_find(named) != *plant) {
+        fprintf(stderr, "hexaglide replay: %s: its header says '# plant %s' but its rows are of the %s "
+                "(in.plant %d): the file was edited or put together from two records; record again\n", file,
+                named, hg_plant_at(*plant)->name, *plant);
         return 1;
     }
     return 0;
