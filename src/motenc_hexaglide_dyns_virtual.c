@@ -247,13 +247,14 @@ static void report_changed(board_t *b, const hg_bitset *said)
         field_value(b, &b->c->o.params, i, was);
         /* the unit HAL shows: none for a dimensionless one, substeps or the integrator */
         const char *u = plant && strcmp(b->c->info[i].hal_unit, "1") != 0 ? b->c->info[i].hal_unit : "";
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s, changed from %s%s%s in this "
-                        "set\n", b->id, b->id, hg_board_param_hal_name(&b->c->b, i), v, u[0] ? " " : "", u, was,
-                        u[0] ? " " : "", u);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: refused with it: " XP ".%d.%s = %s%s%s, changed from "
+                        "%s%s%s in this set\n", b->id, b->id, hg_board_param_hal_name(&b->c->b, i), v, u[0] ? " " : "",
+                        u, was, u[0] ? " " : "", u);
     }
 }
 
-/* Say, once, why the parameter change was refused: every field, its value, the rule. */
+/* Say, once, why the parameter change was refused: every field, its value, the rule (the set in force
+ * stays, and write_params shows it again). */
 static void report_refusal(board_t *b, long period)
 {
     hg_bitset bad;
@@ -276,8 +277,7 @@ static void report_refusal(board_t *b, long period)
         return;
     }
     hg_board_params_check(&b->c->b, &b->c->ins.params, &bad, b->c->why);
-    rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter change refused, keeping the set in "
-                    "force (halcmd show param displays it again); invalid:\n", b->id);
+    /* one message per field, each whole: LinuxCNC shows each as an error of its own */
     for (i = 0; i < HG_BOARD_WHY_LEN; i++) {
         if (!hg_bitset_has(&bad, i))
             continue;
@@ -285,7 +285,7 @@ static void report_refusal(board_t *b, long period)
         field_value(b, &b->c->ins.params, i, v);
         why[0] = '\0';
         hg_param_hal_reason(why, sizeof why, b->c->why[i] ? b->c->why[i] : "", i < n ? &t[i] : 0);
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d:   " XP ".%d.%s = %s%s%s: %s\n", b->id, b->id,
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: refused " XP ".%d.%s = %s%s%s: %s\n", b->id, b->id,
                         hg_board_param_hal_name(&b->c->b, i), v, unit ? " " : "", unit ? t[i].hal_unit : "", why);
     }
     report_changed(b, &bad);
