@@ -325,6 +325,30 @@ static int all_impacts_pass(const hg_stability_axis *ax, int n, hg_integrator sc
     return 1;
 }
 
+/* From out->substeps (the linear systems' count) up to substeps_max, the
+ * first count whose step passes every axis's impact test. 0 when it is
+ * out->substeps; else 1 with *out rewritten: that count (0 past
+ * substeps_max), the failing axis's backlash as the bound and the step of
+ * the first count that passes (searched up to four times substeps_max
+ * only to say it; 0 when none does). */
+static int raise_for_impacts(const hg_stability_axis *ax, int n_axes, hg_integrator scheme, double period_s,
+                             unsigned substeps_max, hg_stability *out)
+{
+    unsigned k = out->substeps, pass;
+    int bad = 0;
+    while (k <= substeps_max && !all_impacts_pass(ax, n_axes, scheme, period_s / k, &bad))
+        k++;
+    if (k == out->substeps)
+        return 0;
+    for (pass = k; pass > substeps_max && pass <= 4 * substeps_max; pass += 1 + pass / 8)
+        if (impacts_pass(&ax[bad], scheme, period_s / pass))
+            break;
+    out->substeps = k <= substeps_max ? k : 0;
+    out->param = ax[bad].name[HG_STAB_BACKLASH];
+    out->dt_max_s = pass <= 4 * substeps_max ? period_s / pass : 0.0;
+    return 1;
+}
+
 /* The longest stable step of system s below hi (bisection). */
 static double longest_step(const test_system *s, hg_integrator scheme, double hi)
 {
@@ -362,21 +386,8 @@ int hg_stability_check_axes(const hg_stability_axis *ax, int n_axes, hg_integrat
         }
         last = k;
     }
-    if (out->substeps) {               /* the linear systems are stable: the flanks' impacts too? */
-        int bad = 0;
-        for (k = out->substeps; k <= substeps_max && !all_impacts_pass(ax, n_axes, scheme, period_s / k, &bad); k++)
-            ;
-        if (k != out->substeps) {      /* the impacts raised the count: the backlash names the bound */
-            unsigned pass = k;
-            for (; pass > substeps_max && pass <= 4 * substeps_max; pass += 1 + pass / 8)
-                if (impacts_pass(&ax[bad], scheme, period_s / pass))
-                    break;             /* beyond the most: only to say what step would do */
-            out->substeps = k <= substeps_max ? k : 0;
-            out->param = ax[bad].name[HG_STAB_BACKLASH];
-            out->dt_max_s = pass <= 4 * substeps_max ? period_s / pass : 0.0;
-            return out->substeps ? 0 : HG_ERR_STIFF;
-        }
-    }
+    if (out->substeps && raise_for_impacts(ax, n_axes, scheme, period_s, substeps_max, out))
+        return out->substeps ? 0 : HG_ERR_STIFF;
     /* of the systems unstable at that count, the one with the shortest stable step names the
      * bound; the first listed within 5% of it when there is one (a system listed earlier is a
      * part of later ones: viscous friction alone comes before the stop that adds to it) */
