@@ -638,9 +638,7 @@ def _guard_text(rep):
 def _tool_offset_m(geo, tool_offset):
     """tool_offset (mm) in m, else TypeError (not a number) or ValueError (not finite, or
     beyond 100 bar lengths: hg_tool_offset_check)."""
-    if isinstance(tool_offset, (bool, np.bool_)) or not isinstance(tool_offset, (int, float, np.integer, np.floating)):
-        raise TypeError("tool_offset must be a number (mm), got %r" % (tool_offset,))
-    d = float(tool_offset)
+    d = _real("tool_offset", tool_offset, "mm")
     if _tool_offset_check(geo, d / 1000.0):
         raise ValueError("tool_offset = %r mm is not a tool length: finite, at most 100 bar lengths either way"
                          % (d,))
