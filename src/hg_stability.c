@@ -10,8 +10,10 @@
 
 #define BISECT_ITER 40        /* the largest stable step, to 1e-12 of the period */
 #define STAB_NEAR 1.05        /* a bound within 5% of the shortest: the simpler system names it */
-#define IMPACT_CYCLES 20.0    /* the impact test's length: crossings of the free play and contacts */
-#define IMPACT_STEPS_MAX 20000 /* ... in at most this many steps */
+#define IMPACT_CYCLES 8.0     /* the impact test's length: crossings of the free play and contacts */
+#define IMPACT_STEPS_MAX 4000 /* ... in at most this many steps (the counts found with 20 and 20,000) */
+#define IMPACT_BUDGET 200000  /* steps of the test in one check, every force and count: a count not
+                                 passed within them fails (the check runs in the servo thread) */
 
 /* One carriage with one stiff part: m x'' = f - c x' - k x, f the drive's
  * force held over the step from a state variable w. */
@@ -277,8 +279,9 @@ static void impact_step(const hg_stability_axis *a, const hg_drivetrain_channel 
  * from rest in the middle of the free play: 1 while the energy (both
  * bodies' kinetic energy and the train's spring) stays within
  * HG_STAB_IMPACT_ENERGY times the work f has done, over IMPACT_CYCLES
- * crossings of the free play and contacts (at most IMPACT_STEPS_MAX steps). */
-static int impact_passive(const hg_stability_axis *a, hg_integrator scheme, double dt, double f)
+ * crossings of the free play and contacts (at most IMPACT_STEPS_MAX steps);
+ * each step taken from *budget, 0 when it runs out. */
+static int impact_passive(const hg_stability_axis *a, hg_integrator scheme, double dt, double f, long *budget)
 {
     const hg_drivetrain_channel t = {a->k_axial, a->c_axial, a->backlash};
     const double m_mode = 1.0 / (1.0 / a->m_rotor + 1.0 / a->m_load);
@@ -290,6 +293,8 @@ static int impact_passive(const hg_stability_axis *a, hg_integrator scheme, doub
     long s;
     for (s = 0; s < steps; s++) {
         double xr0 = y.xr, e;
+        if (--*budget < 0)
+            return 0;
         impact_step(a, &t, scheme, f, dt, &y);
         work += f * (y.xr - xr0);
         e = 0.5 * a->m_rotor * y.vr * y.vr + 0.5 * a->m_load * y.vl * y.vl + hg_drivetrain_energy(&t, y.xr - y.xl);
@@ -300,25 +305,26 @@ static int impact_passive(const hg_stability_axis *a, hg_integrator scheme, doub
 }
 
 /* 1 when axis a has no backlash (or no train, or no drive), or its impact test passes at dt with
- * each of HG_STAB_IMPACT_FORCES of its force. */
-static int impacts_pass(const hg_stability_axis *a, hg_integrator scheme, double dt)
+ * each of HG_STAB_IMPACT_FORCES of its force (steps from *budget). */
+static int impacts_pass(const hg_stability_axis *a, hg_integrator scheme, double dt, long *budget)
 {
     static const double share[] = {HG_STAB_IMPACT_FORCES};
     unsigned i;
     if (!(a->backlash > 0.0 && a->k_axial > 0.0 && a->f_max > 0.0))
         return 1;
     for (i = 0; i < sizeof share / sizeof share[0]; i++)
-        if (!impact_passive(a, scheme, dt, share[i] * a->f_max))
+        if (!impact_passive(a, scheme, dt, share[i] * a->f_max, budget))
             return 0;
     return 1;
 }
 
 /* 1 when every axis of the n passes its impact test at dt; else *bad is the first that does not. */
-static int all_impacts_pass(const hg_stability_axis *ax, int n, hg_integrator scheme, double dt, int *bad)
+static int all_impacts_pass(const hg_stability_axis *ax, int n, hg_integrator scheme, double dt, int *bad,
+                            long *budget)
 {
     int a;
     for (a = 0; a < n; a++)
-        if (!impacts_pass(&ax[a], scheme, dt)) {
+        if (!impacts_pass(&ax[a], scheme, dt, budget)) {
             *bad = a;
             return 0;
         }
@@ -336,12 +342,13 @@ static int raise_for_impacts(const hg_stability_axis *ax, int n_axes, hg_integra
 {
     unsigned k = out->substeps, pass;
     int bad = 0;
-    while (k <= substeps_max && !all_impacts_pass(ax, n_axes, scheme, period_s / k, &bad))
+    long budget = IMPACT_BUDGET;
+    while (k <= substeps_max && !all_impacts_pass(ax, n_axes, scheme, period_s / k, &bad, &budget))
         k++;
     if (k == out->substeps)
         return 0;
     for (pass = k; pass > substeps_max && pass <= 4 * substeps_max; pass += 1 + pass / 8)
-        if (impacts_pass(&ax[bad], scheme, period_s / pass))
+        if (impacts_pass(&ax[bad], scheme, period_s / pass, &budget))
             break;
     out->substeps = k <= substeps_max ? k : 0;
     out->param = ax[bad].name[HG_STAB_BACKLASH];
