@@ -347,7 +347,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     if (s) {
         *s = tmp;
         s->name = malloc(strlen(instanceName) + 1);
-        s->log_on = loggingOn ? LOG_ALL : LOG_ERRORS;  /* FMI 3.0 2.3.1: without loggingOn, errors only */
+        s->log_on = loggingOn ? LOG_ALL : LOG_ERRORS;  /* without loggingOn, errors only (docs/fmu.md) */
         s->nvars = fmu_var_count();
         s->off_values = align16(sizeof(status_t));
         s->off_plant = align16(s->off_values + s->nvars * sizeof(double));
@@ -541,6 +541,11 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     period = st(s)->period_s;
     t = now(s);
     n = floor(communicationStepSize / period + 0.5);
+    if (!isfinite(currentCommunicationPoint)) {
+        say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: currentCommunicationPoint %g is not a time (the FMU's is %.17g s); step "
+            "on from where the last step ended", s->name, currentCommunicationPoint, t);
+        return fmi3Error;
+    }
     if (!same_time(currentCommunicationPoint, t, st(s)->start_time, st(s)->steps, period)) {
         say(s, FMU_SAY_ERROR, "%s: fmi3DoStep: currentCommunicationPoint %.17g s is not the FMU's time %.17g s (off "
             "by %.3g s, more than the %.3g s a time summed over %.0f steps in double may be off); step on from where "
@@ -691,15 +696,20 @@ static int value_ok(instance_t *s, const char *fn, fmi3ValueReference vr, double
     return 0;
 }
 
-/* Store a set value (a Boolean as 0 or 1, whatever byte the importer's bool held); a parameter makes the
- * board be built again. */
+/* Store a set value (a Boolean as 0 or 1, whatever byte the importer's bool held; the period as the whole
+ * nanoseconds it puts in force, so that fmi3Get returns the period stepped); a parameter makes the board be
+ * built again. */
 static void store(instance_t *s, fmi3ValueReference vr, double x)
 {
     fmu_var v;
     fmu_var_get(vr, &v);
     if (v.causality == FMU_PARAMETER)
         st(s)->built = 0;
-    vals(s)[vr] = v.type == FMU_BOOLEAN ? (double)(x != 0.0) : x;
+    if (v.type == FMU_BOOLEAN)
+        x = (double)(x != 0.0);
+    else if (v.group == FMU_G_PERIOD)
+        x = fmu_plant_period_in_force_s(x);
+    vals(s)[vr] = x;
 }
 
 /* fmi3Get<T> and fmi3Set<T> for a type with variables (T its FMI name, C its C type, F its fmu_type). */

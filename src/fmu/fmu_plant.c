@@ -272,6 +272,21 @@ int fmu_plant_period_why(double period_s, char *why, size_t len)
     return -1;
 }
 
+/* The board's rule for an encoder scale (hg_board.c, encoders()), refused here instead of replaced by 1.0. */
+int fmu_plant_enc_scale_why(double enc_scale, char *why, size_t len)
+{
+    if (isfinite(enc_scale) && fabs(enc_scale) >= HG_ENC_SCALE_MIN)
+        return 0;
+    snprintf(why, len, "must be finite and at least %g in magnitude (counts per unit)", HG_ENC_SCALE_MIN);
+    return -1;
+}
+
+double fmu_plant_period_in_force_s(double period_s)
+{
+    long ns = period_ns_of(period_s);
+    return ns > 0 ? (double)ns / 1e9 : period_s;
+}
+
 /* hg_board_params of setup s (a value out of a field's range becomes one the core's check refuses). */
 static void block_of(const fmu_plant_setup *s, hg_board_params *bp)
 {
@@ -318,6 +333,7 @@ int fmu_plant_init(void *plant_bytes, const fmu_plant_setup *s, fmu_say_fn *say,
     hg_board_params bp;
     long ns = period_ns_of(s->period_s);
     int rc, k, j, bad = 0;
+    char why_scale[120];
     if (!(s->model >= 0 && s->model < fmu_plant_model_count())) {
         char choices[160];
         model_choices(choices, sizeof choices);
@@ -330,10 +346,8 @@ int fmu_plant_init(void *plant_bytes, const fmu_plant_setup *s, fmu_say_fn *say,
         sayf(say, env, FMU_SAY_ERROR, "parameter period = %.17g s refused: %s", s->period_s, why);
         bad = 1;
     }
-    /* the board's rule for an encoder scale (hg_board.c, encoders()), refused here instead of replaced by 1.0 */
-    if (!(isfinite(s->enc_scale) && fabs(s->enc_scale) >= HG_ENC_SCALE_MIN)) {
-        sayf(say, env, FMU_SAY_ERROR, "parameter enc_scale = %.9g refused: must be finite and at least %g in "
-             "magnitude (counts per unit)", s->enc_scale, HG_ENC_SCALE_MIN);
+    if (fmu_plant_enc_scale_why(s->enc_scale, why_scale, sizeof why_scale)) {
+        sayf(say, env, FMU_SAY_ERROR, "parameter enc_scale = %.9g refused: %s", s->enc_scale, why_scale);
         bad = 1;
     }
     block_of(s, &bp);

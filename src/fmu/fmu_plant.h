@@ -109,6 +109,14 @@ double fmu_plant_period_max_s(void);
  * the rule, naming the nearest whole-ns values, in why (len bytes). */
 int fmu_plant_period_why(double period_s, char *why, size_t len);
 
+/* The period a value that passes fmu_plant_period_why puts in force: its
+ * whole nanoseconds / 1e9 (the double nearest to them; 0.001 for 0.001). */
+double fmu_plant_period_in_force_s(double period_s);
+
+/* The rule of an encoder scale: 0 when finite and at least HG_ENC_SCALE_MIN
+ * in magnitude (the board's), else -1 with the rule in why. */
+int fmu_plant_enc_scale_why(double enc_scale, char *why, size_t len);
+
 /* Build the board of s at HOME at rest, as the HAL component refuses or
  * loads it: 0, or -1 after one FMU_SAY_ERROR message per refused value
  * (its name, value and the rule) through say. */

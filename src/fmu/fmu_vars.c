@@ -204,8 +204,15 @@ int fmu_var_refuse(const fmu_var *v, double x, const double *vals, char *why, si
                           fmu_enum_item(v->declared_type, i));
         return -1;
     }
+    if (v->group == FMU_G_PERIOD && (x < v->min || x > v->max)) {
+        snprintf(why, len, "out of its declared range %s .. %s s (the board's servo period, whole nanoseconds)",
+                 fmu_num(lo, v->min), fmu_num(hi, v->max));
+        return -1;
+    }
     if (v->group == FMU_G_PERIOD)
         return fmu_plant_period_why(x, why, len);
+    if (v->group == FMU_G_ENC_SCALE)
+        return fmu_plant_enc_scale_why(x, why, len);
     if (v->has_range && (x < v->min || x > v->max || (v->quantum > 0 && x / v->quantum != floor(x / v->quantum)))) {
         const char *core = v->group == FMU_G_PARAM ? fmu_plant_param_why(v->k, &vals[fmu_var_vr(FMU_G_PARAM, 0)], x)
                                                    : 0;

@@ -358,6 +358,9 @@ static void test_refusals(void)
     refused(fmi3DoStep(s, 0.5, PERIOD, 1, &ev, &term, &early, &last), &b, e, "not the FMU's time",
             "a step from another time");
     e = b.n[fmi3Error];
+    refused(fmi3DoStep(s, 0.0 / 0.0, PERIOD, 1, &ev, &term, &early, &last), &b, e, "is not a time",
+            "a step from a NaN time");
+    e = b.n[fmi3Error];
     refused(fmi3DoStep(s, 0, 0.0 / 0.0, 1, &ev, &term, &early, &last), &b, e, 0, "a NaN step");
     e = b.n[fmi3Error];
     refused(fmi3DoStep(s, 0, 1e300, 1, &ev, &term, &early, &last), &b, e, 0, "a step of 1e300 s");
@@ -521,8 +524,17 @@ static void test_period(void)
         refused(set_f64(s, "period", bad[k].p), &b, e, bad[k].near, "a period of a fraction of a nanosecond");
     }
     check(get_f64(s, "period") == PERIOD, "... and the period stays %g s", get_f64(s, "period"));
+    /* the declared range holds to the bit: 1 ns - 1e-6 ns was taken as 1 ns, 10 ms + 1 ulp as 10 ms */
+    e = b.n[fmi3Error];
+    refused(set_f64(s, "period", 9.99999e-10), &b, e, "declared range 1e-09 .. 0.01 s", "a period below min");
+    e = b.n[fmi3Error];
+    refused(set_f64(s, "period", 0.010000000000000002), &b, e, "declared range", "a period 1 ulp above max");
     check(set_f64(s, "period", 1e-9) == fmi3OK && set_f64(s, "period", 0.01) == fmi3OK &&
           set_f64(s, "period", 1.0000000000000002e-3) == fmi3OK, "1 ns, 10 ms and 1 ms + 1 ulp are whole ns: taken");
+    /* a period within the rounding of whole ns is stored as them: fmi3Get returns the period stepped */
+    check(get_f64(s, "period") == 1e6 / 1e9 && set_f64(s, "period", 0.0010000000000005) == fmi3OK &&
+          get_f64(s, "period") == 1e6 / 1e9, "1 ms + 1 ulp and 1 ms + 5e-16 s read back as 1 ms (%.17g s)",
+          get_f64(s, "period"));
     set_f64(s, "period", 0.00025);
     fmi3EnterInitializationMode(s, 0, 0, 0, 0, 0);
     fmi3ExitInitializationMode(s);
@@ -554,6 +566,20 @@ static void test_ranges(void)
     refused(fmi3SetUInt32(s, vr, 1, &u, 1), &b, e, "1..64", "substeps 65");
     u = 64;
     check(fmi3SetUInt32(s, vr, 1, &u, 1) == fmi3OK, "substeps 64 (its max) taken");
+    /* enc_scale: the board's rule at fmi3Set (it was taken there and refused only at
+       fmi3ExitInitializationMode); a negative scale is a direction, taken */
+    {
+        static const double scales[] = {1.0 / 0.0, 0.0, 1e-300};
+        size_t k;
+        for (k = 0; k < sizeof scales / sizeof scales[0]; k++) {
+            e = b.n[fmi3Error];
+            refused(set_f64(s, "enc_scale", scales[k]), &b, e, "finite and at least 1e-20 in magnitude",
+                    "enc_scale inf, 0, 1e-300 at fmi3Set");
+        }
+        check(set_f64(s, "enc_scale", -1000) == fmi3OK && get_f64(s, "enc_scale") == -1000,
+              "enc_scale -1000 taken");
+        set_f64(s, "enc_scale", 1000);
+    }
     vr[0] = vr_of("model");
     n = 7;
     e = b.n[fmi3Error];
