@@ -944,8 +944,9 @@ static int block_wrong(const instance_t *s, const unsigned char *blob, char *why
         snprintf(why, len, "in no mode of this FMU (mode %d, built %d)", t->mode, t->built);
         return -1;
     }
-    /* the period of a machine not built is the parameter's: the time checked against the longest */
-    limit = time_limit(t->built ? t->period_s : fmu_plant_period_max_s());
+    /* before Step Mode the period may still change (fmi3ExitInitializationMode checks the start time against
+     * the one in force, as fmi3EnterInitializationMode against the parameter's): the longest bounds it */
+    limit = time_limit(t->mode & (MODE_STEP | MODE_TERMINATED) ? t->period_s : fmu_plant_period_max_s());
     if (!(isfinite(t->period_s) && t->period_s >= fmu_plant_period_min_s() &&
           t->period_s <= fmu_plant_period_max_s()) || !isfinite(t->start_time) || !(fabs(t->start_time) < limit) ||
         !is_count(t->periods) || !is_count(t->steps) || t->steps > t->periods ||

@@ -206,6 +206,35 @@ static void test_two_instances(void)
     free(a1), free(b1), free(a2), free(b2);
 }
 
+/* A state saved in Initialization Mode after a period change round-trips through serialization, whatever
+ * the start time the change leaves (fmi3ExitInitializationMode is what refuses a start time the period in
+ * force cannot keep: the deserializer refused it first, from 8e6 s with a 1 us period). */
+static void refused(fmi3Status rc, logbook *b, int errors_before, const char *what, const char *desc);
+
+static void test_state_init(void)
+{
+    logbook b = {0};
+    fmi3Instance s = instantiate("state-init", &b);
+    fmi3FMUState st = 0, st2 = 0;
+    fmi3Byte *bytes = 0;
+    size_t size = 0;
+    int e;
+    b.quiet = 1;
+    check(fmi3EnterInitializationMode(s, 0, 0, 8e6, 0, 0) == fmi3OK && set_f64(s, "period", 1e-6) == fmi3OK,
+          "from 8e6 s, period 1 us set in Initialization Mode");
+    (void)get_f64(s, "z_0");                     /* an output read builds the machine with that period */
+    check(fmi3GetFMUState(s, &st) == fmi3OK && fmi3SerializedFMUStateSize(s, st, &size) == fmi3OK &&
+          (bytes = malloc(size)) && fmi3SerializeFMUState(s, st, bytes, size) == fmi3OK &&
+          fmi3DeserializeFMUState(s, bytes, size, &st2) == fmi3OK && fmi3SetFMUState(s, st2) == fmi3OK,
+          "its state serializes, deserializes and is set again (%s)", b.last);
+    e = b.n[fmi3Error];
+    refused(fmi3ExitInitializationMode(s), &b, e, "startTime", "fmi3ExitInitializationMode from 8e6 s at 1 us");
+    fmi3FreeFMUState(s, &st);
+    fmi3FreeFMUState(s, &st2);
+    free(bytes);
+    fmi3FreeInstance(s);
+}
+
 /* A step of 5 periods = 5 steps of 1 (inputs held); a pulse of index in any period shows. */
 static void test_multi_period(void)
 {
@@ -999,6 +1028,7 @@ static void test_logging_off(void)
 int main(void)
 {
     test_state();
+    test_state_init();
     test_two_instances();
     test_multi_period();
     test_reset();
