@@ -195,7 +195,7 @@ static double period_param(instance_t *s)
 {
     char why[200];
     double p = vals(s)[fmu_var_vr(FMU_G_PERIOD, 0)];
-    return fmu_plant_period_why(p, why, sizeof why) ? fmu_plant_period_default_s() : floor(p * 1e9 + 0.5) / 1e9;
+    return fmu_plant_period_why(p, why, sizeof why) ? fmu_plant_period_default_s() : fmu_plant_period_in_force_s(p);
 }
 
 /* 0 if the FMU can keep time at start time t0 with the period, else -1 after a message. */
