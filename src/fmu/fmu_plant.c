@@ -244,12 +244,17 @@ static void model_choices(char *buf, size_t len)
 /* How far a period's ns may lie from a whole number: the rounding of the double (of ns <= 1e7). */
 #define PERIOD_NS_SLACK 1e-6
 
+/* 1 when period_s lies in the declared range [min, max] s, to the bit. */
+static int period_in_range(double period_s)
+{
+    return period_s >= fmu_plant_period_min_s() && period_s <= fmu_plant_period_max_s();
+}
+
 /* The period in whole ns, or -1: not a whole number of ns, or outside the board's range. */
 static long period_ns_of(double period_s)
 {
     double ns = period_s * 1e9, whole = floor(ns + 0.5);
-    return whole >= 1.0 && whole <= (double)HG_PERIOD_MAX_NS && fabs(ns - whole) <= PERIOD_NS_SLACK ? (long)whole
-                                                                                                      : -1;
+    return period_in_range(period_s) && fabs(ns - whole) <= PERIOD_NS_SLACK ? (long)whole : -1;
 }
 
 int fmu_plant_period_why(double period_s, char *why, size_t len)
@@ -257,9 +262,9 @@ int fmu_plant_period_why(double period_s, char *why, size_t len)
     double ns = period_s * 1e9, below = floor(ns), above = below + 1;
     if (period_ns_of(period_s) > 0)
         return 0;
-    if (!(ns >= 1.0 - PERIOD_NS_SLACK && ns <= (double)HG_PERIOD_MAX_NS + PERIOD_NS_SLACK))
-        snprintf(why, len, "must lie in [1e-9, %g] s (the board's servo period, whole nanoseconds)",
-                 (double)HG_PERIOD_MAX_NS * 1e-9);
+    if (!period_in_range(period_s))
+        snprintf(why, len, "must lie in [%g, %g] s (the board's servo period, whole nanoseconds)",
+                 fmu_plant_period_min_s(), fmu_plant_period_max_s());
     else if (below < 1.0)
         snprintf(why, len, "is not a whole number of nanoseconds (the board's servo period is); the nearest is "
                  "%.9g s (%.0f ns)", above * 1e-9, above);

@@ -204,11 +204,6 @@ int fmu_var_refuse(const fmu_var *v, double x, const double *vals, char *why, si
                           fmu_enum_item(v->declared_type, i));
         return -1;
     }
-    if (v->group == FMU_G_PERIOD && (x < v->min || x > v->max)) {
-        snprintf(why, len, "out of its declared range %s .. %s s (the board's servo period, whole nanoseconds)",
-                 fmu_num(lo, v->min), fmu_num(hi, v->max));
-        return -1;
-    }
     if (v->group == FMU_G_PERIOD)
         return fmu_plant_period_why(x, why, len);
     if (v->group == FMU_G_ENC_SCALE)

@@ -555,9 +555,10 @@ static void test_period(void)
     check(get_f64(s, "period") == PERIOD, "... and the period stays %g s", get_f64(s, "period"));
     /* the declared range holds to the bit: 1 ns - 1e-6 ns was taken as 1 ns, 10 ms + 1 ulp as 10 ms */
     e = b.n[fmi3Error];
-    refused(set_f64(s, "period", 9.99999e-10), &b, e, "declared range 1e-09 .. 0.01 s", "a period below min");
+    refused(set_f64(s, "period", 9.99999e-10), &b, e, "must lie in [1e-09, 0.01] s", "a period below min");
     e = b.n[fmi3Error];
-    refused(set_f64(s, "period", 0.010000000000000002), &b, e, "declared range", "a period 1 ulp above max");
+    refused(set_f64(s, "period", 0.010000000000000002), &b, e, "must lie in [1e-09, 0.01] s",
+            "a period 1 ulp above max");
     check(set_f64(s, "period", 1e-9) == fmi3OK && set_f64(s, "period", 0.01) == fmi3OK &&
           set_f64(s, "period", 1.0000000000000002e-3) == fmi3OK, "1 ns, 10 ms and 1 ms + 1 ulp are whole ns: taken");
     /* a period within the rounding of whole ns is stored as them: fmi3Get returns the period stepped */
