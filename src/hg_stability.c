@@ -28,6 +28,12 @@ typedef struct {
     const char *param_c; /* what names the bound when the damping c alone cannot be integrated */
 } test_system;
 
+/* The reduced mass of two bodies on one spring. */
+static double reduced_mass(double a, double b)
+{
+    return 1.0 / (1.0 / a + 1.0 / b);
+}
+
 /* Acceleration of the test system. */
 static double accel(const test_system *s, double f, double x, double v)
 {
@@ -194,7 +200,7 @@ static int test_systems(const hg_stability_axis *a, test_system s[HG_STAB_AXIS_S
     }
     if (flexible) {                                         /* the train's mode, motor against load */
         s[n] = base;
-        s[n].m = 1.0 / (1.0 / rotor + 1.0 / carriage);
+        s[n].m = reduced_mass(rotor, carriage);
         s[n].k = a->k_axial;
         s[n].c = a->c_axial;
         s[n].param = a->name[s[n].c > 0.0 ? HG_STAB_K_AXIAL : HG_STAB_C_AXIAL];
@@ -284,7 +290,7 @@ static void impact_step(const hg_stability_axis *a, const hg_drivetrain_channel 
 static int impact_passive(const hg_stability_axis *a, hg_integrator scheme, double dt, double f, long *budget)
 {
     const hg_drivetrain_channel t = {a->k_axial, a->c_axial, a->backlash};
-    const double m_mode = 1.0 / (1.0 / a->m_rotor + 1.0 / a->m_load);
+    const double m_mode = reduced_mass(a->m_rotor, a->m_load);
     const double cycle = sqrt(2.0 * a->backlash * a->m_rotor / f) + HG_PI * sqrt(m_mode / a->k_axial);
     const double want = ceil(IMPACT_CYCLES * cycle / dt);
     const long steps = want < IMPACT_STEPS_MAX ? (long)want : IMPACT_STEPS_MAX;
