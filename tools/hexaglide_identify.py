@@ -1410,10 +1410,8 @@ def predict_ferror(cmd, gains, params, settles, threads=0):
     hg.Loop(gains, params=params).run gives."""
     import hexaglide_tune as tune
     loop = hg.Loop(gains, params=params)     # its loop config and board parameters, checked
-    jobs = []
-    for i, settle in enumerate(settles):
-        seq, s0 = tune.lead_in(cmd, settle, tune.approach_of(i))
-        jobs.append(hg.Job(loop.cfg, loop.board_params, seq, start=s0, keep=i == 0))
+    jobs = tune.trajectory_jobs(loop.cfg, {"cmd": cmd}, settles, bp=loop.board_params)
+    jobs[0].keep = True                      # (the first run's series only)
     runs = hg.batch(jobs, threads)
     if not all(r.ok for r in runs):
         return None, None, None, None
