@@ -407,12 +407,9 @@ RANGES = {
 
 def check_options(a, names):
     """ValueError naming the first option of names outside its range (RANGES)."""
-    for opt in names:
-        lo, hi, lo_in, what = RANGES[opt]
-        v = getattr(a, opt[2:].replace("-", "_"))
-        if not ((lo <= v if lo_in else lo < v) and v <= hi):
-            rng = "%d..%d" % (lo, hi) if isinstance(lo, int) else "%s%g, %g]" % ("[" if lo_in else "(", lo, hi)
-            raise ValueError("%s %s: must be in %s (%s)" % (opt, "%g" % v if isinstance(v, float) else v, rng, what))
+    why = hg_cli.out_of_range(a, RANGES, names)
+    if why:
+        raise ValueError(why)
 
 
 # which options each of excite's three jobs uses (argparse dests): the Fourier program (the default),

@@ -1033,34 +1033,19 @@ def verify(prob, seen):
 
 
 # ------------------------------------------------------------------ main
-# the options' ranges (docs/tuning.md "Options"): (lowest, highest, what it is); a float's
-# lower bound is open where the third entry says so
+# the options' ranges (docs/tuning.md "Options"): (lowest, highest, lowest allowed?, what it is)
+# (hg_cli.out_of_range); the serial plant's tune takes those of its options from here
 RANGES = {
-    "--runs": (1, 16, "closed-loop runs per candidate"),
-    "--maxiter": (1, 1000, "generations"),
-    "--popsize": (1, 100, "members per search variable"),
-    "--seed": (0, 2 ** 32 - 1, "the search's random seed"),
-    "--jobs": (0, 1024, "threads, 0 for every core"),
-    "--bandwidth": (0.0, 250.0, "Hz, above 0: the model start's closed-loop bandwidth, at most a quarter "
+    "--runs": (1, 16, True, "closed-loop runs per candidate"),
+    "--maxiter": (1, 1000, True, "generations"),
+    "--popsize": (1, 100, True, "members per search variable"),
+    "--seed": (0, 2 ** 32 - 1, True, "the search's random seed"),
+    "--jobs": (0, 1024, True, "threads, 0 for every core"),
+    "--bandwidth": (0.0, 250.0, False, "Hz, above 0: the model start's closed-loop bandwidth, at most a quarter "
                     "of the 1 kHz servo rate"),
-    "--damping": (0.0, 5.0, "above 0: the model start's damping ratio"),
-    "--max-overshoot": (0.0, 1.0, "the step overshoot allowed, a fraction"),
+    "--damping": (0.0, 5.0, False, "above 0: the model start's damping ratio"),
+    "--max-overshoot": (0.0, 1.0, True, "the step overshoot allowed, a fraction"),
 }
-
-
-def check_options(a):
-    """BadInput naming the first option outside its range (RANGES), before anything runs."""
-    for opt, (lo, hi, what) in RANGES.items():
-        v = getattr(a, opt[2:].replace("-", "_"))
-        if isinstance(lo, int):
-            ok = lo <= v <= hi
-            rng = "%d..%d" % (lo, hi)
-        else:
-            ok = (lo <= v <= hi) if opt == "--max-overshoot" else (lo < v <= hi)
-            rng = "%s%g, %g]" % ("[" if opt == "--max-overshoot" else "(", lo, hi)
-        if not ok:
-            shown = ("%g" % v if float("%g" % v) == v else repr(v)) if isinstance(v, float) else v  # 250.0001: not 250
-            raise BadInput("%s %s: must be in %s (%s)" % (opt, shown, rng, what))
 
 
 def serial_plant(argv):
@@ -1138,7 +1123,9 @@ def main(argv=None):
     a = ap.parse_args(argv)
 
     try:
-        check_options(a)
+        why = hg_cli.out_of_range(a, RANGES)
+        if why:
+            raise BadInput(why)
         sets = {}
         for s in a.set:
             k, _, v = s.partition("=")

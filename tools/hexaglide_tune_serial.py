@@ -37,6 +37,7 @@ import hg_csv  # noqa: E402
 import hg_cli  # noqa: E402
 import hg_output  # noqa: E402
 import hg_program  # noqa: E402
+import hexaglide_tune  # noqa: E402  (its option ranges; it starts this tuner from main)
 
 PERIOD_S = hg_program.PERIOD_S
 MIN_SAMPLES = 200
@@ -48,6 +49,8 @@ HAL_KEYS = {"P": "pid.%d.Pgain", "I": "pid.%d.Igain", "D": "pid.%d.Dgain", "FF0"
             "INPUT_SCALE": "motenc.0.enc-%02d-scale", "OUTPUT_SCALE": "motenc.0.dac-%02d-gain",
             "OUTPUT_OFFSET": "motenc.0.dac-%02d-offset"}
 OUT_KEYS = ["P", "I", "D", "FF0", "FF1", "FF2", "DEADBAND"]
+# the options' ranges, as the Hexaglide's tune has them (hg_cli.out_of_range)
+RANGES = {k: hexaglide_tune.RANGES[k] for k in ("--max-overshoot", "--maxiter", "--popsize", "--seed", "--jobs")}
 SKIPPED = ("# not run for the serial plant: the margins at HOME (tools/hg_margins.py linearizes the "
            "Hexaglide's coupled joints), the tool-path error (the Hexaglide's pose from its kinematics; with "
            "trivkins each axis's error is its joint's f-error, above) and the notch (the Hexaglide's structural "
@@ -232,19 +235,28 @@ def run(m, gains, cmd):
     return hg.Loop(gains, params=m.params).run(cmd)
 
 
-def step_overshoot(m, gains, j, step):
-    """Overshoot (fraction) and settled error of joint j's step of `step` units, the rest at rest, with
-    the feedback gains alone (the feed-forward terms act outside the loop: a step's derivative would
-    only kick it)."""
-    n = 600
-    cmd = np.zeros((n, m.n))
-    cmd[100:, j] = step
-    fb_only = [dict(g, FF0=0.0, FF1=0.0, FF2=0.0, FF3=0.0) for g in gains]
-    r = hg.Loop(fb_only, params=m.params).run(cmd)
+def step_command(m, j):
+    """Joint j's step response command: 600 periods, a step of 200 counts (a count is 0.5 % of it)
+    at period 100, the other joints at rest."""
+    cmd = np.zeros((600, m.n))
+    cmd[100:, j] = 200.0 / abs(m.joints[j]["INPUT_SCALE"])
+    return cmd
+
+
+def feedback_only(gains):
+    """The gains without their feed-forward terms (which act outside the loop: a step's derivative
+    would only kick it)."""
+    return [dict(g, FF0=0.0, FF1=0.0, FF2=0.0, FF3=0.0) for g in gains]
+
+
+def step_overshoot(r, cmd, j):
+    """Overshoot (fraction) of joint j's step response r (a RunResult of step_command's cmd, with
+    its f-error kept); inf when the run tripped or faulted."""
     if not r.ok:
-        return np.inf, np.inf
-    fb = (np.vstack([np.zeros((1, m.n)), cmd[:-1]]) - r.ferror_mm)[:, j]
-    return max(0.0, fb[100:].max() / step - 1.0), abs(fb[-50:] - step).max()
+        return np.inf
+    step = cmd[-1, j]
+    fb = (np.vstack([np.zeros((1, cmd.shape[1])), cmd[:-1]]) - r.ferror_mm)[:, j]
+    return max(0.0, fb[100:].max() / step - 1.0)
 
 
 def evaluate(m, gains, cmd):
@@ -253,17 +265,20 @@ def evaluate(m, gains, cmd):
     return r.peak_ferror_mm, r.peak_output_v, r.ok
 
 
-def search(m, cmd, a):
+def search(m, cmd, a, threads):
     """Per joint, P, FF1, FF2 by differential evolution on the peak f-error, refusing candidates whose
-    step overshoots more than --max-overshoot or whose output saturates (MAX_OUTPUT)."""
+    step overshoots more than --max-overshoot or whose output saturates (MAX_OUTPUT); each
+    generation's candidates (a trajectory run and a step run each) in one hg.batch over threads
+    (the same answer for any number)."""
     from scipy.optimize import differential_evolution
+    bp = m.params.board_params()
     best = []
     for j in range(m.n):
         ff1 = m.ff1_model(j)
         ff1_hi = 2.0 * ff1 if ff1 else 1.0
         p0 = m.joints[j].get("P", 1.0)
         bounds = [(np.log10(max(1.0, p0 / 10)), np.log10(max(10.0, p0 * 50))), (0.0, ff1_hi), (0.0, 0.01)]
-        step = 200.0 / abs(m.joints[j]["INPUT_SCALE"])    # 200 counts: a count is 0.5 % of it
+        step_cmd = step_command(m, j)
         maxout = m.joints[j].get("MAX_OUTPUT", 0.0)
 
         def gains_of(x, j=j):
@@ -271,22 +286,35 @@ def search(m, cmd, a):
             o[j] = {"P": 10 ** x[0], "FF1": x[1], "FF2": x[2], "I": 0.0, "D": 0.0}
             return m.gains(o)
 
-        def cost(x, j=j):
-            g = gains_of(x)
-            pk, out, ok = evaluate(m, g, cmd)
-            if not ok or not np.isfinite(pk[j]):
+        def cost(x, traj, step, j=j, step_cmd=step_cmd, maxout=maxout):
+            """x's cost from its trajectory run and its step run."""
+            if not traj.ok or not np.isfinite(traj.peak_ferror_mm[j]):
                 return 1e9
-            ov, settled = step_overshoot(m, g, j, step)
-            c = pk[j]
+            ov = step_overshoot(step, step_cmd, j)
+            c = traj.peak_ferror_mm[j]
             if ov > a.max_overshoot:
                 c *= 1 + 100 * (ov - a.max_overshoot)
-            if maxout > 0 and out[j] >= 0.999 * maxout:
+            if maxout > 0 and traj.peak_output_v[j] >= 0.999 * maxout:
                 c *= 10
             return c
-        res = differential_evolution(cost, bounds, maxiter=a.maxiter, popsize=a.popsize, seed=a.seed + j,
-                                     tol=1e-3, polish=False, x0=[np.log10(max(1.0, p0)), ff1 or 0.0, 0.0])
+
+        def costs(_func, xs, j=j, step_cmd=step_cmd):
+            """Every candidate of xs through one hg.batch (differential_evolution's map)."""
+            xs = list(xs)
+            jobs = []
+            for x in xs:
+                g = gains_of(x)
+                jobs += [hg.Job(hg.loop_config(g, plant=m.params), bp, cmd),
+                         hg.Job(hg.loop_config(feedback_only(g), plant=m.params), bp, step_cmd, keep=True)]
+            res = hg.batch(jobs, threads)
+            return [cost(x, res[2 * i], res[2 * i + 1]) for i, x in enumerate(xs)]
+
+        res = differential_evolution(lambda x: costs(None, [x])[0], bounds, maxiter=a.maxiter,
+                                     popsize=a.popsize, seed=(a.seed + j) % 2 ** 32, tol=1e-3, polish=False,
+                                     x0=[np.log10(max(1.0, p0)), ff1 or 0.0, 0.0], updating="deferred",
+                                     workers=costs)
         g = gains_of(res.x)[j]
-        log("joint %d: P %.4g FF1 %.6g FF2 %.3g: peak |f-error| %.6g %s (%d runs)"
+        log("joint %d: P %.4g FF1 %.6g FF2 %.3g: peak |f-error| %.6g %s (%d candidates, two runs each)"
             % (j, g["P"], g["FF1"], g["FF2"], res.fun, m.unit_of(j), res.nfev))
         best.append({k: g[k] for k in ("P", "I", "D", "FF1", "FF2")})
     return best
@@ -333,21 +361,29 @@ def main(argv=None):
     ap.add_argument("--trajectory", help="joint.N.motor-pos-cmd samples (CSV); default a generated move")
     ap.add_argument("--evaluate", action="store_true", help="predict the INI's (or --gains') gains only")
     ap.add_argument("--gains", metavar="FILE", help="gains to evaluate ([JOINT_N] sections)")
-    ap.add_argument("--max-overshoot", type=hg_csv.number, default=0.15)
-    ap.add_argument("--maxiter", type=hg_csv.integer, default=12)
-    ap.add_argument("--popsize", type=hg_csv.integer, default=6)
-    ap.add_argument("--seed", type=hg_csv.integer, default=1)
+    ap.add_argument("--max-overshoot", type=hg_csv.number, default=0.15,
+                    help="the step overshoot allowed, a fraction in [0, 1]; default 0.15")
+    ap.add_argument("--maxiter", type=hg_csv.integer, default=12,
+                    help="generations of differential evolution per joint, %d..%d; default 12" % RANGES["--maxiter"][:2])
+    ap.add_argument("--popsize", type=hg_csv.integer, default=6,
+                    help="population per search variable, %d..%d; default 6" % RANGES["--popsize"][:2])
+    ap.add_argument("--seed", type=hg_csv.integer, default=1,
+                    help="the search's random seed (joint N's is seed + N, modulo 2^32), %d..%d; default 1" % RANGES["--seed"][:2])
+    ap.add_argument("--jobs", type=hg_csv.integer, default=0,
+                    help="threads the closed-loop runs share (hg_batch; default 0: every core; at most %d); "
+                    "the answer is the same for any number" % RANGES["--jobs"][1])
     ap.add_argument("--output", help="also write the suggestion to this file")
     a, rest = ap.parse_known_args(argv)
     try:
         if rest:
             raise BadInput("%s: not an option of the serial plant's tune (hexaglide tune --plant serial "
                            "takes --ini --model --trajectory --evaluate --gains --max-overshoot --maxiter "
-                           "--popsize --seed --output)" % " ".join(rest))
+                           "--popsize --seed --jobs --output)" % " ".join(rest))
         if a.plant != "serial":
             raise BadInput("--plant %s: this is the serial plant's tuner" % a.plant)
-        if not (0 <= a.max_overshoot < 1):
-            raise BadInput("--max-overshoot %g: a fraction in [0, 1)" % a.max_overshoot)
+        why = hg_cli.out_of_range(a, RANGES)
+        if why:
+            raise BadInput(why)
         m = Machine(a.ini, a.model)
         cmd = load_trajectory(a.trajectory, m.n) if a.trajectory else generated_move(m)
         source = a.trajectory or "generated (each joint out and back)"
@@ -390,7 +426,7 @@ def main(argv=None):
         sys.stdout.write(ini_text(m, [{k: g[k] for k in OUT_KEYS if k in g} for g in stock_g], stock, stock,
                                   source))
         return 0
-    best = search(m, cmd, a)
+    best = search(m, cmd, a, a.jobs or hg.cores())
     gains = m.gains(hg_config.as_printed(best, OUT_KEYS))   # the prediction is the printed gains'
     pred, _, ok = evaluate(m, gains, cmd)
     if not ok:

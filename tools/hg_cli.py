@@ -38,6 +38,20 @@ class Parser(argparse.ArgumentParser):
         return super().parse_known_args(args, namespace)
 
 
+def out_of_range(a, ranges, names=None):
+    """The message naming the first option of names (default every one of ranges) whose value
+    on a (argparse's namespace) lies outside its range, else None. ranges: {"--opt": (lowest,
+    highest, lowest allowed?, what it is)}; whole numbers when lowest is an int."""
+    for opt in names or ranges:
+        lo, hi, lo_in, what = ranges[opt]
+        v = getattr(a, opt[2:].replace("-", "_"))
+        if not ((lo <= v if lo_in else lo < v) and v <= hi):
+            rng = "%d..%d" % (lo, hi) if isinstance(lo, int) else "%s%g, %g]" % ("[" if lo_in else "(", lo, hi)
+            shown = ("%g" % v if float("%g" % v) == v else repr(v)) if isinstance(v, float) else v  # 250.0001: not 250
+            return "%s %s: must be in %s (%s)" % (opt, shown, rng, what)
+    return None
+
+
 def run(main, log, caught=()):
     """sys.exit with main()'s code; an exception of caught is logged, exit 1; standard output
     closed, or a write to it failing (also --help's), is logged naming the cause, exit 1."""
