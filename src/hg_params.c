@@ -341,7 +341,7 @@ static void params_rules(const hg_params *p, hg_check *r)
         !(p->i_bar_kgm2 >= p->m_bar_kg * p->geo.l_m * p->geo.l_m / 4 &&
           p->i_bar_kgm2 < p->m_bar_kg * p->geo.l_m * p->geo.l_m / 2))
         hg_check_refuse(r, "i_bar", "must lie in [m_bar l^2/4, m_bar l^2/2) for a bar with its COM at mid-length "
-                           "(a new l or m_bar needs an i_bar in that range too)");
+                           "(a new l or m_bar needs an i_bar in that range too: a uniform bar's is m_bar l^2/3)");
     if (!hg_check_failed(r, "limit_min") && !(isfinite(p->stop_min_m) && p->stop_min_m < p->limit_min_m))
         hg_check_refuse(r, "stop_min", "must be finite and below limit_min");
     if (!(isfinite(p->limit_min_m) && p->limit_min_m < 0))

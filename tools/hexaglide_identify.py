@@ -1641,7 +1641,7 @@ def known_params(runs, sets, ini=None):
 def record_args(args):
     """The RECORD arguments of identify's command line (not the values of its options)."""
     import argparse
-    ap = argparse.ArgumentParser(add_help=False)
+    ap = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
     for opt in ("--validate", "--output", "--plots", "--ini", "--set", "--source", "--cutoff", "--timing",
                 "--commands"):
         ap.add_argument(opt, action="append")

@@ -25,9 +25,11 @@ class _Once(argparse.Action):
 
 
 class Parser(argparse.ArgumentParser):
-    """An ArgumentParser whose plain options (action "store") are given once, never empty."""
+    """An ArgumentParser whose plain options (action "store") are given once, never empty, and
+    spelled out (no abbreviations)."""
 
     def __init__(self, *args, **kw):
+        kw.setdefault("allow_abbrev", False)    # --eval is not --evaluate (build/hexaglide refuses it too)
         super().__init__(*args, **kw)
         self.register("action", None, _Once)
         self.register("action", "store", _Once)

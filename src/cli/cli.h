@@ -142,8 +142,11 @@ const char *cli_variant_name(int plant, int variant, char *buf);
 int cli_params_build(const char *cmd, int plant, int variant, const char *ini, char *const *sets, int nset,
                      hg_plant_params *v);
 
-/* The same for the Hexaglide as its own parameter set (ik, fk), checked:
- * 0, or 2 after one message per invalid field. */
+/* The same for the Hexaglide as its own parameter set (ik, fk), checked
+ * as kinematics need it: every refused geometry field, and every refused
+ * field given another value than its default (the kinematics use nothing
+ * else, as hexaglidekins; the default i_bar against a new l is not theirs
+ * to refuse). 0, or 2 after one message per such field. */
 int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, int nset, hg_params *p);
 
 /* Channel k's machine unit per SI unit, LinuxCNC's: deg per rad for a

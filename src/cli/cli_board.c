@@ -63,9 +63,14 @@ int cli_params_build(const char *cmd, int plant, int variant, const char *ini, c
     return 0;
 }
 
+static void report_refused(const char *cmd, int plant, int variant, const hg_bitset *bad, const char *const *why,
+                           const hg_plant_params *v, const char *ini, char *const *sets, int nset);
+
 int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, int nset, hg_params *p)
 {
-    hg_plant_params v;
+    static const char *why[HG_BOARD_WHY_LEN];
+    hg_bitset bad, geometry;
+    hg_plant_params v, d;
     int i, n;
     const int variant = hg_plant_at(0)->default_variant;
     if (ini) {                         /* ik and fk take no --plant: another plant's config is not theirs */
@@ -77,10 +82,24 @@ int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, in
         if (i)
             return 2;
     }
-    if (cli_params_build(cmd, 0, variant, ini, sets, nset, &v) ||
-        cli_params_check_from(cmd, 0, variant, &v, ini, sets, nset))
+    if (cli_params_build(cmd, 0, variant, ini, sets, nset, &v))
         return 2;
+    memset(why, 0, sizeof why);
+    hg_bitset_clear(&bad);
+    hg_bitset_clear(&geometry);
     hg_params_table(&n);
+    hg_plant_at(0)->defaults(variant, &d);
+    if (hg_plant_at(0)->check(variant, &v, &bad, why)) {
+        /* the kinematics (hexaglidekins' too) take the geometry alone: a rule of the dynamics is not
+         * theirs to enforce (the default i_bar against a new l), a bad value the user gave is */
+        for (i = 0; i < n; i++)
+            if (hg_bitset_has(&bad, i) && (hg_param_is_geometry(i) || !hg_param_same(v.v[i], d.v[i])))
+                hg_bitset_set(&geometry, i);
+        if (!hg_bitset_empty(&geometry)) {   /* (the geometry's fields, and those given) */
+            report_refused(cmd, 0, variant, &geometry, why, &v, ini, sets, nset);
+            return 2;
+        }
+    }
     hg_params_default(p);
     for (i = 0; i < n; i++)
         *hg_params_at(p, i) = v.v[i];
@@ -157,8 +176,9 @@ static void origin(const char *cmd, int plant, int variant, int i, const hg_plan
         snprintf(buf, len, " (%.9g %s, not changed by --set)", v->v[i], e.unit);
         return;
     }
-    snprintf(buf, len, " (the default, %.9g %s%s%s%s)", v->v[i], e.unit, e.ini_key ? "; " : "",
-             e.ini_key ? ini : "", e.ini_key ? " does not set it" : "");
+    snprintf(buf, len, " (the default, %.9g %s%s%s%s%s%s)", v->v[i], e.unit, e.ini_key ? "; " : "",
+             e.ini_key ? ini : "", e.ini_key ? " does not set it" : "; no INI key sets it: give --set ",
+             e.ini_key ? "" : e.name, e.ini_key ? "" : "=VALUE");
 }
 
 /* "; with what --set changed: name=value ..." on stderr (nothing without --set). */
