@@ -48,13 +48,12 @@ $(FMU_TREE)/binaries/$(FMU_PLAT)/hexaglide.so: $(FMU_OBJS) $(FMU_CORE) src/fmu/f
 	@mkdir -p $(dir $@)
 	$(CC) -shared -Wl,--version-script=src/fmu/fmu.map -Wl,-Bsymbolic -o $@ $(FMU_OBJS) $(FMU_CORE) $(LDLIBS_HOST)
 
-# sources/: everything another platform needs to build the binary, and its buildDescription.xml
-FMU_SRC_FILES := $(FMU_CORE_SRCS) $(FMU_GLUE) $(wildcard src/*.h src/generated/*.h) $(FMU_HDRS) \
-                 $(wildcard $(FMI3_INC)/*.h)
+# sources/: everything another platform needs to build the binary but the FMI headers (FMI 3.0 2.5.1: the
+# importer supplies them), and its buildDescription.xml
+FMU_SRC_FILES := $(FMU_CORE_SRCS) $(FMU_GLUE) $(wildcard src/*.h src/generated/*.h) $(FMU_HDRS)
 $(FMU_TREE)/sources/buildDescription.xml: $(FMU_SRC_FILES) src/fmu/fmu.mk
 	@rm -rf $(FMU_TREE)/sources && mkdir -p $(FMU_TREE)/sources
 	cp $(FMU_SRC_FILES) $(FMU_TREE)/sources/
-	cp third_party/fmi-standard/LICENSE.txt $(FMU_TREE)/sources/LICENSE-fmi-standard.txt
 	{ echo '<?xml version="1.0" encoding="UTF-8"?>'; \
 	  echo '<fmiBuildDescription fmiVersion="3.0">'; \
 	  echo '  <!-- compilerOptions: round as build/hexaglide does (no FMA, libm sin and cos) -->'; \

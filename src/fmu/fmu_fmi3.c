@@ -65,9 +65,12 @@ static const char *const log_categories[] = {"logStatusError", "logStatusWarning
 typedef fmu_status status_t;
 typedef fmu_serial_header serial_t;
 
+struct saved;
+
 /* One FMU instance. */
 typedef struct {
     unsigned long long magic;
+    struct saved *states;             /* its fmi3FMUStates not yet freed (fmi3FreeInstance frees them) */
     char *name;
     fmi3InstanceEnvironment env;
     fmi3LogMessageCallback log;
@@ -78,10 +81,12 @@ typedef struct {
     char token[FMU_TOKEN_LEN];
 } instance_t;
 
-/* An fmi3FMUState: a copy of an instance's block. */
-typedef struct {
+/* An fmi3FMUState: a copy of an instance's block, in the list of the instance that made it. */
+typedef struct saved {
     unsigned long long magic;
     size_t size;
+    void *owner;                      /* the instance_t whose list holds it */
+    struct saved *prev, *next;
     unsigned char data[];
 } saved_t;
 
@@ -400,12 +405,19 @@ fmi3Instance fmi3InstantiateScheduledExecution(fmi3String instanceName, fmi3Stri
     return 0;
 }
 
-/* Free the instance (and nothing else: saved states are the caller's). */
+/* Free the instance and every FMU state it made that is not yet freed (FMI 3.0: fmi3FreeInstance
+ * frees all the memory the FMU's functions allocated). */
 void fmi3FreeInstance(fmi3Instance instance)
 {
     instance_t *s = inst_of(instance);
+    saved_t *p, *next;
     if (!s)
         return;
+    for (p = s->states; p; p = next) {   /* (the list goes with the instance: no unlinking) */
+        next = p->next;
+        p->magic = 0;
+        free(p);
+    }
     s->magic = 0;
     free(s->blob);
     free(s->name);
@@ -801,7 +813,7 @@ static saved_t *saved_of(instance_t *s, const char *fn, fmi3FMUState state)
     return 0;
 }
 
-/* A new saved state of this instance's size, or 0 after a message. */
+/* A new saved state of this instance's size, in its list, or 0 after a message. */
 static saved_t *saved_new(instance_t *s, const char *fn)
 {
     saved_t *p = malloc(sizeof *p + s->blob_size);
@@ -811,7 +823,27 @@ static saved_t *saved_new(instance_t *s, const char *fn)
     }
     p->magic = STATE_MAGIC;
     p->size = s->blob_size;
+    p->owner = s;
+    p->prev = 0;
+    p->next = s->states;
+    if (s->states)
+        s->states->prev = p;
+    s->states = p;
     return p;
+}
+
+/* Take a saved state out of its instance's list and free it. */
+static void saved_free(saved_t *p)
+{
+    instance_t *owner = p->owner;
+    if (p->prev)
+        p->prev->next = p->next;
+    else
+        owner->states = p->next;
+    if (p->next)
+        p->next->prev = p->prev;
+    p->magic = 0;
+    free(p);
 }
 
 /* Copy the instance's block into a new or the given state. */
@@ -844,25 +876,19 @@ fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState FMUState)
     return fmi3OK;
 }
 
-/* Free a state and clear the handle. */
+/* Free a state and clear the handle (a NULL pointer or handle: nothing to do). */
 fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
 {
     instance_t *s = inst_of(instance);
     saved_t *p;
     if (!s)
         return fmi3Error;
-    if (!FMUState) {
-        say(s, FMU_SAY_ERROR, "%s: fmi3FreeFMUState: FMUState is NULL; pass the address of the fmi3FMUState to free",
-            s->name);
-        return fmi3Error;
-    }
-    if (!*FMUState)
+    if (!FMUState || !*FMUState)      /* FMI 3.0 (2.2.6.4): a NULL pointer is ignored */
         return fmi3OK;
     p = saved_of(s, "fmi3FreeFMUState", *FMUState);
     if (!p)
         return fmi3Error;
-    p->magic = 0;
-    free(p);
+    saved_free(p);
     *FMUState = 0;
     return fmi3OK;
 }

@@ -51,10 +51,10 @@ static const group_info groups[FMU_G_N] = {
                           "amplifiers powered while TRUE and no E-STOP, watchdog or fault"},
     [FMU_G_COUNT] = {"count", J, 0, FMU_INT32, FMU_OUTPUT, "discrete", 0, 0, 1,
                      "encoder counts (counts_per_rev per motor revolution; 0 at HOME after load)"},
-    [FMU_G_POSITION] = {"position", J, 0, FMU_FLOAT64, FMU_OUTPUT, "continuous", 0, 0, 1,
+    [FMU_G_POSITION] = {"position", J, 0, FMU_FLOAT64, FMU_OUTPUT, "discrete", 0, 0, 1,   /* (whole counts) */
                         "encoder position, count / enc_scale"},
     [FMU_G_INDEX] = {"index", J, 0, FMU_BOOLEAN, FMU_OUTPUT, "discrete", 0, 0, 1,
-                     "an encoder index pulse passed in the last period"},
+                     "an encoder index pulse passed in the last communication step (in any of its periods)"},
     [FMU_G_LIMIT_MIN] = {"limit_min", J, 0, FMU_BOOLEAN, FMU_OUTPUT, "discrete", 0, 0, 1,
                          "lower limit switch (carriage at or below limit_min)"},
     [FMU_G_LIMIT_MAX] = {"limit_max", J, 0, FMU_BOOLEAN, FMU_OUTPUT, "discrete", 0, 0, 1,

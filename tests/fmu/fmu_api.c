@@ -6,6 +6,7 @@
  * outside their declared range are refused by fmi3Set, and every refused
  * call returns fmi3Error with a message and changes nothing. Run by
  * tests/fmu/test_fmu_api. */
+#include <malloc.h>                /* mallinfo2: the heap in use (glibc) */
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -893,7 +894,8 @@ static void test_fmi_rules(void)
         return;
     }
     e = b.n[fmi3Error];
-    refused(fmi3FreeFMUState(s, 0), &b, e, "FMUState is NULL", "fmi3FreeFMUState of a NULL pointer");
+    check(fmi3FreeFMUState(s, 0) == fmi3OK && fmi3FreeFMUState(s, &st) == fmi3OK && b.n[fmi3Error] == e,
+          "fmi3FreeFMUState of a NULL pointer or a NULL state is ignored (FMI 3.0 2.2.6.4), no error");
     e = b.n[fmi3Error];
     refused(fmi3EnterInitializationMode(s, 0, 0, 1.0, fmi3True, 0.5), &b, e, "stopTime", "stopTime before startTime");
     e = b.n[fmi3Error];
@@ -913,11 +915,12 @@ static void test_fmi_rules(void)
     e = b.n[fmi3Error];
     check(step_at(s, t, PERIOD) == fmi3Error && b.n[fmi3Error] > e && strstr(b.last, "stopTime"), "restored after "
           "fmi3Reset, the state keeps its stopTime");
-    fmi3FreeInstance(s);
+    check(bytes && fmi3SerializeFMUState(s, st, bytes, size) == fmi3OK, "serialized");
+    fmi3FreeInstance(s);              /* (frees st: a state is its instance's) */
+    st = 0;
     s = instantiate("rules 2", &b);
     e = b.n[fmi3Error];
-    check(s && bytes && fmi3SerializeFMUState(s, st, bytes, size) == fmi3OK &&
-          fmi3DeserializeFMUState(s, bytes, size, &st2) == fmi3OK && fmi3SetFMUState(s, st2) == fmi3OK &&
+    check(s && bytes && fmi3DeserializeFMUState(s, bytes, size, &st2) == fmi3OK && fmi3SetFMUState(s, st2) == fmi3OK &&
           step_at(s, t, PERIOD) == fmi3Error && b.n[fmi3Error] > e && strstr(b.last, "stopTime"),
           "serialized and taken by another instance, the state keeps its stopTime");
     fmi3FreeFMUState(s, &st2);
@@ -928,8 +931,38 @@ static void test_fmi_rules(void)
             t += PERIOD, n++;
     check(n == 3, "stopTime 0.003 s reached by t += 0.001 s (t = %.17g s): 3 steps run", t);
     free(bytes);
-    fmi3FreeFMUState(s, &st);
     fmi3FreeInstance(s);
+}
+
+/* fmi3FreeInstance frees the FMU states the instance made and the importer did not free (FMI 3.0 2.3.1: it
+ * frees all the memory the FMU's functions allocated): the heap in use returns to what it was before the
+ * instance (glibc's count; under ASan, LeakSanitizer checks it at exit). */
+static void test_free_instance_frees_states(void)
+{
+    logbook b = {0};
+    fmi3FMUState a = 0, c = 0, d = 0;
+    fmi3Byte *bytes = 0;
+    size_t size = 0, before, after;
+    fmi3Instance s;
+    b.quiet = 1;
+    before = mallinfo2().uordblks;
+    s = started("free states", &b, 0);
+    if (!s) {
+        check(0, "free states: instance");
+        return;
+    }
+    fmi3GetFMUState(s, &a);
+    fmi3GetFMUState(s, &c);
+    fmi3SerializedFMUStateSize(s, a, &size);
+    bytes = malloc(size);
+    check(bytes && fmi3SerializeFMUState(s, a, bytes, size) == fmi3OK &&
+          fmi3DeserializeFMUState(s, bytes, size, &d) == fmi3OK && fmi3FreeFMUState(s, &c) == fmi3OK && !c,
+          "three states made (two got, one deserialized), one freed by the importer");
+    free(bytes);
+    fmi3FreeInstance(s);
+    after = mallinfo2().uordblks;
+    check(after == before, "fmi3FreeInstance frees the two states left: %zu bytes in use before the instance, %zu "
+          "after it", before, after);
 }
 
 /* No output depends on an input at the same communication point (modelDescription.xml's dependencies=""):
@@ -1045,5 +1078,6 @@ int main(void)
     test_no_feedthrough();
     test_log_categories();
     test_logging_off();
+    test_free_instance_frees_states();
     return test_failures ? 1 : 0;
 }
