@@ -211,7 +211,7 @@ def read_joints(ini):
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import hg_config
     try:
-        return hg_config.read(ini, loop=True, cmd="fmu_pid_example").joints
+        return hg_config.read(ini, loop=True, cmd="fmu_pid_example", plant_option=None).joints
     except hg_config.ConfigError as ex:
         sys.exit("fmu_pid_example: %s" % ex)
 

@@ -162,7 +162,7 @@ def read_config(a):
     ([JOINT_N]MAX_OUTPUT, OUTPUT_SCALE: the drive's reach) as soak reads them; ValueError naming the
     key, file and line of a refused value."""
     try:
-        return hg_config.read(a.ini, getattr(a, "set", []), loop=True, cmd="excite")
+        return hg_config.read(a.ini, getattr(a, "set", []), loop=True, cmd="excite", plant_option=None)
     except hg_config.ConfigError as ex:
         raise ValueError(str(ex))
 

@@ -449,7 +449,7 @@ def read_sampler(path, ini):
                                "s32 pin, -2147483648 to 2147483647)" % (path, hdr_no + 1 + bad[0], c + 1, header[c],
                                                                        a[bad[0], c]))
     try:                                # the scales as LinuxCNC and sim read them (the C reader)
-        cfg = hg_config.read(ini, loop=True, cmd="identify") if ini else None
+        cfg = hg_config.read(ini, loop=True, cmd="identify", plant_option=None) if ini else None
     except hg_config.ConfigError as ex:
         raise BadInput(str(ex))
     joints = cfg.joints if cfg else [{}] * 6
@@ -1609,7 +1609,7 @@ def known_params(runs, sets, ini=None):
     ini_geo = None
     if ini and any(r.kind == "record" for r in runs):
         try:
-            ini_geo = hg_config.read(ini, cmd="identify").params
+            ini_geo = hg_config.read(ini, cmd="identify", plant_option=None).params
         except hg_config.ConfigError as ex:
             raise BadInput(str(ex))
     for name in KNOWN:

@@ -20,6 +20,7 @@ build/hexaglide is found as $HEXAGLIDE_CLI (set by the hexaglide that runs
 the tool), else beside the library (hg.LIB_PATH: build/hexaglide).
 """
 import os
+import re
 import subprocess
 
 import hexaglide as hg
@@ -49,13 +50,14 @@ class Config:
         self.servo_period_ns = None
 
 
-def read(path, sets=(), loop=False, cmd="tune", set_option="--set", plant=None, model=None):
+def read(path, sets=(), loop=False, cmd="tune", set_option="--set", plant=None, model=None, plant_option="--plant"):
     """Config of the INI file path with the model parameters of sets ("name=value", SI) after it;
     loop: also the servo loops ([JOINT_0..5] as soak reads them, every key the HAL file sets
     required; another plant's: the keys given); plant, model: another plant than the
     Hexaglide (its section, e.g. [SERIAL], and its model's joints). ConfigError with the C reader's messages, one a line, every line after the first
     starting "hexaglide CMD: " (the caller prints the first with its prefix), naming
-    set_option where the C side says --set."""
+    set_option where the C side says --set; plant_option None: the command has no option that
+    chooses the plant (a config of another plant is then not its to take, whatever the option)."""
     exe = cli_path()
     if not os.access(exe, os.X_OK):
         raise ConfigError("%s is not there: the INI is read by build/hexaglide; build it with make host "
@@ -73,6 +75,9 @@ def read(path, sets=(), loop=False, cmd="tune", set_option="--set", plant=None, 
         text = ("\nhexaglide %s: " % cmd).join(lines)
         if set_option != "--set":
             text = text.replace("(--set ", "(%s " % set_option).replace("--set: ", "%s: " % set_option)
+        if plant_option is None:
+            text = re.sub(r": give --plant (\w+)", r": hexaglide %s has no --plant: give a config of the Hexaglide "
+                          r"(a [HEXAGLIDE] section)" % cmd, text)
         raise ConfigError(text)
     cfg = Config(path, plant, model)
     for line in r.stdout.splitlines():
