@@ -106,6 +106,7 @@ static int name_char(char c)
 static int parse_meta(hg_record *r, const char *s, size_t n, hg_record_error *e)
 {
     size_t i = 2, k0;
+    int k;
     hg_record_meta *m;
     if (n < 3 || s[1] != ' ' || !name_char(s[2]))
         return fail(r, e, HG_REC_ERR_META, r->line, 2, -1,
@@ -119,11 +120,20 @@ static int parse_meta(hg_record *r, const char *s, size_t n, hg_record_error *e)
     if (i < n && s[i] != ' ')
         return fail(r, e, HG_REC_ERR_META, r->line, (long)i + 1, -1,
                     "a metadata key is letters, digits, '-', '_' or '.', then one space; fix or delete this line");
+    for (k = 0; k < r->nmeta; k++)    /* a key once: a second value would be read or ignored silently */
+        if ((size_t)r->meta[k].key_len == i - k0 && memcmp(r->meta[k].key, s + k0, i - k0) == 0) {
+            char text[240];
+            snprintf(text, sizeof text, "the metadata key '%.*s' is given twice (lines %ld and %ld): a record "
+                     "holds each once; the file was edited or two were joined: keep the right one",
+                     (int)(i - k0 < 64 ? i - k0 : 64), s + k0, r->meta[k].line, r->line);
+            return fail(r, e, HG_REC_ERR_META, r->line, (long)k0 + 1, -1, text);
+        }
     m = &r->meta[r->nmeta++];
     m->key = s + k0;
     m->key_len = (int)(i - k0);
     m->value = i < n ? s + i + 1 : s + n;
     m->value_len = i < n ? (int)(n - i - 1) : 0;
+    m->line = r->line;
     return 0;
 }
 

@@ -72,6 +72,7 @@ typedef struct {
 typedef struct {
     const char *key, *value;
     int key_len, value_len;
+    long line;                        /* its line in the file */
 } hg_record_meta;
 
 /* The reader: buffer, header and position. */
