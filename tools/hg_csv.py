@@ -38,13 +38,20 @@ def number(text):
 
 def text_lines(path):
     """The lines of the text file path (a .gz one unpacked); CsvError naming the file and the cause
-    for one that cannot be read, a .gz cut short, or bytes that are not text."""
+    for one that cannot be read, a .gz cut short, bytes that are not text, or a last line without
+    its newline (a copy or a run that stopped while writing: "-2." of "-2.87"; the recorders and
+    halsampler end every line)."""
     import gzip
     import zlib
     gz = path.endswith(".gz")
     try:
         with (gzip.open if gz else open)(path, "rt") as f:
-            return f.read().splitlines()
+            text = f.read()
+        if text and not text.endswith(("\n", "\r")):
+            lines = text.splitlines()
+            raise CsvError("%s: line %d, the last, has no newline: the file may be cut short (%r); if it is "
+                           "whole, end it with a newline" % (path, len(lines), lines[-1][-40:]))
+        return text.splitlines()
     except EOFError:
         raise CsvError("%s: the compressed file ends before its end-of-stream marker (cut short?): "
                        "copy or compress it again" % path)
