@@ -20,11 +20,17 @@ events or --set, the motor's and encoder's data sheets): kt, lead,
 counts_per_rev, j_rotor, g, v_stribeck. Periods slower than v_stribeck (3
 v_stribeck when the record has too little slow sliding for the breakaway
 column) are left out (stick, or about to), with the filter's response time
-around them, as are periods with the amplifier off or a fault. Rotary axes: the same with N m,
-kg m^2 and rad (ratio instead of 2 pi / lead).
+around them, as are periods with the amplifier off or a fault, periods with
+the load at a hard stop or a limit switch tripped (the balance has no stop force:
+at_stop) and periods with the drive at its bus voltage (the current moves within
+them: at_bus). Rotary axes: the same with N m, kg m^2 and rad (ratio instead of 2 pi / lead).
+
+A result the board would refuse (a mass at or below zero, a negative c_visc or
+f_coulomb, f_coulomb above f_static: physical_refusals) is reported and not written.
 
 stdout: NAME = VALUE ± SIGMA UNIT lines, '#' lines for the rest; --output:
-setp lines (HAL units) and [SERIAL] INI lines. Exit 0 ok, 2 bad input."""
+setp lines (HAL units) and [SERIAL] INI lines. Exit 0 ok, 1 a result that is
+not physically possible (no --output written), 2 bad input."""
 import ctypes as C
 import io
 import os
@@ -47,12 +53,17 @@ SLOW_NO_BREAKAWAY = 3.0   # ... and slower than this when the breakaway is not e
                           # excess, exp(-9) of it at 3 v_stribeck, is then not in the fit)
 KNOWN = ("kt", "lead", "ratio", "counts_per_rev", "j_rotor", "g", "v_stribeck",
          "amp_mode", "kp_vel", "ki_vel", "v_rated",     # the amplifier's settings: the substeps' current
+         "r_winding", "l_winding", "v_bus",              # the winding and the bus: where the drive is at its bus
          "k_axial")                                      # the board's train: rigid (0) or not, ditto
-DEFAULTED = ("amp_mode", "kp_vel", "ki_vel", "v_rated", "k_axial")   # of KNOWN: the plant's default if not told
+DEFAULTED = ("amp_mode", "kp_vel", "ki_vel", "v_rated", "r_winding", "l_winding", "v_bus",
+             "k_axial")                                  # of KNOWN: the plant's default if not told
 DAC_VOLTS_MAX = 10.0   # the drives' command range, +-10 V (src/hg_analog.h HG_DAC_VOLTS_MAX)
 MC_FITS = 20        # fits at most while M settles (period_mean_current); the stock config takes 8
 RANK_TOL = 1e-4     # a column within this (relative, columns scaled to unit norm) of the others' span: not identifiable
 MIN_BREAKAWAY = 300  # sliding periods with exp(-(v/v_s)^2) > 0.05 that make the breakaway identifiable
+INPUTS_PER_CHANNEL = 4   # the board's digital inputs per axis: limit-, limit+, home, amplifier fault
+LIMIT_BITS = (0, 1)      # ... of which the limit switches (src/hg_sensors.h HG_IN_LIMIT_MIN, HG_IN_LIMIT_MAX)
+INPUTS_PER_WORD = 32     # out.in-word-N packs inputs 32 N .. 32 N + 31, bit i input 32 N + i (src/hg_board_rec.c)
 
 
 class BadInput(Exception):
@@ -102,9 +113,11 @@ def read_record(path):
                        "records alone (docs/serial.md)" % path)
     header = next((l for l in data.split(b"\n", 64) if l.startswith(b"sample,")), b"").decode(errors="replace")
     n = sum(1 for h in header.rstrip("\r").split(",") if h.startswith("out.current-"))   # the plant's axes
+    words = sorted({INPUTS_PER_CHANNEL * k // INPUTS_PER_WORD for k in range(n)})
     need = ["in.period-ns", "in.model", "out.amps-on", "out.fault"] + ["out.count-%02d" % k for k in range(n)] + \
         ["out.current-%d" % k for k in range(n)] + ["in.dac-v-%02d" % k for k in range(n)] + \
-        ["in.substeps", "in.integrator"]
+        ["out.z-%d" % k for k in range(n)] + ["out.zd-%d" % k for k in range(n)] + \
+        ["out.in-word-%d" % w for w in words] + ["in.substeps", "in.integrator"]
     try:
         a, _, hdr_no, evs = ib.record_columns(path, need, "not a serial plant's board record", data=data)
     except ib.RecordError as ex:
@@ -124,10 +137,16 @@ def read_record(path):
     rec.counts = a[:, 4:4 + n]
     rec.current = a[:, 4 + n:4 + 2 * n]
     rec.volts = ib.dac_output(a[:, 4 + 2 * n:4 + 3 * n])     # what the board's DAC puts out
+    rec.load = a[:, 4 + 3 * n:4 + 4 * n]                      # the loads' positions and speeds (at_stop)
+    rec.load_v = a[:, 4 + 4 * n:4 + 5 * n]
+    rec.in_words = {w: a[:, 4 + 5 * n + i].astype(np.int64) for i, w in enumerate(words)}
     if np.ptp(a[:, -2]) > 0 or np.ptp(a[:, -1]) > 0:
         raise BadInput("%s: the substeps or the integrator change within the record" % path)
     rec.substeps = substeps_run(rec, told, int(a[0, -2]), int(a[0, -1]), int(a[0, 0]))
     rec.rotary = [("inertia_%d" % k) in rec.names for k in range(n)]
+    ran = record_params(rec, told)
+    rec.at_stop = [at_stop(rec, k, ran) for k in range(n)]
+    rec.stops = [(ran["stop_min_%d" % k], ran["stop_max_%d" % k]) for k in range(n)]
     return rec
 
 
@@ -175,6 +194,38 @@ def period_mean_current(rec, k, kn, v, force_per_amp, j_refl, m_fit, c_fit):
     v_mid = np.append(v[0], 0.5 * (v[1:] + v[:-1]))
     v_ref = rec.volts[:, k] * get("v_rated") / DAC_VOLTS_MAX        # src/hg_drive.c's speed command
     return i_end + get("kp_vel") * dv * phi - get("ki_vel") * (v_ref - v_mid) * h * (s - 1) / 2
+
+
+def at_stop(rec, k, pp):
+    """Axis k's periods whose force balance holds a force the fit has no column for, as two masks:
+    (stop, limit). stop: the load (out.z, the position the stop acts on: src/hg_stop.h, a spring
+    in contact only) beyond a hard stop of pp, the parameters the board ran, or within its own
+    travel in the period, |out.zd| dt, of one (it may have touched it between two samples). The
+    load's own position needs no margin for the train's deflection, which the motor's (the
+    encoder's) would: it is off the load's by force / k_axial and up to half the backlash. limit:
+    a limit switch tripped (out.in-word): the board's rules place it before the stop, so the stop
+    is near, and it is the record's word for that even where the parameters misplace the stop."""
+    name = lambda f: "%s_%d" % (f, k)
+    z, reach = rec.load[:, k], np.abs(rec.load_v[:, k]) * rec.dt
+    stop = (z <= pp[name("stop_min")] + reach) | (z >= pp[name("stop_max")] - reach)
+    first = INPUTS_PER_CHANNEL * k
+    word = rec.in_words[first // INPUTS_PER_WORD]
+    limit = np.zeros(len(z), bool)
+    for b in LIMIT_BITS:
+        limit |= ((word >> (first % INPUTS_PER_WORD + b)) & 1) == 1
+    return stop, limit
+
+
+def at_bus(rec, k, kn, v, force_per_amp):
+    """Axis k's periods with its drive at the bus voltage: the winding needs r_winding i + the back-EMF
+    (kt 2 pi/lead v) + l_winding di/dt, and where that reaches v_bus the amplifier applies the whole
+    bus all period and the current falls short of its command, moving within the period
+    (src/hg_drive.c, winding): the record's last current is not the period's mean. v: the motor's
+    speed (axis_rows'), force_per_amp: kt 2 pi/lead (or kt ratio)."""
+    get = lambda name: kn[name + "_%d" % k]
+    i = rec.current[:, k]
+    di = np.diff(i, prepend=i[0]) / rec.dt               # period n: from row n-1 to row n
+    return np.abs(get("r_winding") * i + force_per_amp * v + get("l_winding") * di) >= get("v_bus")
 
 
 def known(rec, sets):
@@ -239,26 +290,42 @@ def axis_rows(rec, k, kn, slow_vs=SLOW, mc=(None, 0.0)):
     vs = get("v_stribeck")
     sg = np.sign(v)
     shape = np.exp(-(v / vs) ** 2)
-    ok = rec.ok.copy()
     margin = int(3 / (CUTOFF_HZ * dt))                    # the filter's edges and the amplifier's switching
-    bad = ~ok
-    for s in range(1, margin):
-        bad[s:] |= ~ok[:-s]
-        bad[:-s] |= ~ok[s:]
+    bad = ib.dilate(~rec.ok, margin - 1)
     bad[:margin] = bad[-margin:] = True
     slow = np.abs(v) <= slow_vs * vs                         # and where the friction's sign change, smoothed
-    near = slow.copy()                                    # by the filter, is still in the force: the
-    for s in range(1, margin):                            # filter's response time around each slow stretch
-        near[s:] |= slow[:-s]
-        near[:-s] |= slow[s:]
-    use = ~bad & ~near
+    near = ib.dilate(slow, margin - 1)                    # by the filter, is still in the force: the
+    #                                                       filter's response time around each slow stretch
+    stop, limit = rec.at_stop[k]                          # a stop's force, spread by the filter likewise
+    near_stop = ib.dilate(stop | limit, margin - 1)
+    at_v_bus = at_bus(rec, k, kn, v, force_per_amp)        # the current moving within the period: likewise
+    near_bus = ib.dilate(at_v_bus, margin - 1)
+    use = ~bad & ~near & ~near_stop & ~near_bus
     grav = (not rot) and get("g") != 0.0
     cols = [acc, v, sg, shape * sg] + ([np.ones_like(v)] if grav else [])
     return np.column_stack(cols), f, use, dict(j_refl=j_refl, grav=grav, g=get("g") if not rot else 0.0,
-                                              excited=int(((shape > 0.05) & use).sum()))
+                                              excited=int(((shape > 0.05) & use).sum()), margin=margin,
+                                              stop=int(stop.sum()), limit=int(limit.sum()),
+                                              stop_out=int((near_stop & ~bad & ~near).sum()), bus=int(at_v_bus.sum()),
+                                              bus_out=int((near_bus & ~bad & ~near & ~near_stop).sum()))
+
+
+COUNTED = ("excited", "stop", "limit", "stop_out", "bus", "bus_out")   # axis_rows' counts, summed over the records
+
+
+def stop_words(info, stops, rot):
+    """What fit_axis's info says of the periods at a hard stop or a tripped limit switch, in words."""
+    if not (info["stop"] or info["limit"]):
+        return "none at either"
+    u = "rad" if rot else "m"
+    return ("%d periods with the load at a hard stop (stop_min %g %s, stop_max %g %s; out.z) and %d with a limit "
+            "switch tripped (out.in-word): with the filter's response time (%d periods) around them, %d periods "
+            "left out that were usable otherwise" % (info["stop"], stops[0], u, stops[1], u, info["limit"],
+                                                     info["margin"], info["stop_out"]))
 
 
 def fit_axis(recs, k, kns):
+    """Axis k's force balance fitted on every record: (estimates {name: (value, sigma)}, info)."""
     excited = sum(axis_rows(rec, k, kn)[3]["excited"] for rec, kn in zip(recs, kns))
     slow_vs = SLOW if excited >= MIN_BREAKAWAY else SLOW_NO_BREAKAWAY
     # the period-mean current depends on M and c when the substeps split the period (period_mean_current):
@@ -275,13 +342,17 @@ def fit_axis(recs, k, kns):
             if info is None:
                 info = inf
             else:
-                info["excited"] += inf["excited"]
+                for c in COUNTED:
+                    info[c] += inf[c]
         X, y = np.vstack(X), np.concatenate(y)
         names = ["M", "c_visc", "f_coulomb", "f_breakaway"] + (["net_weight"] if info["grav"] else [])
         keep = [i for i, nm in enumerate(names) if nm != "f_breakaway" or info["excited"] >= MIN_BREAKAWAY]
         if len(y) < MIN_SAMPLES:
-            raise BadInput("axis %d: %d usable periods (amplifier on, sliding faster than %g v_stribeck); "
-                           "identify needs %d: a longer or faster excitation" % (k, len(y), slow_vs, MIN_SAMPLES))
+            raise BadInput("axis %d: %d usable periods (amplifier on, sliding faster than %g v_stribeck, the drive "
+                           "below its bus voltage (%d periods at it), away from the hard stops and limit switches: "
+                           "%s); identify needs %d: a longer or faster excitation%s"
+                           % (k, len(y), slow_vs, info["bus"], stop_words(info, recs[0].stops[k], recs[0].rotary[k]),
+                              MIN_SAMPLES, ", inside the limit switches" if info["stop_out"] else ""))
         Xk = X[:, keep]
         scale = np.sqrt((Xk ** 2).sum(0))
         scale = np.where(scale > 0, scale, 1.0)
@@ -289,9 +360,10 @@ def fit_axis(recs, k, kns):
         if not sv[-1] > RANK_TOL * sv[0]:         # a combination these data cannot see: no estimate of it
             null = vt[-1]
             raise BadInput("%s: axis %d: these data cannot separate %s (they move the force alike: the axis never "
-                           "accelerates or never reverses in its %d usable periods); identify needs an excitation "
+                           "accelerates or never reverses in its %d usable periods%s); identify needs an excitation "
                            "that speeds up, slows down and reverses (docs/serial.md)"
-                           % (", ".join(r.path for r in recs), k, ", ".join(names[keep[i]] for i in np.flatnonzero(np.abs(null) > 0.1)), len(y)))
+                           % (", ".join(r.path for r in recs), k, ", ".join(names[keep[i]] for i in np.flatnonzero(np.abs(null) > 0.1)), len(y),
+                              "; " + stop_words(info, recs[0].stops[k], recs[0].rotary[k]) if info["stop_out"] else ""))
         theta, *_ = np.linalg.lstsq(Xk / scale, y, rcond=None)
         theta /= scale
         if not (theta[0] > 0):
@@ -311,7 +383,58 @@ def fit_axis(recs, k, kns):
     return est, info
 
 
+# What most likely made an identified value one the board refuses (physical_refusals), by field
+LOAD_CAUSE = ("M came out at or below the known rotor's j_rotor %s: a force the fit has no column for moved the "
+              "axis (a hard stop or a clamp the record's parameters do not place, a cable's pull), or a known "
+              "parameter is wrong: --set the data sheet's j_rotor, kt and %s")
+CAUSES = {
+    "mass": LOAD_CAUSE % ("(2 pi/lead)^2", "lead"),
+    "inertia": LOAD_CAUSE % ("ratio^2", "ratio"),
+    "c_visc": "the speed's column took up a force the fit has no column for, or the speeds span too narrow a range "
+              "to part c_visc from f_coulomb; a wrong kt or lead scales every force",
+    "f_coulomb": "the speed's sign took up a force the fit has no column for, or the speeds span too narrow a "
+                 "range to part f_coulomb from c_visc; a wrong kt or lead scales every force",
+    "f_static": {True: "too little slow sliding near v_stribeck for the breakaway, or a wrong v_stribeck",
+                 False: "kt or lead too large (the drive's force is kt 2 pi/lead i), or the record's f_static below "
+                        "the machine's"},
+    "v_bus": "the identified net weight needs more current than the bus drives: a wrong kt or lead, or a force the "
+             "fit has no column for (a hard stop the record's parameters do not place)",
+}
+RELATED = {"f_static": ("f_coulomb",), "v_bus": ("mass", "counterbalance")}   # identified values in a rule
+
+
+def physical_refusals(rec, kn, spec):
+    """The identified values spec (spec names, SI) the board would refuse beside the record's other
+    parameters and the known kn: its own rules (src/hg_plant_serial.c, PlantParams.refused), so a
+    mass at or below zero, a negative c_visc or f_coulomb and an f_coulomb above f_static are among
+    them. [(the identified names it concerns, a message naming them, the rule and the likely
+    cause)]; [] when the result is physically possible."""
+    pp = record_params(rec, rec_told_index(rec))
+    for name, v in list(kn.items()) + list(spec.items()):
+        pp[name] = v
+    units = {e.name.decode(): e.unit.decode() for e in hg.params_table(hg.plant_names().index("serial"), rec.variant)}
+    value = lambda name, v: "%s = %.6g %s" % (name, v, units[name])
+    out = []
+    for name, v, why in pp.refused():
+        field, k = name.rsplit("_", 1)
+        related = [r + "_" + k for r in RELATED.get(field, ()) if r + "_" + k in spec]
+        cause = CAUSES.get(field, "a known parameter is wrong (--set it), or a force the fit has no column for")
+        if field == "f_static":
+            cause = "the sliding friction came out above the breakaway: " + cause[name in spec]
+        if name in spec:
+            names = [name]
+            what = "%s (identified%s): %s" % (value(name, v), "".join(": f_coulomb + f_breakaway, " + value(r, spec[r])
+                                                                    for r in related), why)
+        else:
+            names = related
+            what = "%s (identified) with the record's %s: %s %s" % (" and ".join(value(r, spec[r]) for r in related),
+                                                                   value(name, v), name, why)
+        out.append((names, "axis %s: %s: not physically possible; likely cause: %s" % (k, what, cause)))
+    return out
+
+
 def unit(rot, what):
+    """The unit of an estimate (M, c_visc, ...) on a linear (rot 0) or rotary axis."""
     return {("M", 0): "kg", ("M", 1): "kg m^2", ("c_visc", 0): "N s/m", ("c_visc", 1): "N m s/rad",
             ("f_coulomb", 0): "N", ("f_coulomb", 1): "N m", ("f_breakaway", 0): "N", ("f_breakaway", 1): "N m",
             ("net_weight", 0): "N", ("mass", 0): "kg", ("counterbalance", 0): "N", ("f_static", 0): "N",
@@ -319,6 +442,7 @@ def unit(rot, what):
 
 
 def main(argv):
+    """hexaglide identify on serial records: read, fit, report, check, write."""
     ap = hg_cli.Parser(prog="hexaglide identify (serial plant)")
     ap.add_argument("records", nargs="+")
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
@@ -347,7 +471,8 @@ def main(argv):
     out = ["# hexaglide identify (serial plant): %s" % ", ".join("%s (%d periods)" % (r.path, len(r.ok)) for r in recs),
            "# force balance per axis (docs/serial.md): kt 2 pi/lead i = M a + c_visc v + f_coulomb sgn v + "
            "f_breakaway exp(-(v/v_stribeck)^2) sgn v [+ net_weight]; zero-phase low-pass %g Hz (Butterworth "
-           "order %d); periods slower than %g v_stribeck left out (%g without the breakaway)"
+           "order %d); periods slower than %g v_stribeck left out (%g without the breakaway), those at a hard stop "
+           "or a tripped limit switch (the balance has no stop force) and those with the drive at its bus voltage"
            % (CUTOFF_HZ, ORDER, SLOW, SLOW_NO_BREAKAWAY)]
     for r in recs:              # left out, and said: an E-STOP or a fault on the way
         if not r.ok.all():
@@ -362,11 +487,26 @@ def main(argv):
                    % (k, info["rows"], info["rms"], "N m" if rot else "N", info["tau"], info["cond"],
                       kn["kt_%d" % k], ("ratio %g" % kn["ratio_%d" % k]) if rot else ("lead %g m" % kn["lead_%d" % k]),
                       kn["counts_per_rev_%d" % k], kn["j_rotor_%d" % k], kn["v_stribeck_%d" % k]))
+        if info["stop"] or info["limit"]:
+            out.append("# axis %d: %s: the force balance has no stop force"
+                       % (k, stop_words(info, recs[0].stops[k], rot)))
+        if info["bus"]:
+            out.append("# axis %d: %d periods with the drive at its bus voltage (r_winding i + back-EMF + l_winding "
+                       "di/dt at v_bus %g V): the current moves within them, the record holds the last; with the "
+                       "filter's response time around them, %d periods left out that were usable otherwise"
+                       % (k, info["bus"], kn["v_bus_%d" % k], info["bus_out"]))
         if info["substeps"] > 1:
             out.append("# axis %d: velocity mode, %d substeps a period: the period's mean current modelled from its "
                        "last (%s); the model's residual, up to about 1 %% of M (docs/serial.md), is not in the sigmas"
                        % (k, info["substeps"], "the rotor relaxing behind the flexible train" if info["flexible"]
                           else "M and c from %d fits" % info["fits"]))
+        elif info["flexible"]:
+            out.append("# axis %d: %s mode behind a flexible train (k_axial %g %s): fitted as a rigid one (the encoder "
+                       "counts the motor, the load follows it within force / k_axial); the model's residual, growing "
+                       "as 1 / k_axial (0.01 %% of M and c_visc at 1.5e8 N/m, 0.2 %% and 1.3 %% at 2e6 N/m: "
+                       "docs/serial.md), is not in the sigmas"
+                       % (k, "velocity" if kn["amp_mode_%d" % k] == 1.0 else "torque", kn["k_axial_%d" % k],
+                          "N m/rad" if rot else "N/m"))
         M, sM = est["M"]
         out.append("M_%d = %.6g ± %.2g %s   # reflected total: the load and the rotor, %s + j_rotor %s"
                    % (k, M, sM, unit(rot, "M"), "inertia" if rot else "mass",
@@ -395,7 +535,16 @@ def main(argv):
             cb = mval * g - v
             out.append("counterbalance_%d = %.6g ± %.2g N   # mass g - net_weight, g %g" % (k, cb, np.hypot(sM * g, s), g))
             spec["counterbalance_%d" % k] = cb
+    refusals = physical_refusals(recs[0], kns[0], spec)
+    if refusals:
+        out.append("# not physically possible: %s (stderr says why); nothing written"
+                   % ", ".join(n for names, _ in refusals for n in names))
     sys.stdout.write("\n".join(out) + "\n")
+    if refusals:
+        for _, m in refusals:
+            log(m)
+        log("the result is not physically possible: not written%s (exit 1)" % (" to %s" % a.output if a.output else ""))
+        return 1
     if a.output:
         table = {x.name.decode(): x for x in hg.params_table(hg.plant_names().index("serial"), recs[0].variant)}
         lines = ["# hexaglide identify (serial plant) of %s: setp lines (HAL units)" % ", ".join(a.records)]
