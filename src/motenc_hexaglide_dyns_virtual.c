@@ -245,6 +245,8 @@ static void report_changed(board_t *b, const hg_bitset *said)
             continue;                  /* unchanged (a NaN kept too) */
         field_value(b, &b->c->ins.params, i, v);
         field_value(b, &b->c->o.params, i, was);
+        if (strcmp(v, was) == 0)
+            continue;                  /* within the 9 digits shown: the INI's 68.254 mm is 0.068254 m + 1 ulp */
         /* the unit HAL shows: none for a dimensionless one, substeps or the integrator */
         const char *u = plant && strcmp(b->c->info[i].hal_unit, "1") != 0 ? b->c->info[i].hal_unit : "";
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: refused with it: " XP ".%d.%s = %s%s%s, changed from "
