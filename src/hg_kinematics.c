@@ -34,8 +34,9 @@ void hg_fk_options_default(hg_fk_options *o)
 int hg_fk_options_check(const hg_fk_options *o, const char **field, const char **why)
 {
     const char *f = 0, *w = 0;
-    if (!(o->max_iterations >= 1 && o->max_iterations <= HG_FK_ITERATION_CAP))
-        f = "max_iterations", w = "must be a whole number from 1 to 100";
+    if (!(o->max_iterations >= HG_FK_ITERATION_MIN && o->max_iterations <= HG_FK_ITERATION_CAP))
+        f = "max_iterations", w = "must be a whole number from 3 to 100 (the solve stops when its step is below the "
+                                  "tolerance: with fewer, a moving machine never gets there)";
     else if (!(o->tolerance_m >= HG_FK_TOLERANCE_MIN_M && o->tolerance_m <= HG_FK_TOLERANCE_MAX_M))
         f = "tolerance", w = "must be from 1e-13 to 1e-6 m: a finer Newton step than 1e-13 m is below what double "
                              "precision resolves, a coarser one than 1e-6 m would leave the pose off by more than "

@@ -35,7 +35,7 @@ typedef struct {
 
 /* Newton-Raphson settings and report for the forward kinematics. */
 typedef struct {
-    int max_iterations;        /* hard bound on iterations, >= 1 */
+    int max_iterations;        /* hard bound on iterations, HG_FK_ITERATION_MIN..HG_FK_ITERATION_CAP */
     double tolerance_m;        /* stop when the Newton step (m, angles as arc length l*rad)
                                   is below this; the residual is then far below it */
 } hg_fk_options;
@@ -43,6 +43,11 @@ typedef struct {
 /* Default FK options: 30 iterations, 1e-12 m. */
 void hg_fk_options_default(hg_fk_options *o);
 
+#define HG_FK_ITERATION_MIN 3      /* max_iterations at least this: the solve stops when its step is below
+                                      the tolerance; from the last servo period's pose the first step is the
+                                      period's motion, the second about its square (a few nm at 1 m bars), the
+                                      third below 1e-12 m: with 1 or 2 a moving machine never converges and
+                                      LinuxCNC's position stays at the last solved pose */
 #define HG_FK_ITERATION_CAP 100    /* max_iterations at most this */
 #define HG_FK_TOLERANCE_MIN_M 1e-13 /* tolerance_m at least this: double precision resolves a Newton step of
                                       about 1e-15 m at 1 m bars (the step stalls there and the solve

@@ -380,11 +380,25 @@ static void test_refusals(const hg_params *p)
         double zfar[6], pose[6] = {0.12, 0.1, 0.2, 20 * DEG, 20 * DEG, 25 * DEG}, g0[6] = {0};
         hg_fk_report rep;
         hg_fk_options_default(&o);
-        o.max_iterations = 1;
+        o.max_iterations = HG_FK_ITERATION_MIN;
         hg_inverse_kinematics(&p->geo, pose, zfar);
         rc = hg_forward_kinematics(&p->geo, zfar, g0, &o, &rep);
-        CHECK(rc == HG_ERR_NO_CONVERGENCE && rep.iterations == 1,
-              "FK limited to 1 iteration reports no convergence (code %d)", rc);
+        CHECK(rc == HG_ERR_NO_CONVERGENCE && rep.iterations == HG_FK_ITERATION_MIN,
+              "FK limited to %d iterations from HOME to a far pose reports no convergence (code %d)",
+              HG_FK_ITERATION_MIN, rc);
+        o.max_iterations = HG_FK_ITERATION_MIN - 1;
+        CHECK(hg_fk_options_check(&o, &field, &why) == HG_ERR_BAD_PARAM && strcmp(field, "max_iterations") == 0,
+              "max_iterations %d refused (%s)", o.max_iterations, why ? why : "");
+        {   /* the bound's reason: following a move at 200 mm/s (0.2 mm a 1 ms period) from the last pose,
+             * HG_FK_ITERATION_MIN iterations converge at the default tolerance and one fewer does not */
+            double z1[6], p1[6] = {0}, moved[6] = {0.0002, 0.0, 0.0, 0.0, 0.0, 0.0};
+            int it = 0;
+            hg_fk_options_default(&o);
+            hg_inverse_kinematics(&p->geo, moved, z1);
+            rc = hg_forward_solve(&p->geo, z1, p1, &o, &it, 0);   /* from HOME, the last period's pose */
+            CHECK(rc == HG_OK && it == HG_FK_ITERATION_MIN, "from the last period's pose, a 0.2 mm move converges "
+                  "in %d iterations at the default tolerance (%d, code %d)", HG_FK_ITERATION_MIN, it, rc);
+        }
     }
     shortbars.l_m = 0.3;
     CHECK(hg_geometry_check(&shortbars, &field, &why) == HG_ERR_BAD_PARAM && strcmp(field, "l") == 0,

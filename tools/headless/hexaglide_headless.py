@@ -80,6 +80,15 @@ def setp_items(text):
     return [tuple(item.split()) for item in filter(None, text.split(";"))]
 
 
+def fk_fault():
+    """hexaglidekins.fk-fault (its forward kinematics failing: LinuxCNC shows the last solved
+    pose), or None when the config has no such pin (other kinematics)."""
+    try:
+        return bool(hal.get_value("hexaglidekins.fk-fault"))
+    except Exception:          # (hal's error for a name it does not find)
+        return None
+
+
 def sim_time():
     """The virtual board's simulated time, s."""
     return float(hal.get_value(CLOCK_PIN))
@@ -608,8 +617,12 @@ def main():
                 # the unpowered machine sank before motion took each joint on
                 # (0.3-0.9 mm), not the program's following error (ferror_max_program)
                 res["ferror_highmark_since_start"] = [m.s.joint[j]["ferror_highmark"] for j in range(6)]
+                # the kinematics still failing at the end: the pose LinuxCNC shows is stale (an error
+                # said before the program, during homing, is not in program_errors)
+                res["fk_fault_end"] = fk_fault()
                 if scenario == "run":
-                    res["ok"] = (not res["program_errors"] and m.s.task_state == linuxcnc.STATE_ON)
+                    res["ok"] = (not res["program_errors"] and m.s.task_state == linuxcnc.STATE_ON
+                                 and not res["fk_fault_end"])
                 else:
                     moved = max(abs(a - b) for a, b in zip(res["joints_end"], res["joints_after_home"]))
                     res["moved_mm"] = moved
