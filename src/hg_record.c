@@ -59,6 +59,10 @@ static int next_line(hg_record *r, const char **s, size_t *n, hg_record_error *e
     nl = memchr(p, '\n', scan);
     r->line++;
     if (!nl) {
+        if (left > HG_RECORD_LINE_MAX && memchr(p, '\r', scan))
+            return fail(r, e, HG_REC_ERR_LONG_LINE, r->line, 0, -1,
+                        "no line ends in a newline, but in a carriage return (CR) alone, as an old Mac "
+                        "editor saves: a record's lines end in LF; convert it (tr '\\r' '\\n')");
         if (left > HG_RECORD_LINE_MAX)
             return fail(r, e, HG_REC_ERR_LONG_LINE, r->line, 0, -1,
                         "line longer than 65536 bytes: this is not a record file (rows are a few kB); "
@@ -244,6 +248,10 @@ int hg_record_open(hg_record *r, const char *buf, size_t len, hg_record_error *e
     rc = next_line(r, &s, &n, e);
     if (rc < 0)
         return rc;
+    if (n >= 3 && memcmp(s, "\xef\xbb\xbf", 3) == 0)
+        return fail(r, e, HG_REC_ERR_MAGIC, 1, 1, -1,
+                    "the file starts with a UTF-8 byte-order mark (an editor added it before the magic line): "
+                    "remove it (sed -i '1s/^\\xEF\\xBB\\xBF//' FILE)");
     /* "# hexaglide-record N", N one of the formats this reader knows */
     if (n != sizeof HG_RECORD_MAGIC - 1 || memcmp(s, HG_RECORD_MAGIC, n - 1) != 0 || s[n - 1] < '1' ||
         s[n - 1] > '0' + HG_RECORD_FORMAT_MAX)
