@@ -36,6 +36,7 @@ import hg_config  # noqa: E402
 import hg_csv  # noqa: E402
 import hg_cli  # noqa: E402
 import hg_output  # noqa: E402
+import hg_identify_base as ib  # noqa: E402
 import hg_program  # noqa: E402
 import hexaglide_tune  # noqa: E402  (its option ranges; it starts this tuner from main)
 
@@ -159,6 +160,13 @@ def load_trajectory(path, n):
     the headless runners' CSV), comma or space separated; rows of n numbers without a header."""
     if not os.path.isfile(path):
         raise BadInput("no such trajectory file: %s" % path)
+    try:
+        with open(path, "rb") as f:
+            is_record = f.readline().rstrip(b"\r\n") in hg.RECORD_MAGICS
+    except OSError as ex:
+        raise BadInput("%s: cannot read it: %s" % (path, ex.strerror or ex))
+    if is_record:
+        return load_record(path, n)
     header, rows, lines_of = None, [], []
     try:
         lines = hg_csv.text_lines(path)
@@ -207,6 +215,31 @@ def load_trajectory(path, n):
         raise BadInput("%s: %d samples; at least %d (%.1f s at 1 kHz)" % (path, len(cmd), MIN_SAMPLES,
                                                                         MIN_SAMPLES * PERIOD_S))
     return cmd
+
+
+def load_record(path, n):
+    """Joint commands (rows, n) from a board record of the serial plant (docs/replay.md), read as
+    replay reads it: its joint.N.motor-pos-cmd columns, at tune's servo period. A record of another
+    plant (the Hexaglide's joints are not this machine's axes) is refused."""
+    import hexaglide_identify_serial as ids
+    if not ids.is_serial_record(path):
+        raise BadInput("%s is a board record of another plant than the serial one (its '# plant' line or "
+                       "in.plant): the serial plant's tune takes a serial machine's record, or a CSV of its "
+                       "joint.N.motor-pos-cmd" % path)
+    want = ["joint.%d.motor-pos-cmd" % j for j in range(n)] + ["in.period-ns"]
+    try:
+        data, _, hdr_no, _ = ib.record_columns(path, want, "tune needs motion's joint commands (a record of "
+                                               "tools/hg_record.py under LinuxCNC has them)")
+    except ib.RecordError as ex:
+        raise BadInput(str(ex))
+    off = np.flatnonzero(data[:, n] != round(PERIOD_S * 1e9))
+    if len(off):
+        raise BadInput("%s line %d: in.period-ns %d: tune runs one line per %g s servo period" % (
+            path, hdr_no + 1 + off[0], data[off[0], n], PERIOD_S))
+    if len(data) < MIN_SAMPLES:
+        raise BadInput("%s: %d samples; at least %d (%.1f s at 1 kHz)" % (path, len(data), MIN_SAMPLES,
+                                                                        MIN_SAMPLES * PERIOD_S))
+    return np.ascontiguousarray(data[:, :n])
 
 
 def generated_move(m):

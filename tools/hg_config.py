@@ -74,7 +74,9 @@ def read(path, sets=(), loop=False, cmd="tune", set_option="--set", plant=None, 
                  for x in r.stderr.strip().splitlines()] or ["hexaglide config: exit %d" % r.returncode]
         text = ("\nhexaglide %s: " % cmd).join(lines)
         if set_option != "--set":
-            text = text.replace("(--set ", "(%s " % set_option).replace("--set: ", "%s: " % set_option)
+            text = text.replace("(--set ", "(%s " % set_option).replace("--set: ", "%s: " % set_option) \
+                .replace("with what --set changed", "with what %s changed" % set_option) \
+                .replace("give --set ", "give %s " % set_option)
         if plant_option is None:
             text = re.sub(r": give --plant (\w+)", r": hexaglide %s has no --plant: give a config of the Hexaglide "
                           r"(a [HEXAGLIDE] section)" % cmd, text)
