@@ -286,9 +286,12 @@ static int write_description(FILE *f)
     put_escaped(f, fmu_plant_description());
     fprintf(f, "\"\n  generationTool=\"virtual Hexaglide for LinuxCNC (src/fmu/fmu_gen.c)\"\n"
                "  instantiationToken=\"%s\"\n  variableNamingConvention=\"flat\">\n\n", token);
+    /* fixedInternalStepSize: the servo period, the step the board integrates by (its default: the
+       parameter period sets another, and a communication step is then a multiple of that) */
     fprintf(f, "  <CoSimulation\n    modelIdentifier=\"%s\"\n    canGetAndSetFMUState=\"true\"\n"
                "    canSerializeFMUState=\"true\"\n    canHandleVariableCommunicationStepSize=\"false\"\n"
-               "    hasEventMode=\"false\"/>\n\n", fmu_plant_name());
+               "    fixedInternalStepSize=\"%s\"\n    hasEventMode=\"false\"/>\n\n", fmu_plant_name(),
+            num(b, fmu_plant_period_default_s()));
     write_units(f, units, nunits);
     write_types(f);
     fprintf(f, "  <LogCategories>\n"
