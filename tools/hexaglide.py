@@ -18,6 +18,7 @@ which is the core's own (m, rad, s) as in src/hg_dynamics.h.
 import configparser
 import copy
 import ctypes as C
+import decimal
 import os
 import re
 
@@ -84,10 +85,16 @@ def _vector(name, values, n, finite=False, what=""):
 
 def _real(name, value, unit=""):
     """value as a float (a Python or numpy integer or float, not a bool, a string or a complex),
-    else TypeError naming the argument."""
+    else TypeError naming the argument; ValueError naming it for an int beyond a float's range
+    (float() would raise a bare OverflowError)."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise TypeError("%s must be a number%s, got %r" % (name, " (%s)" % unit if unit else "", value))
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:                      # (Decimal prints an int of any length in short)
+        raise ValueError("%s = %s: beyond a float's range (at most about 1.8e308 in magnitude); give a finite "
+                         "number%s" % (name, "{:.6g}".format(decimal.Decimal(value).normalize()),
+                                       " (%s)" % unit if unit else ""))
 
 
 def _param_name(name):
@@ -368,7 +375,8 @@ _model_from_name = _sig("hg_model_from_name", C.c_int, C.c_char_p)
 _data_reset = _sig("hg_data_reset", C.c_int, _P, _P)
 _step = _sig("hg_step", C.c_int, _P, _P, _d6, C.c_double)
 STEP_DT_MAX_S = _sig("hg_step_dt_max_s", C.c_double)()   # HG_DT_MAX_S: the longest step hg_step takes
-_ERR_BAD_DT = -10                                         # HG_ERR_BAD_DT (src/hg_errors.h): hg_step's dt refused
+_ERR_BAD_PARAM = -7                                       # HG_ERR_BAD_PARAM (src/hg_errors.h): a parameter refused
+_ERR_BAD_DT = -10                                         # HG_ERR_BAD_DT: hg_step's dt refused
 _ERR_STIFF = -16                                          # HG_ERR_STIFF: a step the scheme cannot integrate
 
 
@@ -475,6 +483,76 @@ def _board_setting(plant, variant, name, value):
         setattr(bp, name, v)
         return _board_refusals(plant, variant, bp).get(bit)
     return _whole_checked(name, value, C.c_uint, why_refused)
+
+
+SUBSTEPS_MAX = 64                               # HG_SUBSTEPS_MAX: the most substeps the board runs a period
+_FAULT_STIFF = 4                                # HG_FAULT_STIFF: a board's fault_cause when none are enough
+_BOARD_TEXT_LEN = 240                           # HG_BOARD_TEXT_LEN (src/hg_board.h)
+_describe_stiffness = _sig("hg_board_describe_stiffness", None, _P, C.POINTER(BoardOutputs), C.c_long, C.c_int,
+                           C.c_char_p)
+_board_params_verdicts = {}                     # (plant, variant, period_ns, bytes of bp) -> _board_params_refusal
+
+
+def _refused_field(table, bp, bit, why):
+    """"name = value unit: why" of the field of bp (a BoardParams) at bit (as _board_refusals
+    numbers them) that the board refuses; table: the plant's params_table."""
+    if bit < len(table):
+        unit = table[bit].unit.decode()
+        return "%s = %r%s: %s" % (table[bit].name.decode(), bp.plant[bit], " " + unit if unit else "", why)
+    name = {BOARD_BIT_SUBSTEPS: "substeps", BOARD_BIT_INTEGRATOR: "integrator"}.get(bit)
+    return _refusal(name, getattr(bp, name), why) if name else "plant[%d] = %r: %s" % (bit, bp.plant[bit], why)
+
+
+def _stiffness(plant, variant, bp, period_ns):
+    """None when a board of the plant and model built with the block bp (a BoardParams the
+    board takes) integrates it at period_ns, else (code, why): HG_ERR_STIFF with the sentence of
+    the board's stability check (hg_board_describe_stiffness: the parameter, its value, the
+    scheme's longest stable step, the period) and what to change. The check `hexaglide sim --set`
+    makes before it runs (src/cli/cli_board.c, cli_board_integrable): one period of a board of
+    the block, which faults when no count of substeps up to SUBSTEPS_MAX is enough."""
+    buf = C.create_string_buffer(_sizeof(8))
+    rc = _board_init(buf, plant, variant, C.byref(bp))
+    if rc:
+        return rc, "a board of these parameters cannot be built"
+    inputs, out = BoardInputs(), BoardOutputs()
+    _board_inputs_default(buf, C.byref(inputs))
+    inputs.params = bp
+    _board_step(buf, C.byref(inputs), C.byref(out), period_ns)
+    if not (out.fault and out.fault_cause == _FAULT_STIFF):
+        return None
+    text = C.create_string_buffer(_BOARD_TEXT_LEN)
+    _describe_stiffness(buf, C.byref(out), period_ns, 0, text)
+    return out.fault_code, "%s, even with %d substeps a period; give %s" % (
+        text.value.decode(), SUBSTEPS_MAX, "a softer value, another integrator or a shorter period_ns"
+        if out.stiff_dt_max_s > 0 else "the mode damping or another integrator (no step is short enough)")
+
+
+def _board_params_refusal(plant, variant, bp, period_ns):
+    """None when a board of the plant and model takes the block bp (a BoardParams) and can
+    integrate it at period_ns, else (code, why): HG_ERR_BAD_PARAM with each field
+    hg_board_params_check refuses (name = value unit: rule), or _stiffness's. Cached per
+    block, period and plant (a Job of a block already checked costs a lookup)."""
+    key = (plant, variant, period_ns, bytes(bp))
+    if key not in _board_params_verdicts:
+        bad = _board_refusals(plant, variant, bp)
+        if bad:
+            table = params_table(plant, variant)
+            verdict = _ERR_BAD_PARAM, "; ".join(_refused_field(table, bp, i, why) for i, why in sorted(bad.items()))
+        else:
+            verdict = _stiffness(plant, variant, bp, period_ns)
+        if len(_board_params_verdicts) >= 1024:  # (a fit may try many blocks: keep the cache bounded)
+            _board_params_verdicts.clear()
+        _board_params_verdicts[key] = verdict
+    return _board_params_verdicts[key]
+
+
+def _check_board_params(what, plant, variant, bp, period_ns):
+    """HexaglideError (what, then the code and why of _board_params_refusal) unless a board of
+    the plant and model takes bp and integrates it at period_ns: what Board, Loop and Job
+    refuse at construction, before a board faults on its first period."""
+    refusal = _board_params_refusal(plant, variant, bp, period_ns)
+    if refusal:
+        raise HexaglideError(what, *refusal)
 
 
 class _ByName:
@@ -779,7 +857,9 @@ class Board:
         at the first step: a period_ns hg_board_step would fault on (the loop's check, the same
         (0, HG_PERIOD_MAX_NS]), substeps and integrator hg_board_params_check refuses
         (ValueError naming the argument, its value and range), an estop_closed not a bool
-        (TypeError), parameters the plant refuses (HexaglideError naming each)."""
+        (TypeError), parameters the plant refuses (HexaglideError code -7 naming each) or that
+        the board cannot integrate at period_ns even with SUBSTEPS_MAX substeps (code -16 naming
+        the bound: _check_board_params)."""
         _name("plant", plant, plant_names())
         period_ns = _loop_period(period_ns)
         if not isinstance(estop_closed, (bool, np.bool_)):
@@ -808,12 +888,10 @@ class Board:
         self.plant, self.variant = pi, k
         self.buf = C.create_string_buffer(_sizeof(8))
         self.board_params = self.params.board_params(substeps, integrator)
+        _check_board_params("board init", pi, k, self.board_params, period_ns)
         rc = _board_init(self.buf, pi, k, C.byref(self.board_params))
         if rc:
-            names = [e.name.decode() for e in params_table(pi, k)]
-            raise HexaglideError("board init", rc, "; ".join(
-                "%s = %r: %s" % (names[i], self.board_params.plant[i], why)
-                for i, why in _board_refusals(pi, k, self.board_params).items() if i < len(names)))
+            raise HexaglideError("board init", rc)
         self.inputs = BoardInputs()
         _board_inputs_default(self.buf, C.byref(self.inputs))
         if estop_closed:
@@ -1157,7 +1235,8 @@ class Loop:
 
     def __init__(self, gains=None, params=None, ferror_limit_mm=0.0, period_ns=1000000,
                  model="reduced-cartesian", substeps=1, integrator=DEFAULT_INTEGRATOR, notch=None):
-        """params: Params of the Hexaglide, or PlantParams of any plant (its channels are the loops)."""
+        """params: Params of the Hexaglide, or PlantParams of any plant (its channels are the loops),
+        refused here as Board refuses them (HexaglideError code -7 or -16 naming the parameter)."""
         plant = params if isinstance(params, PlantParams) else None
         if plant is None:
             _geometry(params)                  # a Params or None, else TypeError
@@ -1165,6 +1244,7 @@ class Loop:
         self.joints = _plant_channels(self.cfg.plant, self.cfg.variant)
         self.params = params or Params()
         self.board_params = self.params.board_params(substeps, integrator)   # checked there
+        _check_board_params("loop init", self.cfg.plant, self.cfg.variant, self.board_params, self.cfg.period_ns)
         self.buf = C.create_string_buffer(_sizeof(0))
         self.reset()
 
@@ -1290,7 +1370,8 @@ class Job:
     def __init__(self, cfg, board_params, cmd, start=0, keep=False, load=False, joints=None, tool_error=True,
                  stop=None):
         """joints: the plant's channels (cfg's plant: PlantParams.channels), the columns of cmd;
-        None: cfg's. cfg is checked as loop_config checks it (ValueError naming the field).
+        None: cfg's. cfg is checked as loop_config checks it (ValueError naming the field),
+        board_params as Board checks them at cfg's period (HexaglideError code -7 or -16).
         stop: a Stop (None: the run goes to its end, a trip or a fault)."""
         if not isinstance(cfg, LoopConfig):
             raise TypeError("cfg must be a LoopConfig (hexaglide.loop_config), got %r" % (cfg,))
@@ -1298,6 +1379,7 @@ class Job:
             raise TypeError("board_params must be a BoardParams (Params.board_params, PlantParams.board_params), "
                             "got %r" % (board_params,))
         check_loop_config(cfg)
+        _check_board_params("job: board_params", cfg.plant, cfg.variant, board_params, cfg.period_ns)
         n = _plant_channels(cfg.plant, cfg.variant)
         if joints is not None and _whole("joints", joints) != n:
             raise ValueError("joints = %d, but cfg's plant %s has %d channels" % (joints, plant_names()[cfg.plant], n))

@@ -165,7 +165,10 @@ def substeps_run(rec, told, substeps, integrator, period_ns):
     """The plant steps per servo period the board ran: the record's substeps, raised by the
     board's stability check for its parameters (src/hg_board.c), found by one period of it."""
     pp = record_params(rec, told)
-    b = hg.Board(None, pp, substeps=max(1, substeps), integrator=integrator, period_ns=period_ns, plant="serial")
+    try:
+        b = hg.Board(None, pp, substeps=max(1, substeps), integrator=integrator, period_ns=period_ns, plant="serial")
+    except hg.HexaglideError as ex:     # (an edited record: the board that ran it took its set)
+        raise BadInput("%s: the record's parameters are no machine the board runs (an edited record?): %s" % (rec.path, ex))
     return int(b.step([0.0] * rec.n).substeps_run)
 
 
