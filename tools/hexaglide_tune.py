@@ -1048,6 +1048,13 @@ RANGES = {
 }
 
 
+def add_jobs_option(ap):
+    """--jobs N, as both tuners take it (RANGES["--jobs"])."""
+    ap.add_argument("--jobs", type=hg_csv.integer, default=0,
+                    help="threads the closed-loop runs share (hg_batch; default 0: every core; at most %d); "
+                    "the answer is the same for any number" % RANGES["--jobs"][1])
+
+
 def serial_plant(argv):
     """True when the command line asks for the serial plant: --plant serial, or an --ini with a
     [SERIAL] section (docs/serial.md): tools/hexaglide_tune_serial.py tunes it."""
@@ -1099,9 +1106,7 @@ def main(argv=None):
                     help="generations of differential evolution, %d..%d; default 25" % RANGES["--maxiter"][:2])
     ap.add_argument("--popsize", type=hg_csv.integer, default=8,
                     help="population per search variable, %d..%d; default 8" % RANGES["--popsize"][:2])
-    ap.add_argument("--jobs", type=hg_csv.integer, default=0,
-                    help="threads the closed-loop runs share (hg_batch; default 0: every core; at most %d); "
-                    "the answer is the same for any number" % RANGES["--jobs"][1])
+    add_jobs_option(ap)
     ap.add_argument("--no-stop-early", action="store_true",
                     help="run every candidate's every trajectory run, also one whose first run already "
                     "costs more than the member it competes with (the same answer, slower: a check)")

@@ -402,9 +402,7 @@ def main(argv=None):
                     help="population per search variable, %d..%d; default 6" % RANGES["--popsize"][:2])
     ap.add_argument("--seed", type=hg_csv.integer, default=1,
                     help="the search's random seed (joint N's is seed + N, modulo 2^32), %d..%d; default 1" % RANGES["--seed"][:2])
-    ap.add_argument("--jobs", type=hg_csv.integer, default=0,
-                    help="threads the closed-loop runs share (hg_batch; default 0: every core; at most %d); "
-                    "the answer is the same for any number" % RANGES["--jobs"][1])
+    hexaglide_tune.add_jobs_option(ap)
     ap.add_argument("--output", help="also write the suggestion to this file")
     a, rest = ap.parse_known_args(argv)
     try:
