@@ -38,7 +38,7 @@ import hg_cli  # noqa: E402
 import hg_output  # noqa: E402
 import hg_identify_base as ib  # noqa: E402
 import hg_program  # noqa: E402
-import hexaglide_tune  # noqa: E402  (its option ranges; it starts this tuner from main)
+import hg_tune_options  # noqa: E402
 
 PERIOD_S = hg_program.PERIOD_S
 MIN_SAMPLES = 200
@@ -51,7 +51,7 @@ HAL_KEYS = {"P": "pid.%d.Pgain", "I": "pid.%d.Igain", "D": "pid.%d.Dgain", "FF0"
             "OUTPUT_OFFSET": "motenc.0.dac-%02d-offset"}
 OUT_KEYS = ["P", "I", "D", "FF0", "FF1", "FF2", "DEADBAND"]
 # the options' ranges, as the Hexaglide's tune has them (hg_cli.out_of_range)
-RANGES = {k: hexaglide_tune.RANGES[k] for k in ("--max-overshoot", "--maxiter", "--popsize", "--seed", "--jobs")}
+RANGES = {k: hg_tune_options.RANGES[k] for k in ("--max-overshoot", "--maxiter", "--popsize", "--seed", "--jobs")}
 SKIPPED = ("# not run for the serial plant: the margins at HOME (tools/hg_margins.py linearizes the "
            "Hexaglide's coupled joints), the tool-path error (the Hexaglide's pose from its kinematics; with "
            "trivkins each axis's error is its joint's f-error, above) and the notch (the Hexaglide's structural "
@@ -402,7 +402,7 @@ def main(argv=None):
                     help="population per search variable, %d..%d; default 6" % RANGES["--popsize"][:2])
     ap.add_argument("--seed", type=hg_csv.integer, default=1,
                     help="the search's random seed (joint N's is seed + N, modulo 2^32), %d..%d; default 1" % RANGES["--seed"][:2])
-    hexaglide_tune.add_jobs_option(ap)
+    hg_tune_options.add_jobs_option(ap)
     ap.add_argument("--output", help="also write the suggestion to this file")
     a, rest = ap.parse_known_args(argv)
     try:
