@@ -486,8 +486,9 @@ def _board_setting(plant, variant, name, value):
 
 
 SUBSTEPS_MAX = 64                               # HG_SUBSTEPS_MAX: the most substeps the board runs a period
-_FAULT_STIFF = 4                                # HG_FAULT_STIFF: a board's fault_cause when none are enough
 _BOARD_TEXT_LEN = 240                           # HG_BOARD_TEXT_LEN (src/hg_board.h)
+_board_integrable = _sig("hg_board_integrable", C.c_int, _P, C.c_int, C.c_int, C.POINTER(BoardParams), C.c_long,
+                         C.POINTER(BoardOutputs))
 _describe_stiffness = _sig("hg_board_describe_stiffness", None, _P, C.POINTER(BoardOutputs), C.c_long, C.c_int,
                            C.c_char_p)
 _board_params_verdicts = {}                     # (plant, variant, period_ns, bytes of bp) -> _board_params_refusal
@@ -507,19 +508,15 @@ def _stiffness(plant, variant, bp, period_ns):
     """None when a board of the plant and model built with the block bp (a BoardParams the
     board takes) integrates it at period_ns, else (code, why): HG_ERR_STIFF with the sentence of
     the board's stability check (hg_board_describe_stiffness: the parameter, its value, the
-    scheme's longest stable step, the period) and what to change. The check `hexaglide sim --set`
-    makes before it runs (src/cli/cli_board.c, cli_board_integrable): one period of a board of
-    the block, which faults when no count of substeps up to SUBSTEPS_MAX is enough."""
+    scheme's longest stable step, the period) and what to change. The check is the core's
+    hg_board_integrable, the one `hexaglide sim --set` makes before it runs."""
     buf = C.create_string_buffer(_sizeof(8))
-    rc = _board_init(buf, plant, variant, C.byref(bp))
-    if rc:
-        return rc, "a board of these parameters cannot be built"
-    inputs, out = BoardInputs(), BoardOutputs()
-    _board_inputs_default(buf, C.byref(inputs))
-    inputs.params = bp
-    _board_step(buf, C.byref(inputs), C.byref(out), period_ns)
-    if not (out.fault and out.fault_cause == _FAULT_STIFF):
+    out = BoardOutputs()
+    rc = _board_integrable(buf, plant, variant, C.byref(bp), period_ns, C.byref(out))
+    if rc == 0:
         return None
+    if rc != _ERR_STIFF:
+        return rc, "a board of these parameters cannot be built"
     text = C.create_string_buffer(_BOARD_TEXT_LEN)
     _describe_stiffness(buf, C.byref(out), period_ns, 0, text)
     return out.fault_code, "%s, even with %d substeps a period; give %s" % (

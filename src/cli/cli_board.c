@@ -269,16 +269,11 @@ hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_
 int cli_board_integrable(const char *cmd, int plant, int variant, const hg_board_params *p, long period_ns,
                          char *const *sets, int nset)
 {
-    hg_board *b = cli_board_new(cmd, plant, variant, p);
-    hg_board_inputs in;
+    hg_board *b = cli_board_new(cmd, plant, variant, p);   /* (refuses a block the checks refuse, by field) */
     hg_board_outputs out;
     if (!b)
         return 1;
-    hg_board_inputs_default(b, &in);
-    if (p)
-        in.params = *p;
-    hg_board_step(b, &in, &out, period_ns);       /* the first period checks the block's stability */
-    if (out.fault && out.fault_cause == HG_FAULT_STIFF) {
+    if (hg_board_integrable(b, plant, variant, p, period_ns, &out) == HG_ERR_STIFF) {
         char what[HG_PLANT_TEXT_LEN + 2 * HG_BOARD_TEXT_LEN];
         hg_param_info e;
         cli_fault_text(b, &out, period_ns, what);
