@@ -165,18 +165,17 @@ int hg_board_init(hg_board *b, int plant, int variant, const hg_board_params *p)
     return b->fault ? b->fault_code : HG_OK;
 }
 
-int hg_board_integrable(hg_board *b, int plant, int variant, const hg_board_params *p, long period_ns,
-                        hg_board_outputs *out)
+int hg_board_integrable(hg_board *b, hg_board_inputs *in, int plant, int variant, const hg_board_params *p,
+                        long period_ns, hg_board_outputs *out)
 {
-    hg_board_inputs in;
     int rc = hg_board_init(b, plant, variant, p);
     memset(out, 0, sizeof *out);
     if (rc)
         return rc;
-    hg_board_inputs_default(b, &in);
+    hg_board_inputs_default(b, in);
     if (p)
-        in.params = *p;                          /* the block as given, not as the model keeps it */
-    hg_board_step(b, &in, out, period_ns);       /* the first period checks the block's stability */
+        in->params = *p;                         /* the block as given, not as the model keeps it */
+    hg_board_step(b, in, out, period_ns);       /* the first period checks the block's stability */
     return out->fault && out->fault_cause == HG_FAULT_STIFF ? HG_ERR_STIFF : HG_OK;
 }
 

@@ -298,14 +298,15 @@ void hg_board_forget(hg_board *b);
 void hg_board_step(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out, long period_ns);
 
 /* Whether a board of plant and variant built with block p (0: the
- * plant's defaults) integrates it at period_ns: b is scratch (the caller's
- * storage; no allocation here), left as a board after one idle period.
+ * plant's defaults) integrates it at period_ns: b and in are scratch (the
+ * caller's storage: no allocation, no large frame here), left as a board
+ * after one idle period and its inputs.
  * 0; the code of hg_board_init when it cannot be built; or HG_ERR_STIFF
  * with out's stiff_* fields set (hg_board_describe_stiffness names the
  * parameter) when no count of substeps up to HG_SUBSTEPS_MAX is enough.
  * The check the CLI and the Python binding make before a run. */
-int hg_board_integrable(hg_board *b, int plant, int variant, const hg_board_params *p, long period_ns,
-                        hg_board_outputs *out);
+int hg_board_integrable(hg_board *b, hg_board_inputs *in, int plant, int variant, const hg_board_params *p,
+                        long period_ns, hg_board_outputs *out);
 
 /* Check a parameter block for b's plant: 0, or HG_ERR_BAD_PARAM with
  * *bad (may be 0) holding every invalid field (bits as refused) and why[i]

@@ -487,8 +487,8 @@ def _board_setting(plant, variant, name, value):
 
 SUBSTEPS_MAX = 64                               # HG_SUBSTEPS_MAX: the most substeps the board runs a period
 _BOARD_TEXT_LEN = 240                           # HG_BOARD_TEXT_LEN (src/hg_board.h)
-_board_integrable = _sig("hg_board_integrable", C.c_int, _P, C.c_int, C.c_int, C.POINTER(BoardParams), C.c_long,
-                         C.POINTER(BoardOutputs))
+_board_integrable = _sig("hg_board_integrable", C.c_int, _P, C.POINTER(BoardInputs), C.c_int, C.c_int,
+                         C.POINTER(BoardParams), C.c_long, C.POINTER(BoardOutputs))
 _describe_stiffness = _sig("hg_board_describe_stiffness", None, _P, C.POINTER(BoardOutputs), C.c_long, C.c_int,
                            C.c_char_p)
 _board_params_verdicts = {}                     # (plant, variant, period_ns, bytes of bp) -> _board_params_refusal
@@ -511,8 +511,8 @@ def _stiffness(plant, variant, bp, period_ns):
     scheme's longest stable step, the period) and what to change. The check is the core's
     hg_board_integrable, the one `hexaglide sim --set` makes before it runs."""
     buf = C.create_string_buffer(_sizeof(8))
-    out = BoardOutputs()
-    rc = _board_integrable(buf, plant, variant, C.byref(bp), period_ns, C.byref(out))
+    inputs, out = BoardInputs(), BoardOutputs()
+    rc = _board_integrable(buf, C.byref(inputs), plant, variant, C.byref(bp), period_ns, C.byref(out))
     if rc == 0:
         return None
     if rc != _ERR_STIFF:

@@ -272,10 +272,11 @@ int cli_board_integrable(const char *cmd, int plant, int variant, const hg_board
                          char *const *sets, int nset)
 {
     hg_board *b = cli_board_new(cmd, plant, variant, p);   /* (refuses a block the checks refuse, by field) */
+    hg_board_inputs in;
     hg_board_outputs out;
     if (!b)
         return 1;
-    if (hg_board_integrable(b, plant, variant, p, period_ns, &out) == HG_ERR_STIFF) {
+    if (hg_board_integrable(b, &in, plant, variant, p, period_ns, &out) == HG_ERR_STIFF) {
         char what[HG_PLANT_TEXT_LEN + 2 * HG_BOARD_TEXT_LEN];
         hg_param_info e;
         cli_fault_text(b, &out, period_ns, what);

@@ -145,15 +145,15 @@ static void test_refused_and_board(void)
     /* hg_board_integrable, the check before a run: 0 for the k_stop 5e8 block at 1 ms (substeps
      * enough), HG_ERR_STIFF naming k_stop at 10 ms as the check of the linear bound says */
     rc = hg_stability_check(&p, HG_INTEGRATOR_IMPROVED_EULER, 1e-2, 1, HG_SUBSTEPS_MAX, &st);
-    i = hg_board_integrable(&b, 0, HG_MODEL_REDUCED_CARTESIAN, &bp, 1000000L, &out);
+    i = hg_board_integrable(&b, &in, 0, HG_MODEL_REDUCED_CARTESIAN, &bp, 1000000L, &out);
     CHECK(i == 0 && !out.fault, "hg_board_integrable: k_stop 5e8, improved Euler at 1 ms: 0 (%d)", i);
-    i = hg_board_integrable(&b, 0, HG_MODEL_REDUCED_CARTESIAN, &bp, 10000000L, &out);
+    i = hg_board_integrable(&b, &in, 0, HG_MODEL_REDUCED_CARTESIAN, &bp, 10000000L, &out);
     CHECK(rc == HG_ERR_STIFF && i == HG_ERR_STIFF && out.stiff_param >= 0 &&
               strcmp(hg_params_table(0)[out.stiff_param].name, "k_stop") == 0 && out.stiff_dt_max_s == st.dt_max_s,
           "... at 10 ms: %d as hg_stability_check's %d, naming k_stop, its longest step %g s (%g)", i, rc,
           out.stiff_dt_max_s, st.dt_max_s);
     *hg_test_pv(&bp, "m_head") = -1.0;
-    i = hg_board_integrable(&b, 0, HG_MODEL_REDUCED_CARTESIAN, &bp, 1000000L, &out);
+    i = hg_board_integrable(&b, &in, 0, HG_MODEL_REDUCED_CARTESIAN, &bp, 1000000L, &out);
     CHECK(i == HG_ERR_BAD_PARAM && !out.fault, "... a block the checks refuse (m_head -1): %d, not built", i);
     /* a change the running period cannot integrate is refused, naming it */
     hg_board_init(&b, 0, HG_MODEL_REDUCED_CARTESIAN, 0);
