@@ -61,6 +61,9 @@ JOINTS = ["z11", "z12", "z21", "z22", "z31", "z32"]
 AXES = "xyzabc"
 SERVO_PERIOD_S = 0.001
 CLOCK_PIN = "motenc-hexaglide.0.sim-time"  # the virtual board's simulated time (s)
+# hexaglidekins' message when its geometry and the board's differ (src/hexaglidekins.c): a run that
+# saw it drove another machine than the one simulated, and is not ok
+GEOMETRY_MISMATCH = "hexaglidekins: the geometry differs from the board's"
 
 
 def log(*a):
@@ -620,9 +623,12 @@ def main():
                 # the kinematics still failing at the end: the pose LinuxCNC shows is stale (an error
                 # said before the program, during homing, is not in program_errors)
                 res["fk_fault_end"] = fk_fault()
+                # kinematics of another machine than the board simulates (a geometry the board refused,
+                # or a setp on one component), said at any time, homing and startup included
+                res["geometry_mismatch"] = any(GEOMETRY_MISMATCH in e for e in m.errors)
                 if scenario == "run":
                     res["ok"] = (not res["program_errors"] and m.s.task_state == linuxcnc.STATE_ON
-                                 and not res["fk_fault_end"])
+                                 and not res["fk_fault_end"] and not res["geometry_mismatch"])
                 else:
                     moved = max(abs(a - b) for a, b in zip(res["joints_end"], res["joints_after_home"]))
                     res["moved_mm"] = moved
