@@ -5,7 +5,9 @@
  * world is X Y Z A B C of the head reference point (machine units,
  * degrees). Machine units are mm unless hexaglidekins.mm-per-unit says
  * otherwise (25.4 for [TRAJ]LINEAR_UNITS inch); the geometry is in mm.
- * Inverse: closed form. Forward: Newton-Raphson from the previous pose.
+ * Inverse: closed form, then the guard (a bar beyond its joint's range or two
+ * bars touching is refused). Forward: Newton-Raphson from the previous pose,
+ * guarded too.
  *
  * HAL parameters (rw): the geometry of hg_params' table (hg_param_is_geometry),
  *   by HAL name and HAL unit: hexaglidekins.l .lb .e .lp (mm), .cone-carriage
@@ -47,6 +49,7 @@
 #include "hg_errors.h"
 #include "hg_kinematics.h"
 #include "hg_guard.h"
+#include "hg_guard_text.h"
 #include "hg_params.h"
 #include "hg_text.h"
 #include "hg_units.h"
@@ -67,6 +70,7 @@ typedef struct {
     hal_bit_t *fk_fault;
     hal_u32_t *fk_fail_count;
     hal_s32_t *ik_error;
+    int ik_refusing;                               /* the inverse's guard refused since its last success */
     hal_float_t *tool_offset;                      /* machine units */
     hg_tool_offset_setting tool;                   /* the offset in force, refused, its jumps */
     hal_u32_t *board_geometry;                     /* the board's geometry-fingerprint, 0: unconnected */
@@ -293,6 +297,24 @@ int kinematicsForward(const double *joints, EmcPose *pos,
     return rc;
 }
 
+/* The first of a run of guard refusals of the inverse, on the RTAPI log:
+ * the pose (machine units and deg, to 1e-6 of them: motion's poses carry
+ * 1e-8 of rounding) and the limit it crosses, within the 255 characters
+ * LinuxCNC's error channel keeps. */
+static void say_ik_refused(const EmcPose *pos, int rc, const hg_guard_report *why)
+{
+    static const char *const axis[6] = {"X", " Y", " Z", " A", " B", " C"};
+    const double user[6] = {pos->tran.x, pos->tran.y, pos->tran.z, pos->a, pos->b, pos->c};
+    char what[HG_GUARD_TEXT_LEN], at[6 * (HG_TEXT_VALUE_LEN + 2)] = "";
+    int k;
+    for (k = 0; k < 6; k++) {
+        hg_text_add(at, sizeof at, axis[k]);
+        hg_text_add_value(at, sizeof at, floor(user[k] * 1e6 + 0.5) / 1e6 + 0.0);   /* (+0.0: no -0) */
+    }
+    hg_guard_describe(why, 1, what);
+    rtapi_print_msg(RTAPI_MSG_ERR, "hexaglidekins: pose %s refused (code %d): %s\n", at, rc, what);
+}
+
 int kinematicsInverse(const EmcPose *pos, double *joints,
                       const KINEMATICS_INVERSE_FLAGS *iflags,
                       KINEMATICS_FORWARD_FLAGS *fflags)
@@ -314,8 +336,12 @@ int kinematicsInverse(const EmcPose *pos, double *joints,
         rc = tool_offset(&g, mpu, &d_m);
     memcpy(hd->tool.last_inverse, commanded, sizeof commanded);
     if (rc == 0) {
+        hg_guard_report why;
         hg_pose_offset_to_op(commanded, d_m, pose);
-        rc = hg_inverse_kinematics(&g, pose, z);
+        rc = hg_inverse_kinematics_guarded(&g, pose, z, &why);   /* a pose the machine cannot take: refused */
+        if (rc && why.kind != HG_GUARD_NONE && !hd->ik_refusing)
+            say_ik_refused(pos, rc, &why);
+        hd->ik_refusing = rc && why.kind != HG_GUARD_NONE;
     }
     *hd->ik_error = rc;
     if (rc)
@@ -389,6 +415,7 @@ static int export_hal(void)
     *hd->fk_fault = 0;
     *hd->fk_fail_count = 0;
     *hd->ik_error = 0;
+    hd->ik_refusing = 0;
     *hd->board_geometry = 0;
     *hd->tool_offset = 0.0;
     hg_tool_offset_init(&hd->tool);
