@@ -395,3 +395,21 @@ int hg_params_check_all(const hg_params *p, hg_bitset *bad, const char *why[HG_P
         *bad = r.bad;
     return hg_check_any(&r) ? HG_ERR_BAD_PARAM : HG_OK;
 }
+
+int hg_params_check_kinematics(const hg_params *p, hg_bitset *bad, const char *why[HG_PARAMS_MAX])
+{
+    hg_bitset all, kept;
+    hg_params d;
+    int i, n;
+    hg_params_table(&n);
+    hg_params_default(&d);
+    hg_bitset_clear(&kept);
+    if (hg_params_check_all(p, &all, why))
+        for (i = 0; i < n; i++)
+            if (hg_bitset_has(&all, i) && (hg_param_is_geometry(i) ||
+                                           !hg_param_same(hg_params_get(p, i), hg_params_get(&d, i))))
+                hg_bitset_set(&kept, i);
+    if (bad)
+        *bad = kept;
+    return hg_bitset_empty(&kept) ? HG_OK : HG_ERR_BAD_PARAM;
+}

@@ -130,6 +130,15 @@ int hg_params_check(const hg_params *p, const char **bad_field, const char **why
  * hg_params_check reports. */
 int hg_params_check_all(const hg_params *p, hg_bitset *bad, const char *why[HG_PARAMS_MAX]);
 
+/* Check the set as the kinematics use it (hexaglidekins, `hexaglide ik`,
+ * the Python binding's ik and fk): hg_params_check_all's refusals of a
+ * geometry field, or of a field given another value than its default; a
+ * rule of the dynamics failing on a default (the default i_bar against a
+ * new l) is not the kinematics' to enforce. 0, or HG_ERR_BAD_PARAM with
+ * *bad (may be 0) and why (may be 0) as hg_params_check_all gives them,
+ * those fields only. */
+int hg_params_check_kinematics(const hg_params *p, hg_bitset *bad, const char *why[HG_PARAMS_MAX]);
+
 /* Motor current that holds the machine at HOME: W / 6 / (kt 2 pi / lead)
  * (A), W the weight of head, bars and carriages. */
 double hg_hold_current(const hg_params *p);

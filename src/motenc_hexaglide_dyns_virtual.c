@@ -267,11 +267,14 @@ static void report_refusal(board_t *b, long period)
         char what[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&b->c->b, &b->c->o, period, 1, what);
         /* two messages: LinuxCNC's error channel keeps 255 characters of each (EMCMOT_ERROR_LEN) */
-        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter set refused: %s (code %d), even with %u "
-                        "substeps; keeping the set in force (halcmd show param displays it again)\n",
-                        b->id, hg_strerror(b->c->o.param_rc), b->c->o.param_rc, HG_SUBSTEPS_MAX);
-        if (what[0])
-            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: refused because %s\n", b->id, what);
+        rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter set refused: the step cannot integrate it at "
+                        "this period even with %u substeps (code %d); keeping the set in force (halcmd show param "
+                        "displays it again)\n", b->id, HG_SUBSTEPS_MAX, b->c->o.param_rc);
+        if (what[0])   /* the parameter by its whole HAL name, and what to change */
+            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: refused because " XP ".%d.%s; give %s\n", b->id,
+                            b->id, what, b->c->o.stiff_dt_max_s > 0.0
+                                             ? "a softer value, another integrator or a shorter period"
+                                             : "the mode damping or another integrator");
         hg_bitset_clear(&bad);
         if (b->c->o.stiff_param >= 0)
             hg_bitset_set(&bad, b->c->o.stiff_param);    /* named in the sentence above */

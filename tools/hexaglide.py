@@ -370,6 +370,7 @@ _params_default = _sig("hg_params_default", None, _P)
 _params_set = _sig("hg_params_set", C.c_int, _P, C.c_char_p, C.c_double)
 _params_field = _sig("hg_params_field", C.POINTER(C.c_double), _P, C.c_char_p)
 _params_check = _sig("hg_params_check", C.c_int, _P, C.POINTER(C.c_char_p), C.POINTER(C.c_char_p))
+_params_check_kinematics = _sig("hg_params_check_kinematics", C.c_int, _P, _P, _P)
 _model_init = _sig("hg_model_init", C.c_int, _P, _P, C.c_int, C.POINTER(C.c_char_p), C.POINTER(C.c_char_p))
 _model_from_name = _sig("hg_model_from_name", C.c_int, C.c_char_p)
 _data_reset = _sig("hg_data_reset", C.c_int, _P, _P)
@@ -674,18 +675,22 @@ def _geometry(params):
 
 
 def _checked_geometry(what, params):
-    """_geometry(params), the set checked first as Model and the CLI's ik and fk check it
-    (hg_params_check): ValueError naming the parameter, its value and its rule, so that the
-    kinematics never run on a machine that cannot be built (a negative bar length gave a
-    message about the tool offset, an e beyond lb zeros)."""
+    """_geometry(params), the set checked first as the kinematics check it (hexaglidekins,
+    `hexaglide ik --set`: hg_params_check_kinematics, the geometry and any field given another
+    value than its default): ValueError naming each refused parameter, its value and its rule,
+    so that the kinematics never run on a machine that cannot be built (a negative bar length
+    gave a message about the tool offset, an e beyond lb zeros)."""
     params = Params() if params is None else params
     geo = _geometry(params)
-    bad, why = C.c_char_p(), C.c_char_p()
-    if _params_check(geo, C.byref(bad), C.byref(why)):
-        name = bad.value.decode()
-        unit = {e.name.decode(): e.unit.decode() for e in params_table()}.get(name, "")
-        raise ValueError("%s: params: %s = %r%s: %s (hg_params_check; Model and `hexaglide ik --set` refuse "
-                         "the set too)" % (what, name, params[name], " " + unit if unit else "", why.value.decode()))
+    bad = (C.c_ulonglong * 5)()                          # hg_bitset (HG_BITSET_BITS 320)
+    why = (C.c_char_p * 48)()                            # HG_PARAMS_MAX
+    if _params_check_kinematics(geo, bad, why):
+        table = params_table()
+        said = ["%s = %r%s: %s" % (e.name.decode(), params[e.name.decode()], " " + e.unit.decode() if e.unit else "",
+                                   (why[i] or b"refused").decode())
+                for i, e in enumerate(table) if bad[i // 64] >> (i % 64) & 1]
+        raise ValueError("%s: params: %s (hg_params_check_kinematics; `hexaglide ik --set` refuses the set too)"
+                         % (what, "; ".join(said)))
     return geo
 
 

@@ -66,33 +66,10 @@ int cli_params_build(const char *cmd, int plant, int variant, const char *ini, c
 static void report_refused(const char *cmd, int plant, int variant, const hg_bitset *bad, const char *const *why,
                            const hg_plant_params *v, const char *ini, char *const *sets, int nset);
 
-/* cli_params_check_from's check, of every field (kins 0) or, for the Hexaglide's
- * kinematics (kins 1), of its geometry and of each field given another value
- * than its default: 0, or 1 after one message per refused field. */
-static int params_refused(const char *cmd, int plant, int variant, const hg_plant_params *v, const char *ini,
-                          char *const *sets, int nset, int kins)
-{
-    static const char *why[HG_BOARD_WHY_LEN];
-    hg_bitset bad, kept;
-    hg_plant_params d;
-    int i;
-    memset(why, 0, sizeof why);
-    hg_bitset_clear(&bad);
-    hg_bitset_clear(&kept);
-    if (!hg_plant_at(plant)->check(variant, v, &bad, why))
-        return 0;
-    hg_plant_at(plant)->defaults(variant, &d);
-    for (i = 0; i < HG_BOARD_WHY_LEN; i++)   /* a rule of the dynamics is not the kinematics' (default i_bar, new l) */
-        if (hg_bitset_has(&bad, i) && (!kins || hg_param_is_geometry(i) || !hg_param_same(v->v[i], d.v[i])))
-            hg_bitset_set(&kept, i);
-    if (hg_bitset_empty(&kept))
-        return 0;
-    report_refused(cmd, plant, variant, &kept, why, v, ini, sets, nset);
-    return 1;
-}
-
 int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, int nset, hg_params *p)
 {
+    static const char *why[HG_BOARD_WHY_LEN];
+    hg_bitset bad;
     hg_plant_params v;
     int i, n;
     const int variant = hg_plant_at(0)->default_variant;
@@ -105,13 +82,17 @@ int cli_hexaglide_params(const char *cmd, const char *ini, char *const *sets, in
         if (i)
             return 2;
     }
-    if (cli_params_build(cmd, 0, variant, ini, sets, nset, &v) ||
-        params_refused(cmd, 0, variant, &v, ini, sets, nset, 1))
+    if (cli_params_build(cmd, 0, variant, ini, sets, nset, &v))
         return 2;
     hg_params_default(p);
     hg_params_table(&n);
     for (i = 0; i < n; i++)
         *hg_params_at(p, i) = v.v[i];
+    memset(why, 0, sizeof why);
+    if (hg_params_check_kinematics(p, &bad, why)) {   /* (what hexaglidekins refuses) */
+        report_refused(cmd, 0, variant, &bad, why, &v, ini, sets, nset);
+        return 2;
+    }
     return 0;
 }
 
@@ -239,7 +220,14 @@ static void report_refused(const char *cmd, int plant, int variant, const hg_bit
 int cli_params_check_from(const char *cmd, int plant, int variant, const hg_plant_params *v, const char *ini,
                           char *const *sets, int nset)
 {
-    return params_refused(cmd, plant, variant, v, ini, sets, nset, 0);
+    static const char *why[HG_BOARD_WHY_LEN];
+    hg_bitset bad;
+    memset(why, 0, sizeof why);
+    hg_bitset_clear(&bad);
+    if (!hg_plant_at(plant)->check(variant, v, &bad, why))
+        return 0;
+    report_refused(cmd, plant, variant, &bad, why, v, ini, sets, nset);
+    return 1;
 }
 
 hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_params *p)
