@@ -7,6 +7,7 @@
 #include "hg_errors.h"
 #include "hg_scheme.h"
 #include "hg_text.h"
+#include "hg_units.h"
 
 /* Finite x, or 0 (nothing non-finite reaches an output). */
 static double finite_or_zero(double x) { return isfinite(x) ? x : 0.0; }
@@ -367,6 +368,30 @@ static void inject(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out
             out->events |= HG_EV_INJECTED;
 }
 
+/* 1 when scale is channel ch's counts per HAL unit (counts_per_unit),
+ * per inch of a linear channel, or 1 (the power-up value: counts), within
+ * HG_ENC_SCALE_FIT. */
+static int enc_scale_fits(const hg_board *b, int ch, double scale, double counts_per_unit)
+{
+    const double per_inch = counts_per_unit * HG_MM_PER_INCH;
+    const int rotary = (int)((b->sense.rotary >> ch) & 1u);
+    return scale == 1.0 || fabs(scale - counts_per_unit) <= HG_ENC_SCALE_FIT * fabs(counts_per_unit) ||
+           (!rotary && fabs(scale - per_inch) <= HG_ENC_SCALE_FIT * fabs(per_inch));
+}
+
+/* enc_scale_odd of channel ch, once per change of its scale or its counts per unit. */
+static void judge_enc_scale(hg_board *b, int ch, double scale, hg_board_outputs *out)
+{
+    const double cpu = hg_board_counts_per_unit(b, ch);
+    if (memcmp(&scale, &b->enc_scale_judged[ch], sizeof scale) == 0 && // NOLINT(bugprone-suspicious-memory-comparison): bitwise
+        memcmp(&cpu, &b->enc_counts_judged[ch], sizeof cpu) == 0) // NOLINT(bugprone-suspicious-memory-comparison): bitwise
+        return;
+    b->enc_scale_judged[ch] = scale;
+    b->enc_counts_judged[ch] = cpu;
+    if (!enc_scale_fits(b, ch, scale, cpu))
+        out->enc_scale_odd |= 1u << ch;
+}
+
 /* Encoders: index-enable arms the latch, the motor moves the counter,
  * a glitch adds counts, reset zeroes it; scale checked. */
 static void encoders(hg_board *b, const hg_board_inputs *in, hg_board_outputs *out)
@@ -397,6 +422,8 @@ static void encoders(hg_board *b, const hg_board_inputs *in, hg_board_outputs *o
             b->enc_scale[ch] = s;
         }
         s = b->enc_scale[ch];
+        if (ch < b->sense.channels)
+            judge_enc_scale(b, ch, s, out);
         out->count[ch] = hg_encoder_count(e);
         out->position[ch] = finite_or_zero(out->count[ch] / s);
         out->index[ch] = e->index_pulse;
@@ -688,6 +715,40 @@ int hg_board_rate_step(hg_board_rate *r)
 int hg_board_rate_unread(hg_board_rate *r, long period_ns)
 {
     return time_without(&r->unread_ns, period_ns);
+}
+
+double hg_board_counts_per_unit(const hg_board *b, int ch)
+{
+    if (ch < 0 || ch >= b->sense.channels)
+        return 0.0;
+    return b->sense.counts_per_rev[ch] * b->sense.turns_per_unit[ch] /
+           ((b->sense.rotary >> ch) & 1u ? HG_DEG_PER_RAD : HG_MM_PER_M);
+}
+
+void hg_board_describe_enc_scale(const hg_board *b, int ch, double scale, char buf[HG_BOARD_TEXT_LEN])
+{
+    const unsigned long n = HG_BOARD_TEXT_LEN;
+    const double cpu = hg_board_counts_per_unit(b, ch);
+    const int rotary = (int)((b->sense.rotary >> ch) & 1u);
+    buf[0] = '\0';
+    hg_text_add(buf, n, "is not the encoder's ");
+    hg_text_add_value(buf, n, cpu);
+    hg_text_add(buf, n, rotary ? " counts per deg" : " counts per mm (");
+    if (!rotary) {
+        hg_text_add_value(buf, n, cpu * HG_MM_PER_INCH);
+        hg_text_add(buf, n, " per inch)");
+    }
+    if (scale * cpu < 0.0) {
+        hg_text_add(buf, n, ": LinuxCNC reads the joint's travel with the other sign, and its loop runs away");
+    } else {
+        hg_text_add(buf, n, ": LinuxCNC reads the joint's travel ");
+        hg_text_add_value(buf, n, cpu / scale);
+        hg_text_add(buf, n, rotary ? " times as long" : " times as long in mm (");
+        if (!rotary) {
+            hg_text_add_value(buf, n, cpu * HG_MM_PER_INCH / scale);
+            hg_text_add(buf, n, " in inches)");
+        }
+    }
 }
 
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,

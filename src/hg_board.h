@@ -38,6 +38,8 @@
 #define HG_ENC_SCALE_TEXT_(x) #x
 #define HG_ENC_SCALE_TEXT(x) HG_ENC_SCALE_TEXT_(x)
 #define HG_ENC_SCALE_MIN_TEXT HG_ENC_SCALE_TEXT(HG_ENC_SCALE_MIN) /* "1e-20", for messages */
+#define HG_ENC_SCALE_FIT 1e-6         /* enc-CC-scale is the channel's counts per unit when within this
+                                         fraction of them (1 um in a metre) */
 
 /* Bits of the refused-field set (hg_board_outputs.refused): bit i is entry
  * i of the plant's parameter table (i < HG_PLANT_PARAMS_MAX), plus these two. */
@@ -194,6 +196,10 @@ typedef struct {
     unsigned injected[HG_PLANT_INJECT_MAX]; /* INJECTED */
     unsigned dac_nan_new;             /* DAC_NAN */
     unsigned enc_scale_bad;           /* ENC_SCALE_BAD */
+    unsigned enc_scale_odd;           /* bit ch: channel ch's scale, now set or its encoder now changed, is
+                                         none of its counts per mm, per inch (linear) or per deg (rotary),
+                                         nor 1 (counts): hg_board_describe_enc_scale says it. Not an
+                                         event: records and their replay stay as they were */
     unsigned substeps_run;            /* substeps-run: integration steps of the last period, >= substeps */
     int stiff_param;                  /* SUBSTEPS_AUTO, FAULT_STIFF or PARAM_REFUSED with param_rc
                                          HG_ERR_STIFF: table index of the limiting parameter, else -1 */
@@ -227,6 +233,8 @@ typedef struct {
     hg_encoder enc[HG_BOARD_ENCODERS];
     double enc_scale[HG_BOARD_ENCODERS]; /* in force */
     double enc_scale_in[HG_BOARD_ENCODERS]; /* input of the previous step (change detection) */
+    double enc_scale_judged[HG_BOARD_ENCODERS]; /* the scale and counts per unit enc_scale_odd last judged */
+    double enc_counts_judged[HG_BOARD_ENCODERS];
     hg_watchdog wd;
     unsigned switches[HG_CHANNELS_MAX]; /* HG_SW_* as the inputs read them */
     double adc_sample_v[HG_BOARD_ADCS]; /* converted, not yet published */
@@ -366,6 +374,16 @@ int hg_board_rate_step(hg_board_rate *r);
  * added to a thread, the mirror of hg_board_rate_read's case; said again
  * if encoder-read stops once more after running). */
 int hg_board_rate_unread(hg_board_rate *r, long period_ns);
+
+/* Channel ch's encoder counts per HAL unit of its travel: per mm (linear)
+ * or per deg (rotary), signed as it counts; 0 for a channel not in use. */
+double hg_board_counts_per_unit(const hg_board *b, int ch);
+
+/* Why scale (channel ch's enc-CC-scale, counts per machine unit) is not the
+ * encoder's (enc_scale_odd): what the encoder gives per mm and per inch (or
+ * per deg), and how LinuxCNC, taking counts / scale as the joint's travel,
+ * reads it (times as long, or with the other sign: a loop that runs away). */
+void hg_board_describe_enc_scale(const hg_board *b, int ch, double scale, char buf[HG_BOARD_TEXT_LEN]);
 
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
                                  char buf[HG_BOARD_TEXT_LEN]);

@@ -63,6 +63,9 @@ typedef struct {
     double turns[HG_CHANNELS_MAX];   /* encoder side: motor revolutions since HOME (the encoder
                                         counts turns * counts_per_rev, indexes at whole turns) */
     double counts_per_rev[HG_CHANNELS_MAX]; /* the motor encoder's counts per revolution */
+    double turns_per_unit[HG_CHANNELS_MAX]; /* motor revolutions per SI unit (m, rad) of motor_pos, signed as
+                                        turns counts: the encoder's counts per unit are
+                                        counts_per_rev * turns_per_unit */
     double motor_pos[HG_CHANNELS_MAX]; /* encoder side as a load position (m or rad) */
     double pos[HG_CHANNELS_MAX];     /* load side: carriage or axis position (m or rad) */
     double vel[HG_CHANNELS_MAX];     /* its velocity */

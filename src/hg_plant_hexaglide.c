@@ -334,6 +334,7 @@ static void sense(const hg_plant_model *m, const hg_plant_data *d, hg_plant_sens
         /* the motor on the screw: its height / lead revolutions, the carriage's when rigid */
         double motor = hm->flexible ? hd->zr_m[k] : hd->z_m[k];
         s->turns[k] = motor / p->lead_m;
+        s->turns_per_unit[k] = 1.0 / p->lead_m;
         s->counts_per_rev[k] = p->counts_per_rev;
         s->motor_pos[k] = finite_or_zero(motor);
         s->pos[k] = finite_or_zero(hd->z_m[k]);

@@ -843,6 +843,7 @@ static void sense(const hg_plant_model *pm, const hg_plant_data *pd, hg_plant_se
     s->rotary = m->rotary;
     for (k = 0; k < m->n; k++) {
         s->turns[k] = (m->cpr[k] < 0.0 ? -d->xr[k] : d->xr[k]) / m->lead[k];
+        s->turns_per_unit[k] = (m->cpr[k] < 0.0 ? -1.0 : 1.0) / m->lead[k];
         s->counts_per_rev[k] = fabs(m->cpr[k]);
         s->motor_pos[k] = finite_or_zero(d->xr[k]);
         s->pos[k] = finite_or_zero(d->x[k]);

@@ -6,6 +6,7 @@
 #define HG_UNITS_H
 
 #define HG_MM_PER_M 1000.0
+#define HG_MM_PER_INCH 25.4           /* LinuxCNC's LINEAR_UNITS inch */
 #define HG_DEG_PER_RAD 57.295779513082320877
 #define HG_PI 3.14159265358979323846
 

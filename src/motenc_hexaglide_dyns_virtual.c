@@ -344,6 +344,14 @@ static void report(board_t *b, long period)
         if ((o->enc_scale_bad >> k) & 1u)
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: enc-%02d-scale must be finite and at least "
                             HG_ENC_SCALE_MIN_TEXT " counts per unit in magnitude; set to 1.0 (as hal_motenc)\n", id, k);
+    for (k = 0; k < HG_BOARD_ENCODERS; k++)
+        if ((o->enc_scale_odd >> k) & 1u) {    /* (the real board cannot know; the scale is kept) */
+            char why[HG_BOARD_TEXT_LEN], v[HG_TEXT_VALUE_LEN];
+            hg_board_describe_enc_scale(&b->c->b, k, o->enc_scale[k], why);
+            hg_text_value(v, o->enc_scale[k]);
+            rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: motenc.%d.enc-%02d-scale = %s %s; fix "
+                            "[JOINT_%d]INPUT_SCALE\n", id, id, k, v, why, k);
+        }
     if (o->events & HG_EV_ESTOP_OUT_BAD)
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: " XP ".%d.estop-loop-out = %d refused: the E-STOP loop "
                         "runs through a digital output, 0..31 (out-07 in motenc_io.hal), or -1 for none; keeping "

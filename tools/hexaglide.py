@@ -342,9 +342,9 @@ class BoardOutputs(C.Structure):
                 ("refused", C.c_ulonglong * 5), ("param_rc", C.c_int), ("reset_refused_channel", C.c_int),
                 ("reset_refused_injection", C.c_int), ("fault_cause", C.c_int),
                 ("injected", C.c_uint * PLANT_INJECT_MAX), ("dac_nan_new", C.c_uint),
-                ("enc_scale_bad", C.c_uint), ("substeps_run", C.c_uint), ("stiff_param", C.c_int),
+                ("enc_scale_bad", C.c_uint), ("enc_scale_odd", C.c_uint), ("substeps_run", C.c_uint), ("stiff_param", C.c_int),
                 ("stiff_dt_max_s", C.c_double), ("stiff_value", C.c_double), ("stiff_integrator", C.c_int),
-                ("adc_nan_new", C.c_uint), ("estop_loop_out", C.c_int),
+                ("adc_nan_new", C.c_uint), ("pos_cmd_bad_new", C.c_uint), ("estop_loop_out", C.c_int),
                 ("adc_volts_per_amp", C.c_double)]
 
     @property

@@ -382,6 +382,76 @@ static void test_index_latch(void)
           "enc-02-scale 0: set to 1.0 as hal_motenc, reported once, param-error");
 }
 
+/* enc_scale_odd: a scale that is none of the encoder's counts per mm, per inch (per deg for a rotary
+ * axis), nor 1, said once per change. Independent facts: the spec's encoder, counts_per_rev over the
+ * lead (10000 / 10 mm: 1000 per mm, 25400 per inch), and the serial plant's rotary axis (16384 counts
+ * a motor turn, 90 motor turns an axis turn: 4096 per deg). */
+static void test_enc_scale_odd(void)
+{
+    static const double fits[] = {1000.0, 25400.0, 1.0, 1000.0 * (1.0 + 0.5e-6)};
+    char why[HG_BOARD_TEXT_LEN];
+    hg_params p;
+    unsigned said = 0;
+    int i, k;
+    hg_params_default(&p);
+    fresh();
+    run(1);
+    CHECK(out.enc_scale_odd == 0 && hg_board_counts_per_unit(&b, 0) == p.counts_per_rev / (p.lead_m * 1000.0),
+          "scale 1 (counts): not odd; the encoder gives %.9g counts per mm (%.9g / %.9g mm)",
+          hg_board_counts_per_unit(&b, 0), p.counts_per_rev, p.lead_m * 1000.0);
+    for (i = 0; i < 4; i++) {
+        for (k = 0; k < 6; k++)
+            in.enc_scale[k] = fits[i];
+        run(1);
+        said |= out.enc_scale_odd;
+    }
+    CHECK(said == 0, "scales 1000 (per mm), 25400 (per inch), 1 and 1000 (1 + 0.5e-6): none odd (0x%x)", said);
+    in.enc_scale[3] = 800.0;
+    run(1);
+    hg_board_describe_enc_scale(&b, 3, 800.0, why);
+    CHECK(out.enc_scale_odd == 1u << 3 && strstr(why, "1000 counts per mm (25400 per inch)") &&
+              strstr(why, " 1.25 times as long in mm (31.75 in inches)"),
+          "enc-03-scale 800: odd, \"%s\"", why);
+    run(1);
+    CHECK(out.enc_scale_odd == 0, "... said once: not again the next period");
+    in.enc_scale[3] = -1000.0;
+    run(1);
+    hg_board_describe_enc_scale(&b, 3, -1000.0, why);
+    CHECK(out.enc_scale_odd == 1u << 3 && strstr(why, "with the other sign, and its loop runs away"),
+          "enc-03-scale -1000: odd, \"%s\"", why);
+    in.enc_scale[3] = 1000.0;
+    *hg_params_at(&p, bit_of("lead")) = 0.005;                 /* a 5 mm lead: 2000 counts per mm */
+    for (k = 0; k < (int)(sizeof p / sizeof(double)) && hg_params_at(&p, k); k++)
+        in.params.plant.v[k] = *hg_params_at(&p, k);
+    run(1);
+    CHECK(out.enc_scale_odd == 0x3f && hg_board_counts_per_unit(&b, 0) == 2000.0,
+          "lead 5 mm with scale 1000: every channel odd once the encoders rescale (0x%x, %.9g per mm)",
+          out.enc_scale_odd, hg_board_counts_per_unit(&b, 0));
+    {
+        static hg_board s;
+        hg_board_params bp;
+        hg_param_info e;
+        int plant = hg_plant_find("serial"), v = hg_plant_variant(hg_plant_at(plant), "XC"), n;
+        int rc = hg_board_init(&s, plant, v, 0), bit = -1;
+        double cpr = 0.0, ratio = 0.0;
+        hg_board_params_default(plant, v, &bp);
+        n = hg_plant_nparams_at(plant, v);
+        for (k = 0; k < n; k++)
+            if (hg_plant_param_at(plant, v, k, &e) == 0) {
+                if (strcmp(e.name, "counts_per_rev_1") == 0)
+                    cpr = bp.plant.v[k];
+                if (strcmp(e.name, "ratio_1") == 0)
+                    ratio = bp.plant.v[k], bit = k;
+            }
+        CHECK(rc == 0 && bit >= 0 && fabs(hg_board_counts_per_unit(&s, 1) / (cpr * ratio / 360.0) - 1.0) < 1e-12,
+              "serial XC, rotary C: %.9g counts per deg (%.9g counts x %.9g turns / 360)", hg_board_counts_per_unit(&s, 1),
+              cpr, ratio);
+        hg_board_describe_enc_scale(&s, 1, 1000.0, why);
+        CHECK(strstr(why, "counts per deg: LinuxCNC reads the joint's travel 4.096 times as long") && !strstr(why, "inch"),
+              "... scale 1000: \"%s\"", why);
+    }
+}
+
 static void test_switches(void)
 {
     int k;
@@ -928,6 +998,7 @@ int main(void)
     test_reset_bar_broken();
     test_index_latch();
     test_switches();
+    test_enc_scale_odd();
     test_substeps();
     test_bad_period();
     test_dac_nan_determinism();
