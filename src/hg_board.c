@@ -739,9 +739,9 @@ void hg_board_describe_enc_scale(const hg_board *b, int ch, double scale, char b
         hg_text_add(buf, n, " per inch)");
     }
     if (scale * cpu < 0.0) {
-        hg_text_add(buf, n, ": LinuxCNC reads the joint's travel with the other sign, and its loop runs away");
+        hg_text_add(buf, n, ": counts / scale read the travel with the other sign (a position loop on it runs away)");
     } else {
-        hg_text_add(buf, n, ": LinuxCNC reads the joint's travel ");
+        hg_text_add(buf, n, ": counts / scale read the travel ");
         hg_text_add_value(buf, n, cpu / scale);
         hg_text_add(buf, n, rotary ? " times as long" : " times as long in mm (");
         if (!rotary) {

@@ -381,8 +381,8 @@ double hg_board_counts_per_unit(const hg_board *b, int ch);
 
 /* Why scale (channel ch's enc-CC-scale, counts per machine unit) is not the
  * encoder's (enc_scale_odd): what the encoder gives per mm and per inch (or
- * per deg), and how LinuxCNC, taking counts / scale as the joint's travel,
- * reads it (times as long, or with the other sign: a loop that runs away). */
+ * per deg), and how counts / scale (LinuxCNC's joint position) read the
+ * travel (times as long, or with the other sign: a loop that runs away). */
 void hg_board_describe_enc_scale(const hg_board *b, int ch, double scale, char buf[HG_BOARD_TEXT_LEN]);
 
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,

@@ -452,6 +452,14 @@ static int report(const plant *p, const hg_board_outputs *out, double t_s, fmu_s
             sayf(say, env, FMU_SAY_WARNING, "dac_%d is NaN: the board outputs 0 V until it is a number again", k);
             level = FMU_SAY_WARNING;
         }
+    for (k = 0; k < FMU_JOINTS; k++)
+        if ((out->enc_scale_odd >> k) & 1u) {     /* one enc_scale for every channel: said of the first */
+            hg_board_describe_enc_scale(&p->b, k, out->enc_scale[k], why);
+            sayf(say, env, FMU_SAY_WARNING, "enc_scale = %.9g (channel %d) %s; position_k reads counts / enc_scale",
+                 out->enc_scale[k], k, why);
+            level = FMU_SAY_WARNING;
+            break;
+        }
     if (out->events & HG_EV_RESET_DONE)
         say(env, FMU_SAY_INFO, "reset: machine at HOME at rest, counters 0, fault cleared");
     return level;

@@ -860,6 +860,30 @@ static void test_fault_time(void)
     fmi3FreeInstance(s);
 }
 
+/* An enc_scale that is not the encoder's (10000 counts a turn over the 10 mm lead: 1000 per mm, 25400
+ * per inch) is said once as a warning; the scale in force stays, as the board keeps it. */
+static void test_enc_scale_odd(void)
+{
+    logbook b = {0};
+    fmi3Instance s = instantiate("scale", &b);
+    int w;
+    if (!s) {
+        check(0, "enc_scale odd: an instance");
+        return;
+    }
+    set_f64(s, "enc_scale", 800.0);
+    fmi3EnterInitializationMode(s, 0, 0, 0.0, 0, 0);
+    fmi3ExitInitializationMode(s);
+    w = b.n[fmi3Warning];
+    check(step_at(s, 0.0, PERIOD) == fmi3Warning && b.n[fmi3Warning] == w + 1 &&
+              strstr(b.last, "enc_scale = 800 (channel 0) is not the encoder's 1000 counts per mm (25400 per inch): "
+                             "counts / scale read the travel 1.25 times as long"),
+          "enc_scale 800: a warning at the first step: %s", b.last);
+    check(step_at(s, PERIOD, PERIOD) == fmi3OK && b.n[fmi3Warning] == w + 1 && get_f64(s, "enc_scale") == 800.0,
+          "... once: the next step is fmi3OK, the scale kept");
+    fmi3FreeInstance(s);
+}
+
 /* What FMI 3.0 asks of the instantiation and of fmi3EnterInitializationMode's stopTime (2.3: "the FMU has to
  * return fmi3Error" past it), and a message for every fmi3Error. */
 static void test_fmi_rules(void)
@@ -1074,6 +1098,7 @@ int main(void)
     test_forged();
     test_forged_memo();
     test_fault_time();
+    test_enc_scale_odd();
     test_fmi_rules();
     test_no_feedthrough();
     test_log_categories();

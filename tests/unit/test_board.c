@@ -417,7 +417,7 @@ static void test_enc_scale_odd(void)
     in.enc_scale[3] = -1000.0;
     run(1);
     hg_board_describe_enc_scale(&b, 3, -1000.0, why);
-    CHECK(out.enc_scale_odd == 1u << 3 && strstr(why, "with the other sign, and its loop runs away"),
+    CHECK(out.enc_scale_odd == 1u << 3 && strstr(why, "with the other sign (a position loop on it runs away)"),
           "enc-03-scale -1000: odd, \"%s\"", why);
     in.enc_scale[3] = 1000.0;
     *hg_params_at(&p, bit_of("lead")) = 0.005;                 /* a 5 mm lead: 2000 counts per mm */
@@ -447,7 +447,7 @@ static void test_enc_scale_odd(void)
               "serial XC, rotary C: %.9g counts per deg (%.9g counts x %.9g turns / 360)", hg_board_counts_per_unit(&s, 1),
               cpr, ratio);
         hg_board_describe_enc_scale(&s, 1, 1000.0, why);
-        CHECK(strstr(why, "counts per deg: LinuxCNC reads the joint's travel 4.096 times as long") && !strstr(why, "inch"),
+        CHECK(strstr(why, "counts per deg: counts / scale read the travel 4.096 times as long") && !strstr(why, "inch"),
               "... scale 1000: \"%s\"", why);
     }
 }
