@@ -379,6 +379,11 @@ static int enc_scale_fits(const hg_board *b, int ch, double scale, double counts
            (!rotary && fabs(scale - per_inch) <= HG_ENC_SCALE_FIT * fabs(per_inch));
 }
 
+int hg_board_enc_scale_fits(const hg_board *b, int ch, double scale)
+{
+    return ch < 0 || ch >= b->sense.channels || enc_scale_fits(b, ch, scale, hg_board_counts_per_unit(b, ch));
+}
+
 /* enc_scale_odd of channel ch, once per change of its scale or its counts per unit. */
 static void judge_enc_scale(hg_board *b, int ch, double scale, hg_board_outputs *out)
 {

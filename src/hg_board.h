@@ -379,6 +379,12 @@ int hg_board_rate_unread(hg_board_rate *r, long period_ns);
  * or per deg (rotary), signed as it counts; 0 for a channel not in use. */
 double hg_board_counts_per_unit(const hg_board *b, int ch);
 
+/* 1 when scale (counts per machine unit) suits channel ch's encoder: its
+ * counts per mm or per inch (linear), per deg (rotary), within
+ * HG_ENC_SCALE_FIT, or 1 (counts); 1 for a channel not in use. What
+ * enc_scale_odd judges, for a config checked before it runs. */
+int hg_board_enc_scale_fits(const hg_board *b, int ch, double scale);
+
 /* Why scale (channel ch's enc-CC-scale, counts per machine unit) is not the
  * encoder's (enc_scale_odd): what the encoder gives per mm and per inch (or
  * per deg), and how counts / scale (LinuxCNC's joint position) read the

@@ -187,6 +187,12 @@ hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_
 int cli_board_integrable(const char *cmd, int plant, int variant, const hg_board_params *p, long period_ns,
                          char *const *sets, int nset);
 
+/* A warning on stderr for each of the n joints whose scale[k] (INPUT_SCALE,
+ * counts per machine unit) is not board b's encoder's (hg_board_enc_scale_fits):
+ * what the encoder gives and how the counts read; the run goes on with it, as
+ * LinuxCNC would. what names the value's origin ("[JOINT_%d]INPUT_SCALE"). */
+void cli_enc_scale_notes(const char *cmd, const hg_board *b, const double *scale, int n, const char *what);
+
 /* 1 if x is a whole number within the rounding of the decimal it came from and a few
  * operations on it (CLI_WHOLE_ULPS of x's magnitude: 1e-3 s * 1e9 is 1000000 ns), its value
  * in *n (the nearest whole number either way). */

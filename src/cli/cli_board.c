@@ -279,6 +279,18 @@ int cli_board_integrable(const char *cmd, int plant, int variant, const hg_board
     return 0;
 }
 
+void cli_enc_scale_notes(const char *cmd, const hg_board *b, const double *scale, int n, const char *what)
+{
+    char why[HG_BOARD_TEXT_LEN], name[64], v[CLI_NUM_LEN];
+    int k;
+    for (k = 0; k < n; k++)
+        if (!hg_board_enc_scale_fits(b, k, scale[k])) {
+            hg_board_describe_enc_scale(b, k, scale[k], why);
+            snprintf(name, sizeof name, what, k);
+            fprintf(stderr, "hexaglide %s: warning: %s = %s %s\n", cmd, name, cli_num(scale[k], v), why);
+        }
+}
+
 int cli_whole(double x, double *n)
 {
     *n = floor(x + 0.5);

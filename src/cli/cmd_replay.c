@@ -1118,6 +1118,11 @@ int cmd_replay(int argc, char **argv)
             status = 1;
             break;
         }
+        if (whatif && (out_w.enc_scale_odd & ~out_x.enc_scale_odd)) {   /* (--set lead or counts_per_rev) */
+            char name[48];
+            snprintf(name, sizeof name, "sample %ld: in.enc-scale-%%02d", n);
+            cli_enc_scale_notes("replay", closed ? &L.board : &b, out_w.enc_scale, nj, name);
+        }
         if (whatif && (out_w.events & HG_EV_FAULT_LATCHED) && !out_x.fault &&
             whatif_fault(closed ? &L.board : &b, &out_w, n, period)) {
             status = 1;

@@ -295,6 +295,7 @@ int cmd_soak(int argc, char **argv)
         free(L);
         return 2;
     }
+    cli_enc_scale_notes("soak", &L->board, cfg.input_scale, L->joints, "[JOINT_%d]INPUT_SCALE");
     trajectory_init(&tr, seed * 7919 + 1);
     hm = hg_hexaglide_model(&L->board.m);
     hd = hg_hexaglide_data(&L->board.d);
