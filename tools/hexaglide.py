@@ -490,6 +490,8 @@ SUBSTEPS_MAX = 64                               # HG_SUBSTEPS_MAX: the most subs
 _BOARD_TEXT_LEN = 240                           # HG_BOARD_TEXT_LEN (src/hg_board.h)
 _board_integrable = _sig("hg_board_integrable", C.c_int, _P, C.POINTER(BoardInputs), C.c_int, C.c_int,
                          C.POINTER(BoardParams), C.c_long, C.POINTER(BoardOutputs))
+_enc_scale_fits = _sig("hg_board_enc_scale_fits", C.c_int, _P, C.c_int, C.c_double)
+_describe_enc_scale = _sig("hg_board_describe_enc_scale", None, _P, C.c_int, C.c_double, C.c_char_p)
 _describe_stiffness = _sig("hg_board_describe_stiffness", None, _P, C.POINTER(BoardOutputs), C.c_long, C.c_int,
                            C.c_char_p)
 _board_params_verdicts = {}                     # (plant, variant, period_ns, bytes of bp) -> _board_params_refusal
@@ -907,6 +909,19 @@ class Board:
     def channels(self):
         """The channels the plant uses (the Hexaglide's six, a serial machine's axes)."""
         return self.outputs.channels
+
+    def enc_scale_notes(self, scales):
+        """[(channel, why)] for each scales[k] (INPUT_SCALE: encoder counts per machine unit) that is
+        not this board's encoder's counts per mm or per inch (per deg on a rotary axis), nor 1
+        (hg_board_enc_scale_fits): why says what the encoder gives and how counts / scale read the
+        travel (hg_board_describe_enc_scale). A config of such a scale runs, as LinuxCNC would."""
+        notes = []
+        for k, s in enumerate(scales):
+            if not _enc_scale_fits(self.buf, k, float(s)):
+                text = C.create_string_buffer(_BOARD_TEXT_LEN)
+                _describe_enc_scale(self.buf, k, float(s), text)
+                notes.append((k, "%.9g %s" % (s, text.value.decode())))
+        return notes
 
     def step(self, dac_volts=None):
         """One servo period; dac_volts (one per channel: self.channels) replaces inputs.dac_v

@@ -1136,6 +1136,8 @@ def main(argv=None):
         except hg_config.ConfigError as ex:
             raise BadInput(str(ex))
         joints, axes, params = cfg.joints, cfg.axes, cfg.params
+        for k, why in hg.Board(params=params).enc_scale_notes([g["INPUT_SCALE"] for g in joints]):
+            log("warning: [JOINT_%d]INPUT_SCALE = %s" % (k, why))   # (the encoder's are others: said, run)
         ferror_limit = min(g["FERROR"] for g in joints)   # (the INI's gains: checked by read_config, as soak)
         vmax_dac = min(hg_config.output_limit(g) for g in joints)
         if a.max_volts is not None and not (0 < a.max_volts <= vmax_dac):

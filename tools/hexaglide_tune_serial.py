@@ -130,6 +130,9 @@ class Machine:
             cp.get("TRAJ", "LINEAR_UNITS", fallback="mm").strip().lower(), "mm")
         self.rotary = [c in "ABC" for c in model]
         self.ini = ini
+        board = hg.Board(plant="serial", kind=None, params=self.params)   # (a scale not the encoder's: said, run)
+        for k, why in board.enc_scale_notes([g["INPUT_SCALE"] for g in self.joints]):
+            log("warning: [JOINT_%d]INPUT_SCALE = %s" % (k, why))
 
     def unit_of(self, j):
         return "deg" if self.rotary[j] else self.unit
