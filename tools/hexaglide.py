@@ -369,7 +369,6 @@ _board_step = _sig("hg_board_step", None, _P, C.POINTER(BoardInputs), C.POINTER(
 _params_default = _sig("hg_params_default", None, _P)
 _params_set = _sig("hg_params_set", C.c_int, _P, C.c_char_p, C.c_double)
 _params_field = _sig("hg_params_field", C.POINTER(C.c_double), _P, C.c_char_p)
-_params_check = _sig("hg_params_check", C.c_int, _P, C.POINTER(C.c_char_p), C.POINTER(C.c_char_p))
 _params_check_kinematics = _sig("hg_params_check_kinematics", C.c_int, _P, _P, _P)
 _model_init = _sig("hg_model_init", C.c_int, _P, _P, C.c_int, C.POINTER(C.c_char_p), C.POINTER(C.c_char_p))
 _model_from_name = _sig("hg_model_from_name", C.c_int, C.c_char_p)
@@ -685,7 +684,7 @@ def _checked_geometry(what, params):
     params = Params() if params is None else params
     geo = _geometry(params)
     bad = (C.c_ulonglong * 5)()                          # hg_bitset (HG_BITSET_BITS 320)
-    why = (C.c_char_p * 48)()                            # HG_PARAMS_MAX
+    why = (C.c_char_p * PLANT_PARAMS_MAX)()              # (room for HG_PARAMS_MAX reasons)
     if _params_check_kinematics(geo, bad, why):
         table = params_table()
         said = ["%s = %r%s: %s" % (e.name.decode(), params[e.name.decode()], " " + e.unit.decode() if e.unit else "",
@@ -733,7 +732,8 @@ def ik(pose_user, params=None, tool_offset=0.0):
     tool_offset (mm): G43's tool length, added to Z in pose_user as LinuxCNC does; the tool's
     tip on the head's axis then follows the pose at any tilt (RTCP, hexaglidekins.tool-offset).
     HexaglideError (code and, for a guard, the bar, value and limit) otherwise; ValueError
-    naming the parameter of params that Model would refuse (hg_params_check), before any solve."""
+    naming each parameter of params the kinematics refuse (hg_params_check_kinematics: the
+    geometry, and any field given another value than its default), before any solve."""
     geo = _checked_geometry("ik", params)
     commanded = _pose_si("pose", pose_user)
     pose = _d6()
