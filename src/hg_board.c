@@ -788,3 +788,20 @@ void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out,
     hg_text_add_value(buf, n, (double)period_ns / 1e6);
     hg_text_add(buf, n, " ms");
 }
+
+void hg_board_stiff_remedy(const hg_board_outputs *out, const char *integrator, const char *period,
+                           char buf[HG_BOARD_TEXT_LEN])
+{
+    const unsigned long n = HG_BOARD_TEXT_LEN;
+    const int steps_help = out->stiff_dt_max_s > 0.0;   /* a shorter step integrates the mode */
+    buf[0] = '\0';
+    hg_text_add(buf, n, steps_help ? "a softer value" : "the mode damping");
+    hg_text_add(buf, n, steps_help && period ? ", another " : " or another ");
+    hg_text_add(buf, n, integrator);
+    if (steps_help && period) {
+        hg_text_add(buf, n, " or a shorter ");
+        hg_text_add(buf, n, period);
+    }
+    if (!steps_help)
+        hg_text_add(buf, n, " (no step is short enough)");
+}

@@ -394,6 +394,14 @@ void hg_board_describe_enc_scale(const hg_board *b, int ch, double scale, char b
 void hg_board_describe_stiffness(const hg_board *b, const hg_board_outputs *out, long period_ns, int hal,
                                  char buf[HG_BOARD_TEXT_LEN]);
 
+/* What to change after a stiffness refusal (out's stiff_* fields), in the
+ * caller's words for the integrator and the period (period 0: the caller's
+ * period cannot change): "a softer value, another <integrator> or a
+ * shorter <period>" when some step integrates the mode, else "the mode
+ * damping or another <integrator> (no step is short enough)". */
+void hg_board_stiff_remedy(const hg_board_outputs *out, const char *integrator, const char *period,
+                           char buf[HG_BOARD_TEXT_LEN]);
+
 /* Field bit of block p, bits as refused (the plant's parameters in SI, then
  * substeps and integrator), as a double. */
 double hg_board_param_value(const hg_board_params *p, int bit);

@@ -270,11 +270,12 @@ static void report_refusal(board_t *b, long period)
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: parameter set refused: the step cannot integrate it at "
                         "this period even with %u substeps (code %d); keeping the set in force (halcmd show param "
                         "displays it again)\n", b->id, HG_SUBSTEPS_MAX, b->c->o.param_rc);
-        if (what[0])   /* the parameter by its whole HAL name, and what to change */
+        if (what[0]) { /* the parameter by its whole HAL name, and what to change */
+            char remedy[HG_BOARD_TEXT_LEN];
+            hg_board_stiff_remedy(&b->c->o, "integrator", "period", remedy);
             rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: refused because " XP ".%d.%s; give %s\n", b->id,
-                            b->id, what, b->c->o.stiff_dt_max_s > 0.0
-                                             ? "a softer value, another integrator or a shorter period"
-                                             : "the mode damping or another integrator");
+                            b->id, what, remedy);
+        }
         hg_bitset_clear(&bad);
         if (b->c->o.stiff_param >= 0)
             hg_bitset_set(&bad, b->c->o.stiff_param);    /* named in the sentence above */
@@ -378,14 +379,14 @@ static void report(board_t *b, long period)
                         id, o->params.substeps);
     }
     if (o->events & HG_EV_FAULT_LATCHED && o->fault_cause == HG_FAULT_STIFF) {
-        char what[HG_BOARD_TEXT_LEN];
+        char what[HG_BOARD_TEXT_LEN], remedy[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&b->c->b, o, period, 1, what);
+        hg_board_stiff_remedy(o, "integrator", 0, remedy);   /* the thread's period is not the board's to change */
         /* two messages: LinuxCNC's error channel keeps 255 characters of each (EMCMOT_ERROR_LEN) */
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: %s (code %d)\n", id, what, o->fault_code);
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: the step cannot integrate these parameters at this "
                         "period even with %u substeps: drives off; set %s, then " XP ".%d.reset\n",
-                        id, HG_SUBSTEPS_MAX, o->stiff_dt_max_s > 0.0 ? "a softer value or another integrator"
-                                                                       : "the mode damping or another integrator", id);
+                        id, HG_SUBSTEPS_MAX, remedy, id);
     } else if (o->events & HG_EV_FAULT_LATCHED && o->fault_cause == HG_FAULT_PERIOD) {
         rtapi_print_msg(RTAPI_MSG_ERR, MODNAME ": board %d: bad thread period (code %d): drives off, state "
                         "frozen; run motenc.%d.dynamics in a thread of at most %ld ns, then set " XP ".%d.reset\n",

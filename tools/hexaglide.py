@@ -493,6 +493,7 @@ _enc_scale_fits = _sig("hg_board_enc_scale_fits", C.c_int, _P, C.c_int, C.c_doub
 _describe_enc_scale = _sig("hg_board_describe_enc_scale", None, _P, C.c_int, C.c_double, C.c_char_p)
 _describe_stiffness = _sig("hg_board_describe_stiffness", None, _P, C.POINTER(BoardOutputs), C.c_long, C.c_int,
                            C.c_char_p)
+_stiff_remedy = _sig("hg_board_stiff_remedy", None, C.POINTER(BoardOutputs), C.c_char_p, C.c_char_p, C.c_char_p)
 _board_params_verdicts = {}                     # (plant, variant, period_ns, bytes of bp) -> _board_params_refusal
 
 
@@ -519,11 +520,11 @@ def _stiffness(plant, variant, bp, period_ns):
         return None
     if rc != _ERR_STIFF:
         return rc, "a board of these parameters cannot be built"
-    text = C.create_string_buffer(_BOARD_TEXT_LEN)
+    text, remedy = C.create_string_buffer(_BOARD_TEXT_LEN), C.create_string_buffer(_BOARD_TEXT_LEN)
     _describe_stiffness(buf, C.byref(out), period_ns, 0, text)
+    _stiff_remedy(C.byref(out), b"integrator", b"period_ns", remedy)
     return out.fault_code, "%s, even with %d substeps a period; give %s" % (
-        text.value.decode(), SUBSTEPS_MAX, "a softer value, another integrator or a shorter period_ns"
-        if out.stiff_dt_max_s > 0 else "the mode damping or another integrator (no step is short enough)")
+        text.value.decode(), SUBSTEPS_MAX, remedy.value.decode())
 
 
 def _board_params_refusal(plant, variant, bp, period_ns):

@@ -112,11 +112,11 @@ void cli_fault_text(const hg_board *b, const hg_board_outputs *o, long period_ns
     char what[HG_PLANT_TEXT_LEN + HG_BOARD_TEXT_LEN]; /* room for either text */
     size_t n = HG_PLANT_TEXT_LEN + 2 * HG_BOARD_TEXT_LEN;
     if (o->fault_cause == HG_FAULT_STIFF) {
-        hg_board_describe_stiffness(b, o, period_ns, 0, what);
-        snprintf(buf, n, "%s: %s even with %u substeps (code %d); give %s", what, hg_strerror(o->fault_code),
-                 HG_SUBSTEPS_MAX, o->fault_code,
-                 o->stiff_dt_max_s > 0.0 ? "a softer value, another --integrator or a shorter --dt"
-                                         : "the mode damping or another --integrator (no step is short enough)");
+        char stiff[HG_BOARD_TEXT_LEN], remedy[HG_BOARD_TEXT_LEN];
+        hg_board_describe_stiffness(b, o, period_ns, 0, stiff);
+        hg_board_stiff_remedy(o, "--integrator", "--dt", remedy);
+        snprintf(buf, n, "%s: %s even with %u substeps (code %d); give %s", stiff, hg_strerror(o->fault_code),
+                 HG_SUBSTEPS_MAX, o->fault_code, remedy);
         return;
     }
     hg_board_plant(b)->describe(&o->fault_report, 0, what);
@@ -230,12 +230,13 @@ int cli_params_check_from(const char *cmd, int plant, int variant, const hg_plan
     return 1;
 }
 
-hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_params *p)
+/* Storage for a board of plant and variant, not yet built, when block p (0:
+ * the defaults) passes the board's checks; else 0 after a message per field. */
+static hg_board *board_storage(const char *cmd, int plant, int variant, const hg_board_params *p)
 {
     static const char *why[HG_BOARD_WHY_LEN];
     hg_bitset bad;
     hg_board *b = calloc(1, sizeof *b);
-    int rc;
     if (!b) {
         fprintf(stderr, "hexaglide %s: out of memory\n", cmd);
         return 0;
@@ -247,9 +248,21 @@ hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_
         free(b);
         return 0;
     }
-    rc = hg_board_init(b, plant, variant, p);
-    if (rc) {
+    return b;
+}
+
+/* 0 when rc (hg_board_init's) built the board, else 1 after saying why. */
+static int build_failed(const char *cmd, int rc)
+{
+    if (rc)
         fprintf(stderr, "hexaglide %s: cannot build the machine: %s (code %d)\n", cmd, hg_strerror(rc), rc);
+    return rc != 0;
+}
+
+hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_params *p)
+{
+    hg_board *b = board_storage(cmd, plant, variant, p);
+    if (b && build_failed(cmd, hg_board_init(b, plant, variant, p))) {
         free(b);
         return 0;
     }
@@ -259,12 +272,14 @@ hg_board *cli_board_new(const char *cmd, int plant, int variant, const hg_board_
 int cli_board_integrable(const char *cmd, int plant, int variant, const hg_board_params *p, long period_ns,
                          char *const *sets, int nset)
 {
-    hg_board *b = cli_board_new(cmd, plant, variant, p);   /* (refuses a block the checks refuse, by field) */
+    hg_board *b = board_storage(cmd, plant, variant, p);
     hg_board_inputs in;
     hg_board_outputs out;
+    int rc;
     if (!b)
         return 1;
-    if (hg_board_integrable(b, &in, plant, variant, p, period_ns, &out) == HG_ERR_STIFF) {
+    rc = hg_board_integrable(b, &in, plant, variant, p, period_ns, &out);   /* builds it, runs a period */
+    if (rc == HG_ERR_STIFF) {
         char what[HG_PLANT_TEXT_LEN + 2 * HG_BOARD_TEXT_LEN];
         hg_param_info e;
         cli_fault_text(b, &out, period_ns, what);
@@ -272,11 +287,11 @@ int cli_board_integrable(const char *cmd, int plant, int variant, const hg_board
         if (hg_plant_param_at(plant, variant, out.stiff_param, &e) != 0 || !set_by(e.name, sets, nset))
             print_sets(sets, nset);
         fputc('\n', stderr);
-        free(b);
-        return 1;
+    } else {
+        build_failed(cmd, rc);
     }
     free(b);
-    return 0;
+    return rc != 0;
 }
 
 void cli_enc_scale_notes(const char *cmd, const hg_board *b, const double *scale, int n, const char *what)

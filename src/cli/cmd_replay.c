@@ -742,10 +742,12 @@ static int whatif_fault(const hg_board *wb, const hg_board_outputs *o, long n, l
 {
     char what[HG_PLANT_TEXT_LEN + HG_BOARD_TEXT_LEN]; /* room for either text */
     if (o->fault_cause == HG_FAULT_STIFF) {
+        char remedy[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(wb, o, period_ns, 0, what);
+        hg_board_stiff_remedy(o, "--integrator", 0, remedy);   /* the record's period stays */
         fprintf(stderr, "hexaglide replay: sample %ld: the changed board cannot integrate its parameters: %s: %s "
-                "even with %u substeps; change --set, --integrator or --substeps\n", n, what,
-                hg_strerror(o->fault_code), HG_SUBSTEPS_MAX);
+                "even with %u substeps; give (--set) %s\n", n, what, hg_strerror(o->fault_code),
+                HG_SUBSTEPS_MAX, remedy);
         return 1;
     }
     hg_board_plant(wb)->describe(&o->fault_report, 0, what);
@@ -1115,7 +1117,7 @@ int cmd_replay(int argc, char **argv)
                     fprintf(stderr, " %s (%s)", hg_board_param_hal_name(wb, bit) ? hg_board_param_hal_name(wb, bit) : "?",
                             why[bit] ? why[bit] : "invalid");
             fprintf(stderr, "; the what-if stops here: change --set\n");
-            status = 1;
+            status = 2;                /* the user's input, refused (as up front) */
             break;
         }
         if (whatif && (out_w.enc_scale_odd & ~out_x.enc_scale_odd)) {   /* (--set lead or counts_per_rev) */
@@ -1125,7 +1127,7 @@ int cmd_replay(int argc, char **argv)
         }
         if (whatif && (out_w.events & HG_EV_FAULT_LATCHED) && !out_x.fault &&
             whatif_fault(closed ? &L.board : &b, &out_w, n, period)) {
-            status = 1;
+            status = 2;                /* the user's changes cannot run at the record's period */
             break;
         }
         if (whatif) {

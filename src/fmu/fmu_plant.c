@@ -434,10 +434,11 @@ static int report(const plant *p, const hg_board_outputs *out, double t_s, fmu_s
              out->params.substeps);
     }
     if ((out->events & HG_EV_FAULT_LATCHED) && out->fault_cause == HG_FAULT_STIFF) {
+        char remedy[HG_BOARD_TEXT_LEN];
         hg_board_describe_stiffness(&p->b, out, p->period_ns, 0, why);
+        hg_board_stiff_remedy(out, "integrator", "period", remedy);
         sayf(say, env, FMU_SAY_WARNING, "the period from t = %.6f s to %.6f s failed: %s: %s even with "
-             "%u substeps; give a softer value, another integrator or a shorter period", t_s, t_end, why,
-             hg_strerror(out->fault_code), HG_SUBSTEPS_MAX);
+             "%u substeps; give %s", t_s, t_end, why, hg_strerror(out->fault_code), HG_SUBSTEPS_MAX, remedy);
         level = FMU_SAY_WARNING;
     } else if (out->events & HG_EV_FAULT_LATCHED) {
         char what[HG_PLANT_TEXT_LEN];

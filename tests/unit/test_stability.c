@@ -152,6 +152,17 @@ static void test_refused_and_board(void)
               strcmp(hg_params_table(0)[out.stiff_param].name, "k_stop") == 0 && out.stiff_dt_max_s == st.dt_max_s,
           "... at 10 ms: %d as hg_stability_check's %d, naming k_stop, its longest step %g s (%g)", i, rc,
           out.stiff_dt_max_s, st.dt_max_s);
+    {   /* what to change: a shorter step helps (the bound is a step), in the caller's words */
+        char remedy[HG_BOARD_TEXT_LEN];
+        hg_board_stiff_remedy(&out, "--integrator", "--dt", remedy);
+        CHECK(strcmp(remedy, "a softer value, another --integrator or a shorter --dt") == 0, "remedy: \"%s\"", remedy);
+        hg_board_stiff_remedy(&out, "integrator", 0, remedy);       /* a period the caller cannot change */
+        CHECK(strcmp(remedy, "a softer value or another integrator") == 0, "remedy, no period: \"%s\"", remedy);
+        out.stiff_dt_max_s = 0.0;                                     /* no step is short enough */
+        hg_board_stiff_remedy(&out, "integrator", "period", remedy);
+        CHECK(strcmp(remedy, "the mode damping or another integrator (no step is short enough)") == 0,
+              "remedy of an undamped mode names no period: \"%s\"", remedy);
+    }
     *hg_test_pv(&bp, "m_head") = -1.0;
     i = hg_board_integrable(&b, &in, 0, HG_MODEL_REDUCED_CARTESIAN, &bp, 1000000L, &out);
     CHECK(i == HG_ERR_BAD_PARAM && !out.fault, "... a block the checks refuse (m_head -1): %d, not built", i);
