@@ -215,7 +215,7 @@ typedef struct {
 
 /* The board: plant, model, state, sensors and latches (no pointers). */
 typedef struct {
-    int plant;                        /* index of the plant in the registry (hg_plant.c) */
+    int plant;                        /* index of the plant in the registry (hg_plants.c) */
     int variant;                      /* the plant's model variant (hexaglide: the parametrization) */
     int integrator;                   /* in force */
     hg_board_params in_force;         /* the parameter block in force */
@@ -272,7 +272,7 @@ const hg_plant *hg_board_plant(const hg_board *b);
  * HG_ERR_BAD_PARAM for an unknown plant or variant. */
 int hg_board_params_default(int plant, int variant, hg_board_params *p);
 
-/* Power-up: plant `plant` (registry index, hg_plant.c) with model
+/* Power-up: plant `plant` (registry index, hg_plants.c) with model
  * variant `variant` and parameter block p (0: the plant's defaults, 1
  * substep, Heun), machine at HOME at rest, counters 0, watchdog disabled,
  * no fault. 0, or HG_ERR_BAD_PARAM (p refused, or an unknown plant or

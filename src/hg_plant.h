@@ -7,7 +7,7 @@
  * serial-axis machine, hg_plant_serial.c) knows nothing of the board.
  *
  * A plant is a table of functions and facts (hg_plant), found by name in
- * the registry (hg_plant.c). Its parameters are a block of doubles in SI
+ * the registry (hg_plants.c). Its parameters are a block of doubles in SI
  * units, entry i being entry i of its parameter table (hg_param_table.h:
  * name, unit, HAL name and scale, INI key). Its model (constant after
  * build) and data (mutable state, then scratch) live in storage the
@@ -182,7 +182,7 @@ typedef struct {
     void (*describe)(const hg_plant_report *r, int hal, char buf[HG_PLANT_TEXT_LEN]);
 } hg_plant;
 
-/* The registry (hg_plant.c): plant i (0 the Hexaglide, the default), 0
+/* The registry (hg_plants.c): plant i (0 the Hexaglide, the default), 0
  * past the last; the index of the plant called name, or -1. Indices are
  * stable: records name their plant by it. */
 const hg_plant *hg_plant_at(int i);
