@@ -119,11 +119,14 @@ static void *plant(instance_t *s)
     return s->blob + s->off_plant;
 }
 
-/* Log one message (errors and warnings always, events with loggingOn). */
+/* Log one message (errors and warnings always, events with loggingOn). A '#' is written "##": in an FMI
+ * message "#vr#" names a variable (FMI 3.0, 2.3.1), and no message of this FMU means one (an instance
+ * name "arm#3#" is text). */
 static void say(instance_t *s, int level, const char *fmt, ...) HG_PRINTF_LIKE(3, 4);
 static void say(instance_t *s, int level, const char *fmt, ...)
 {
-    char text[768];
+    char text[768], out[2 * sizeof text];
+    size_t i, j = 0;
     va_list ap;
     int category = level == FMU_SAY_ERROR ? 0 : level == FMU_SAY_WARNING ? 1 : 2;
     if (!s->log || !(s->log_on & 1u << category))
@@ -131,8 +134,14 @@ static void say(instance_t *s, int level, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
+    for (i = 0; text[i]; i++) {
+        if (text[i] == '#')
+            out[j++] = '#';
+        out[j++] = text[i];
+    }
+    out[j] = '\0';
     s->log(s->env, level == FMU_SAY_ERROR ? fmi3Error : level == FMU_SAY_WARNING ? fmi3Warning : fmi3OK,
-           log_categories[category], text);
+           log_categories[category], out);
 }
 
 /* The plant's messages (fmu_say_fn), prefixed with the instance name. */

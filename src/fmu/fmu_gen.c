@@ -311,12 +311,27 @@ static int write_description(FILE *f)
     }
     fprintf(f, "  </ModelVariables>\n\n  <ModelStructure>\n");
     /* no output depends on an input at the same communication point (the step's outputs are of the inputs
-       held from its start: one period of delay); without dependencies="" an importer must assume it does */
+       held from its start: one period of delay); without a dependencies list an importer must assume it
+       does. The parameters are knowns too (FMI 3.0, 2.4.8): an output read from the state uses them
+       (position_k = count_k / enc_scale, a switch by its threshold, the force by kt and lead), so each
+       output lists every parameter, and no input */
     for (vr = 0; vr < n; vr++) {
         fmu_var v;
+        unsigned p;
+        const char *sep = "";
         fmu_var_get(vr, &v);
-        if (v.causality == FMU_OUTPUT)
-            fprintf(f, "    <Output valueReference=\"%u\" dependencies=\"\"/>\n", vr);
+        if (v.causality != FMU_OUTPUT)
+            continue;
+        fprintf(f, "    <Output valueReference=\"%u\" dependencies=\"", vr);
+        for (p = 0; p < n; p++) {
+            fmu_var w;
+            fmu_var_get(p, &w);
+            if (w.causality == FMU_PARAMETER) {
+                fprintf(f, "%s%u", sep, p);
+                sep = " ";
+            }
+        }
+        fprintf(f, "\"/>\n");
     }
     for (vr = 0; vr < n; vr++) {
         fmu_var v;

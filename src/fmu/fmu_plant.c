@@ -497,6 +497,16 @@ static int is_bit(int x)
 /* Bitwise equality of two objects (doubles included: a NaN equals itself). */
 #define SAME(a, b) (memcmp(&(a), &(b), sizeof(a)) == 0) // NOLINT(bugprone-suspicious-memory-comparison): bitwise on purpose
 
+/* 1 when the n doubles of v are all finite. */
+static int finite_all(const double *v, int n)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return 0;
+    return 1;
+}
+
 /* What is wrong with plant p against ref, a fresh build of the same
  * setup (enc_scale the FMU's encoder scale), or 0. */
 static const char *plant_wrong(const plant *p, const plant *ref, double enc_scale)
@@ -534,6 +544,12 @@ static const char *plant_wrong(const plant *p, const plant *ref, double enc_scal
     d = hg_hexaglide_data(&b->d);
     if (!isfinite(d->t_s) || d->t_s < 0 || d->broken_bars != 0)
         return "its machine's time is not finite, or a bar is broken (the FMU breaks none)";
+    if (!finite_all(d->z_m, 6) || !finite_all(d->zd_mps, 6) || !finite_all(d->zdd_mps2, 6) ||
+        !finite_all(d->pose, 6) || !finite_all(d->posed, 6) || !finite_all(d->bar_rad, 12) ||
+        !finite_all(d->bar_radps, 12) || !finite_all(d->current_a, 6) || !finite_all(d->vloop_int_m, 6) ||
+        !finite_all(d->fric_n, 6) || !finite_all(d->force_n, 6) || !finite_all(&d->residual_m, 1) ||
+        !finite_all(d->zr_m, 6) || !finite_all(d->zrd_mps, 6))
+        return "its machine's state is not finite (a step never leaves a NaN or an infinity in it)";
     if (d->trig_valid) {              /* the state's sin/cos of the head's angles: the core's of them */
         double sc[6];
         hg_head_trig(d->pose, sc);

@@ -50,7 +50,8 @@ static const group_info groups[FMU_G_N] = {
                           "the digital output in the E-STOP loop (out-07, iocontrol.0.user-enable-out): "
                           "amplifiers powered while TRUE and no E-STOP, watchdog or fault"},
     [FMU_G_COUNT] = {"count", J, 0, FMU_INT32, FMU_OUTPUT, "discrete", 0, 0, 1,
-                     "encoder counts (counts_per_rev per motor revolution; 0 at HOME after load)"},
+                     "encoder counts (counts_per_rev per motor revolution; 0 at HOME after load; a 32-bit "
+                     "counter that wraps, as the board's)"},
     [FMU_G_POSITION] = {"position", J, 0, FMU_FLOAT64, FMU_OUTPUT, "discrete", 0, 0, 1,   /* (whole counts) */
                         "encoder position, count / enc_scale"},
     [FMU_G_INDEX] = {"index", J, 0, FMU_BOOLEAN, FMU_OUTPUT, "discrete", 0, 0, 1,

@@ -717,6 +717,8 @@ static void test_forged(void)
         {"a fault latch of 99", BOARD, offsetof(hg_board, fault), &ninety_nine, sizeof(int), "latches"},
         {"the head's kept sin A 0.5", BOARD, offsetof(hg_board, d) + offsetof(hg_data, trig_sc), &half, sizeof half,
          "sin and cos"},
+        {"a NaN velocity-loop integrator (amplifier 0 silent ever after)", BOARD,
+         offsetof(hg_board, d) + offsetof(hg_data, vloop_int_m), &nan, sizeof nan, "not finite"},
         {"m_head = -1 (out of range)", VALUE, 0, &minus1, sizeof minus1, "m_head"},
         {"m_head = 7 (not the machine's 6.697)", VALUE, 0, &seven, sizeof seven, "model"},
         {"z_0 = NaN (an output)", VALUE, 1, &nan, sizeof nan, "z_0"},
@@ -1014,6 +1016,25 @@ static void test_no_feedthrough(void)
     fmi3FreeInstance(s);
 }
 
+/* A '#' in a message is written "##" (FMI 3.0 2.3.1: "#vr#" names a variable; a literal # is "##"): an
+ * instance named "arm#3#" is not read as variable 3 (substeps). */
+static void test_log_hash(void)
+{
+    logbook b = {0};
+    fmi3Instance s = instantiate("arm#3#", &b);
+    fmi3Boolean ev, term, early;
+    double last;
+    b.quiet = 1;
+    if (!s) {
+        check(0, "hash: instance");
+        return;
+    }
+    check(fmi3DoStep(s, 0.0, PERIOD, fmi3True, &ev, &term, &early, &last) == fmi3Error &&
+              strncmp(b.last, "arm##3##: ", 10) == 0 && !strstr(b.last + 10, "#"),
+          "a message of instance \"arm#3#\" names it \"arm##3##\" and has no other # (%s)", b.last);
+    fmi3FreeInstance(s);
+}
+
 /* fmi3SetDebugLogging turns each listed category on or off, all of them when none is listed: the FMU logs only
  * in categories that are on (FMI 3.0 2.3). A reset's rising edge is a logEvents message. */
 static void test_log_categories(void)
@@ -1102,6 +1123,7 @@ int main(void)
     test_fmi_rules();
     test_no_feedthrough();
     test_log_categories();
+    test_log_hash();
     test_logging_off();
     test_free_instance_frees_states();
     return test_failures ? 1 : 0;
