@@ -191,16 +191,22 @@ static int parse_header(hg_record *r, const char *s, size_t n, hg_record_error *
 }
 
 /* The footer: the "# key value" lines after the last row (what the recorder
- * knew only at the end), into r->meta; the rows then end where it starts. */
+ * knew only at the end), into r->meta; the rows then end where it starts.
+ * Blank lines at the very end (an editor's) carry nothing and are dropped. */
 static int parse_footer(hg_record *r, hg_record_error *e)
 {
-    size_t start = r->len, end = r->len, i;
+    size_t start, end = r->len, i;
     long line = r->line, save_pos = (long)r->pos, save_line = r->line;
     const char *s = 0;
     size_t n = 0;
     int rc;
     if (end == r->pos || r->buf[end - 1] != '\n')
         return 0;                     /* no footer; a cut last line is reported with the rows */
+    while (end - r->pos >= 2 && (r->buf[end - 2] == '\n' ||
+                                 (r->buf[end - 2] == '\r' && end - r->pos >= 3 && r->buf[end - 3] == '\n')))
+        end -= r->buf[end - 2] == '\n' ? 1 : 2;   /* a trailing "\n" or "\r\n" line */
+    r->len = end;
+    start = end;
     while (start > r->pos) {          /* back over the trailing '#' lines */
         size_t b = start - 1;         /* the '\n' ending the line before `start` */
         while (b > r->pos && r->buf[b - 1] != '\n')

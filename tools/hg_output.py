@@ -157,9 +157,13 @@ def atomic_write(path, write):
             write(f)
             f.flush()
             os.fsync(f.fileno())
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)            # mkstemp made it 0600
+        if os.path.isfile(p):                    # a file replaced keeps its mode
+            mode = os.stat(p).st_mode & 0o7777
+        else:
+            umask = os.umask(0)
+            os.umask(umask)
+            mode = 0o666 & ~umask                # a new file: as open() makes one (mkstemp made it 0600)
+        os.chmod(tmp, mode)
         os.replace(tmp, p)
         tmp = None
     except OSError as ex:

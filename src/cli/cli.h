@@ -349,6 +349,12 @@ int cli_out_is_stdout(const char *path);
  * from a file"). */
 int cli_out_need_file(const char *cmd, const char *opt, const char *path, const char *why);
 
+/* 0, or -1 after a message saying why, if output option opt's path cannot be a file that a
+ * program other than this one writes (the plot: Python) by a temporary and a rename: a
+ * directory, a device or FIFO, or a directory that takes no new file (checked now, before the
+ * work, by making and removing one); why names the file ("the plot is a PNG file"). */
+int cli_out_need_regular(const char *cmd, const char *opt, const char *path, const char *why);
+
 /* Open path's temporary file, the path itself (not a regular file) or
  * stdout (cli_out_is_stdout); 0, or -1 after a message. */
 int cli_out_open(const char *cmd, const char *path, cli_out *o);

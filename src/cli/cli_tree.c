@@ -256,6 +256,39 @@ int cli_out_need_file(const char *cmd, const char *opt, const char *path, const 
     return -1;
 }
 
+int cli_out_need_regular(const char *cmd, const char *opt, const char *path, const char *why)
+{
+    char t[PATH_MAX], d[PATH_MAX], probe[PATH_MAX + 32];
+    struct stat sb;
+    int fd;
+    if (cli_out_is_stdout(path))
+        return 0;
+    if (out_target(path, t, sizeof t)) {
+        fprintf(stderr, "hexaglide %s: cannot write %s %s: %s\n", cmd, opt, path, strerror(errno));
+        return -1;
+    }
+    if (stat(t, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+        fprintf(stderr, "hexaglide %s: %s %s: it is %s, and %s; give a file\n", cmd, opt, path,
+                S_ISDIR(sb.st_mode) ? "a directory" : "no regular file (a device or FIFO)", why);
+        return -1;
+    }
+    dir_of(t, d, sizeof d);
+    snprintf(probe, sizeof probe, "%s/.hexaglide-probe-%ld", d, (long)getpid());
+    fd = open(probe, O_WRONLY | O_CREAT | O_EXCL, 0600);
+    if (fd < 0) {
+        int err = errno;
+        if (err == ENOENT && access(d, F_OK) != 0)
+            fprintf(stderr, "hexaglide %s: cannot write %s %s: no directory %s\n", cmd, opt, path, d);
+        else
+            fprintf(stderr, "hexaglide %s: cannot write %s %s: %s (a new file in %s)\n", cmd, opt, path,
+                    strerror(err), d);
+        return -1;
+    }
+    close(fd);
+    unlink(probe);
+    return 0;
+}
+
 int cli_out_is_input(const char *cmd, const char *opt, const char *out, const char *in_opt, const char *in)
 {
     if (cli_out_is_stdout(out) || !in || !cli_out_same(out, in))
@@ -287,7 +320,7 @@ int cli_out_same(const char *a, const char *b)
 int cli_out_open(const char *cmd, const char *path, cli_out *o)
 {
     struct stat sb;
-    int fd, direct;
+    int fd, direct, exists;
     o->path = cli_out_is_stdout(path) ? 0 : path;
     o->tmp[0] = '\0';
     o->f = stdout;
@@ -297,7 +330,8 @@ int cli_out_open(const char *cmd, const char *path, cli_out *o)
         fprintf(stderr, "hexaglide %s: cannot write %s: %s\n", cmd, path, strerror(errno));
         return -1;
     }
-    direct = stat(o->target, &sb) == 0 && !S_ISREG(sb.st_mode);
+    exists = stat(o->target, &sb) == 0;
+    direct = exists && !S_ISREG(sb.st_mode);
     if (direct && S_ISDIR(sb.st_mode)) {
         fprintf(stderr, "hexaglide %s: cannot write %s: it is a directory; give a file\n", cmd, path);
         return -1;
@@ -311,6 +345,10 @@ int cli_out_open(const char *cmd, const char *path, cli_out *o)
             return -1;
         }
         fd = open(o->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+        if (fd >= 0 && exists && fchmod(fd, sb.st_mode & 07777) != 0) {   /* a file replaced keeps its mode */
+            close(fd);
+            fd = -1;
+        }
     }
     if (fd < 0 || !(o->f = fdopen(fd, "w"))) {
         char d[PATH_MAX];

@@ -835,7 +835,8 @@ int cmd_replay(int argc, char **argv)
         return 2;
     report = cli_out_is_stdout(o.csv) && o.csv ? stderr : stdout;  /* stdout holds the CSV alone */
     if (cli_out_need_file("replay", "--plot", o.plot, "the plot is a PNG file") ||
-        (o.plot && cli_out_need_file("replay", "--csv", o.csv, "with --plot: the plot reads the CSV from a file")))
+        (o.plot && cli_out_need_file("replay", "--csv", o.csv, "with --plot: the plot reads the CSV from a file")) ||
+        (o.plot && cli_out_need_regular("replay", "--plot", o.plot, "the plot is a PNG file with its CSV beside it")))
         return 2;
     if (o.csv && o.plot && cli_out_same(o.csv, o.plot)) {
         fprintf(stderr, "hexaglide replay: --csv %s and --plot %s name the same file; give two files\n", o.csv,
