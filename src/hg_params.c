@@ -195,9 +195,9 @@ static void geometry_rules(const hg_geometry *g, hg_check *r)
      * a cone of a degree at least (a joint that turns less could not move the head) */
     if (!(isfinite(g->cone_carriage_rad) && g->cone_carriage_rad >= HG_CONE_MIN_RAD &&
           g->cone_carriage_rad < HG_PI / 2))
-        hg_check_refuse(r, "cone_carriage", "must lie between 1 and 90 deg");
+        hg_check_refuse(r, "cone_carriage", "must lie between 1 and 90 deg (0.017453 and 1.570796 rad)");
     if (!(isfinite(g->cone_head_rad) && g->cone_head_rad >= HG_CONE_MIN_RAD && g->cone_head_rad < HG_PI / 2))
-        hg_check_refuse(r, "cone_head", "must lie between 1 and 90 deg");
+        hg_check_refuse(r, "cone_head", "must lie between 1 and 90 deg (0.017453 and 1.570796 rad)");
     if (!(isfinite(g->d_bar_m) && g->d_bar_m > 0))
         hg_check_refuse(r, "d_bar", "must be a positive finite length");
     if (hg_check_any(r))

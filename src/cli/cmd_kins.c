@@ -21,8 +21,8 @@ static const char *const guess_names[6] = {"--guess X", "--guess Y", "--guess Z"
 
 const char cli_usage_ik[] =
     "usage: hexaglide ik [--tool-offset MM] [--ini FILE] [--set name=value]... X Y Z A B C\n"
-    "  prints the joints J0..J5 (mm) of the pose X Y Z (mm) A B C (degrees), one line,\n"
-    "  full precision\n" USAGE_TOOL_OFFSET CLI_USAGE_MODEL;
+    "  prints the joints J0..J5 (mm) of the pose X Y Z (mm) A B C (degrees, |A|, |B|, |C| at most 360),\n"
+    "  one line, full precision\n" USAGE_TOOL_OFFSET CLI_USAGE_MODEL;
 
 const char cli_usage_fk[] =
     "usage: hexaglide fk [--guess X,Y,Z,A,B,C] [--tool-offset MM] [--ini FILE] [--set name=value]...\n"
@@ -150,6 +150,13 @@ int cmd_ik(int argc, char **argv)
     rc = kins_parse("ik", cli_usage_ik, ik_opts, pose_names, "X Y Z (mm) A B C (deg)", argc, argv, &c, sets, &done);
     if (rc || done)
         return rc;
+    for (k = 3; k < 6; k++)           /* beyond a turn, deg to rad loses whole degrees (1e17 deg is not 280) */
+        if (fabs(c.pos[k]) > 360.0) {
+            char v[CLI_NUM_LEN];
+            fprintf(stderr, "hexaglide ik: %s = %s deg is beyond a turn (|%s| <= 360 deg); give the angle within "
+                    "a turn\n", pose_names[k], cli_num(c.pos[k], v), pose_names[k]);
+            return 2;
+        }
     hg_pose_from_user(c.pos, commanded);
     hg_pose_offset_to_op(commanded, c.tool_offset_m, pose);
     rc = hg_inverse_kinematics_guarded(&c.p.geo, pose, z, &guard);
