@@ -1439,6 +1439,22 @@ def rest_before(cmd, start, lead=None):
     return r if end - r >= 50 else max(0, start - lead)
 
 
+def validation_commands(path, vrun):
+    """The joint commands (mm, one row a period) of file path (any format tune reads) for the
+    closed-loop validation on vrun; BadInput unless there is one a period of vrun: they stand in
+    for its joint.N.motor-pos-cmd columns."""
+    import hexaglide_tune as tune
+    try:
+        cmd = tune.load_trajectory(path)
+    except tune.BadInput as ex:
+        raise BadInput(str(ex))
+    if len(cmd) != len(vrun.volts):
+        raise BadInput("--commands %s: %d commands, but %s holds %d servo periods: the commands are the "
+                       "validation recording's own, one a period (its joint.N.motor-pos-cmd); give the "
+                       "commands of that run" % (path, len(cmd), vrun.path, len(vrun.volts)))
+    return cmd
+
+
 def validate(vrun, a, reg, params, s, est, pi0, base):
     """Open loop: the drive forces of vrun predicted by the identified and the prior
     model. Closed loop: the peak following error of vrun's commands through hg_loop
@@ -1464,10 +1480,7 @@ def validate(vrun, a, reg, params, s, est, pi0, base):
     data = {"e": e, "res": res, "res0": res0}
     cmd = fe = None
     if a.commands:
-        try:
-            cmd = tune.load_trajectory(a.commands)
-        except tune.BadInput as ex:
-            raise BadInput(str(ex))
+        cmd = validation_commands(a.commands, vrun)
     elif vrun.cmd_mm is not None:
         cmd, fe = vrun.cmd_mm, vrun.ferror_mm
         if vrun.running is not None and vrun.running.any():
@@ -1657,11 +1670,32 @@ def record_args(args):
     return [x for x in ns.records if os.path.isfile(x)]
 
 
+def same_files(paths):
+    """(a, b, why) of the first two of paths that are one file (the same file by another name, or the
+    same bytes), else None."""
+    import hashlib
+    seen = {}
+    for p in paths:
+        st = os.stat(p)
+        with open(p, "rb") as f:
+            digest = hashlib.sha256(f.read()).hexdigest()
+        for key, why in (((st.st_dev, st.st_ino), "the same file"), (digest, "the same bytes")):
+            if key in seen:
+                return seen[key], p, why
+            seen[key] = p
+    return None
+
+
 def main(argv=None):
     """hexaglide identify: read, fit, report, validate, write."""
     import hexaglide_identify_serial as ids
     args = list(sys.argv[1:] if argv is None else argv)
     recs = record_args(args)
+    twice = same_files(recs)
+    if twice:                                 # its equations would count twice, its sigmas shrink by sqrt 2
+        log("%s and %s are one record (%s): each record counts once in the fit; give each once"
+            % (twice[0], twice[1], twice[2]))
+        return 2
     serial = [r for r in recs if ids.is_serial_record(r)]
     if serial and len(serial) < len(recs):
         other = next(r for r in recs if r not in serial)
@@ -1717,6 +1751,8 @@ def main(argv=None):
                            "the cutoff costs, below a quarter of the sampling rate, %g Hz)"
                            % (a.cutoff, 0.25 / runs[0].dt / s.second_cutoff, s.second_cutoff, 0.25 / runs[0].dt))
         vrun = read_run(a.validate, a.ini) if a.validate else None
+        if a.commands:
+            validation_commands(a.commands, vrun)     # (now: a wrong count of commands is no reason to fit)
         every = runs + ([vrun] if vrun else [])             # the fitted records and the validation's
         params = known_params(every, a.set, a.ini if ini_given else None)
         reg = Regressor(params)
@@ -1777,6 +1813,13 @@ def main(argv=None):
                 log("%s: %d of %d periods left out (the first at line %d): the amplifiers off, the fault latched "
                     "or an encoder jump; the fit takes the rest" % (r.path, off, len(r.ok),
                                                                   r.hdr_no + 1 + first))
+            clamp = clamped_periods(r, params).any(1) & r.ok
+            if clamp.any():     # the DAC at or beyond the current limit's volts: the force is not known there
+                first = int(np.argmax(clamp))
+                log("%s: %d of %d periods left out (the first at line %d): a drive at the amplifier's current "
+                    "limit (i_max %g A; the DAC's %g V or more), where its force is not known"
+                    % (r.path, int(clamp.sum()), len(r.ok), r.hdr_no + 1 + first, params["i_max"],
+                       0.98 * params["i_max"] / params["ka"]))
         if a.output:
             hg_output.check_writable(a.output)         # a missing or unwritable directory now, not after the fit
         if a.plots:                                    # (as tune's --plots)
