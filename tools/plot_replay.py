@@ -120,7 +120,10 @@ def main():
     except hg_output.OutputError as ex:
         print("plot_replay.py: %s" % ex, file=sys.stderr)
         return 1
-    print("plot_replay.py: wrote %s" % png)
+    try:
+        print("plot_replay.py: wrote %s" % png, flush=True)
+    except OSError:                     # stdout full or closed: the plot is written; hexaglide replay says
+        pass                            # that its stdout failed (it is the same stream)
     return 0
 
 
