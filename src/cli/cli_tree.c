@@ -68,6 +68,7 @@ int cli_tree_path(const char *rel, char *out, size_t len)
 
 /* Run `python -c "import a, b"` for the modules; 0 if it imports them, else
  * -1 with the last line of what it printed (or why it did not run) in why. */
+#define PY_PROBE_STATUS 42              /* the probe's exit status when the imports worked */
 static int python_imports(const char *python, const char *modules, char *why, size_t len)
 {
     char code[256], buf[4096];
@@ -88,6 +89,9 @@ static int python_imports(const char *python, const char *modules, char *why, si
         }
     }
     code[j] = '\0';
+    /* the probe ends with an exit status of its own: a program that exits 0 whatever it is given
+     * (HEXAGLIDE_PYTHON=/bin/true) is no Python that imported them */
+    snprintf(code + j, sizeof code - j, "; raise SystemExit(%d)", PY_PROBE_STATUS);
     if (pipe(fd) != 0) {
         snprintf(why, len, "cannot run it (pipe: %s)", strerror(errno));
         return -1;
@@ -122,8 +126,13 @@ static int python_imports(const char *python, const char *modules, char *why, si
     close(fd[0]);
     if (waitpid(pid, &status, 0) < 0)
         status = -1;
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+    if (WIFEXITED(status) && WEXITSTATUS(status) == PY_PROBE_STATUS)
         return 0;
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+        snprintf(why, len, "it is no python3: it exited 0 where Python exits %d (python3 -c '%s')", PY_PROBE_STATUS,
+                 code);
+        return -1;
+    }
     while (used > 0 && (buf[used - 1] == '\n' || buf[used - 1] == ' '))
         used--;
     buf[used] = '\0';
