@@ -132,17 +132,68 @@ def dither(n, dt, band=DITHER_BAND_HZ, amp_v=DITHER_V, sweep_s=DITHER_SWEEP_S):
     return out
 
 
-def dither_hal(band=DITHER_BAND_HZ, amp_v=DITHER_V, sweep_s=DITHER_SWEEP_S):
+DITHER_HAL = os.path.join(ROOT, "configs", "hexaglide.hal")   # --hal's default: the HAL file the snippet follows
+DAC_WRITE = "motenc.0.dac-write"          # the servo thread's function that writes pid.N.output to the DACs
+
+
+def servo_thread(path):
+    """The functions of the HAL file path's `addf FUNCT servo-thread [POSITION]` lines in the order
+    the servo thread runs them: halcmd's, a POSITION > 0 counted from the thread's start (1: first),
+    < 0 from its end (-1, as without one: last); ValueError naming the file and line of a POSITION
+    halcmd refuses, or a file that cannot be read."""
+    funcs = []
+    try:
+        with open(path) as f:
+            text = f.read().splitlines()
+    except (OSError, UnicodeDecodeError) as ex:
+        raise ValueError("--hal %s: cannot read it: %s" % (path, getattr(ex, "strerror", None) or ex))
+    for no, line in enumerate(text, 1):
+        w = line.split("#", 1)[0].split()
+        if len(w) < 3 or w[0] != "addf" or w[2] != "servo-thread":
+            continue
+        try:
+            pos = int(w[3]) if len(w) > 3 else -1
+        except ValueError:
+            pos = 0
+        if pos == 0 or abs(pos) > len(funcs) + 1:
+            raise ValueError("%s line %d: addf %s servo-thread %s: halcmd takes a position of 1..%d or -1..-%d "
+                             "here" % (path, no, w[1], w[3], len(funcs) + 1, len(funcs) + 1))
+        funcs.insert(pos - 1 if pos > 0 else len(funcs) + 1 + pos, w[1])
+    return funcs
+
+
+def dac_position(path):
+    """The addf position (counted from the end, as halcmd takes it) that runs a function added
+    after the HAL file path right before its DAC_WRITE, so after the pids (the dither's sum2.N
+    then adds to this period's pid.N.output, as dither() says); ValueError naming the file where
+    its servo thread has no DAC_WRITE, or a pid.N.do-pid-calcs after it (or none)."""
+    funcs = servo_thread(path)
+    if DAC_WRITE not in funcs:
+        raise ValueError("%s: no `addf %s servo-thread`: the dither's functions go right before the DAC write; "
+                         "give --hal the HAL file of the servo thread the snippet is loaded after" % (path, DAC_WRITE))
+    k = funcs.index(DAC_WRITE)
+    late = [p for p in ("pid.%d.do-pid-calcs" % j for j in range(6)) if p not in funcs[:k]]
+    if late:
+        raise ValueError("%s: %s is not added to the servo thread before %s: the dither adds to pid.N.output "
+                         "on its way to the DAC" % (path, late[0], DAC_WRITE))
+    return k - len(funcs) - 1
+
+
+def dither_hal(band=DITHER_BAND_HZ, amp_v=DITHER_V, sweep_s=DITHER_SWEEP_S, hal=DITHER_HAL):
     """The HAL snippet of the trains' dither (dither() is what it makes), to
-    load after configs/hexaglide.hal: each pid.N.output then reaches its DAC
-    through sum2.N, with siggen.N's chirp."""
+    load right after the HAL file hal (configs/hexaglide.hal): each pid.N.output
+    then reaches its DAC through sum2.N, with siggen.N's chirp, all run before
+    the DAC write (dac_position), in the period the pid computes."""
+    pos = dac_position(hal)
     lines = ["# the drive trains' dither (hexaglide excite --dither): chirps %g..%g Hz, %g V"
              % (band[0], band[1], amp_v),
+             "# load right after %s: addf's position %d runs these functions before its %s"
+             % (os.path.basename(hal), pos, DAC_WRITE),
              "loadrt siggen num_chan=12", "loadrt sum2 count=6", "loadrt scale count=6"]
     for k in range(6):
         tr = 6 + k
-        lines += ["addf siggen.%d.update servo-thread" % tr, "addf scale.%d servo-thread" % k,
-                  "addf siggen.%d.update servo-thread" % k, "addf sum2.%d servo-thread" % k,
+        lines += ["addf siggen.%d.update servo-thread %d" % (tr, pos), "addf scale.%d servo-thread %d" % (k, pos),
+                  "addf siggen.%d.update servo-thread %d" % (k, pos), "addf sum2.%d servo-thread %d" % (k, pos),
                   "setp siggen.%d.frequency %.6g" % (tr, 0.5 / _sweep_s(k, sweep_s)),
                   "setp siggen.%d.amplitude 0.5" % tr, "setp siggen.%d.offset 0.5" % tr,
                   "setp scale.%d.gain %.6g" % (k, band[1] - band[0]), "setp scale.%d.offset %.6g" % (k, band[0]),
@@ -416,7 +467,7 @@ def check_options(a, names):
 # the trains' program (--trains) and the dither's HAL snippet (--dither, with --trains or alone)
 FOURIER_OPTS = ("period", "periods", "harmonics", "max_volts", "segment", "starts", "maxiter", "grid", "seed", "set")
 TRAINS_OPTS = ("stroke", "seconds")
-DITHER_OPTS = ("dither_volts", "dither_band")
+DITHER_OPTS = ("dither_volts", "dither_band", "hal")
 
 
 def unused_options(a, given):
@@ -516,6 +567,10 @@ def main(argv=None):
                     "and the DACs) to FILE")
     ap.add_argument("--dither-volts", type=hg_csv.number, default=DITHER_V,
                     help="the dither's amplitude, V, in (0, %g] (default %%(default)s)" % DITHER_V_MAX)
+    ap.add_argument("--hal", metavar="FILE", default=DITHER_HAL,
+                    help="with --dither: the HAL file the snippet is loaded right after (default "
+                    "configs/hexaglide.hal): its servo thread's addf order places the dither before %s"
+                    % DAC_WRITE)
     ap.add_argument("--dither-band", type=hg_csv.number, nargs=2, default=DITHER_BAND_HZ, metavar=("LO", "HI"),
                     help="the chirps' band, Hz, 0 < LO < HI < half the servo rate of --ini's [EMCMOT]SERVO_PERIOD "
                     "(500 at 1 ms; default %g %g: about the trains' axial mode)"
@@ -532,7 +587,7 @@ def main(argv=None):
         for p in (a.output, a.dither):
             if p:
                 hg_output.check_writable(p)            # a missing or unwritable directory now, not after the design
-        hg_output.refuse_inputs([("--output", a.output), ("--dither", a.dither)], [("--ini", a.ini)])
+        hg_output.refuse_inputs([("--output", a.output), ("--dither", a.dither)], [("--ini", a.ini), ("--hal", a.hal)])
         hg_output.refuse_same([("--output", a.output), ("--dither", a.dither)])
     except (ValueError, hg_output.OutputError) as ex:
         log(ex)
@@ -548,11 +603,12 @@ def main(argv=None):
                                  % (lo, hi, 0.5e9 / ns, 1e9 / ns, ", [EMCMOT]SERVO_PERIOD = %.0f ns of %s"
                                     % (ns, a.ini) if cfg.servo_period_ns else ""))
             text = trains_gcode(a, cfg.axes) if a.trains else None
+            snippet = dither_hal(tuple(a.dither_band), a.dither_volts, hal=a.hal) if a.dither else None
         except ValueError as ex:
             log(ex)
             return 2
         if a.dither:
-            hid.atomic_write(a.dither, lambda f: f.write(dither_hal(tuple(a.dither_band), a.dither_volts).encode()))
+            hid.atomic_write(a.dither, lambda f: f.write(snippet.encode()))
             log("wrote the dither's HAL snippet to %s" % a.dither)
         if text is None:
             return 0

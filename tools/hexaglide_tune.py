@@ -30,10 +30,10 @@ import hexaglide as hg  # noqa: E402
 import hg_csv  # noqa: E402
 import hg_config  # noqa: E402
 import hg_margins as hgm  # noqa: E402
-from hg_program import LEAD_IN, PERIOD_S, PERIOD_WHY, beyond_limits, program_rows, s_curve, uneven_times  # noqa: E402
+from hg_program import LEAD_IN, PERIOD_S, PERIOD_WHY, beyond_limits, program_rows, s_curve  # noqa: E402
 import hg_identify_base as ib  # noqa: E402  (the C record reader)
 import hg_cli  # noqa: E402
-from hg_tune_options import RANGES, add_jobs_option  # noqa: E402
+from hg_tune_options import RANGES, add_jobs_option, csv_columns  # noqa: E402
 import hg_output  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -84,7 +84,9 @@ def load_trajectory(path):
     joint.N.motor-pos-cmd; cropped to the program when halui.program.is-running
     is there), or plain rows of 6 numbers (or 7: a sample number / time first,
     as `halsampler -t` prints), separated by spaces or commas; lines starting
-    with # are comments. .gz files are read too."""
+    with # are comments. .gz files are read too. A CSV's columns are checked
+    as hg_tune_options.csv_columns checks them (a name given twice, a row of
+    another width, `sample` and `t_s` not one servo period a line)."""
     if os.path.isdir(path):
         raise BadInput("--trajectory %s is a directory: give the recorded file (docs/tuning.md)" % path)
     if not os.path.isfile(path):
@@ -99,7 +101,7 @@ def load_trajectory(path):
         lines = hg_csv.text_lines(path)
     except hg_csv.CsvError as ex:
         raise BadInput(str(ex))
-    header = None
+    header, hdr_no = None, 0
     rows = []
     for no, line in enumerate(lines, 1):
         s = line.strip()
@@ -110,7 +112,7 @@ def load_trajectory(path):
                            "deeper FIFO (loadrt sampler depth=...)" % (path, no))
         fields = [x for x in s.replace(",", " ").split()]
         if header is None and not rows and any("motor-pos-cmd" in x for x in fields):
-            header = [x.strip() for x in s.split(",")]   # "t_s, joint.0.motor-pos-cmd, ..." too
+            header, hdr_no = fields, no        # "t_s, joint.0.motor-pos-cmd, ..." too
             continue
         try:
             vals = [hg_csv.number(x) for x in fields]
@@ -123,6 +125,10 @@ def load_trajectory(path):
             raise BadInput("%s line %d holds a NaN or infinite value" % (path, no))
         rows.append((no, vals))
     if header is not None:
+        try:
+            data = csv_columns(path, header, hdr_no, [v for _, v in rows], [no for no, _ in rows])
+        except ValueError as ex:
+            raise BadInput(str(ex))
         cols = []
         for j in range(hg.JOINTS):
             name = "joint.%d.motor-pos-cmd" % j
@@ -133,15 +139,7 @@ def load_trajectory(path):
                  and int(c.split(".")[1]) >= hg.JOINTS]
         if extra:
             raise BadInput("%s: %d joints, the Hexaglide has 6" % (path, hg.JOINTS + len(extra)))
-        for no, v in rows:
-            if len(v) != len(header):
-                raise BadInput("%s line %d has %d fields, the header %d" % (path, no, len(v), len(header)))
-        data = np.array([v for _, v in rows]) if rows else np.zeros((0, len(header)))
         cmd = data[:, cols]
-        if "t_s" in header and len(data) > 1:
-            why = uneven_times(path, data[:, header.index("t_s")], [no for no, _ in rows])
-            if why:
-                raise BadInput(why)
         if "halui.program.is-running" in header and len(data):
             span = program_rows(data[:, header.index("halui.program.is-running")] > 0.5, cmd)
             if span:
@@ -329,10 +327,16 @@ def gains_from_x(x, prob):
     return out
 
 
+def per_joint(notch):
+    """tune's one notch (f0, Q) as hg.loop_config and hg_margins take a notch, one entry per
+    joint; None for None."""
+    return [notch] * hg.JOINTS if notch else None
+
+
 def notch_of(x, prob):
-    """The notch of search vector x: prob["notch"] (f0, Q) on all six joints when x has the
-    notch switch (x[5], with prob["notch"]) on, else None."""
-    return [prob["notch"]] * 6 if len(x) > 5 and x[5] > 0.5 else None
+    """The notch of search vector x: per_joint of prob["notch"] (f0, Q) when x has the notch
+    switch (x[5], with prob["notch"]) on, else None."""
+    return per_joint(prob["notch"]) if len(x) > 5 and x[5] > 0.5 else None
 
 
 APPROACH_MM = 0.03         # the runs after the first come to the start from +-this per joint
@@ -611,7 +615,7 @@ def critical_windows(prob):
     prob.pop("windows", None)
     prob["seqs"] = {k: v for k, v in prob.get("seqs", {}).items() if k[0] != "windows"}
     g0 = gains_from_x(X0, prob)
-    notches = [None] + ([[prob["notch"]] * 6] if prob.get("notch") else [])
+    notches = [None] + ([per_joint(prob["notch"])] if prob.get("notch") else [])
     runs = [trajectory_runs(g0, prob, prob["search_settles"][:1], keep=True, notch=nf)[0] for nf in notches]
     if not all(r.ok for r in runs):
         return "the search runs the whole trajectory (a run of the model start trips, so it shows no peaks)"
@@ -864,19 +868,21 @@ PLOT_NAMES = ("tune_step.png", "tune_ferror.png", "tune_bode.png")     # what pl
 
 
 def plots(outdir, cur, sug, prob, source, notch=None):
-    """PLOT_NAMES in outdir (each written to a temp, then renamed)."""
+    """PLOT_NAMES in outdir (each written to a temp, then renamed): the current gains cur and the
+    suggestion sug with its notch (f0, Q) or None, as the prediction runs them."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     paths = []
 
     save = png_saver(outdir, paths)
+    curves = (("current", cur, None), ("suggested" + (" + notch" if notch else ""), sug, per_joint(notch)))
 
     fig, ax = plt.subplots(figsize=(8, 4.5))
-    for lab, g, st in (("current", cur, "-"), ("suggested", sug, "-")):
-        fb = step_response(g, prob)
+    for lab, g, nf in curves:
+        fb = step_response(g, prob, notch=nf)
         if fb is not None:
-            ax.plot(np.arange(len(fb)) * PERIOD_S * 1000, fb * 1000, st, label=lab)
+            ax.plot(np.arange(len(fb)) * PERIOD_S * 1000, fb * 1000, "-", label=lab)
     ax.axhline(50, color="k", lw=0.5)
     ax.set_xlabel("time (ms)")
     ax.set_ylabel("joint 0 feedback (um)")
@@ -887,8 +893,8 @@ def plots(outdir, cur, sug, prob, source, notch=None):
     save(fig, PLOT_NAMES[0])
 
     fig, axs = plt.subplots(2, 1, figsize=(10, 6), sharex=True)
-    for lab, g in (("current", cur), ("suggested", sug)):
-        r = trajectory_runs(g, prob, [SETTLE], keep=True)[0]
+    for lab, g, nf in curves:
+        r = trajectory_runs(g, prob, [SETTLE], keep=True, notch=nf)[0]
         if r.ferror_mm is None or not len(r.ferror_mm):
             continue
         t = np.arange(len(r.ferror_mm)) * PERIOD_S
@@ -907,13 +913,12 @@ def plots(outdir, cur, sug, prob, source, notch=None):
 
     freqs = prob["frf_hz"]
     fig, axs = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
-    for (lab, g, nf), col in zip((("current", cur, None), ("suggested", sug, notch)), ("C0", "C1")):
+    for (lab, g, nf), col in zip(curves, ("C0", "C1")):
         lam = hgm.loci(g, freqs, prob["frf"], nf)
         m = margins_of(g, prob, nf)
         c = int(np.argmin(np.abs(1 + lam).min(0)))          # the locus nearest -1
         axs[0].semilogx(freqs, 20 * np.log10(np.maximum(abs(lam[:, c]), 1e-6)), "-", color=col,
-                        label="%s%s: L's locus nearest -1 (GM %.1f dB, PM %.0f deg)"
-                        % (lab, " + notch" if nf else "", m["gm_db"], m["pm_deg"]))
+                        label="%s: L's locus nearest -1 (GM %.1f dB, PM %.0f deg)" % (lab, m["gm_db"], m["pm_deg"]))
         axs[1].semilogx(freqs, np.degrees(np.unwrap(np.angle(lam[:, c]))), "-", color=col, label=lab)
     if prob["mode_hz"]:
         for a in axs:
@@ -1153,18 +1158,20 @@ def main(argv=None):
         else:
             cmd = generated_move(axes, params, a.ini)
             source = "the generated move"
-        given = None
+        given = given_notch = None
         if a.gains:
             try:
                 given, _ = hg.read_gains(a.gains)
+                given_notch = hgm.read_notch(a.gains)     # (a tune output's biquad lines; an INI has none)
             except (OSError, ValueError) as ex:
                 raise BadInput("--gains %s: %s" % (a.gains, getattr(ex, "strerror", None) or ex))
         cur = [dict(pid_keys(g), **sets) for g in joints]
-        for what, gains in (("--set %s" % " ".join(a.set), cur if a.set else None),
-                            ("--gains %s" % a.gains, [dict(c, **g) for c, g in zip(cur, given)] if given else None)):
+        for what, gains, nf in (("--set %s" % " ".join(a.set), cur if a.set else None, None),
+                                ("--gains %s" % a.gains, [dict(c, **g) for c, g in zip(cur, given)] if given
+                                 else None, per_joint(given_notch))):
             try:                           # the loop's rules (hg_loop_config_check) now, not as a traceback later
                 if gains:
-                    hg.loop_config(gains, ferror_limit_mm=ferror_limit)
+                    hg.loop_config(gains, ferror_limit_mm=ferror_limit, notch=nf)
             except ValueError as ex:
                 raise BadInput("%s: %s" % (what, ex))
         hg_output.refuse_stdout([("--output", a.output), ("--plots", a.plots)])   # (the suggestion is on stdout)
@@ -1241,8 +1248,11 @@ def main(argv=None):
     prob["vmax"] = a.max_volts if a.max_volts is not None else min(vmax_dac, vcur if vcur else vmax_dac)
     if a.gains:
         sug = [dict(c, **g) for c, g in zip(cur, given)]
-        log("gains of %s (no search)" % a.gains)
-        notch, without = None, None
+        notch, without = given_notch, None
+        log("gains of %s (no search)%s" % (a.gains, ", with the biquad notch f0 %g Hz, Q %g of its hal lines"
+                                           % notch if notch else ""))
+        if notch:                          # (its f0 and Q biquad.comp takes: loop_config checked them)
+            without, _ = predict(sug, prob, settles)
     else:
         prob["notch"] = None
         if prob["mode_hz"] and not a.no_notch:
@@ -1262,11 +1272,11 @@ def main(argv=None):
         elif prob["notch"]:
             log("the notch does not help (%s against %.5f without it): none proposed"
                 % ("cost %.5f" % c_notch if c_notch is not None else "the search's best had none", c_plain))
-    pred, why = predict(sug, prob, settles, [notch] * 6 if notch else None)
+    pred, why = predict(sug, prob, settles, per_joint(notch))
     if pred is None:
         log("no stable gains found: %s" % why)
         return 1
-    over, settled = step_metrics(step_response(sug, prob, notch=[notch] * 6 if notch else None))
+    over, settled = step_metrics(step_response(sug, prob, notch=per_joint(notch)))
     bad = hgm.verdict(pred["margins"])
     if not settled or bad or over > a.max_overshoot + 0.02:
         log("the %s do not meet the stability margins (overshoot %.0f%%, settled %s%s; %s; peak |f-error| "

@@ -160,7 +160,8 @@ class Machine:
 
 def load_trajectory(path, n):
     """Joint commands (rows, n) from a CSV of joint.N.motor-pos-cmd columns (LinuxCNC's sampled run,
-    the headless runners' CSV), comma or space separated; rows of n numbers without a header."""
+    the headless runners' CSV; its columns checked as hg_tune_options.csv_columns checks them), comma
+    or space separated; rows of n numbers without a header."""
     if not os.path.isfile(path):
         raise BadInput("no such trajectory file: %s" % path)
     try:
@@ -170,7 +171,7 @@ def load_trajectory(path, n):
         raise BadInput("%s: cannot read it: %s" % (path, ex.strerror or ex))
     if is_record:
         return load_record(path, n)
-    header, rows, lines_of = None, [], []
+    header, hdr_no, rows, lines_of = None, 0, [], []
     try:
         lines = hg_csv.text_lines(path)
     except hg_csv.CsvError as ex:
@@ -181,7 +182,7 @@ def load_trajectory(path, n):
             continue
         fields = s.replace(",", " ").split()
         if header is None and not rows and not re.match(r"[-+0-9.]", fields[0]):
-            header = fields
+            header, hdr_no = fields, no
             continue
         try:
             vals = [hg_csv.number(x) for x in fields]
@@ -193,27 +194,27 @@ def load_trajectory(path, n):
         lines_of.append(no)
     if not rows:
         raise BadInput("%s: no samples" % path)
-    a = np.array(rows)
     if header is not None:
+        try:
+            a = hg_tune_options.csv_columns(path, header, hdr_no, rows, lines_of)
+        except ValueError as ex:
+            raise BadInput(str(ex))
         cols = []
         for j in range(n):
             name = "joint.%d.motor-pos-cmd" % j
             if name not in header:
                 raise BadInput("%s: column %s missing (the serial plant's model has joints 0..%d)" % (path, name, n - 1))
             cols.append(header.index(name))
-        if "t_s" in header and len(a) > 1:
-            why = hg_program.uneven_times(path, a[:, header.index("t_s")], lines_of)
-            if why:
-                raise BadInput(why)
         if "halui.program.is-running" in header:      # the program, with its lead-in and tail kept
             span = hg_program.program_rows(a[:, header.index("halui.program.is-running")] > 0.5, a[:, cols])
             if span:
                 a = a[max(0, span[0] - hg_program.LEAD_IN):min(len(a), span[1] + hg_program.LEAD_IN)]
         cmd = a[:, cols]
     else:
-        if a.shape[1] != n:
-            raise BadInput("%s: %d numbers a row; the model's %d joints need %d" % (path, a.shape[1], n, n))
-        cmd = a
+        for no, v in zip(lines_of, rows):
+            if len(v) != n:
+                raise BadInput("%s line %d: %d numbers; the model's %d joints need %d" % (path, no, len(v), n, n))
+        cmd = np.array(rows)
     if len(cmd) < MIN_SAMPLES:
         raise BadInput("%s: %d samples; at least %d (%.1f s at 1 kHz)" % (path, len(cmd), MIN_SAMPLES,
                                                                         MIN_SAMPLES * PERIOD_S))

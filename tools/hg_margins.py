@@ -24,11 +24,13 @@ that brings a locus through -1, the phase margin the phase lag that does,
 the modulus margin min |1 + lambda| (1 / the peak sensitivity).
 """
 import functools
+import re
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
 import hexaglide as hg
+import hg_csv
 from hg_program import PERIOD_S   # (tune's one servo period)
 
 MEAS_BANDWIDTH_HZ = 20.0      # the holding loop during the measurement
@@ -303,6 +305,12 @@ def describe(m):
 
 # ------------------------------------------------------------------ notch (LinuxCNC's biquad)
 NOTCH_Q = (0.5, 0.7, 1.0, 1.4, 2.0)     # biquad.comp accepts 0.5 <= Q <= 2
+NOTCH_FORMAT = "%.6g"                   # f0 and Q in the hal lines (notch_hal), as read_notch reads them back
+
+
+def as_printed(v):
+    """v as notch_hal prints it (NOTCH_FORMAT)."""
+    return float(NOTCH_FORMAT % v)
 
 
 def notch_for(gains, freqs, P, mode_hz):
@@ -313,7 +321,7 @@ def notch_for(gains, freqs, P, mode_hz):
         return None
     lam = loci(gains, freqs, P)
     band = (freqs >= MODE_BAND * mode_hz) & (freqs < 0.5 / PERIOD_S)
-    f0 = float(freqs[band][np.argmax(np.abs(lam[band]).max(1))])
+    f0 = as_printed(float(freqs[band][np.argmax(np.abs(lam[band]).max(1))]))   # (searched as LinuxCNC gets it)
     best = None
     for q in NOTCH_Q:
         m = margins(gains, freqs, P, [(f0, q)] * 6, mode_hz)
@@ -333,8 +341,61 @@ def notch_hal(f0, q, joints=6):
     out = ["loadrt biquad count=%d" % joints]
     out += ["addf biquad.%d servo-thread" % j for j in range(joints)]
     for j in range(joints):
-        out += ["setp biquad.%d.type 2" % j, "setp biquad.%d.f0 %.6g" % (j, f0), "setp biquad.%d.Q %.6g" % (j, q),
+        out += ["setp biquad.%d.type 2" % j, "setp biquad.%d.f0 %s" % (j, NOTCH_FORMAT % f0),
+                "setp biquad.%d.Q %s" % (j, NOTCH_FORMAT % q),
                 "setp biquad.%d.enable 1" % j,
                 "net %s-output  <= pid.%d.output => biquad.%d.in" % (HAL_NETS[j], j, j),
                 "net %s-notched <= biquad.%d.out => motenc.0.dac-%02d-value" % (HAL_NETS[j], j, j)]
     return "\n".join(out) + "\n"
+
+
+NOTCH_SETP = re.compile(r"#?\s*setp\s+biquad\.(\d+)\.(type|f0|Q|enable)\s+(\S+)\s*$")
+NOTCH_PINS = {"type": 2.0, "enable": 1.0}     # what notch_hal sets besides f0 and Q: a notch, switched on
+
+
+def read_notch(path, joints=6):
+    """The notch (f0 Hz, Q) of a tune output's hal lines (notch_hal's, in comment lines: `#   setp
+    biquad.N.f0 176`), or None where the file has no `setp biquad.` line (an INI, or an output
+    without a notch). tune's notch is one biquad on every joint: biquad.0..joints-1 each set
+    type 2, f0, Q and enable 1, with the same f0 and Q; anything else (a joint left out, a pin set
+    twice, another type, enable 0, a value that is not a finite number, f0 <= 0, joints that
+    differ) is a ValueError naming the file and line."""
+    pins, where = {}, {}                      # (joint, pin) -> value, line
+    with open(path) as f:
+        for no, line in enumerate(f, 1):
+            m = NOTCH_SETP.match(line.strip())
+            if not m:
+                continue
+            j, pin, text = int(m.group(1)), m.group(2), m.group(3)
+            if j >= joints:
+                raise ValueError("%s line %d: biquad.%d: the notch is biquad.0..%d, one per joint"
+                                 % (path, no, j, joints - 1))
+            if (j, pin) in where:
+                raise ValueError("%s line %d: biquad.%d.%s is set twice (line %d too): keep one"
+                                 % (path, no, j, pin, where[j, pin]))
+            try:
+                v = hg_csv.number(text)
+            except ValueError:
+                v = float("nan")
+            if not np.isfinite(v):
+                raise ValueError("%s line %d: biquad.%d.%s %s: not a finite number" % (path, no, j, pin, text))
+            if pin in NOTCH_PINS and v != NOTCH_PINS[pin]:
+                raise ValueError("%s line %d: biquad.%d.%s %s: tune's notch is biquad type 2, enable 1 (the "
+                                 "lines tune writes); the loop it predicts has no other filter"
+                                 % (path, no, j, pin, text))
+            if pin == "f0" and not v > 0:
+                raise ValueError("%s line %d: biquad.%d.f0 %s: must be above 0 Hz" % (path, no, j, text))
+            pins[j, pin], where[j, pin] = v, no
+    if not pins:
+        return None
+    for j in range(joints):
+        for pin in ("type", "f0", "Q", "enable"):
+            if (j, pin) not in pins:
+                raise ValueError("%s: no setp biquad.%d.%s line: tune's notch sets type 2, f0, Q and enable 1 of "
+                                 "biquad.0..%d, one per joint (the lines tune writes, line %d on)"
+                                 % (path, j, pin, joints - 1, min(where.values())))
+        for pin in ("f0", "Q"):
+            if pins[j, pin] != pins[0, pin]:
+                raise ValueError("%s line %d: biquad.%d.%s %g, biquad.0's %g: tune's notch is one f0 and Q on every "
+                                 "joint" % (path, where[j, pin], j, pin, pins[j, pin], pins[0, pin]))
+    return pins[0, "f0"], pins[0, "Q"]
