@@ -1159,6 +1159,9 @@ def main(argv=None):
             cmd = generated_move(axes, params, a.ini)
             source = "the generated move"
         given = given_notch = None
+        if a.gains and a.evaluate:             # (--evaluate took the INI's and said nothing of the file)
+            raise BadInput("--gains %s with --evaluate: --evaluate predicts the INI's gains, --gains the file's; "
+                           "give one of them" % a.gains)
         if a.gains:
             try:
                 given, _ = hg.read_gains(a.gains)
