@@ -33,6 +33,7 @@ sys.path.insert(0, HERE)
 import hexaglide as hg  # noqa: E402
 import hg_csv  # noqa: E402
 import hexaglide_tune as tune  # noqa: E402
+import hg_margins as hgm  # noqa: E402
 
 
 
@@ -89,8 +90,15 @@ def main():
     a = ap.parse_args()
     try:
         gains, pred = hg.read_gains(a.gains)
+        notch = hgm.read_notch(a.gains)
     except (OSError, ValueError) as ex:
         print("verify_gains: %s" % ex, file=sys.stderr)
+        return 2
+    if notch:                          # the run sets gains over configs/hexaglide.hal, which has no biquad
+        print("verify_gains: %s: its gains go with the biquad notch f0 %g Hz, Q %g (its hal lines), which this "
+              "run cannot load (it sets pid gains over %s's HAL, which has no biquad): LinuxCNC and the "
+              "prediction would both run the loop without the notch; verify it in a config whose HAL file "
+              "loads those lines" % ((a.gains,) + notch + (os.path.basename(a.ini),)), file=sys.stderr)
         return 2
     os.makedirs(a.out, exist_ok=True)
     try:
