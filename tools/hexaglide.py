@@ -19,8 +19,13 @@ import configparser
 import copy
 import ctypes as C
 import decimal
+import difflib
+import fractions
+import functools
+import math
 import os
 import re
+import reprlib
 
 import numpy as np
 
@@ -28,7 +33,11 @@ import hg_csv  # (numbers as the C tools read them; pure Python, imports no tool
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_INI = os.path.normpath(os.path.join(HERE, "..", "configs", "hexaglide.ini"))
-LIB_PATH = os.environ.get("HEXAGLIDE_LIB", os.path.join(HERE, "..", "build", "libhexaglide.so"))
+BUILT_LIB = os.path.normpath(os.path.join(HERE, "..", "build", "libhexaglide.so"))   # `make lib`'s
+LIB_PATH = os.environ.get("HEXAGLIDE_LIB") or BUILT_LIB    # (HEXAGLIDE_LIB empty: not set)
+_LIB_WHENCE = ("HEXAGLIDE_LIB=%s" % LIB_PATH if os.environ.get("HEXAGLIDE_LIB") else LIB_PATH)
+_LIB_REMEDY = "run `make lib` in %s%s" % (os.path.dirname(os.path.dirname(BUILT_LIB)), (
+    " (it builds %s), or unset HEXAGLIDE_LIB to load that one" % BUILT_LIB if os.environ.get("HEXAGLIDE_LIB") else ""))
 JOINTS = 6
 RECORD_MAGICS = (b"# hexaglide-record 1", b"# hexaglide-record 2")   # line 1 of a record, per format (docs/replay.md)
 MODELS = ["standard", "reduced-joints", "reduced-cartesian", "fused-cartesian"]
@@ -36,7 +45,7 @@ MODELS = ["standard", "reduced-joints", "reduced-cartesian", "fused-cartesian"]
 try:
     _lib = C.CDLL(LIB_PATH)
 except OSError as ex:  # pragma: no cover - a message the user can act on
-    raise ImportError("cannot load %s (%s): run `make lib` first, or set HEXAGLIDE_LIB" % (LIB_PATH, ex))
+    raise ImportError("cannot load %s (%s): %s" % (_LIB_WHENCE, ex, _LIB_REMEDY)) from None
 
 _d6 = C.c_double * 6
 _P = C.c_void_p
@@ -51,7 +60,13 @@ class HexaglideError(RuntimeError):
 
 
 def _sig(name, res, *args):
-    f = getattr(_lib, name)
+    """The library's function name with its C signature (restype res, argtypes args), else
+    ImportError: the library loaded lacks it (another library, or one built from other sources)."""
+    try:
+        f = getattr(_lib, name)
+    except AttributeError:
+        raise ImportError("%s has no function %s: it is not this project's libhexaglide.so, or one built from "
+                          "older sources; %s" % (_LIB_WHENCE, name, _LIB_REMEDY)) from None
     f.restype = res
     f.argtypes = list(args)
     return f
@@ -66,17 +81,19 @@ def strerror(code):
 
 
 def _vector(name, values, n, finite=False, what=""):
-    """values as a float64 array of exactly n numbers, else TypeError (not numbers) or
-    ValueError naming the argument, the length expected and the length got; finite: also
-    ValueError naming the first entry that is NaN or infinite. what: the n values' meaning,
-    for the message ("X Y Z (mm) A B C (deg)")."""
+    """values as a float64 array of exactly n numbers (n None: of any length), else TypeError
+    (not numbers: _real_array's reason) or ValueError naming the argument, the length expected
+    and the length got; finite: also ValueError naming the first entry that is NaN or infinite.
+    what: the n values' meaning, for the message ("X Y Z (mm) A B C (deg)")."""
     try:
         v = _real_array(values)
-    except TypeError:
-        raise TypeError("%s must be %d numbers%s, got %r" % (name, n, " " + what if what else "", values))
-    if v.ndim != 1 or v.shape[0] != n:
+    except TypeError as ex:
+        raise TypeError("%s must be %snumbers%s, got %s: %s" % (name, "" if n is None else "%d " % n, " (%s)" % what
+                                                              if what else "", reprlib.repr(values), ex)) from None
+    if v.ndim != 1 or (n is not None and v.shape[0] != n):
         got = "%d values" % v.shape[0] if v.ndim == 1 else "shape %s" % (v.shape,)
-        raise ValueError("%s needs %d values%s, got %s" % (name, n, " (%s)" % what if what else "", got))
+        raise ValueError("%s needs %s%s, got %s" % (name, "%d values" % n if n is not None else "a vector of values",
+                                                    " (%s)" % what if what else "", got))
     if finite and not np.isfinite(v).all():
         i = int(np.argmin(np.isfinite(v)))
         raise ValueError("%s[%d] = %r is not finite" % (name, i, float(v[i])))
@@ -97,6 +114,15 @@ def _real(name, value, unit=""):
                                        " (%s)" % unit if unit else ""))
 
 
+def _param_value(name, value, unit):
+    """value of the parameter name as a finite float, else TypeError (not a number, _real) or
+    ValueError (NaN or infinite: hg_params_set's rule, for every plant's parameters)."""
+    v = _real(name, value, unit)
+    if not math.isfinite(v):
+        raise ValueError("%s = %r: not finite; a parameter is a finite number (%s)" % (name, value, unit))
+    return v
+
+
 def _param_name(name):
     """name (a parameter's spec name) as str, else TypeError."""
     if not isinstance(name, str):
@@ -106,13 +132,22 @@ def _param_name(name):
 
 def _real_array(values):
     """values as a float64 array when they are real numbers (ints or floats, of any shape), else
-    TypeError: numpy would read the strings '1.5' as numbers and cut complex ones to their real part."""
+    TypeError saying why: numpy would read the strings '1.5' as numbers, cut complex ones to their
+    real part and take a bool among numbers ([True, 0.5]) as 1 or 0."""
     try:
         v = np.asarray(values)
     except (TypeError, ValueError):
-        raise TypeError("not an array of numbers: %r" % (values,))
+        raise TypeError("not an array of numbers") from None
     if v.dtype.kind not in "iuf":
-        raise TypeError("numbers (ints or floats) expected, got an array of %s" % v.dtype)
+        raise TypeError("ints or floats expected, got %s (numpy dtype %s)" % (
+            {"U": "strings", "S": "bytes", "c": "complex numbers", "b": "bools"}.get(v.dtype.kind, "other objects"),
+            v.dtype))
+    if not isinstance(values, np.ndarray):    # (a list's bools became numbers above: look at its items)
+        flat = values if v.ndim == 1 and isinstance(values, (list, tuple)) else \
+            np.asarray(values, dtype=object).reshape(-1)      # (a flat list, per period: looked at as it is)
+        kinds = set(map(type, flat))
+        if bool in kinds or np.bool_ in kinds:
+            raise TypeError("a bool (True or False) is not a number here: give 1 or 0")
     return v.astype(np.float64)
 
 
@@ -172,7 +207,28 @@ def _name(arg, value, choices):
     return value.encode()
 
 
-class PidGains(C.Structure):
+class _Record(C.Structure):
+    """A C struct mirrored by ctypes, whose instances take only its fields (and the names in
+    _own) as attributes: ctypes keeps any other name as a Python attribute that never reaches
+    the C code, so a typo (b.inputs.estop_buton = 1) or a name the struct lacks
+    (b.inputs.period_ns = 0) did nothing; it raises AttributeError naming the nearest fields."""
+    _own = ()
+
+    def __init_subclass__(cls, **kw):
+        super().__init_subclass__(**kw)
+        cls._fields = [n for k in reversed(cls.__mro__) for n, *_ in k.__dict__.get("_fields_", ())]
+        cls._settable = frozenset(cls._fields) | frozenset(cls._own)
+
+    def __setattr__(self, name, value):
+        if name not in self._settable:
+            near = difflib.get_close_matches(name, self._fields, 3, 0.6)
+            raise AttributeError("%s has no field %r; %s (ctypes would keep another name as a Python attribute "
+                                 "that never reaches the C struct)" % (type(self).__name__, name, "did you mean %s?" % (
+                                     " or ".join(map(repr, near))) if near else "its fields: " + ", ".join(self._fields)))
+        C.Structure.__setattr__(self, name, value)
+
+
+class PidGains(_Record):
     """hg_pid_gains: the pid.N pins (names as LinuxCNC's, units mm and V)."""
     _fields_ = [(n, C.c_double) for n in
                 ("pgain", "igain", "dgain", "bias", "ff0", "ff1", "ff2", "ff3", "deadband",
@@ -185,33 +241,33 @@ _dc = C.c_double * CHANNELS_MAX
 BIQUAD_NOTCH = 2            # biquad.N.type of a notch (src/hg_biquad.h)
 
 
-class Biquad(C.Structure):
+class Biquad(_Record):
     """hg_biquad: one biquad.N of LinuxCNC's biquad component, its pins and parameters (src/hg_biquad.h)."""
     _fields_ = [("in_", C.c_double), ("out", C.c_double), ("enable", C.c_int), ("valid", C.c_int),
                 ("type", C.c_uint), ("f0", C.c_double), ("Q", C.c_double)] + \
         [(n, C.c_double) for n in ("d1", "d2", "n0", "n1", "n2", "s1", "s2")] + [("last_enable", C.c_int)]
 
 
-class LoopConfig(C.Structure):
+class LoopConfig(_Record):
     """hg_loop_config."""
     _fields_ = [("pid", PidGains * CHANNELS_MAX), ("biquad", Biquad * CHANNELS_MAX), ("input_scale", _dc),
                 ("output_scale", _dc), ("output_offset", _dc), ("ferror_limit_mm", C.c_double),
                 ("period_ns", C.c_long), ("plant", C.c_int), ("variant", C.c_int)]
 
 
-class LoopSummary(C.Structure):
+class LoopSummary(_Record):
     """hg_loop_summary."""
     _fields_ = [("peak_ferror_mm", _dc), ("peak_output_v", _dc), ("rms_ferror_mm", _dc),
                 ("peak_tool_error_mm", C.c_double), ("periods", C.c_long), ("tripped_at", C.c_long)]
 
 
-class LoopCheckReport(C.Structure):
+class LoopCheckReport(_Record):
     """hg_loop_check_report: the field hg_loop_config_check refused."""
     _fields_ = [("joint", C.c_int), ("component", C.c_char_p), ("field", C.c_char_p), ("ini_key", C.c_char_p),
                 ("why", C.c_char_p), ("value", C.c_double)]
 
 
-class PidSetting(C.Structure):
+class PidSetting(_Record):
     """hg_pid_setting: one pid.N setting (pin name, INI key, offset in hg_pid_gains, rule)."""
     _fields_ = [("pin", C.c_char_p), ("ini_key", C.c_char_p), ("offset", C.c_ulong), ("kind", C.c_int)]
 
@@ -225,7 +281,7 @@ def _sizeof(which):
     return _hexaglide_sizeof(which) if which in (4, 5, 6, 12) else _board_sizeof(which)
 
 
-class GuardReport(C.Structure):
+class GuardReport(_Record):
     """hg_guard_report: the mechanical limit a failed step crossed (src/hg_guard.h)."""
     _fields_ = [("kind", C.c_int), ("bar", C.c_int), ("other", C.c_int), ("value", C.c_double),
                 ("limit", C.c_double)]
@@ -240,11 +296,11 @@ _DATA_STATE = [("t_s", C.c_double), ("z_m", _d6), ("zd_mps", _d6), ("zdd_mps2", 
                ("trig_key_rad", C.c_double * 3), ("trig_sc", _d6), ("trig_valid", C.c_int)]
 
 
-class _DataState(C.Structure):
+class _DataState(_Record):
     _fields_ = _DATA_STATE
 
 
-class Data(C.Structure):
+class Data(_Record):
     """hg_data: the dynamics state (SI), then hg_step's scratch (opaque, hg_work)."""
     _fields_ = _DATA_STATE + [("work", C.c_double * max(0, (_sizeof(5) - C.sizeof(_DataState)) // 8))]
 
@@ -304,12 +360,16 @@ PLANT_EXTRA_MAX = 16        # HG_PLANT_EXTRA_MAX
 PLANT_INJECT_MAX = 4        # HG_PLANT_INJECT_MAX
 
 
-class BoardParams(C.Structure):
-    """hg_board_params: the plant's parameters (SI, entry i of its table at plant[i]), substeps, integrator."""
+class BoardParams(_Record):
+    """hg_board_params: the plant's parameters (SI, entry i of its table at plant[i]), substeps, integrator.
+    origin: (plant, model variant, the call) of a block Params.board_params or PlantParams.board_params
+    made, whose entries are that plant's table's; None for one built otherwise (its plant unknown)."""
     _fields_ = [("plant", C.c_double * PLANT_PARAMS_MAX), ("substeps", C.c_uint), ("integrator", C.c_uint)]
+    _own = ("origin",)
+    origin = None
 
 
-class PlantReport(C.Structure):
+class PlantReport(_Record):
     """hg_plant_report: what a failed step struck (the plant describes it)."""
     _fields_ = [("kind", C.c_int), ("channel", C.c_int), ("other", C.c_int), ("value", C.c_double),
                 ("limit", C.c_double)]
@@ -318,7 +378,7 @@ class PlantReport(C.Structure):
 _e8i, _e8d, _e8u = C.c_int * 8, C.c_double * 8, C.c_uint * 8
 
 
-class BoardInputs(C.Structure):
+class BoardInputs(_Record):
     """hg_board_inputs: one servo period's inputs (src/hg_board.h)."""
     _fields_ = [("dac_v", _e8d), ("dac_written", C.c_int), ("dac_stale", C.c_int), ("dout_values", C.c_uint),
                 ("dout_inverts", C.c_uint), ("estop_loop_out", C.c_int), ("estop_button", C.c_int),
@@ -329,7 +389,7 @@ class BoardInputs(C.Structure):
                 ("enc_glitch", _e8i), ("inject", _e8u), ("pos_cmd", _e8d), ("params", BoardParams)]
 
 
-class BoardOutputs(C.Structure):
+class BoardOutputs(_Record):
     """hg_board_outputs: one servo period's outputs (src/hg_board.h)."""
     _fields_ = [("count", _e8i), ("position", _e8d), ("index", _e8i), ("index_latched", _e8i),
                 ("enc_scale", _e8d), ("in_", C.c_ubyte * 68), ("dout_word", C.c_uint), ("estop_in", C.c_int),
@@ -380,7 +440,7 @@ _ERR_BAD_DT = -10                                         # HG_ERR_BAD_DT: hg_st
 _ERR_STIFF = -16                                          # HG_ERR_STIFF: a step the scheme cannot integrate
 
 
-class _Stability(C.Structure):                            # hg_stability (src/hg_stability.h)
+class _Stability(_Record):                                # hg_stability (src/hg_stability.h)
     _fields_ = [("substeps", C.c_uint), ("param", C.c_char_p), ("dt_max_s", C.c_double)]
 
 
@@ -408,7 +468,7 @@ _biquad_response = _sig("hg_biquad_response", C.c_int, C.POINTER(Biquad), C.c_lo
 _batch_cores = _sig("hg_batch_cores", C.c_int)
 
 
-class ParamInfo(C.Structure):
+class ParamInfo(_Record):
     """hg_param_info: one row of the parameter table (src/hg_params.h)."""
     _fields_ = [("name", C.c_char_p), ("unit", C.c_char_p), ("what", C.c_char_p), ("offset", C.c_ulong),
                 ("hal_name", C.c_char_p), ("hal_unit", C.c_char_p), ("hal_scale", C.c_double),
@@ -445,7 +505,6 @@ def params_table(plant=0, variant=None):
 
 def _unknown(name, names):
     """The message for a parameter name not in names: the closest one a typo explains (difflib)."""
-    import difflib
     close = difflib.get_close_matches(str(name), names, 1, 0.8)
     return "%s: not a parameter of this plant and model%s (params_table lists them)" % (
         name, "; did you mean %r?" % close[0] if close else "")
@@ -546,6 +605,37 @@ def _board_params_refusal(plant, variant, bp, period_ns):
     return _board_params_verdicts[key]
 
 
+@functools.lru_cache(maxsize=None)
+def _table_of(plant, variant):
+    """The plant's parameter table under the model variant, (name, unit) per entry: what the
+    entries of a block of it mean."""
+    return tuple((e.name.decode(), e.unit.decode()) for e in params_table(plant, variant))
+
+
+def _check_block_plant(what, plant, variant, bp):
+    """ValueError unless bp (a BoardParams) holds the parameters of the plant and model, entry
+    for entry, as board_params() recorded in bp.origin (a block built otherwise is taken: its
+    plant is unknown). The board would read one plant's values as the other's entries and
+    refuse dozens that were never set."""
+    if bp.origin is None:
+        return
+    p, v, call = bp.origin
+    if (p, v) == (plant, variant) or (p == plant and _table_of(p, v) == _table_of(plant, variant)):
+        return
+
+    def maker(pi):
+        return ("Params().board_params() with loop_config(gains)" if pi == 0 else
+                "PlantParams(%r, model).board_params() with loop_config(gains, plant=PlantParams(%r, model))"
+                % ((plant_names()[pi],) * 2))
+    theirs = "the %s plant's parameters (%s: %d channels)" % (plant_names()[p], call, _plant_channels(p, v))
+    cfgs = "the %s plant's (%d channels)" % (plant_names()[plant], _plant_channels(plant, variant))
+    if p != plant:
+        raise ValueError("%s: board_params are %s, but cfg is %s: give a block and a cfg of one plant: %s, or %s"
+                         % (what, theirs, cfgs, maker(plant), maker(p)))
+    raise ValueError("%s: board_params are %s, of another model than cfg, %s: build both from one PlantParams pp: "
+                     "loop_config(gains, plant=pp) and pp.board_params()" % (what, theirs, cfgs))
+
+
 def _check_board_params(what, plant, variant, bp, period_ns):
     """HexaglideError (what, then the code and why of _board_params_refusal) unless a board of
     the plant and model takes bp and integrates it at period_ns: what Board, Loop and Job
@@ -586,13 +676,13 @@ class Params(_ByName):
 
     def __setitem__(self, name, value):
         """KeyError for a name not in the table, TypeError for a value that is not a number,
-        ValueError for one hg_params_set refuses (not finite); the whole set's rules are
-        checked where it is used (Model, Board, ik, fk)."""
+        ValueError for one hg_params_set refuses (not finite: _param_value); the whole set's
+        rules are checked where it is used (Model, Board, ik, fk)."""
         if not _params_field(self.buf, _param_name(name).encode()):
             raise KeyError(_unknown(name, [e.name.decode() for e in params_table()]))
-        v = _real(name, value, "SI units, params_table")
-        if _params_set(self.buf, name.encode(), v):     # (a known name: refused only when not finite)
-            raise ValueError("%s = %r: not finite; a parameter is a finite number (SI units)" % (name, value))
+        rc = _params_set(self.buf, name.encode(), _param_value(name, value, "SI units, params_table"))
+        if rc:                                  # (a known name and a finite value: never)
+            raise HexaglideError("params: %s" % name, rc)
 
     def board_params(self, substeps=1, integrator=DEFAULT_INTEGRATOR):
         """hg_board_params: these model parameters (by table entry) + the board's substeps and
@@ -604,22 +694,25 @@ class Params(_ByName):
             bp.plant[i] = self[info.name.decode()]
         bp.substeps = _board_setting(0, variant, "substeps", substeps)
         bp.integrator = _board_setting(0, variant, "integrator", integrator)
+        bp.origin = 0, variant, "Params.board_params()"
         return bp
 
 
 class PlantParams(_ByName):
     """Any plant's parameter block by spec name (SI), from its defaults:
     PlantParams("serial", "XYZ", mass_0=60)["lead_0"]. Unknown plants,
-    models and names raise, naming what there is."""
-    _own = ("plant", "variant", "names", "v")
+    models and names raise, naming what there is; a value that is not a number TypeError, one
+    that is not finite ValueError (as Params)."""
+    _own = ("plant", "variant", "model", "names", "v")
 
     def __init__(self, plant="hexaglide", model=None, **values):
-        self.plant = _plant_find(plant.encode())
+        self.plant = _plant_find(_name("plant", plant, plant_names()))
         if self.plant < 0:
             raise ValueError("unknown plant %r; one of %s" % (plant, plant_names()))
-        self.variant = _plant_variant_named(self.plant, model.encode() if model is not None else None)
+        self.variant = _plant_variant_named(self.plant, None if model is None else _name("model", model, "its models"))
         if self.variant < 0:
             raise ValueError("unknown model %r of plant %s" % (model, plant))
+        self.model = model                     # (as given: None for the plant's default)
         self.names = [e.name.decode() for e in params_table(self.plant, self.variant)]
         self.v = (C.c_double * PLANT_PARAMS_MAX)()
         _plant_defaults(self.plant, self.variant, C.byref(self.v))
@@ -636,9 +729,10 @@ class PlantParams(_ByName):
         return self.v[self._index(name)]
 
     def __setitem__(self, name, value):
-        """KeyError for a name not in the plant's table, TypeError for a value that is not a number
-        (the values' rules are checked where the block is used: Board, Loop, batch)."""
-        self.v[self._index(name)] = _real(name, value, "SI units, the plant's params_table")
+        """KeyError for a name not in the plant's table, TypeError for a value that is not a number,
+        ValueError for one not finite (_param_value, as Params); the values' other rules are
+        checked where the block is used (Board, Loop, batch)."""
+        self.v[self._index(name)] = _param_value(name, value, "SI units, the plant's params_table")
 
     @property
     def channels(self):
@@ -663,7 +757,40 @@ class PlantParams(_ByName):
             bp.plant[i] = self.v[i]
         bp.substeps = _board_setting(self.plant, self.variant, "substeps", substeps)
         bp.integrator = _board_setting(self.plant, self.variant, "integrator", integrator)
+        bp.origin = self.plant, self.variant, "PlantParams(%r, %r).board_params()" % (
+            plant_names()[self.plant], self.model)
         return bp
+
+
+def _plant_and_model(kind, params, plant=None, kind_arg="kind", params_arg="params"):
+    """(plant index, model variant, parameters) of a board of the plant named plant (None:
+    params') with the model kind (None: params' model, or for the Hexaglide of Params the
+    board's default, reduced-cartesian) and params (for the Hexaglide a Params, else a
+    PlantParams of the plant; None: its defaults). TypeError or ValueError naming the argument
+    (kind_arg, params_arg) for a kind that is no model of the plant or not params' model (Loop
+    and loop_config ignored it), or params of another plant: what Board, Loop and loop_config
+    check."""
+    if plant is None:
+        plant = plant_names()[params.plant] if isinstance(params, PlantParams) else "hexaglide"
+    _name("plant", plant, plant_names())
+    if plant == "hexaglide" and not isinstance(params, PlantParams):
+        _geometry(params)                      # a Params or None, else TypeError
+        k = _plant_variant_named(0, None if kind is None else _name(kind_arg, kind, MODELS))
+        if k < 0:
+            raise ValueError("unknown %s %r; one of %s" % (kind_arg, kind, MODELS))
+        return 0, k, params or Params()
+    if kind is not None:
+        _name(kind_arg, kind, "the plant's models")
+    params = params or PlantParams(plant, kind)
+    if not isinstance(params, PlantParams) or plant_names()[params.plant] != plant:
+        raise ValueError("%s of plant %s: give PlantParams(%r, model)" % (params_arg, plant, plant))
+    kv = params.variant if kind is None else _plant_variant_named(params.plant, kind.encode())
+    if kv < 0:
+        raise ValueError("unknown %s %r of plant %s" % (kind_arg, kind, plant))
+    if kv != params.variant:
+        raise ValueError("%s %r is not the model of %s, PlantParams(%r, %r): give %s=None, or %s of model %r"
+                         % (kind_arg, kind, params_arg, plant, params.model, kind_arg, params_arg, kind))
+    return params.plant, params.variant, params
 
 
 def _geometry(params):
@@ -817,17 +944,41 @@ class Model:
             raise HexaglideError("step", rc)
         return self.d
 
-    def _check_dt(self, dt_s):
-        """HexaglideError code -16 when Heun (hg_model_init's scheme) cannot integrate these
-        parameters in steps of dt_s (a dt_s hg_step refuses is left to hg_step's message)."""
+    def _heun_refusal(self, dt_s):
+        """None when hg_stability_check (the board's own check) finds Heun, hg_model_init's
+        scheme, stable on these parameters in steps of dt_s, else its _Stability (the limiting
+        parameter and its longest stable step, 0 when none is)."""
         st = _Stability()
         # (self.m is an hg_model, whose first member is the hg_params it was built from)
-        if 0 < dt_s <= STEP_DT_MAX_S and _stability_check(self.m, integrator_id("heun"), dt_s, 1, 1,
-                                                            C.byref(st)) == _ERR_STIFF:
+        rc = _stability_check(self.m, integrator_id("heun"), dt_s, 1, 1, C.byref(st))
+        return st if rc == _ERR_STIFF else None
+
+    def _check_dt(self, dt_s):
+        """HexaglideError code -16 when Heun cannot integrate these parameters in steps of dt_s
+        (_heun_refusal; a dt_s hg_step refuses is left to hg_step's message). The check judges a
+        step by the increments it makes, which vanish in rounding far below the machine's
+        fastest mode: it refused 1e-18 s on the defaults and 1e-10 s on rigid trains, naming a
+        bound of 0 s or below 1e-18 s. Heun's stable steps on a damped linear mode run from 0
+        up to its bound, so a step it refuses while it takes a longer one is stable: taken (a
+        refusal by the impact test of a train with backlash, not linear, stands)."""
+        if not 0 < dt_s <= STEP_DT_MAX_S:
+            return
+        st = last = self._heun_refusal(dt_s)
+        longer = dt_s
+        while last and (last.param or b"") != b"backlash" and longer < STEP_DT_MAX_S:
+            longer = min(2.0 * longer, STEP_DT_MAX_S)
+            last = self._heun_refusal(longer)
+        if last and st.dt_max_s > 0:           # (the bound rounded down: what it prints is stable)
+            bound = decimal.Context(prec=4, rounding=decimal.ROUND_DOWN).create_decimal(st.dt_max_s)
             raise HexaglideError("step", _ERR_STIFF, "dt_s = %r s: heun cannot integrate these parameters in "
-                                 "steps that long: %s limits it to %.4g s; call step with dt_s of at most that "
+                                 "steps that long: %s limits it to %s s; call step with dt_s of at most that "
                                  "(n steps of dt / n), or use Board, which substeps" % (
-                                     dt_s, (st.param or b"?").decode(), st.dt_max_s))
+                                     dt_s, (st.param or b"?").decode(), "{:g}".format(bound)))
+        if last:
+            raise HexaglideError("step", _ERR_STIFF, "dt_s = %r s: heun is unstable on these parameters at every "
+                                 "step from %r s to %r s, the board's check says, naming %s: give its mode "
+                                 "damping, or use Board with another integrator" % (
+                                     dt_s, dt_s, longer, (last.param or b"?").decode()))
         self._dt_checked = dt_s
 
     def energy(self):
@@ -856,9 +1007,10 @@ class Board:
 
     def __init__(self, kind="reduced-cartesian", params=None, substeps=1, integrator=DEFAULT_INTEGRATOR, period_ns=1000000,
                  estop_closed=True, plant="hexaglide"):
-        """plant: the machine behind the board (plant_names()); for a plant other than the
-        Hexaglide, kind is its model (the serial plant's axes, "XYZ"; None its default) and
-        params a PlantParams of that plant and model (None: its defaults). Refused here, not
+        """plant: the machine behind the board (plant_names()); kind its model (the Hexaglide's
+        MODELS, the serial plant's axes, "XYZ"; None: params' model, or the plant's default) and
+        params a Params (the Hexaglide) or a PlantParams of that plant and model (None: its
+        defaults); a kind not params' model raises ValueError (_plant_and_model). Refused here, not
         at the first step: a period_ns hg_board_step would fault on (the loop's check, the same
         (0, HG_PERIOD_MAX_NS]), substeps and integrator hg_board_params_check refuses
         (ValueError naming the argument, its value and range), an estop_closed not a bool
@@ -870,26 +1022,7 @@ class Board:
         if not isinstance(estop_closed, (bool, np.bool_)):
             raise TypeError("estop_closed must be True (the E-STOP loop closed: amplifiers on) or False, got %r"
                             % (estop_closed,))
-        if plant == "hexaglide" and not isinstance(params, PlantParams):
-            pi = 0
-            _geometry(params)                  # a Params or None, else TypeError
-            k = _plant_variant_named(0, _name("kind", kind, MODELS))
-            if k < 0:
-                raise ValueError("unknown model %r; one of %s" % (kind, MODELS))
-            self.params = params or Params()
-        else:
-            if kind is not None:
-                _name("kind", kind, "the plant's models")
-            self.params = params or PlantParams(plant, kind)
-            if not isinstance(self.params, PlantParams) or plant_names()[self.params.plant] != plant:
-                raise ValueError("params of plant %s: give PlantParams(%r, model)" % (plant, plant))
-            pi, k = self.params.plant, self.params.variant
-            kv = _plant_variant_named(pi, kind.encode()) if kind is not None else k
-            if kv < 0:
-                raise ValueError("unknown model %r of plant %s" % (kind, plant))
-            if kv != k:
-                raise ValueError("kind %r is not the model of params (PlantParams(%r, model) of another model): "
-                                 "give kind=None, or params of model %r" % (kind, plant, kind))
+        pi, k, self.params = _plant_and_model(kind, params, plant)
         self.plant, self.variant = pi, k
         self.buf = C.create_string_buffer(_sizeof(8))
         self.board_params = self.params.board_params(substeps, integrator)
@@ -1104,7 +1237,7 @@ def read_gains(path, joints=JOINTS):
     return gains, pred
 
 
-def loop_config(gains=None, ferror_limit_mm=0.0, period_ns=1000000, model="reduced-cartesian", notch=None,
+def loop_config(gains=None, ferror_limit_mm=0.0, period_ns=1000000, model=None, notch=None,
                 plant=None):
     """hg_loop_config of the plant's joints: gains a list of one dict per joint (six for the
     Hexaglide, plant.channels for another) of INI keys (LOOP_KEYS: P, I, D, FF0, FF1, FF2, FF3,
@@ -1112,7 +1245,8 @@ def loop_config(gains=None, ferror_limit_mm=0.0, period_ns=1000000, model="reduc
     motion keys, MOTION_JOINT_KEYS, ignored; any other key ValueError); keys not given keep
     pid.c's load-time values: Pgain 1, the rest 0; None: configs/hexaglide.ini's, the Hexaglide's);
     notch: per joint None or (f0 Hz, Q), a biquad.N notch between pid.N.output and the DAC;
-    plant: a PlantParams of another plant (its plant and model; model is then ignored). The loop's
+    model: the Hexaglide's model (MODELS; None: reduced-cartesian), or plant's (None: its own; another
+    ValueError); plant: a PlantParams of any plant (its plant and model; None: the Hexaglide). The loop's
     units are the config's: INPUT_SCALE counts per unit, the commands in that unit (inches for an
     inch config), as LinuxCNC's HAL file sets enc-NN-scale and dac-NN-gain. The config is
     checked (check_loop_config): ValueError naming the joint and the field that fails."""
@@ -1123,15 +1257,9 @@ def loop_config(gains=None, ferror_limit_mm=0.0, period_ns=1000000, model="reduc
     except TypeError:
         raise TypeError("ferror_limit_mm must be a number (mm; 0: no trip), got %r" % (ferror_limit_mm,))
     cfg.period_ns = _loop_period(period_ns)
-    if plant is None:
-        if model not in MODELS:
-            raise ValueError("unknown model %r; one of %s" % (model, MODELS))
-        cfg.plant = 0
-        cfg.variant = MODELS.index(model)
-    elif not isinstance(plant, PlantParams):
+    if plant is not None and not isinstance(plant, PlantParams):
         raise TypeError("plant must be a PlantParams or None, got %r" % (plant,))
-    else:
-        cfg.plant, cfg.variant = plant.plant, plant.variant
+    cfg.plant, cfg.variant, _ = _plant_and_model(model, plant, None, "model", "plant")
     n = _plant_channels(cfg.plant, cfg.variant)
     if gains is None:
         if cfg.plant != 0:
@@ -1224,7 +1352,10 @@ def notch_response(f0, q, freqs, period_ns=1000000):
     freqs (src/hg_biquad.c, the coefficients the enable edge computes), and whether
     biquad.comp accepts f0 and Q (its valid pin). ValueError for what the loop refuses
     whatever biquad.comp says (loop_config): f0 not finite and > 0 Hz, Q not finite, a period outside
-    (0, 10 ms]; and for a frequency in freqs that is not finite."""
+    (0, 10 ms]; and for a frequency in freqs that is not finite (TypeError for one not a number). A
+    discrete filter's response repeats every sampling rate, 1e9 / period_ns Hz: a frequency of at
+    least that is taken exactly modulo it first (at 1e308 Hz the core's phase 2 pi f overflowed to
+    NaN, and far above the rate its rounding drowned the phase)."""
     f0, q = _real("notch f0", f0, "Hz"), _real("notch Q", q)
     if not (np.isfinite(f0) and f0 > 0):
         raise ValueError("notch f0 = %r: must be finite and > 0 (Hz)" % f0)
@@ -1232,7 +1363,7 @@ def notch_response(f0, q, freqs, period_ns=1000000):
         raise ValueError("notch Q = %r: must be finite (biquad.comp's valid pin says whether it lies in "
                          "[0.5, 2])" % q)
     period_ns = _loop_period(period_ns)
-    freqs = np.atleast_1d(np.asarray(freqs, dtype=np.float64))
+    freqs = _vector("freqs", freqs if np.ndim(freqs) else [freqs], None, what="Hz")
     if not np.all(np.isfinite(freqs)):
         raise ValueError("freqs[%d] = %r: must be finite (Hz)" % (np.argmin(np.isfinite(freqs)),
                                                                  freqs[np.argmin(np.isfinite(freqs))]))
@@ -1240,7 +1371,10 @@ def notch_response(f0, q, freqs, period_ns=1000000):
     _biquad_notch(C.byref(b), f0, q)
     re, im = C.c_double(), C.c_double()
     h, valid = [], 1
+    rate = fractions.Fraction(10**9, period_ns)           # (exact: Hz = 1e9 / period_ns)
     for f in freqs:
+        if abs(f) >= float(rate):                           # the same response, phase 2 pi f T in range
+            f = float(fractions.Fraction(float(f)) % rate)
         valid = _biquad_response(C.byref(b), period_ns, float(f), C.byref(re), C.byref(im))
         h.append(complex(re.value, im.value))
     return np.array(h), bool(valid)
@@ -1252,15 +1386,15 @@ class Loop:
     loop_config takes them."""
 
     def __init__(self, gains=None, params=None, ferror_limit_mm=0.0, period_ns=1000000,
-                 model="reduced-cartesian", substeps=1, integrator=DEFAULT_INTEGRATOR, notch=None):
+                 model=None, substeps=1, integrator=DEFAULT_INTEGRATOR, notch=None):
         """params: Params of the Hexaglide, or PlantParams of any plant (its channels are the loops),
-        refused here as Board refuses them (HexaglideError code -7 or -16 naming the parameter)."""
-        plant = params if isinstance(params, PlantParams) else None
-        if plant is None:
-            _geometry(params)                  # a Params or None, else TypeError
+        refused here as Board refuses them (HexaglideError code -7 or -16 naming the parameter);
+        model: as loop_config takes it (None: params' model; one not params' raises ValueError,
+        as Board's kind)."""
+        _, _, self.params = _plant_and_model(model, params, None, "model", "params")   # as Board checks them
+        plant = self.params if isinstance(self.params, PlantParams) else None
         self.cfg = loop_config(gains, ferror_limit_mm, period_ns, model, notch, plant)
         self.joints = _plant_channels(self.cfg.plant, self.cfg.variant)
-        self.params = params or Params()
         self.board_params = self.params.board_params(substeps, integrator)   # checked there
         _check_board_params("loop init", self.cfg.plant, self.cfg.variant, self.board_params, self.cfg.period_ns)
         self.buf = C.create_string_buffer(_sizeof(0))
@@ -1317,23 +1451,23 @@ def _commands(cmd_mm, joints=JOINTS):
     return cmd
 
 
-class _Trace(C.Structure):
+class _Trace(_Record):
     _fields_ = [("ferror_mm", _P), ("output_v", _P), ("load_mm", _P)]
 
 
-class _LoopStop(C.Structure):
+class _LoopStop(_Record):
     _fields_ = [("scored", C.POINTER(C.c_ubyte)), ("above", C.c_double), ("w_rms", C.c_double),
                 ("w_volts", C.c_double), ("volts_free", C.c_double), ("peak0", C.c_double),
                 ("rms0", C.c_double), ("volts0", C.c_double), ("volts_dac", C.c_int)]
 
 
-class _BatchJob(C.Structure):
+class _BatchJob(_Record):
     _fields_ = [("cfg", C.POINTER(LoopConfig)), ("params", C.POINTER(BoardParams)), ("cmd_mm", _P),
                 ("n", C.c_long), ("from_", C.c_long), ("trace", _Trace), ("skip_tool_error", C.c_int),
                 ("stop", C.POINTER(_LoopStop))]
 
 
-class _BatchResult(C.Structure):
+class _BatchResult(_Record):
     _fields_ = [("sum", LoopSummary), ("rc", C.c_int), ("stop_bound", C.c_double)]
 
 
@@ -1389,7 +1523,8 @@ class Job:
                  stop=None):
         """joints: the plant's channels (cfg's plant: PlantParams.channels), the columns of cmd;
         None: cfg's. cfg is checked as loop_config checks it (ValueError naming the field),
-        board_params as Board checks them at cfg's period (HexaglideError code -7 or -16).
+        board_params as Board checks them at cfg's period (HexaglideError code -7 or -16), after
+        a block board_params() made of another plant or model than cfg's: ValueError.
         stop: a Stop (None: the run goes to its end, a trip or a fault)."""
         if not isinstance(cfg, LoopConfig):
             raise TypeError("cfg must be a LoopConfig (hexaglide.loop_config), got %r" % (cfg,))
@@ -1397,6 +1532,7 @@ class Job:
             raise TypeError("board_params must be a BoardParams (Params.board_params, PlantParams.board_params), "
                             "got %r" % (board_params,))
         check_loop_config(cfg)
+        _check_block_plant("job", cfg.plant, cfg.variant, board_params)
         _check_board_params("job: board_params", cfg.plant, cfg.variant, board_params, cfg.period_ns)
         n = _plant_channels(cfg.plant, cfg.variant)
         if joints is not None and _whole("joints", joints) != n:
@@ -1420,9 +1556,12 @@ def cores():
 
 
 def batch(jobs, threads=0):
-    """Run the Jobs over `threads` POSIX threads (0: every core; src/hg_batch.h), no Python
-    per period; [RunResult] in the jobs' order, bit for bit what Loop(...).run gives each."""
-    threads = _whole_checked("threads", threads, C.c_int)
+    """Run the Jobs over `threads` POSIX threads (0: every core, cores(); src/hg_batch.h), no
+    Python per period; [RunResult] in the jobs' order, bit for bit what Loop(...).run gives
+    each. A threads that is not an int TypeError, a negative one (hg_batch_run would take it
+    as 0) or one beyond a C int ValueError."""
+    threads = _whole_checked("threads", threads, C.c_int, lambda v: None if v >= 0 else (
+        "must be 0 (every core: %d here) or a number of threads, 0..%d" % (cores(), _c_range(C.c_int)[1])))
     jobs = list(jobs)
     for i, j in enumerate(jobs):
         if not isinstance(j, Job):
@@ -1456,7 +1595,7 @@ def batch(jobs, threads=0):
     return out_list
 
 
-class PidState(C.Structure):
+class PidState(_Record):
     """hg_pid_state: one pid's memory and output pins."""
     _fields_ = [(n, C.c_double) for n in ("error_i", "error_d", "prev_error", "prev_cmd", "prev_fb",
                                           "limit_state", "cmd_d", "cmd_dd", "cmd_ddd", "cmd_v", "fb_v")] + \
@@ -1488,10 +1627,12 @@ def pid_gains(gains):
 def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000, state=None):
     """LinuxCNC's pid (src/hg_pid.c) on recorded pins: outputs for arrays of
     command and feedback (and enable, default 1), from `state` (a dict of
-    PidState fields; default the load-time state, all zero). ValueError naming
-    the argument: a period the loop refuses (hg_loop_config_check: (0, 10 ms]),
-    a state value that is not finite (or, for an int field, beyond a C int), an enable other
-    than 0 or 1."""
+    PidState fields; default the load-time state, all zero). TypeError naming
+    the argument: a command, feedback, enable or state value that is not a
+    real number (a string, a bool, a complex); ValueError naming it: a period
+    the loop refuses (hg_loop_config_check: (0, 10 ms]), a state value that is
+    not finite (or, for an int field, beyond a C int), an enable other than 0
+    or 1."""
     g = pid_gains(gains)
     st = PidState()
     types = dict(PidState._fields_)
@@ -1501,13 +1642,13 @@ def pid_outputs(gains, command, feedback, enable=None, period_ns=1000000, state=
             raise ValueError("state: %r is not a PidState field (%s)" % (k, ", ".join(names)))
         if types[k] is C.c_int:                # (ctypes would wrap an int beyond a C int's range)
             v = _whole_checked("state: " + k, v, C.c_int)
+        else:
+            v = _real("state: " + k, v)
         setattr(st, k, v)
         if not np.isfinite(getattr(st, k)):
             raise ValueError("state: %s = %r: must be finite (a pid's memory is never NaN or infinite)" % (k, v))
     period_ns = _loop_period(period_ns)
-    command = np.asarray(command, dtype=np.float64)
-    if command.ndim != 1:
-        raise ValueError("command must be a vector (one value per period), got shape %s" % (command.shape,))
+    command = _vector("command", command, None, what="one per period")
     n = len(command)
     feedback = _vector("feedback", feedback, n, what="one per command")
     en = np.ones(n, dtype=int)
@@ -1529,7 +1670,7 @@ if _sizeof(11) != C.sizeof(PidState):
     raise ImportError("PidState: layout differs from the library's: rebuild both")
 
 
-class _RecCtx(C.Structure):
+class _RecCtx(_Record):
     """hg_board_rec_ctx (src/hg_board_rec.h)."""
     _fields_ = [("in_", C.POINTER(BoardInputs)), ("out", C.POINTER(BoardOutputs)), ("period_ns", C.c_long),
                 ("plant", C.c_int), ("variant", C.c_int), ("stream", _P)]

@@ -251,7 +251,12 @@ def known(rec, sets):
             raise BadInput("--set %s: not a number" % s)
     pp = record_params(rec, rec_told_index(rec))
     for name, v in kn.items():
-        pp[name] = v
+        given = [x for x in sets if x.partition("=")[0] == name]
+        try:
+            pp[name] = v
+        except ValueError:             # (PlantParams takes finite numbers only)
+            raise BadInput("%s: must be finite (SI units)" % ("--set " + given[-1] if given else
+                                                            "%s: %s = %r" % (rec.path, name, v)))
     for name, v, why in pp.refused():
         given = [x for x in sets if x.partition("=")[0] == name]
         if given:
